@@ -1,0 +1,43 @@
+#pragma once
+// Procedural industrial parts: closed triangle meshes in metres, outward normals, model frame at
+// the centroid, with their symmetry declared for scoring. Stateless: thread-safe.
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "binpick/io/point_cloud.hpp"
+
+namespace binpick::sim {
+
+// The rotations that map a part onto itself (about its model origin).
+struct Symmetry {
+  std::vector<Eigen::Matrix3d> discrete{Eigen::Matrix3d::Identity()};  // always holds identity
+  std::optional<Eigen::Vector3d> continuous_axis;  // unit axis through the origin, if any
+};
+
+struct Part {
+  std::string name;
+  std::string description;
+  TriangleMesh mesh;
+  Symmetry symmetry;
+};
+
+// Names of the built-in parts, e.g. "l_bracket", "clamp".
+std::vector<std::string> partNames();
+// Builds a built-in part; throws binpick::Error naming the unknown part.
+Part makePart(const std::string& name);
+
+// A prism: a simple polygon (counter-clockwise, metres, in the xy plane) extruded along z by
+// `thickness`, centred on z = 0. Throws on a degenerate or self-intersecting profile.
+TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thickness);
+
+// Rotation + translation error between an estimate and the truth, minimised over the symmetry.
+struct PoseError {
+  double translation = 0.0;  // metres (or the mesh's unit)
+  double rotation_deg = 0.0;
+};
+PoseError poseError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth,
+                    const Symmetry& symmetry);
+
+}  // namespace binpick::sim
