@@ -1,6 +1,7 @@
 #pragma once
 // Procedural industrial parts: closed triangle meshes in metres, outward normals, model frame at
-// the centroid, with their symmetry declared for scoring. Stateless: thread-safe.
+// the volume centroid (axes: those of the profile's drawing, the extrusion along z), with their
+// symmetry declared for scoring. Stateless: thread-safe.
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
@@ -30,9 +31,14 @@ Part makePart(const std::string& name);
 
 // A prism: a simple polygon (counter-clockwise, metres, in the xy plane) extruded along z by
 // `thickness`, centred on z = 0. Throws on a degenerate or self-intersecting profile.
+// The profile keeps its coordinates (x, y are not re-centred). A clockwise profile is reversed,
+// and repeated or collinear points are dropped, so the mesh is always closed with outward normals.
 TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thickness);
 
-// Rotation + translation error between an estimate and the truth, minimised over the symmetry.
+// Rotation + translation error between an estimate and the truth, minimised over the symmetry:
+// the estimate is compared with every truth * S (S a symmetry rotation, in the model frame), and
+// with a continuous axis a only the angle between R_est a and R_true S a counts. The translation
+// error is the distance between the model origins (symmetries fix the origin).
 struct PoseError {
   double translation = 0.0;  // metres (or the mesh's unit)
   double rotation_deg = 0.0;

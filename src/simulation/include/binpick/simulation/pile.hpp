@@ -32,15 +32,22 @@ struct ObjectTruth {
 
 struct PileScene {
   PointCloud cloud;                 // organized, camera frame, noisy
-  std::vector<int32_t> instance;    // per pixel: object index, -2 bin, -1 nothing
-  std::vector<ObjectTruth> objects;
+  // Per pixel: object index, -2 bin, -1 nothing. From the noise-free render: a pixel lost to
+  // dropout keeps its label.
+  std::vector<int32_t> instance;
+  std::vector<ObjectTruth> objects;  // in drop order: objects[i] has instance id i
   PinholeCamera camera;
-  Eigen::Isometry3d T_camera_bin = Eigen::Isometry3d::Identity();  // bin floor centre, z up
+  // Bin frame: origin at the centre of the floor's top face, x along bin_length, z up. The camera
+  // looks straight down: bin x = camera x, bin y = camera -y, floor centre at camera z =
+  // camera_height.
+  Eigen::Isometry3d T_camera_bin = Eigen::Isometry3d::Identity();
 };
 
 // Drops the parts one by one onto a height field of the bin and what lies in it (no physics:
 // each part keeps its random orientation and rests where its lowest point first touches), then
-// renders the scene from above.
+// renders the scene from above. The part is rotated about its model origin, and each
+// ObjectTruth::T_camera_object places that origin. Every part stays inside the inner walls; throws
+// binpick::Error on bad params or a part too large to fit the bin in every orientation.
 PileScene generatePile(const TriangleMesh& part, const PileParams& params);
 
 }  // namespace binpick::sim

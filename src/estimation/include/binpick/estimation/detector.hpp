@@ -1,0 +1,78 @@
+#pragma once
+// The whole estimation pipeline of Li & Hashimoto (2018): scene preparation, sparse voting,
+// voxel verification, multiple selection (Algorithm 1) with ICP on visible points, and the
+// original Drost method (voting over all pairs + pose clustering) as a baseline in the same
+// engine. A Detector holds one prepared model; detect() is const and may run from several
+// threads at once (each call uses its own working memory).
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "binpick/estimation/clustering.hpp"
+#include "binpick/estimation/icp.hpp"
+#include "binpick/estimation/model.hpp"
+#include "binpick/estimation/scene.hpp"
+#include "binpick/estimation/selection.hpp"
+#include "binpick/estimation/verification.hpp"
+#include "binpick/estimation/voting.hpp"
+
+namespace binpick::estimation {
+
+enum class Method {
+  LiHashimoto,  // sparse voting, voxel verification, Algorithm 1, ICP (the paper's "Proposed")
+  Drost,        // all referred points, pose clustering, ICP (the paper's PPF1 / PPF5)
+};
+Method methodFromName(const std::string& name);  // "li_hashimoto" | "drost"; throws otherwise
+std::string methodName(Method method);
+
+struct DetectorParams {
+  Method method = Method::LiHashimoto;
+  SceneParams scene;
+  VotingParams voting;
+  VerificationParams verification;
+  SelectionParams selection;
+  IcpParams icp;
+  ClusteringParams clustering;  // Drost only
+  int threads = 0;              // every stage: 0 = all hardware threads
+
+  // The paper's baselines (Table I): PPF1 = all references, PPF5 = 20% of references; both pair
+  // each reference with every scene point and cluster poses.
+  static DetectorParams drost(float reference_fraction);
+  void validate() const;  // throws binpick::Error naming the field
+};
+
+struct Detection {
+  Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
+  float score = 0.0f;     // Score_New / N_m at selection (eq. 4); Drost: cluster votes / max votes
+  float coverage = 0.0f;  // after ICP: share of the model points the camera should see that fit
+  float icp_rmse = 0.0f;  // model units
+  uint32_t votes = 0;
+  int icp_iterations = 0;
+};
+
+struct StageTimings {  // milliseconds
+  double prepare_scene = 0, voting = 0, verification = 0, selection = 0, icp = 0, total = 0;
+};
+
+struct DetectionResult {
+  std::vector<Detection> detections;  // in selection order
+  StageTimings timing_ms;
+  std::size_t scene_points = 0;       // after subsampling
+  std::size_t candidates = 0;
+  std::size_t refreshes = 0;          // eq. 4 evaluations during Algorithm 1
+};
+
+class Detector {
+ public:
+  Detector(PreparedModel model, DetectorParams params);
+  DetectionResult detect(const PointCloud& scene_cloud) const;
+  const PreparedModel& model() const { return model_; }
+  const DetectorParams& params() const { return params_; }
+
+ private:
+  PreparedModel model_;
+  DetectorParams params_;
+};
+
+}  // namespace binpick::estimation

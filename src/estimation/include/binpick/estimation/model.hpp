@@ -1,0 +1,45 @@
+#pragma once
+// Model preparation (sections II-A and III-A): a dense "original" cloud of the part's surface, the
+// subsampled model cloud with normals from the dense neighbours, and the PPF hash table of all
+// model pairs. A PreparedModel is immutable once built: share it between threads freely.
+#include <Eigen/Core>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "binpick/estimation/hash_table.hpp"
+#include "binpick/estimation/ppf.hpp"
+#include "binpick/io/geometry_io.hpp"
+
+namespace binpick::estimation {
+
+struct ModelParams {
+  float sampling_ratio = 0.04f;            // tau_d: subsampling step / diam(M) (Table I: 0.04)
+  float angle_step_deg = 12.0f;            // feature and alpha quantisation, degrees
+  float dense_samples_per_step2 = 25.0f;   // mesh input: dense samples per step^2 of surface
+  float normal_radius_ratio = 0.5f;        // plane-fit radius for normals, in subsampling steps
+  float normal_cluster_angle_deg = 30.0f;  // one voxel keeps apart points whose normals differ more
+  uint64_t seed = 1;                       // dense surface sampling
+  void validate() const;                   // throws binpick::Error naming the field
+};
+
+struct PreparedModel {
+  std::vector<Eigen::Vector3f> points;   // subsampled model cloud, model frame
+  std::vector<Eigen::Vector3f> normals;  // unit, pointing out of the part
+  float diameter = 0.0f;                 // diam(M), model units
+  float step = 0.0f;                     // d_dist = tau_d * diam(M)
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // centroid of `points`
+  ModelParams params;
+  PpfHashTable table;
+
+  PpfQuantizer quantizer() const;
+  std::size_t size() const { return points.size(); }
+};
+
+// Mesh input: area-weighted dense samples, normals oriented by the faces. Cloud input: the cloud
+// is the original cloud; its normals are used when present, else fitted and oriented away from
+// the centroid (right for convex-ish parts: prefer meshes or clouds with normals).
+// Throws binpick::Error for an empty geometry, a mesh without area, or nonsense params.
+PreparedModel prepareModel(const ModelGeometry& geometry, const ModelParams& params);
+
+}  // namespace binpick::estimation

@@ -1,0 +1,34 @@
+#pragma once
+// Prepared-model cache files: the sampled model, its parameters and the PPF table, so that a
+// service starts in milliseconds instead of rebuilding the table. Versioned and checksummed; a
+// truncated, corrupt, foreign or outdated file is rejected with binpick::Error, never trusted.
+// Free functions without shared state: thread-safe (for different files).
+#include <cstdint>
+#include <string>
+
+#include "binpick/estimation/model.hpp"
+
+namespace binpick::estimation {
+
+constexpr uint32_t kModelCacheVersion = 1;
+
+// `source_fingerprint` identifies what the model was built from (see fingerprintFile): a cache is
+// only reused for the same source and parameters.
+void saveModelCache(const PreparedModel& model, uint64_t source_fingerprint, const std::string& path);
+
+struct CachedModel {
+  PreparedModel model;
+  uint64_t source_fingerprint = 0;
+};
+CachedModel loadModelCache(const std::string& path);
+
+// FNV-1a 64 of a file's bytes; throws binpick::Error when it cannot be read.
+uint64_t fingerprintFile(const std::string& path);
+
+// The cache at `cache_path` when it exists and was built from the same source with the same
+// params; otherwise the model is prepared from `model_path` and the cache (re)written. `reused`
+// tells which happened.
+PreparedModel loadOrPrepareModel(const std::string& model_path, const ModelParams& params,
+                                 const std::string& cache_path, bool* reused = nullptr);
+
+}  // namespace binpick::estimation

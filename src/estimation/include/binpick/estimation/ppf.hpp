@@ -1,0 +1,65 @@
+#pragma once
+// Point pair features (Drost et al. 2010; Li & Hashimoto 2018 eq. 1), their quantisation and the
+// local frames used by the voting scheme (eq. 2). Pure functions: thread-safe.
+#include <Eigen/Geometry>
+#include <cstdint>
+
+namespace binpick::estimation {
+
+// F(m_i, m_j) = (|d|, angle(n_i, d), angle(n_j, d), angle(n_i, n_j)), d = m_j - m_i (eq. 1).
+struct PointPairFeature {
+  float distance = 0.0f;
+  float angle_ni_d = 0.0f;   // radians in [0, pi]
+  float angle_nj_d = 0.0f;   // radians in [0, pi]
+  float angle_ni_nj = 0.0f;  // radians in [0, pi]
+};
+
+PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i,
+                                const Eigen::Vector3f& p_j, const Eigen::Vector3f& n_j);
+
+// Discretisation of features into hash keys and of the in-plane angle alpha into bins.
+class PpfQuantizer {
+ public:
+  // distance_step: metres (or the model unit); angle_step: radians; max_distance: the model
+  // diameter, beyond which pairs are never hashed.
+  PpfQuantizer(float distance_step, float angle_step, float max_distance);
+
+  // Key of a feature, or -1 when the pair is longer than max_distance.
+  int64_t key(const PointPairFeature& f) const;
+  int64_t keyCount() const { return key_count_; }
+
+  // Bin of an angle; any real angle is wrapped into [0, 2*pi) first, so alpha is binned over
+  // one turn (a known defect elsewhere is to bin the difference of two angles over 4*pi).
+  int alphaBin(float alpha) const;
+  int alphaBinCount() const { return alpha_bins_; }
+  float alphaBinCentre(int bin) const;
+
+  float distanceStep() const { return distance_step_; }
+  float angleStep() const { return angle_step_; }
+  float maxDistance() const { return max_distance_; }
+
+ private:
+  float distance_step_;
+  float angle_step_;
+  float max_distance_;
+  int distance_bins_;
+  int angle_bins_;
+  int alpha_bins_;
+  int64_t key_count_;
+};
+
+// The local frame of a reference point: T maps p_ref to the origin and n_ref onto +x (section
+// II-B: T_m for model points, T_s for scene points).
+Eigen::Isometry3f referenceFrame(const Eigen::Vector3f& p_ref, const Eigen::Vector3f& n_ref);
+
+// Angle of a point about the x axis of a reference frame, measured in the y-z plane from +y.
+// alpha = planarAngle(T_s s_j) - planarAngle(T_m m_j) rotates the model pair onto the scene pair.
+inline float planarAngle(const Eigen::Vector3f& p_in_reference_frame) {
+  return std::atan2(p_in_reference_frame.z(), p_in_reference_frame.y());
+}
+
+// Pose from a local coordinate (eq. 2): T_scene_model = T_s^-1 * Rx(alpha) * T_m.
+Eigen::Isometry3f poseFromLocalCoordinate(const Eigen::Isometry3f& T_s, const Eigen::Isometry3f& T_m,
+                                          float alpha);
+
+}  // namespace binpick::estimation

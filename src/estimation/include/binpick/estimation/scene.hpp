@@ -1,0 +1,44 @@
+#pragma once
+// Scene preparation (sections II and III-A): the full-resolution cloud in the camera frame (camera
+// at the origin looking along +z) is subsampled at the model's step, and each kept point gets a
+// normal fitted to its full-resolution neighbours, turned towards the camera.
+// Free function, no shared state: thread-safe.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "binpick/estimation/model.hpp"
+#include "binpick/io/point_cloud.hpp"
+
+namespace binpick::estimation {
+
+// An oriented box in the camera frame; points outside it are ignored (e.g. the bin's inside
+// above its floor).
+struct CropBox {
+  Eigen::Isometry3f T_camera_box = Eigen::Isometry3f::Identity();  // box centre and axes
+  Eigen::Vector3f half_extents = Eigen::Vector3f::Zero();          // model units
+  bool contains(const Eigen::Vector3f& p_camera) const;
+};
+
+struct SceneParams {
+  std::optional<CropBox> crop;     // none: keep every finite point
+  int min_normal_neighbours = 5;   // fewer full-resolution neighbours: the point is dropped
+  int max_window_half_size = 12;   // organized clouds: largest pixel window radius for normals
+  int threads = 0;                 // 0: all hardware threads
+  void validate() const;           // throws binpick::Error naming the field
+};
+
+struct PreparedScene {
+  std::vector<Eigen::Vector3f> points;   // subsampled scene, camera frame
+  std::vector<Eigen::Vector3f> normals;  // unit, towards the camera
+  std::vector<uint32_t> source_index;    // index of each point in the input cloud
+  std::size_t valid_input_points = 0;    // finite points inside the crop box
+  std::size_t size() const { return points.size(); }
+};
+
+// Throws binpick::Error when the cloud is malformed (non-finite points in an unorganized cloud,
+// normals of the wrong count); an empty or fully cropped cloud gives an empty scene.
+PreparedScene prepareScene(const PointCloud& cloud, const PreparedModel& model, const SceneParams& params);
+
+}  // namespace binpick::estimation

@@ -1,0 +1,49 @@
+#pragma once
+// Multiple selection (section III-D, Algorithm 1): scene points explained by an accepted pose stop
+// existing, and the next pose is found by refreshing candidates' scores (eq. 4 over the stored
+// SS(P_k)) in the order of their last known scores, stopping as soon as no unrefreshed candidate
+// can beat the best refreshed one. Not thread-safe: one selection per detection.
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "binpick/estimation/verification.hpp"
+
+namespace binpick::estimation {
+
+struct SelectionParams {
+  int max_objects = 20;                    // stop after this many detections
+  float min_score_fraction = 0.1f;         // stop when the best Score_New / N_m falls below this
+  float min_centre_distance_ratio = 0.1f;  // a pose whose model centre lies closer than this
+                                           // (times diam(M)) to an accepted one is a repeat
+  void validate() const;                   // throws binpick::Error naming the field
+};
+
+class MultipleSelection {
+ public:
+  struct Pick {
+    uint32_t candidate = 0;  // index into the candidates
+    uint32_t score = 0;      // Score_New at the time of the pick
+  };
+
+  // `candidates` must outlive the selection.
+  MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points);
+
+  // The remaining candidate with the highest Score_New under the current Exist flags (ties: the
+  // lower index), taken out of the running; nothing when no candidate is left.
+  std::optional<Pick> next();
+  // Algorithm 1 lines 2-6: these scene points stop existing.
+  void removeExplained(const std::vector<uint32_t>& scene_points);
+
+  const std::vector<uint8_t>& exist() const { return exist_; }
+  std::size_t refreshCount() const { return refreshes_; }  // how many eq. 4 evaluations ran
+
+ private:
+  const std::vector<VerifiedCandidate>& candidates_;
+  std::vector<uint8_t> exist_;
+  std::vector<std::pair<uint32_t, uint32_t>> ranked_;  // (known upper bound of the score, index)
+  std::size_t refreshes_ = 0;
+};
+
+}  // namespace binpick::estimation

@@ -1,0 +1,150 @@
+#include "binpick/estimation/detector.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "binpick/io/error.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+class Stopwatch {
+ public:
+  double lapMs() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+    return ms;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector3f& centre,
+                     const PreparedModel& model, float min_distance) {
+  for (const Detection& d : accepted) {
+    if ((d.T_camera_model * model.centre - centre).norm() < min_distance) return true;
+  }
+  return false;
+}
+
+Detection refined(const PoseRefiner& refiner, const PreparedModel& model, const Eigen::Isometry3f& pose) {
+  const IcpResult icp = refiner.refine(model, pose);
+  Detection d;
+  d.T_camera_model = icp.T_camera_model;
+  d.coverage = icp.coverage;
+  d.icp_rmse = icp.rmse;
+  d.icp_iterations = icp.iterations;
+  return d;
+}
+
+// Sections III-C and III-D: verification, then Algorithm 1 picks poses one by one; each pick is
+// refined by ICP before its scene points stop existing, so that a coarse candidate does not leave
+// half of its object behind for a repeat detection.
+void selectVerified(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
+                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, Stopwatch& clock) {
+  const SceneVoxelGrid grid(scene.points, p.verification.voxel_size_ratio * model.step);
+  const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification);
+  result.timing_ms.verification = clock.lapMs();
+
+  const PoseRefiner refiner(scene, model.step, p.icp);
+  MultipleSelection selection(verified, scene.size());
+  const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
+  const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
+  double icp_ms = 0.0;
+  while (static_cast<int>(result.detections.size()) < p.selection.max_objects) {
+    const auto pick = selection.next();
+    if (!pick || pick->score < std::max(min_score, 1u)) break;
+    Stopwatch icp_clock;
+    Detection d = refined(refiner, model, verified[pick->candidate].T_camera_model);
+    icp_ms += icp_clock.lapMs();
+    if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
+    d.score = static_cast<float>(pick->score) / static_cast<float>(model.size());
+    d.votes = verified[pick->candidate].votes;
+    // Algorithm 1 lines 2-6, at the refined pose.
+    selection.removeExplained(correspondingScenePoints(model, d.T_camera_model, grid, scene.normals, -2.0f));
+    result.detections.push_back(d);
+  }
+  result.refreshes = selection.refreshCount();
+  result.timing_ms.icp = icp_ms;
+  result.timing_ms.selection = clock.lapMs() - icp_ms;
+}
+
+// Section II-C: clusters of poses, best first, each refined; repeats of an accepted pose skipped.
+void selectClustered(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
+                     const std::vector<PoseCandidate>& candidates, DetectionResult& result, Stopwatch& clock) {
+  const std::vector<PoseCluster> clusters = clusterPoses(candidates, model.diameter, p.clustering);
+  result.timing_ms.selection = clock.lapMs();
+  const PoseRefiner refiner(scene, model.step, p.icp);
+  const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
+  for (const PoseCluster& cluster : clusters) {
+    if (static_cast<int>(result.detections.size()) >= p.selection.max_objects) break;
+    Detection d = refined(refiner, model, cluster.T_camera_model);
+    if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
+    d.votes = cluster.votes;
+    d.score = static_cast<float>(cluster.votes) / static_cast<float>(clusters.front().votes);
+    result.detections.push_back(d);
+  }
+  result.timing_ms.icp = clock.lapMs();
+}
+
+}  // namespace
+
+Method methodFromName(const std::string& name) {
+  if (name == "li_hashimoto") return Method::LiHashimoto;
+  if (name == "drost") return Method::Drost;
+  throw Error("detector params: method '" + name + "' is unknown (li_hashimoto or drost)");
+}
+
+std::string methodName(Method method) { return method == Method::Drost ? "drost" : "li_hashimoto"; }
+
+DetectorParams DetectorParams::drost(float reference_fraction) {
+  DetectorParams p;
+  p.method = Method::Drost;
+  p.voting.reference_fraction = reference_fraction;
+  p.voting.referred_fraction = 1.0f;
+  p.voting.poses_per_reference = 3;
+  p.voting.min_relative_votes = 0.9f;
+  return p;
+}
+
+void DetectorParams::validate() const {
+  if (threads < 0) throw Error("detector params: threads must be >= 0");
+  scene.validate();
+  voting.validate();
+  verification.validate();
+  selection.validate();
+  icp.validate();
+  clustering.validate();
+}
+
+Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::move(model)), params_(params) {
+  params_.validate();
+  params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.threads;
+  if (model_.size() == 0) throw Error("detector: the model has no points");
+}
+
+DetectionResult Detector::detect(const PointCloud& scene_cloud) const {
+  Stopwatch total;
+  Stopwatch clock;
+  DetectionResult result;
+  const PreparedScene scene = prepareScene(scene_cloud, model_, params_.scene);
+  result.scene_points = scene.size();
+  result.timing_ms.prepare_scene = clock.lapMs();
+
+  const std::vector<PoseCandidate> candidates = vote(model_, scene, params_.voting);
+  result.candidates = candidates.size();
+  result.timing_ms.voting = clock.lapMs();
+  if (!candidates.empty()) {
+    if (params_.method == Method::LiHashimoto) {
+      selectVerified(model_, scene, params_, candidates, result, clock);
+    } else {
+      selectClustered(model_, scene, params_, candidates, result, clock);
+    }
+  }
+  result.timing_ms.total = total.lapMs();
+  return result;
+}
+
+}  // namespace binpick::estimation

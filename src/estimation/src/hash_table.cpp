@@ -1,0 +1,56 @@
+#include "binpick/estimation/hash_table.hpp"
+
+#include <string>
+
+#include "binpick/io/error.hpp"
+
+namespace binpick::estimation {
+
+PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points,
+                           const std::vector<Eigen::Vector3f>& normals, const PpfQuantizer& quantizer) {
+  const std::size_t n = points.size();
+  std::vector<Eigen::Isometry3f> frames(n);
+  for (std::size_t i = 0; i < n; ++i) frames[i] = referenceFrame(points[i], normals[i]);
+
+  // Two passes (count, then fill) build the flat layout without a temporary per-key vector;
+  // features are computed twice rather than stored, so memory stays O(keys + pairs).
+  const auto pairKey = [&](std::size_t i, std::size_t j) {
+    return quantizer.key(computeFeature(points[i], normals[i], points[j], normals[j]));
+  };
+  offsets_.assign(static_cast<std::size_t>(quantizer.keyCount()) + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const int64_t key = i == j ? -1 : pairKey(i, j);
+      if (key >= 0) ++offsets_[key + 1];
+    }
+  }
+  for (std::size_t k = 1; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+  entries_.resize(offsets_.back());
+  std::vector<uint32_t> cursor(offsets_.begin(), offsets_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const int64_t key = i == j ? -1 : pairKey(i, j);
+      if (key < 0) continue;
+      entries_[cursor[key]++] = {static_cast<uint32_t>(i), planarAngle(frames[i] * points[j])};
+    }
+  }
+}
+
+PpfHashTable::PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries,
+                           uint32_t point_count)
+    : offsets_(std::move(offsets)), entries_(std::move(entries)) {
+  if (offsets_.empty() || offsets_.front() != 0 || offsets_.back() != entries_.size()) {
+    throw Error("PPF table: offsets do not cover the entries");
+  }
+  for (std::size_t k = 1; k < offsets_.size(); ++k) {
+    if (offsets_[k] < offsets_[k - 1]) throw Error("PPF table: offsets decrease at key " + std::to_string(k));
+  }
+  for (const PairEntry& e : entries_) {
+    if (e.reference >= point_count || !std::isfinite(e.reference_angle)) {
+      throw Error("PPF table: an entry refers to model point " + std::to_string(e.reference) +
+                  " of " + std::to_string(point_count) + " or has a non-finite angle");
+    }
+  }
+}
+
+}  // namespace binpick::estimation

@@ -1,0 +1,154 @@
+#include "binpick/estimation/icp.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <unordered_map>
+
+#include "binpick/io/error.hpp"
+#include "kdtree.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+constexpr float kDegToRad = static_cast<float>(M_PI / 180.0);
+
+struct Correspondence {
+  Eigen::Vector3f source;  // moved model point
+  Eigen::Vector3f target;  // scene point
+  Eigen::Vector3f normal;  // scene normal
+};
+
+// Gauss-Newton step of the point-to-plane cost with Huber weights; returns the increment as an
+// isometry applied on the left.
+Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, float huber) {
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+  for (const Correspondence& c : pairs) {
+    const double r = static_cast<double>((c.source - c.target).dot(c.normal));
+    const double w = std::abs(r) <= huber ? 1.0 : huber / std::abs(r);
+    Eigen::Matrix<double, 6, 1> J;
+    J << c.source.cross(c.normal).cast<double>(), c.normal.cast<double>();
+    H += w * J * J.transpose();
+    g += w * J * r;
+  }
+  const Eigen::Matrix<double, 6, 1> x = H.ldlt().solve(-g);
+  Eigen::Isometry3f delta = Eigen::Isometry3f::Identity();
+  if (!x.allFinite()) return delta;
+  const Eigen::Vector3d omega = x.head<3>();
+  if (omega.norm() > 1e-12) delta.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix().cast<float>();
+  delta.translation() = x.tail<3>().cast<float>();
+  return delta;
+}
+
+}  // namespace
+
+void IcpParams::validate() const {
+  const auto positive = [](float v, const char* field) {
+    if (!(v > 0.0f) || !std::isfinite(v)) throw Error(std::string("icp params: ") + field + " must be positive");
+  };
+  if (max_iterations < 0 || max_iterations > 1000) throw Error("icp params: max_iterations must be in [0, 1000]");
+  positive(initial_max_distance_ratio, "initial_max_distance_ratio");
+  positive(final_max_distance_ratio, "final_max_distance_ratio");
+  positive(huber_ratio, "huber_ratio");
+  positive(convergence_translation_ratio, "convergence_translation_ratio");
+  positive(convergence_rotation_deg, "convergence_rotation_deg");
+  positive(fit_distance_ratio, "fit_distance_ratio");
+}
+
+std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen::Isometry3f& pose) {
+  // Back faces first, then a z-buffer over viewing directions with cells about one step wide at
+  // the part's distance: a point more than a step behind the nearest in its cell is hidden.
+  const float depth = std::max((pose * model.centre).z(), model.step);
+  const float cell = model.step / depth;
+  std::unordered_map<int64_t, float> nearest;
+  std::vector<std::pair<int64_t, uint32_t>> facing;
+  for (uint32_t k = 0; k < model.size(); ++k) {
+    const Eigen::Vector3f p = pose * model.points[k];
+    if (!(p.z() > 0.0f) || (pose.linear() * model.normals[k]).dot(p) >= 0.0f) continue;
+    const int64_t u = static_cast<int64_t>(std::floor(p.x() / p.z() / cell));
+    const int64_t v = static_cast<int64_t>(std::floor(p.y() / p.z() / cell));
+    const int64_t key = (u << 32) ^ (v & 0xffffffff);
+    auto [it, inserted] = nearest.try_emplace(key, p.z());
+    if (!inserted) it->second = std::min(it->second, p.z());
+    facing.emplace_back(key, k);
+  }
+  std::vector<uint32_t> visible;
+  for (const auto& [key, k] : facing) {
+    if ((pose * model.points[k]).z() <= nearest[key] + model.step) visible.push_back(k);
+  }
+  return visible;
+}
+
+struct PoseRefiner::Index {
+  explicit Index(const std::vector<Eigen::Vector3f>& points) : tree(points) {}
+  KdTree tree;
+};
+
+PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams params)
+    : scene_(scene), step_(step), params_(params), index_(std::make_unique<Index>(scene.points)) {
+  params_.validate();
+}
+
+PoseRefiner::~PoseRefiner() = default;
+
+IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3f& initial) const {
+  IcpResult result;
+  result.T_camera_model = initial;
+  if (scene_.points.empty()) return result;
+  std::vector<uint32_t> sources;
+  std::vector<Correspondence> pairs;
+  const float huber = params_.huber_ratio * step_;
+  for (int it = 0; it < params_.max_iterations; ++it) {
+    const Eigen::Isometry3f& pose = result.T_camera_model;
+    if (params_.visible_points_only) {
+      sources = visibleModelPoints(model, pose);
+    } else {
+      sources.resize(model.size());
+      for (uint32_t k = 0; k < model.size(); ++k) sources[k] = k;
+    }
+    const float gate = (it < params_.max_iterations / 3 ? params_.initial_max_distance_ratio
+                                                       : params_.final_max_distance_ratio) * step_;
+    pairs.clear();
+    for (uint32_t k : sources) {
+      const Eigen::Vector3f p = pose * model.points[k];
+      const auto [s, distance_sq] = index_->tree.nearest(p);
+      if (s < 0 || distance_sq > gate * gate) continue;
+      // A scene normal facing away from the moved model normal belongs to another surface.
+      if (scene_.normals[s].dot(pose.linear() * model.normals[k]) < 0.5f) continue;
+      pairs.push_back({p, scene_.points[s], scene_.normals[s]});
+    }
+    if (pairs.size() < 6) break;
+    const Eigen::Isometry3f delta = solvePointToPlane(pairs, huber);
+    result.T_camera_model = delta * result.T_camera_model;
+    result.iterations = it + 1;
+    const float turn = Eigen::AngleAxisf(delta.linear()).angle();
+    if (delta.translation().norm() < params_.convergence_translation_ratio * step_ &&
+        turn < params_.convergence_rotation_deg * kDegToRad) {
+      result.converged = true;
+      break;
+    }
+  }
+  // Orthonormalise: float composition drifts over iterations.
+  const Eigen::Quaternionf q(result.T_camera_model.linear());
+  result.T_camera_model.linear() = q.normalized().toRotationMatrix();
+
+  // Final fit: residual and how much of what the camera should see of the part is there.
+  const std::vector<uint32_t> visible = visibleModelPoints(model, result.T_camera_model);
+  const float fit = params_.fit_distance_ratio * step_;
+  double squared = 0.0;
+  int fitted = 0;
+  for (uint32_t k : visible) {
+    const Eigen::Vector3f p = result.T_camera_model * model.points[k];
+    const auto [s, distance_sq] = index_->tree.nearest(p);
+    if (s < 0 || distance_sq > fit * fit) continue;
+    const float r = (p - scene_.points[s]).dot(scene_.normals[s]);
+    squared += static_cast<double>(r) * r;
+    ++fitted;
+  }
+  result.visible_points = static_cast<int>(visible.size());
+  result.coverage = visible.empty() ? 0.0f : static_cast<float>(fitted) / static_cast<float>(visible.size());
+  result.rmse = fitted == 0 ? 0.0f : static_cast<float>(std::sqrt(squared / fitted));
+  return result;
+}
+
+}  // namespace binpick::estimation

@@ -1,0 +1,57 @@
+#pragma once
+// Internal: a 3-D kd-tree over a vector of points (nanoflann). Queries are const and may run
+// from many threads at once; the points must outlive the tree and not change.
+#include <nanoflann.hpp>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace binpick::estimation {
+
+class KdTree {
+ public:
+  explicit KdTree(const std::vector<Eigen::Vector3f>& points)
+      : adaptor_{points}, index_(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
+
+  // Index of the nearest point and its squared distance; {-1, inf} for an empty tree.
+  std::pair<int, float> nearest(const Eigen::Vector3f& query) const {
+    uint32_t index = 0;
+    float distance_sq = std::numeric_limits<float>::infinity();
+    if (adaptor_.points.empty() || index_.knnSearch(query.data(), 1, &index, &distance_sq) == 0) {
+      return {-1, std::numeric_limits<float>::infinity()};
+    }
+    return {static_cast<int>(index), distance_sq};
+  }
+
+  // Indices of all points within `radius` (unsorted), written to `out`.
+  void withinRadius(const Eigen::Vector3f& query, float radius, std::vector<uint32_t>& out) const {
+    matches_buffer().clear();
+    nanoflann::SearchParams params;
+    params.sorted = false;
+    index_.radiusSearch(query.data(), radius * radius, matches_buffer(), params);
+    out.clear();
+    for (const auto& match : matches_buffer()) out.push_back(match.first);
+  }
+
+ private:
+  struct Adaptor {
+    const std::vector<Eigen::Vector3f>& points;
+    std::size_t kdtree_get_point_count() const { return points.size(); }
+    float kdtree_get_pt(std::size_t i, std::size_t dim) const { return points[i][static_cast<int>(dim)]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const { return false; }
+  };
+  using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>,
+                                                    Adaptor, 3, uint32_t>;
+  static std::vector<std::pair<uint32_t, float>>& matches_buffer() {
+    thread_local std::vector<std::pair<uint32_t, float>> buffer;
+    return buffer;
+  }
+
+  Adaptor adaptor_;
+  Index index_;
+};
+
+}  // namespace binpick::estimation

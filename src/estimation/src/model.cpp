@@ -1,0 +1,117 @@
+#include "binpick/estimation/model.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "binpick/io/error.hpp"
+#include "kdtree.hpp"
+#include "point_ops.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+constexpr float kDegToRad = static_cast<float>(M_PI / 180.0);
+
+// The original (dense) cloud with a reference normal per point used only for orientation.
+struct DenseCloud {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> orientation;
+  bool has_exact_normals = false;  // a cloud file's own normals are kept as they are
+};
+
+DenseCloud denseFromMesh(const TriangleMesh& mesh, const ModelParams& params) {
+  validateMesh(mesh, "model mesh");
+  const double area = surfaceArea(mesh);
+  const float diameter = approximateDiameter(mesh.vertices);
+  if (!(area > 0.0) || !(diameter > 0.0f)) throw Error("model mesh has no surface area");
+  const double step = params.sampling_ratio * diameter;
+  const auto count = static_cast<std::size_t>(
+      std::ceil(area / (step * step) * params.dense_samples_per_step2));
+  if (count > 20'000'000) throw Error("model: sampling would need " + std::to_string(count) + " points; raise sampling_ratio");
+  SurfaceSamples samples = sampleSurface(mesh, count, params.seed);
+  return {std::move(samples.points), std::move(samples.face_normals), false};
+}
+
+DenseCloud denseFromCloud(const PointCloud& cloud) {
+  DenseCloud dense;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (!cloud.points[i].allFinite()) continue;  // an organized model scan may hold NaN pixels
+    dense.points.push_back(cloud.points[i]);
+    if (cloud.hasNormals()) dense.orientation.push_back(cloud.normals[i]);
+  }
+  if (dense.points.size() < 10) throw Error("model cloud has fewer than 10 valid points");
+  dense.has_exact_normals = cloud.hasNormals();
+  if (!dense.has_exact_normals) {
+    Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+    for (const auto& p : dense.points) centroid += p;
+    centroid /= static_cast<float>(dense.points.size());
+    for (const auto& p : dense.points) dense.orientation.push_back((p - centroid).normalized());
+  }
+  return dense;
+}
+
+// Section III-A: normals from the neighbours in the original cloud, not the subsampled one.
+std::vector<Eigen::Vector3f> fitNormals(const DenseCloud& dense, const KdTree& tree, float radius) {
+  std::vector<Eigen::Vector3f> normals(dense.points.size());
+  std::vector<uint32_t> neighbours;
+  for (std::size_t i = 0; i < dense.points.size(); ++i) {
+    tree.withinRadius(dense.points[i], radius, neighbours);
+    PlaneFit fit;
+    for (uint32_t j : neighbours) fit.add(dense.points[j]);
+    Eigen::Vector3f n = fit.normal(5).value_or(dense.orientation[i]);
+    normals[i] = n.dot(dense.orientation[i]) < 0.0f ? Eigen::Vector3f(-n) : n;
+  }
+  return normals;
+}
+
+}  // namespace
+
+void ModelParams::validate() const {
+  const auto require = [](bool ok, const char* field, const char* rule) {
+    if (!ok) throw Error(std::string("model params: ") + field + " " + rule);
+  };
+  require(sampling_ratio > 0.005f && sampling_ratio <= 0.5f, "sampling_ratio", "must be in (0.005, 0.5]");
+  require(angle_step_deg >= 1.0f && angle_step_deg <= 90.0f, "angle_step_deg", "must be in [1, 90]");
+  require(dense_samples_per_step2 >= 1.0f && dense_samples_per_step2 <= 1000.0f,
+          "dense_samples_per_step2", "must be in [1, 1000]");
+  require(normal_radius_ratio > 0.05f && normal_radius_ratio <= 5.0f, "normal_radius_ratio", "must be in (0.05, 5]");
+  require(normal_cluster_angle_deg >= 0.0f && normal_cluster_angle_deg <= 180.0f,
+          "normal_cluster_angle_deg", "must be in [0, 180]");
+}
+
+PpfQuantizer PreparedModel::quantizer() const {
+  return PpfQuantizer(step, params.angle_step_deg * kDegToRad, diameter);
+}
+
+PreparedModel prepareModel(const ModelGeometry& geometry, const ModelParams& params) {
+  params.validate();
+  const DenseCloud dense = geometry.hasMesh() ? denseFromMesh(geometry.mesh, params)
+                                              : denseFromCloud(geometry.cloud);
+  PreparedModel model;
+  model.params = params;
+  model.diameter = approximateDiameter(dense.points);
+  if (!(model.diameter > 0.0f)) throw Error("model has zero extent");
+  model.step = params.sampling_ratio * model.diameter;
+
+  const KdTree tree(dense.points);
+  const std::vector<Eigen::Vector3f> dense_normals =
+      dense.has_exact_normals ? dense.orientation
+                              : fitNormals(dense, tree, params.normal_radius_ratio * model.step);
+  const std::vector<uint32_t> kept = voxelSubsample(dense.points, &dense_normals, model.step,
+                                                    params.normal_cluster_angle_deg * kDegToRad);
+  for (uint32_t i : kept) {
+    model.points.push_back(dense.points[i]);
+    model.normals.push_back(dense_normals[i]);
+    model.centre += dense.points[i];
+  }
+  if (model.points.size() < 4) throw Error("model: fewer than 4 points after subsampling");
+  if (model.points.size() > 20000) {
+    throw Error("model: " + std::to_string(model.points.size()) +
+                " points after subsampling is too many for the pair table; raise sampling_ratio");
+  }
+  model.centre /= static_cast<float>(model.points.size());
+  model.table = PpfHashTable(model.points, model.normals, model.quantizer());
+  return model;
+}
+
+}  // namespace binpick::estimation

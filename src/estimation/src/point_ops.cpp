@@ -1,0 +1,211 @@
+#include "point_ops.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <thread>
+
+namespace binpick::estimation {
+namespace {
+
+Eigen::Vector3f triangleNormalTimesTwoArea(const TriangleMesh& mesh, const Eigen::Vector3i& t) {
+  const Eigen::Vector3f& a = mesh.vertices[t[0]];
+  return (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
+}
+
+// Open-addressing map from packed voxel coordinates to dense voxel ids (0, 1, 2, ...).
+class VoxelIds {
+ public:
+  explicit VoxelIds(std::size_t expected) {
+    std::size_t capacity = 16;
+    while (capacity < 2 * expected) capacity *= 2;
+    keys_.assign(capacity, kEmpty);
+    ids_.resize(capacity);
+  }
+  uint32_t idOf(uint64_t key) {
+    std::size_t slot = hash(key) & (keys_.size() - 1);
+    while (keys_[slot] != kEmpty && keys_[slot] != key) slot = (slot + 1) & (keys_.size() - 1);
+    if (keys_[slot] == kEmpty) {
+      keys_[slot] = key;
+      ids_[slot] = count_++;
+    }
+    return ids_[slot];
+  }
+  uint32_t count() const { return count_; }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t{0};
+  static uint64_t hash(uint64_t key) {  // splitmix64 finaliser: cheap and well mixed
+    key ^= key >> 30;
+    key *= 0xbf58476d1ce4e5b9ULL;
+    key ^= key >> 27;
+    key *= 0x94d049bb133111ebULL;
+    return key ^ (key >> 31);
+  }
+  std::vector<uint64_t> keys_;
+  std::vector<uint32_t> ids_;
+  uint32_t count_ = 0;
+};
+
+uint64_t packVoxel(const Eigen::Vector3f& p, const Eigen::Vector3f& origin, float step) {
+  const Eigen::Vector3f q = (p - origin) / step;
+  const auto coord = [](float v) { return static_cast<uint64_t>(std::max(0.0f, v)) & 0x1FFFFF; };
+  return coord(q.x()) | (coord(q.y()) << 21) | (coord(q.z()) << 42);
+}
+
+// Greedy clusters of one voxel's points by normal direction, each as a list of positions in
+// `members`.
+std::vector<std::vector<uint32_t>> clusterByNormal(const std::vector<uint32_t>& members,
+                                                   const std::vector<Eigen::Vector3f>& normals,
+                                                   float cos_limit) {
+  std::vector<std::vector<uint32_t>> clusters;
+  for (uint32_t index : members) {
+    auto it = std::find_if(clusters.begin(), clusters.end(), [&](const auto& cluster) {
+      return normals[cluster.front()].dot(normals[index]) >= cos_limit;
+    });
+    if (it == clusters.end()) {
+      clusters.push_back({index});
+    } else {
+      it->push_back(index);
+    }
+  }
+  return clusters;
+}
+
+uint32_t nearestToCentroid(const std::vector<uint32_t>& members,
+                           const std::vector<Eigen::Vector3f>& points) {
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (uint32_t i : members) centroid += points[i];
+  centroid /= static_cast<float>(members.size());
+  return *std::min_element(members.begin(), members.end(), [&](uint32_t a, uint32_t b) {
+    return (points[a] - centroid).squaredNorm() < (points[b] - centroid).squaredNorm();
+  });
+}
+
+}  // namespace
+
+double surfaceArea(const TriangleMesh& mesh) {
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) area += 0.5 * triangleNormalTimesTwoArea(mesh, t).norm();
+  return area;
+}
+
+SurfaceSamples sampleSurface(const TriangleMesh& mesh, std::size_t count, uint64_t seed) {
+  std::vector<double> cumulative_area;
+  cumulative_area.reserve(mesh.triangles.size());
+  double total = 0.0;
+  for (const auto& t : mesh.triangles) {
+    total += 0.5 * triangleNormalTimesTwoArea(mesh, t).norm();
+    cumulative_area.push_back(total);
+  }
+  SurfaceSamples samples;
+  if (total <= 0.0 || count == 0) return samples;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  samples.points.reserve(count);
+  samples.face_normals.reserve(count);
+  for (std::size_t s = 0; s < count; ++s) {
+    const double pick = uniform(rng) * total;
+    const std::size_t face = std::min<std::size_t>(
+        std::lower_bound(cumulative_area.begin(), cumulative_area.end(), pick) - cumulative_area.begin(),
+        mesh.triangles.size() - 1);
+    const Eigen::Vector3i& t = mesh.triangles[face];
+    const Eigen::Vector3f n2a = triangleNormalTimesTwoArea(mesh, t);
+    if (n2a.norm() <= 0.0f) continue;
+    // Uniform point in a triangle from two uniforms (square-root warp).
+    const double r1 = std::sqrt(uniform(rng)), r2 = uniform(rng);
+    const Eigen::Vector3f p = static_cast<float>(1.0 - r1) * mesh.vertices[t[0]] +
+                              static_cast<float>(r1 * (1.0 - r2)) * mesh.vertices[t[1]] +
+                              static_cast<float>(r1 * r2) * mesh.vertices[t[2]];
+    samples.points.push_back(p);
+    samples.face_normals.push_back(n2a.normalized());
+  }
+  return samples;
+}
+
+float approximateDiameter(const std::vector<Eigen::Vector3f>& points) {
+  if (points.size() < 2) return 0.0f;
+  std::vector<uint32_t> candidates(points.size());
+  for (uint32_t i = 0; i < candidates.size(); ++i) candidates[i] = i;
+  if (points.size() > 3000) {
+    Eigen::Vector3f lo = points[0], hi = points[0];
+    for (const auto& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    candidates = voxelSubsample(points, nullptr, (hi - lo).norm() / 150.0f, 0.0f);
+  }
+  float best_sq = 0.0f;
+  for (std::size_t a = 0; a < candidates.size(); ++a) {
+    for (std::size_t b = a + 1; b < candidates.size(); ++b) {
+      best_sq = std::max(best_sq, (points[candidates[a]] - points[candidates[b]]).squaredNorm());
+    }
+  }
+  return std::sqrt(best_sq);
+}
+
+std::vector<uint32_t> voxelSubsample(const std::vector<Eigen::Vector3f>& points,
+                                     const std::vector<Eigen::Vector3f>* normals, float step,
+                                     float cluster_angle) {
+  if (points.empty()) return {};
+  Eigen::Vector3f origin = points[0];
+  for (const auto& p : points) origin = origin.cwiseMin(p);
+
+  VoxelIds voxel_ids(points.size() / 4 + 16);
+  std::vector<uint32_t> voxel_of(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) voxel_of[i] = voxel_ids.idOf(packVoxel(points[i], origin, step));
+
+  // Counting sort of the points by voxel keeps this O(n) for million-point scenes.
+  std::vector<uint32_t> start(voxel_ids.count() + 1, 0);
+  for (uint32_t v : voxel_of) ++start[v + 1];
+  for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  std::vector<uint32_t> sorted(points.size());
+  std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
+  for (uint32_t i = 0; i < points.size(); ++i) sorted[cursor[voxel_of[i]]++] = i;
+
+  const bool cluster = normals != nullptr && cluster_angle > 0.0f;
+  const float cos_limit = std::cos(cluster_angle);
+  std::vector<uint32_t> kept;
+  kept.reserve(voxel_ids.count());
+  std::vector<uint32_t> members;
+  for (uint32_t v = 0; v < voxel_ids.count(); ++v) {
+    members.assign(sorted.begin() + start[v], sorted.begin() + start[v + 1]);
+    if (!cluster) {
+      kept.push_back(nearestToCentroid(members, points));
+      continue;
+    }
+    for (const auto& group : clusterByNormal(members, *normals, cos_limit)) {
+      kept.push_back(nearestToCentroid(group, points));
+    }
+  }
+  std::sort(kept.begin(), kept.end());  // stable order, independent of hashing
+  return kept;
+}
+
+void PlaneFit::add(const Eigen::Vector3f& p) {
+  const Eigen::Vector3d q = p.cast<double>();
+  sum_ += q;
+  sum_outer_ += q * q.transpose();
+  ++count_;
+}
+
+std::optional<Eigen::Vector3f> PlaneFit::normal(std::size_t min_neighbours) const {
+  if (count_ < std::max<std::size_t>(min_neighbours, 3)) return std::nullopt;
+  const Eigen::Vector3d mean = sum_ / static_cast<double>(count_);
+  const Eigen::Matrix3d covariance = sum_outer_ / static_cast<double>(count_) - mean * mean.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(covariance);
+  const Eigen::Vector3d eigenvalues = solver.eigenvalues();  // ascending
+  // A line or a single point has two vanishing eigenvalues: no plane, no normal.
+  if (!(eigenvalues[1] > 1e-12 * std::max(eigenvalues[2], 1e-30))) return std::nullopt;
+  return solver.eigenvectors().col(0).normalized().cast<float>();
+}
+
+int resolveThreadCount(int requested) {
+  if (requested > 0) return requested;
+  const unsigned hardware = std::thread::hardware_concurrency();
+  return hardware == 0 ? 1 : static_cast<int>(hardware);
+}
+
+}  // namespace binpick::estimation

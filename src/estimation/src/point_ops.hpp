@@ -1,0 +1,47 @@
+#pragma once
+// Internal point-cloud operations shared by model and scene preparation.
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "binpick/io/point_cloud.hpp"
+
+namespace binpick::estimation {
+
+// Points spread over a mesh surface in proportion to area, each with its face's unit normal.
+struct SurfaceSamples {
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> face_normals;
+};
+SurfaceSamples sampleSurface(const TriangleMesh& mesh, std::size_t count, uint64_t seed);
+double surfaceArea(const TriangleMesh& mesh);
+
+// Largest distance between two points, exact up to ~1% (a coarse grid keeps it O(n) for large
+// clouds before the pairwise search).
+float approximateDiameter(const std::vector<Eigen::Vector3f>& points);
+
+// One representative per occupied voxel of side `step` (the point nearest the voxel's centroid).
+// With normals and cluster_angle > 0, points of one voxel whose normals differ by more than the
+// angle are kept apart (both sides of a thin wall survive). Returns indices into `points`.
+std::vector<uint32_t> voxelSubsample(const std::vector<Eigen::Vector3f>& points,
+                                     const std::vector<Eigen::Vector3f>* normals, float step,
+                                     float cluster_angle);
+
+// Accumulates neighbours of a point; the normal is the eigenvector of the smallest eigenvalue of
+// their covariance (a plane fit), or nothing when there are too few or they are degenerate.
+class PlaneFit {
+ public:
+  void add(const Eigen::Vector3f& p);
+  std::size_t count() const { return count_; }
+  std::optional<Eigen::Vector3f> normal(std::size_t min_neighbours) const;
+
+ private:
+  Eigen::Vector3d sum_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d sum_outer_ = Eigen::Matrix3d::Zero();
+  std::size_t count_ = 0;
+};
+
+int resolveThreadCount(int requested);
+
+}  // namespace binpick::estimation

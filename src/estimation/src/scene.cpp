@@ -1,0 +1,141 @@
+#include "binpick/estimation/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "binpick/io/error.hpp"
+#include "kdtree.hpp"
+#include "point_ops.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+// Full-resolution neighbours of a pixel found through the image grid: an organized cloud gives
+// them without a search structure.
+class OrganizedNeighbours {
+ public:
+  OrganizedNeighbours(const PointCloud& cloud, const SceneParams& params)
+      : cloud_(cloud), max_half_(params.max_window_half_size) {}
+
+  PlaneFit fit(uint32_t index, float radius) const {
+    PlaneFit fit;
+    const int u0 = static_cast<int>(index % static_cast<uint32_t>(cloud_.width));
+    const int v0 = static_cast<int>(index / static_cast<uint32_t>(cloud_.width));
+    const Eigen::Vector3f& centre = cloud_.points[index];
+    const float pitch = pixelPitch(u0, v0);
+    if (!(pitch > 0.0f)) return fit;
+    const int half = std::clamp(static_cast<int>(std::ceil(radius / pitch)), 1, max_half_);
+    const float radius_sq = radius * radius;
+    for (int v = std::max(0, v0 - half); v <= std::min(cloud_.height - 1, v0 + half); ++v) {
+      const Eigen::Vector3f* row = &cloud_.points[static_cast<std::size_t>(v) * cloud_.width];
+      for (int u = std::max(0, u0 - half); u <= std::min(cloud_.width - 1, u0 + half); ++u) {
+        // NaN fails the comparison, so invalid pixels drop out here too.
+        if ((row[u] - centre).squaredNorm() <= radius_sq) fit.add(row[u]);
+      }
+    }
+    return fit;
+  }
+
+ private:
+  // Distance between adjacent pixels' points: converts a metric radius into a pixel window.
+  float pixelPitch(int u, int v) const {
+    float best = std::numeric_limits<float>::infinity();
+    const Eigen::Vector3f& p = at(u, v);
+    const int du[4] = {1, -1, 0, 0}, dv[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
+      const int nu = u + du[k], nv = v + dv[k];
+      if (nu < 0 || nv < 0 || nu >= cloud_.width || nv >= cloud_.height) continue;
+      const float d = (at(nu, nv) - p).norm();
+      if (d < best) best = d;  // NaN neighbours never win
+    }
+    return std::isfinite(best) ? best : 0.0f;
+  }
+  const Eigen::Vector3f& at(int u, int v) const {
+    return cloud_.points[static_cast<std::size_t>(v) * cloud_.width + u];
+  }
+
+  const PointCloud& cloud_;
+  int max_half_;
+};
+
+std::vector<uint32_t> validIndices(const PointCloud& cloud, const SceneParams& params) {
+  std::vector<uint32_t> valid;
+  valid.reserve(cloud.size());
+  for (uint32_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3f& p = cloud.points[i];
+    if (!p.allFinite()) continue;
+    if (params.crop && !params.crop->contains(p)) continue;
+    valid.push_back(i);
+  }
+  return valid;
+}
+
+Eigen::Vector3f towardsCamera(const Eigen::Vector3f& n, const Eigen::Vector3f& p) {
+  return n.dot(p) > 0.0f ? Eigen::Vector3f(-n) : n;
+}
+
+}  // namespace
+
+bool CropBox::contains(const Eigen::Vector3f& p_camera) const {
+  const Eigen::Vector3f p_box = T_camera_box.inverse() * p_camera;
+  return (p_box.cwiseAbs().array() <= half_extents.array()).all();
+}
+
+void SceneParams::validate() const {
+  if (min_normal_neighbours < 3) throw Error("scene params: min_normal_neighbours must be at least 3");
+  if (max_window_half_size < 1 || max_window_half_size > 50) {
+    throw Error("scene params: max_window_half_size must be in [1, 50]");
+  }
+  if (threads < 0) throw Error("scene params: threads must be >= 0");
+  if (crop && !((crop->half_extents.array() > 0.0f).all() && crop->half_extents.allFinite() &&
+                crop->T_camera_box.matrix().allFinite())) {
+    throw Error("scene params: crop box needs finite, positive half extents and a finite pose");
+  }
+}
+
+PreparedScene prepareScene(const PointCloud& cloud, const PreparedModel& model, const SceneParams& params) {
+  params.validate();
+  if (!cloud.isOrganized()) validateCloud(cloud, "scene cloud");
+  const std::vector<uint32_t> valid = validIndices(cloud, params);
+  PreparedScene scene;
+  scene.valid_input_points = valid.size();
+  if (valid.empty()) return scene;
+
+  std::vector<Eigen::Vector3f> valid_points(valid.size());
+  for (std::size_t k = 0; k < valid.size(); ++k) valid_points[k] = cloud.points[valid[k]];
+  const std::vector<uint32_t> kept = voxelSubsample(valid_points, nullptr, model.step, 0.0f);
+
+  // Section III-A: normals from the full-resolution neighbours of each kept point.
+  const float radius = model.params.normal_radius_ratio * model.step;
+  std::vector<std::optional<Eigen::Vector3f>> normals(kept.size());
+  const auto min_neighbours = static_cast<std::size_t>(params.min_normal_neighbours);
+  const int threads = resolveThreadCount(params.threads);
+  if (cloud.isOrganized()) {
+    const OrganizedNeighbours neighbours(cloud, params);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      normals[k] = neighbours.fit(valid[kept[k]], radius).normal(min_neighbours);
+    }
+  } else {
+    const KdTree tree(valid_points);
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      std::vector<uint32_t> found;
+      tree.withinRadius(valid_points[kept[k]], radius, found);
+      PlaneFit fit;
+      for (uint32_t j : found) fit.add(valid_points[j]);
+      normals[k] = fit.normal(min_neighbours);
+    }
+  }
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    if (!normals[k]) continue;
+    const Eigen::Vector3f& p = valid_points[kept[k]];
+    scene.points.push_back(p);
+    scene.normals.push_back(towardsCamera(*normals[k], p));
+    scene.source_index.push_back(valid[kept[k]]);
+  }
+  return scene;
+}
+
+}  // namespace binpick::estimation

@@ -1,0 +1,54 @@
+#include "binpick/estimation/selection.hpp"
+
+#include <algorithm>
+
+#include "binpick/io/error.hpp"
+
+namespace binpick::estimation {
+
+void SelectionParams::validate() const {
+  if (max_objects < 1 || max_objects > 10000) throw Error("selection params: max_objects must be in [1, 10000]");
+  if (!(min_score_fraction >= 0.0f && min_score_fraction <= 1.0f)) {
+    throw Error("selection params: min_score_fraction must be in [0, 1]");
+  }
+  if (!(min_centre_distance_ratio >= 0.0f && min_centre_distance_ratio <= 10.0f)) {
+    throw Error("selection params: min_centre_distance_ratio must be in [0, 10]");
+  }
+}
+
+MultipleSelection::MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points)
+    : candidates_(candidates), exist_(scene_points, 1) {
+  ranked_.reserve(candidates.size());
+  for (uint32_t i = 0; i < candidates.size(); ++i) ranked_.emplace_back(candidates[i].score, i);
+}
+
+std::optional<MultipleSelection::Pick> MultipleSelection::next() {
+  if (ranked_.empty()) return std::nullopt;
+  // "Rank P based on their old scores": a score only falls when points stop existing, so the
+  // last known score is an upper bound of the new one.
+  std::sort(ranked_.begin(), ranked_.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < ranked_.size(); ++i) {
+    ranked_[i].first = existingCount(candidates_[ranked_[i].second].support, exist_);
+    ++refreshes_;
+    const auto& b = ranked_[best];
+    if (ranked_[i].first > b.first || (ranked_[i].first == b.first && ranked_[i].second < b.second)) best = i;
+    if (i + 1 == ranked_.size()) break;
+    // Max_New_Score >= Score_Old(P_{i+1}): nothing further down can win (ties go to the lower
+    // index, as a full re-verification would break them).
+    const auto& following = ranked_[i + 1];
+    const auto& leader = ranked_[best];
+    if (leader.first > following.first || (leader.first == following.first && leader.second < following.second)) break;
+  }
+  const Pick pick{ranked_[best].second, ranked_[best].first};
+  ranked_.erase(ranked_.begin() + static_cast<std::ptrdiff_t>(best));
+  return pick;
+}
+
+void MultipleSelection::removeExplained(const std::vector<uint32_t>& scene_points) {
+  for (uint32_t s : scene_points) exist_[s] = 0;
+}
+
+}  // namespace binpick::estimation

@@ -1,0 +1,62 @@
+#include "binpick/estimation/verification.hpp"
+
+#include <cmath>
+
+#include "binpick/io/error.hpp"
+#include "point_ops.hpp"
+
+namespace binpick::estimation {
+
+void VerificationParams::validate() const {
+  if (!(voxel_size_ratio >= 0.1f && voxel_size_ratio <= 5.0f)) {
+    throw Error("verification params: voxel_size_ratio must be in [0.1, 5]");
+  }
+  if (!(max_normal_angle_deg > 0.0f && max_normal_angle_deg <= 180.0f)) {
+    throw Error("verification params: max_normal_angle_deg must be in (0, 180]");
+  }
+  if (threads < 0) throw Error("verification params: threads must be >= 0");
+}
+
+std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const Eigen::Isometry3f& pose,
+                                               const SceneVoxelGrid& grid,
+                                               const std::vector<Eigen::Vector3f>& scene_normals,
+                                               float min_normal_cosine) {
+  std::vector<uint32_t> support;
+  support.reserve(model.size() / 2);
+  const bool check_normals = min_normal_cosine > -1.0f;
+  for (std::size_t k = 0; k < model.size(); ++k) {
+    const int32_t s = grid.at(pose * model.points[k]);
+    if (s == SceneVoxelGrid::kEmpty) continue;
+    if (check_normals && (pose.linear() * model.normals[k]).dot(scene_normals[s]) < min_normal_cosine) continue;
+    support.push_back(static_cast<uint32_t>(s));
+  }
+  return support;
+}
+
+std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates,
+                                      const PreparedModel& model, const PreparedScene& scene,
+                                      const SceneVoxelGrid& grid, const VerificationParams& params) {
+  params.validate();
+  const float min_cosine = params.max_normal_angle_deg >= 180.0f
+                               ? -2.0f
+                               : std::cos(params.max_normal_angle_deg * static_cast<float>(M_PI / 180.0));
+  std::vector<VerifiedCandidate> verified(candidates.size());
+  const int threads = resolveThreadCount(params.threads);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 16)
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    VerifiedCandidate& v = verified[c];
+    v.T_camera_model = candidates[c].T_camera_model;
+    v.votes = candidates[c].votes;
+    v.support = correspondingScenePoints(model, v.T_camera_model, grid, scene.normals, min_cosine);
+    v.score = static_cast<uint32_t>(v.support.size());
+  }
+  return verified;
+}
+
+uint32_t existingCount(const std::vector<uint32_t>& support, const std::vector<uint8_t>& exist) {
+  uint32_t count = 0;
+  for (uint32_t s : support) count += exist[s];
+  return count;
+}
+
+}  // namespace binpick::estimation

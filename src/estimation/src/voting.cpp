@@ -1,0 +1,146 @@
+#include "binpick/estimation/voting.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "binpick/io/error.hpp"
+#include "neighbour_grid.hpp"
+#include "point_ops.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+struct LocalCoordinate {
+  uint32_t votes = 0;
+  uint32_t model_point = 0;
+  int alpha_bin = 0;
+};
+
+// The accumulator of one reference point: votes per (model point, alpha bin).
+class Accumulator {
+ public:
+  Accumulator(std::size_t model_points, int alpha_bins)
+      : alpha_bins_(alpha_bins), votes_(model_points * static_cast<std::size_t>(alpha_bins), 0) {}
+
+  void clear() { std::fill(votes_.begin(), votes_.end(), 0u); }
+  void add(uint32_t model_point, int alpha_bin) {
+    ++votes_[static_cast<std::size_t>(model_point) * alpha_bins_ + alpha_bin];
+  }
+
+  // The `count` local coordinates with most votes, best first (ties: lower index first).
+  std::vector<LocalCoordinate> top(int count) const {
+    std::vector<LocalCoordinate> best;
+    for (std::size_t cell = 0; cell < votes_.size(); ++cell) {
+      const uint32_t v = votes_[cell];
+      if (v == 0 || (static_cast<int>(best.size()) == count && v <= best.back().votes)) continue;
+      LocalCoordinate lc{v, static_cast<uint32_t>(cell / alpha_bins_), static_cast<int>(cell % alpha_bins_)};
+      auto at = std::upper_bound(best.begin(), best.end(), lc,
+                                 [](const LocalCoordinate& a, const LocalCoordinate& b) { return a.votes > b.votes; });
+      best.insert(at, lc);
+      if (static_cast<int>(best.size()) > count) best.pop_back();
+    }
+    return best;
+  }
+
+ private:
+  int alpha_bins_;
+  std::vector<uint32_t> votes_;
+};
+
+}  // namespace
+
+void VotingParams::validate() const {
+  if (!(reference_fraction > 0.0f && reference_fraction <= 1.0f)) {
+    throw Error("voting params: reference_fraction must be in (0, 1]");
+  }
+  if (!(referred_fraction > 0.0f && referred_fraction <= 1.0f)) {
+    throw Error("voting params: referred_fraction must be in (0, 1]");
+  }
+  if (poses_per_reference < 1 || poses_per_reference > 100) {
+    throw Error("voting params: poses_per_reference must be in [1, 100]");
+  }
+  if (!(min_relative_votes >= 0.0f && min_relative_votes <= 1.0f)) {
+    throw Error("voting params: min_relative_votes must be in [0, 1]");
+  }
+  if (threads < 0) throw Error("voting params: threads must be >= 0");
+}
+
+std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t seed) {
+  std::vector<uint32_t> all(count);
+  std::iota(all.begin(), all.end(), 0u);
+  if (fraction >= 1.0f) return all;
+  std::shuffle(all.begin(), all.end(), std::mt19937_64(seed));
+  const auto keep = static_cast<std::size_t>(std::ceil(fraction * static_cast<float>(count)));
+  all.resize(std::min(keep, count));
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene,
+                                const VotingParams& params) {
+  params.validate();
+  if (scene.size() < 2 || model.size() == 0) return {};
+  const PpfQuantizer quantizer = model.quantizer();
+  const std::vector<uint32_t> references = sampleIndices(scene.size(), params.reference_fraction, params.seed);
+  const std::vector<uint32_t> referred =
+      sampleIndices(scene.size(), params.referred_fraction, params.seed ^ 0x9e3779b97f4a7c15ULL);
+  const NeighbourGrid grid(scene.points, referred, model.diameter);
+
+  // Model reference frames T_m, computed once.
+  std::vector<Eigen::Isometry3f> model_frames(model.size());
+  for (std::size_t i = 0; i < model.size(); ++i) model_frames[i] = referenceFrame(model.points[i], model.normals[i]);
+
+  const int np = params.poses_per_reference;
+  std::vector<PoseCandidate> slots(references.size() * static_cast<std::size_t>(np));
+  std::vector<int> filled(references.size(), 0);
+  const float max_distance_sq = model.diameter * model.diameter;
+  const int threads = resolveThreadCount(params.threads);
+
+#pragma omp parallel num_threads(threads)
+  {
+    Accumulator accumulator(model.size(), quantizer.alphaBinCount());
+#pragma omp for schedule(dynamic, 4)
+    for (std::size_t r = 0; r < references.size(); ++r) {
+      const uint32_t s_r = references[r];
+      const Eigen::Vector3f& p_r = scene.points[s_r];
+      const Eigen::Vector3f& n_r = scene.normals[s_r];
+      const Eigen::Isometry3f T_s = referenceFrame(p_r, n_r);
+      accumulator.clear();
+      grid.forEachNear(p_r, [&](uint32_t s_j) {
+        if (s_j == s_r || (scene.points[s_j] - p_r).squaredNorm() > max_distance_sq) return;
+        const int64_t key = quantizer.key(computeFeature(p_r, n_r, scene.points[s_j], scene.normals[s_j]));
+        const PpfHashTable::Range matches = model.table.lookup(key);
+        if (matches.begin == matches.end) return;
+        const float scene_angle = planarAngle(T_s * scene.points[s_j]);
+        for (const PairEntry* e = matches.begin; e != matches.end; ++e) {
+          // alpha = alpha_s - alpha_m rotates the model pair onto the scene pair (eq. 2).
+          accumulator.add(e->reference, quantizer.alphaBin(scene_angle - e->reference_angle));
+        }
+      });
+      const std::vector<LocalCoordinate> best = accumulator.top(np);
+      int kept = 0;
+      for (const LocalCoordinate& lc : best) {
+        if (lc.votes < params.min_relative_votes * static_cast<float>(best.front().votes)) break;
+        PoseCandidate& c = slots[r * np + kept++];
+        c.T_camera_model = poseFromLocalCoordinate(T_s, model_frames[lc.model_point],
+                                                   quantizer.alphaBinCentre(lc.alpha_bin));
+        c.votes = lc.votes;
+        c.scene_reference = s_r;
+        c.model_reference = lc.model_point;
+      }
+      filled[r] = kept;
+    }
+  }
+
+  std::vector<PoseCandidate> candidates;
+  candidates.reserve(slots.size());
+  for (std::size_t r = 0; r < references.size(); ++r) {
+    for (int k = 0; k < filled[r]; ++k) candidates.push_back(slots[r * np + k]);
+  }
+  return candidates;
+}
+
+}  // namespace binpick::estimation

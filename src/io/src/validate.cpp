@@ -1,0 +1,133 @@
+// Validation of clouds and meshes, used by every reader and writer and available to callers.
+#include <Eigen/Geometry>
+#include <cmath>
+#include <string>
+
+#include "binpick/io/error.hpp"
+#include "binpick/io/point_cloud.hpp"
+#include "byte_io.hpp"
+#include "formats.hpp"
+#include "text_io.hpp"
+
+namespace binpick {
+
+using io_detail::describePoint;
+using io_detail::fail;
+
+namespace {
+
+bool isInvalidPixel(const Eigen::Vector3f& point) { return point.array().isNaN().any(); }
+
+void checkGrid(const PointCloud& cloud, const std::string& what) {
+  if (cloud.width == 0 && cloud.height == 0) return;
+  if (!cloud.isOrganized()) {
+    fail(what, "width " + std::to_string(cloud.width) + " x height " +
+                   std::to_string(cloud.height) + " does not match the " +
+                   std::to_string(cloud.size()) + " points");
+  }
+}
+
+void checkPoints(const PointCloud& cloud, const std::string& what) {
+  const bool organized = cloud.isOrganized();
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    const Eigen::Vector3f& point = cloud.points[i];
+    if (point.allFinite()) continue;
+    // NaN marks an invalid pixel of an organized cloud; inf is never a measurement.
+    if (organized && isInvalidPixel(point) && !point.array().isInf().any()) continue;
+    fail(what, "point " + std::to_string(i) + " is not finite " + describePoint(point) +
+                   (organized ? " (an organized cloud may only mark invalid pixels with NaN)"
+                              : " (NaN points are only allowed in organized clouds)"));
+  }
+}
+
+void checkNormals(const PointCloud& cloud, const std::string& what) {
+  if (cloud.normals.empty()) return;
+  if (cloud.normals.size() != cloud.points.size()) {
+    fail(what, std::to_string(cloud.normals.size()) + " normals for " +
+                   std::to_string(cloud.points.size()) + " points");
+  }
+  for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
+    // Invalid pixels carry whatever normal the sensor pipeline left there.
+    if (!cloud.points[i].allFinite()) continue;
+    if (!cloud.normals[i].allFinite()) {
+      fail(what, "normal of point " + std::to_string(i) + " is not finite " +
+                     describePoint(cloud.normals[i]));
+    }
+  }
+}
+
+}  // namespace
+
+void validateCloud(const PointCloud& cloud, const std::string& what) {
+  checkGrid(cloud, what);
+  checkPoints(cloud, what);
+  checkNormals(cloud, what);
+}
+
+void validateMesh(const TriangleMesh& mesh, const std::string& what) {
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    if (!mesh.vertices[i].allFinite()) {
+      fail(what,
+           "vertex " + std::to_string(i) + " is not finite " + describePoint(mesh.vertices[i]));
+    }
+  }
+  const auto vertexCount = static_cast<long long>(mesh.vertices.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int corner = 0; corner < 3; ++corner) {
+      const int index = mesh.triangles[t][corner];
+      if (index < 0 || index >= vertexCount) {
+        fail(what, "triangle " + std::to_string(t) + " refers to vertex " + std::to_string(index) +
+                       " but the mesh has " + std::to_string(vertexCount) + " vertices");
+      }
+    }
+  }
+}
+
+namespace io_detail {
+
+namespace {
+
+// Length of a normal that validateCloud accepted; throws when it has no direction.
+float directedLength(const PointCloud& cloud, std::size_t i, const std::string& path) {
+  float length = cloud.normals[i].norm();
+  // norm() squares first and overflows for huge but valid vectors.
+  if (std::isinf(length)) length = cloud.normals[i].stableNorm();
+  // A zero normal has no direction; keeping it would poison every dot product downstream.
+  if (!(length > 0.0f)) {
+    fail(path,
+         "normal of point " + std::to_string(i) + " is zero " + describePoint(cloud.normals[i]));
+  }
+  return length;
+}
+
+}  // namespace
+
+void normaliseNormals(PointCloud& cloud, const std::string& path) {
+  // Normals already unit to float precision are kept bit for bit, so binary files round-trip
+  // exactly; dividing by a length of 0.99999994 would change their last bits for nothing.
+  constexpr float kUnitTolerance = 1e-6f;
+  for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
+    if (!cloud.points[i].allFinite()) continue;
+    const float length = directedLength(cloud, i, path);
+    if (std::abs(length - 1.0f) > kUnitTolerance) cloud.normals[i] /= length;
+  }
+}
+
+void requireDirectedNormals(const PointCloud& cloud, const std::string& path) {
+  for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
+    if (cloud.points[i].allFinite()) directedLength(cloud, i, path);
+  }
+}
+
+void requireSomeArea(const TriangleMesh& mesh, const std::string& path) {
+  for (const Eigen::Vector3i& triangle : mesh.triangles) {
+    const Eigen::Vector3f& a = mesh.vertices[triangle[0]];
+    const Eigen::Vector3f& b = mesh.vertices[triangle[1]];
+    const Eigen::Vector3f& c = mesh.vertices[triangle[2]];
+    if ((b - a).cross(c - a).squaredNorm() > 0.0f) return;
+  }
+  fail(path, "all " + std::to_string(mesh.triangles.size()) + " faces have zero area");
+}
+
+}  // namespace io_detail
+}  // namespace binpick

@@ -1,0 +1,27 @@
+#pragma once
+// Geometric measures of closed triangle meshes used to build parts and piles.
+// Internal to binpick::simulation. Pure functions: thread-safe.
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "binpick/io/point_cloud.hpp"
+
+namespace binpick::sim::detail {
+
+// Signed volume (positive for a closed mesh with outward normals) and its centroid, from the
+// tetrahedra spanned by each triangle and the origin.
+double signedVolume(const TriangleMesh& mesh);
+Eigen::Vector3d volumeCentroid(const TriangleMesh& mesh);
+
+// The same mesh with every vertex moved by `offset`.
+TriangleMesh translated(const TriangleMesh& mesh, const Eigen::Vector3d& offset);
+
+// Largest distance of a vertex from the model origin: the part fits in a sphere of this radius
+// whatever its orientation.
+double boundingRadius(const TriangleMesh& mesh);
+
+// Points on the surface such that every surface point lies within `coverage_radius` of one of
+// them; includes every vertex. About 1.25 / coverage_radius^2 points per unit area.
+std::vector<Eigen::Vector3f> surfaceSamples(const TriangleMesh& mesh, double coverage_radius);
+
+}  // namespace binpick::sim::detail

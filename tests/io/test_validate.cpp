@@ -1,0 +1,61 @@
+// validateCloud / validateMesh: the rules every reader and writer applies.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "binpick/io/point_cloud.hpp"
+#include "io_test_support.hpp"
+
+namespace binpick::test {
+namespace {
+
+constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+TEST(Validate, OrganizedCloudMayHoldNanPixels) {
+  EXPECT_NO_THROW(validateCloud(organizedCloudWithHoles(), "scan"));
+}
+
+TEST(Validate, UnorganizedCloudMayNotHoldNan) {
+  PointCloud cloud = awkwardCloud();
+  cloud.points[2].z() = kNan;
+  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "point 2 is not finite"));
+}
+
+TEST(Validate, OrganizedCloudMayNotHoldInf) {
+  PointCloud cloud = organizedCloudWithHoles();
+  cloud.points[7].x() = kInf;
+  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "point 7 is not finite"));
+}
+
+TEST(Validate, GridMustMatchPointCount) {
+  PointCloud cloud = organizedCloudWithHoles();
+  cloud.width = 5;
+  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "width 5 x height 3"));
+}
+
+TEST(Validate, NormalsMustMatchAndBeFiniteForValidPoints) {
+  PointCloud cloud = organizedCloudWithHoles();
+  cloud.normals.pop_back();
+  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "11 normals for 12 points"));
+
+  cloud = organizedCloudWithHoles();
+  cloud.normals[3] = Eigen::Vector3f(kNan, 0, 1);
+  EXPECT_TRUE(
+      failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "normal of point 3 is not finite"));
+}
+
+TEST(Validate, MeshIndicesAndVerticesAreChecked) {
+  TriangleMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.triangles = {{0, 1, 2}, {2, 1, -1}};
+  EXPECT_TRUE(failsWith([&] { validateMesh(mesh, "part"); }, "part",
+                        "triangle 1 refers to vertex -1 but the mesh has 3 vertices"));
+  mesh.triangles.pop_back();
+  EXPECT_NO_THROW(validateMesh(mesh, "part"));
+  mesh.vertices[1].y() = kNan;
+  EXPECT_TRUE(failsWith([&] { validateMesh(mesh, "part"); }, "part", "vertex 1 is not finite"));
+}
+
+}  // namespace
+}  // namespace binpick::test
