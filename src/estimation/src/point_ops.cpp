@@ -19,14 +19,17 @@ class VoxelIds {
  public:
   explicit VoxelIds(std::size_t expected) {
     std::size_t capacity = 16;
-    while (capacity < 2 * expected) capacity *= 2;
+    while (capacity < expected) capacity *= 2;
     keys_.assign(capacity, kEmpty);
     ids_.resize(capacity);
   }
   uint32_t idOf(uint64_t key) {
-    std::size_t slot = hash(key) & (keys_.size() - 1);
-    while (keys_[slot] != kEmpty && keys_[slot] != key) slot = (slot + 1) & (keys_.size() - 1);
+    std::size_t slot = find(key);
     if (keys_[slot] == kEmpty) {
+      if (2 * (count_ + 1) > keys_.size()) {  // keep the load under one half: probes stay short
+        grow();
+        slot = find(key);
+      }
       keys_[slot] = key;
       ids_[slot] = count_++;
     }
@@ -36,6 +39,23 @@ class VoxelIds {
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t{0};
+  std::size_t find(uint64_t key) const {
+    std::size_t slot = hash(key) & (keys_.size() - 1);
+    while (keys_[slot] != kEmpty && keys_[slot] != key) slot = (slot + 1) & (keys_.size() - 1);
+    return slot;
+  }
+  void grow() {
+    std::vector<uint64_t> old_keys(keys_.size() * 2, kEmpty);
+    std::vector<uint32_t> old_ids(ids_.size() * 2);
+    old_keys.swap(keys_);
+    old_ids.swap(ids_);
+    for (std::size_t i = 0; i < old_keys.size(); ++i) {
+      if (old_keys[i] == kEmpty) continue;
+      const std::size_t slot = find(old_keys[i]);
+      keys_[slot] = old_keys[i];
+      ids_[slot] = old_ids[i];
+    }
+  }
   static uint64_t hash(uint64_t key) {  // splitmix64 finaliser: cheap and well mixed
     key ^= key >> 30;
     key *= 0xbf58476d1ce4e5b9ULL;
