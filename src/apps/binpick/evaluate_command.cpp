@@ -1,0 +1,79 @@
+// binpick evaluate --result result.json --truth truth.json --part NAME [--min-visible 0.5]
+// Scores a detect result against a simulated pile's truth with the paper's criterion
+// (diam(M)/10 and 10 degrees, symmetry-aware; repeats count as wrong).
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "arguments.hpp"
+#include "binpick/estimation/model.hpp"
+#include "binpick/io/error.hpp"
+#include "commands.hpp"
+#include "evaluation.hpp"
+
+namespace binpick::cli {
+namespace {
+
+nlohmann::json readJson(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open");
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path + ": not valid JSON: " + e.what());
+  }
+}
+
+Eigen::Matrix4d poseFrom(const nlohmann::json& rows, const std::string& where) {
+  Eigen::Matrix4d m;
+  try {
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) m(r, c) = rows.at(r).at(c).get<double>();
+  } catch (const nlohmann::json::exception&) {
+    throw Error(where + ": pose must be 4 rows of 4 numbers");
+  }
+  return m;
+}
+
+}  // namespace
+
+int runEvaluate(const std::vector<std::string>& raw) {
+  const Arguments args(raw, {"--result", "--truth", "--part", "--min-visible"}, {});
+  const std::string result_path = args.required("--result"), truth_path = args.required("--truth");
+  const nlohmann::json result = readJson(result_path), truth = readJson(truth_path);
+  const sim::Part part = sim::makePart(args.required("--part"));
+
+  std::vector<estimation::Detection> detections;
+  for (const auto& d : result.value("detections", nlohmann::json::array())) {
+    estimation::Detection detection;
+    detection.T_camera_model.matrix() = poseFrom(d.value("pose", nlohmann::json()), result_path).cast<float>();
+    detection.score = d.value("score", 0.0f);
+    detections.push_back(detection);
+  }
+  std::vector<sim::ObjectTruth> objects;
+  for (const auto& o : truth.value("objects", nlohmann::json::array())) {
+    sim::ObjectTruth object;
+    object.T_camera_object.matrix() = poseFrom(o.value("pose", nlohmann::json()), truth_path);
+    object.visible_fraction = o.value("visible_fraction", 0.0);
+    objects.push_back(object);
+  }
+  const double diameter = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {}).diameter;
+  const eval::Score score = eval::scoreDetections(detections, objects, part.symmetry, {diameter / 10.0, 10.0},
+                                                  args.number("--min-visible").value_or(0.5));
+  for (std::size_t d = 0; d < detections.size(); ++d) {
+    const int o = score.matched_object[d];
+    std::printf("detection %2zu  score %.3f  %s", d, detections[d].score, o >= 0 ? "correct" : "WRONG");
+    if (o >= 0) {
+      const sim::PoseError e = sim::poseError(detections[d].T_camera_model.cast<double>(),
+                                              objects[o].T_camera_object, part.symmetry);
+      std::printf("  object %2d (%.0f%% visible)  error %.2f mm %.2f deg", o, 100.0 * objects[o].visible_fraction,
+                  1000.0 * e.translation, e.rotation_deg);
+    }
+    std::printf("\n");
+  }
+  std::printf("found %d of %d objects at least half visible; %d correct, %d wrong (%d in the first 10)\n",
+              score.found, score.findable, score.correct, score.wrong, score.wrong_in_first_10);
+  return 0;
+}
+
+}  // namespace binpick::cli

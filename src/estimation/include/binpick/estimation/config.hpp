@@ -1,0 +1,21 @@
+#pragma once
+// Estimation settings from a YAML file (documented in docs/configuration.md, example in
+// config/detection.yaml). Every key is optional; an unknown key, a wrong type or an invalid value
+// throws binpick::Error naming the file and the key. Thread-safe (no shared state).
+#include <string>
+
+#include "binpick/estimation/detector.hpp"
+#include "binpick/estimation/model.hpp"
+
+namespace binpick::estimation {
+
+struct EstimationConfig {
+  ModelParams model;
+  DetectorParams detector;
+};
+
+EstimationConfig loadEstimationConfig(const std::string& path);
+// The same from YAML text; `origin` names it in error messages.
+EstimationConfig parseEstimationConfig(const std::string& yaml_text, const std::string& origin);
+
+}  // namespace binpick::estimation

@@ -1,0 +1,41 @@
+#include "binpick/estimation/result_json.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+nlohmann::json poseRows(const Eigen::Isometry3f& T) {
+  nlohmann::json rows = nlohmann::json::array();
+  const Eigen::Matrix4f m = T.matrix();
+  for (int r = 0; r < 4; ++r) {
+    rows.push_back({m(r, 0), m(r, 1), m(r, 2), m(r, 3)});
+  }
+  return rows;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const DetectionResult& result) {
+  nlohmann::json detections = nlohmann::json::array();
+  for (const Detection& d : result.detections) {
+    detections.push_back({{"pose", poseRows(d.T_camera_model)},
+                          {"score", d.score},
+                          {"coverage", d.coverage},
+                          {"icp_rmse", d.icp_rmse},
+                          {"votes", d.votes}});
+  }
+  const StageTimings& t = result.timing_ms;
+  return {{"detections", detections},
+          {"timing_ms",
+           {{"prepare_scene", t.prepare_scene},
+            {"voting", t.voting},
+            {"verification", t.verification},
+            {"selection", t.selection},
+            {"icp", t.icp},
+            {"total", t.total}}},
+          {"counts",
+           {{"scene_points", result.scene_points},
+            {"candidates", result.candidates},
+            {"refreshes", result.refreshes}}}};
+}
+
+}  // namespace binpick::estimation
