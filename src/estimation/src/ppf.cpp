@@ -8,8 +8,6 @@
 namespace binpick::estimation {
 namespace {
 
-constexpr float kTwoPi = 6.28318530717958647692f;
-
 // atan2 form of the angle between two vectors: accurate near 0 and pi, where acos is not.
 float angleBetween(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
@@ -45,6 +43,7 @@ PpfQuantizer::PpfQuantizer(float distance_step, float angle_step, float max_dist
   distance_bins_ = static_cast<int>(max_distance / distance_step) + 1;
   angle_bins_ = static_cast<int>(std::ceil(static_cast<float>(M_PI) / angle_step));
   alpha_bins_ = static_cast<int>(std::ceil(kTwoPi / angle_step));
+  alpha_bins_per_radian_ = static_cast<float>(alpha_bins_) / kTwoPi;
   key_count_ = static_cast<int64_t>(distance_bins_) * angle_bins_ * angle_bins_ * angle_bins_;
   if (key_count_ > (int64_t{1} << 28)) {
     throw Error("PpfQuantizer: " + std::to_string(key_count_) +

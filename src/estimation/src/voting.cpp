@@ -117,7 +117,7 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
         const float scene_angle = planarAngle(T_s * scene.points[s_j]);
         for (const PairEntry* e = matches.begin; e != matches.end; ++e) {
           // alpha = alpha_s - alpha_m rotates the model pair onto the scene pair (eq. 2).
-          accumulator.add(e->reference, quantizer.alphaBin(scene_angle - e->reference_angle));
+          accumulator.add(e->reference, quantizer.alphaBinOfDifference(scene_angle, e->reference_angle));
         }
       });
       const std::vector<LocalCoordinate> best = accumulator.top(np);

@@ -2,6 +2,7 @@
 // Point pair features (Drost et al. 2010; Li & Hashimoto 2018 eq. 1), their quantisation and the
 // local frames used by the voting scheme (eq. 2). Pure functions: thread-safe.
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdint>
 
 namespace binpick::estimation {
@@ -31,6 +32,14 @@ class PpfQuantizer {
   // Bin of an angle; any real angle is wrapped into [0, 2*pi) first, so alpha is binned over
   // one turn (a known defect elsewhere is to bin the difference of two angles over 4*pi).
   int alphaBin(float alpha) const;
+  // The voting's hot path: alpha = a - b of two angles in [-pi, pi], so one turn of wrapping
+  // suffices (no fmod).
+  int alphaBinOfDifference(float a, float b) const {
+    float alpha = a - b;
+    if (alpha < 0.0f) alpha += kTwoPi;
+    const int bin = static_cast<int>(alpha * alpha_bins_per_radian_);
+    return bin < alpha_bins_ ? bin : alpha_bins_ - 1;
+  }
   int alphaBinCount() const { return alpha_bins_; }
   float alphaBinCentre(int bin) const;
 
@@ -45,7 +54,9 @@ class PpfQuantizer {
   int distance_bins_;
   int angle_bins_;
   int alpha_bins_;
+  float alpha_bins_per_radian_;
   int64_t key_count_;
+  static constexpr float kTwoPi = 6.28318530717958647692f;
 };
 
 // The local frame of a reference point: T maps p_ref to the origin and n_ref onto +x (section
