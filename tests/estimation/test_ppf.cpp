@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "binpick/estimation/ppf.hpp"
 #include "estimation_test_support.hpp"
@@ -90,8 +91,8 @@ TEST(PpfFeature, SymmetryAndInvarianceProperties) {
   }
 }
 
-// The four bins of a key, recovered from the layout: stepping one bin in each component moves the
-// key by a fixed stride, so bins are compared through keys of features at bin centres.
+// Bins are compared through keys: a value lies in bin k when its key equals the key of the
+// feature at the centre of bin k (all other components fixed).
 class QuantizerEdges : public ::testing::Test {
  protected:
   // Dyadic steps: k * step is exact in float, so "exactly at k * step" is meaningful.
@@ -218,6 +219,51 @@ TEST(PpfQuantizer, AlphaBinsCoverOneTurnAndWrapAnyAngle) {
   }
 }
 
+// The voting's fast path bins a - b for planar angles a, b in [-pi, pi]: the same bin as
+// alphaBin(a - b) (a value within an ulp of a bin edge, 2 pi included, may land in either of the
+// two bins that meet there).
+TEST(PpfQuantizer, AlphaBinOfDifferenceAgreesWithAlphaBin) {
+  const float pi = static_cast<float>(kPi);
+  for (float step_deg : {12.0f, 5.0f, 30.0f, 7.0f}) {
+    SCOPED_TRACE(step_deg);
+    const PpfQuantizer q(0.004f, rad(step_deg), 0.1f);
+    const int n = q.alphaBinCount();
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<float> angle(-pi, pi);
+    for (int i = 0; i < 100000; ++i) {
+      const float a = angle(rng), b = angle(rng);
+      ASSERT_EQ(q.alphaBinOfDifference(a, b), q.alphaBin(a - b)) << "a = " << a << ", b = " << b;
+    }
+    for (int b = 0; b < n; ++b) {
+      const float centre = q.alphaBinCentre(b);
+      EXPECT_EQ(q.alphaBinOfDifference(centre - pi, -pi), b);
+      EXPECT_EQ(q.alphaBinOfDifference(centre - pi, pi), b) << "centre - 2 pi";
+    }
+    const auto sameOrAdjacent = [n](int x, int y) {
+      const int d = std::abs(x - y);
+      return d == 0 || d == 1 || d == n - 1;
+    };
+    for (int k = -n; k <= n; ++k) {
+      const float edge = static_cast<float>(k) * (kTwoPi / static_cast<float>(n));
+      for (float b : {0.0f, 0.5f, -1.0f, pi, -pi}) {
+        const float a = edge + b;
+        if (a < -pi || a > pi) continue;
+        const int fast = q.alphaBinOfDifference(a, b);
+        ASSERT_GE(fast, 0);
+        ASSERT_LT(fast, n);
+        EXPECT_TRUE(sameOrAdjacent(fast, q.alphaBin(a - b))) << "a = " << a << ", b = " << b;
+      }
+    }
+    for (const auto& [a, b] : {std::pair{pi, -pi}, std::pair{-pi, pi}, std::pair{0.0f, 0.0f}, std::pair{pi, pi},
+                               std::pair{-1e-7f, 0.0f}, std::pair{0.0f, 1e-7f}}) {
+      const int fast = q.alphaBinOfDifference(a, b);
+      EXPECT_GE(fast, 0);
+      EXPECT_LT(fast, n);
+      EXPECT_TRUE(sameOrAdjacent(fast, q.alphaBin(a - b))) << "a = " << a << ", b = " << b;
+    }
+  }
+}
+
 TEST(PpfQuantizer, RejectsNonsenseSteps) {
   using testing::errorMessage;
   EXPECT_NE(errorMessage([] { PpfQuantizer(0.0f, 0.2f, 0.1f); }), "");
@@ -228,18 +274,27 @@ TEST(PpfQuantizer, RejectsNonsenseSteps) {
   EXPECT_NE(errorMessage([] { PpfQuantizer(1e-6f, 0.2f, 1.0f); }), "") << "a million distance bins";
 }
 
+// Float tolerances: near n = -x the rotation is built from a dot product close to -1, whose
+// float rounding alone is worth ~1e-4 rad (irrelevant next to 12 degree bins).
 void expectReferenceFrame(const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
   const Eigen::Isometry3f T = referenceFrame(p, n);
   EXPECT_LT((T * p).norm(), 1e-5f * std::max(1.0f, p.norm()));
-  EXPECT_LT((T.linear() * n - Eigen::Vector3f::UnitX()).norm(), 1e-5f) << "n = " << n.transpose();
-  EXPECT_LT((T.linear().transpose() * T.linear() - Eigen::Matrix3f::Identity()).norm(), 1e-5f);
-  EXPECT_NEAR(T.linear().determinant(), 1.0f, 1e-5f);
+  EXPECT_LT((T.linear() * n - Eigen::Vector3f::UnitX()).norm(), 3e-4f) << "n = " << n.transpose();
+  EXPECT_LT((T.linear().transpose() * T.linear() - Eigen::Matrix3f::Identity()).norm(), 2e-4f);
+  EXPECT_NEAR(T.linear().determinant(), 1.0f, 2e-4f);
 }
 
 TEST(ReferenceFrame, MapsPointToOriginAndNormalToPlusX) {
   expectReferenceFrame({0.1f, -0.2f, 0.3f}, Eigen::Vector3f::UnitX());
   expectReferenceFrame({0.1f, -0.2f, 0.3f}, -Eigen::Vector3f::UnitX());
   expectReferenceFrame({0, 0, 0}, -Eigen::Vector3f::UnitX());
+  // Exactly +x and -x: exact frames (the antiparallel case is a half turn about a perpendicular).
+  for (const Eigen::Vector3f& n : {Eigen::Vector3f(Eigen::Vector3f::UnitX()), Eigen::Vector3f(-Eigen::Vector3f::UnitX())}) {
+    const Eigen::Isometry3f T = referenceFrame({0.3f, 0.1f, 0.7f}, n);
+    EXPECT_LT((T.linear() * n - Eigen::Vector3f::UnitX()).norm(), 1e-6f);
+    EXPECT_LT((T.linear().transpose() * T.linear() - Eigen::Matrix3f::Identity()).norm(), 1e-6f);
+    EXPECT_LT((T * Eigen::Vector3f(0.3f, 0.1f, 0.7f)).norm(), 1e-6f);
+  }
   expectReferenceFrame({0.5f, 0.5f, 0.9f}, Eigen::Vector3f(-1.0f, 1e-4f, 0.0f).normalized());
   expectReferenceFrame({0.5f, 0.5f, 0.9f}, Eigen::Vector3f(-1.0f, 0.0f, -1e-6f).normalized());
   expectReferenceFrame({0.5f, 0.5f, 0.9f}, Eigen::Vector3f::UnitY());

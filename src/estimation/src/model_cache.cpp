@@ -79,9 +79,15 @@ class Reader {
 };
 
 std::vector<uint8_t> readAll(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) throw Error(path + ": not a readable file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open");
-  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+  try {
+    return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot read: " + e.what());
+  }
 }
 
 void putParams(Writer& w, const ModelParams& p) {

@@ -14,14 +14,18 @@ class SceneVoxelGrid {
  public:
   static constexpr int32_t kEmpty = -1;
 
+  // Throws binpick::Error on a non-positive voxel size or a non-finite scene point.
   SceneVoxelGrid(const std::vector<Eigen::Vector3f>& scene_points, float voxel_size);
 
   // Voxel(p) of eq. 3: the index of a scene point near p, or kEmpty.
   int32_t at(const Eigen::Vector3f& p) const {
     const Eigen::Vector3f q = (p - origin_) / voxel_size_;
-    if (!(q.x() >= 0.0f && q.y() >= 0.0f && q.z() >= 0.0f)) return kEmpty;  // also rejects NaN
+    // Compared as floats before the cast: NaN, infinities and huge values never reach an index.
+    if (!(q.x() >= 0.0f && q.y() >= 0.0f && q.z() >= 0.0f && q.x() < dims_f_.x() && q.y() < dims_f_.y() &&
+          q.z() < dims_f_.z())) {
+      return kEmpty;
+    }
     const auto x = static_cast<int64_t>(q.x()), y = static_cast<int64_t>(q.y()), z = static_cast<int64_t>(q.z());
-    if (x >= dims_.x() || y >= dims_.y() || z >= dims_.z()) return kEmpty;
     const int32_t block = blocks_[blockIndex(x >> 3, y >> 3, z >> 3)];
     if (block < 0) return kEmpty;
     return cells_[static_cast<std::size_t>(block) * 512 + ((z & 7) << 6 | (y & 7) << 3 | (x & 7))];
@@ -38,6 +42,7 @@ class SceneVoxelGrid {
   Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
   float voxel_size_;
   Eigen::Matrix<int64_t, 3, 1> dims_ = Eigen::Matrix<int64_t, 3, 1>::Zero();
+  Eigen::Vector3f dims_f_ = Eigen::Vector3f::Zero();
   Eigen::Matrix<int64_t, 3, 1> block_dims_ = Eigen::Matrix<int64_t, 3, 1>::Zero();
   std::vector<int32_t> blocks_;  // per block: index into cells_ / 512, or -1
   std::vector<int32_t> cells_;

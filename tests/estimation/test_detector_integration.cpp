@@ -1,0 +1,180 @@
+// The whole pipeline on simulated piles: recognition of the half-visible objects within the
+// paper's thresholds (diam/10, 10 degrees), the Drost baseline, determinism and thread invariance.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <ostream>
+#include <thread>
+#include <tuple>
+
+#include "binpick/estimation/detector.hpp"
+#include "binpick/simulation/pile.hpp"
+#include "estimation_test_support.hpp"
+#include "evaluation.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+using testing::cachedModel;
+
+struct Pile {
+  sim::PileParams params;
+  sim::PileScene scene;
+};
+
+const Pile& cachedPile(const std::string& part, int objects, uint64_t seed) {
+  static std::map<std::tuple<std::string, int, uint64_t>, Pile> piles;
+  const auto key = std::make_tuple(part, objects, seed);
+  auto it = piles.find(key);
+  if (it == piles.end()) {
+    Pile pile;
+    pile.params.objects = objects;
+    pile.params.seed = seed;
+    pile.scene = sim::generatePile(sim::makePart(part).mesh, pile.params);
+    it = piles.emplace(key, std::move(pile)).first;
+  }
+  return it->second;
+}
+
+DetectorParams paramsFor(const Pile& pile, DetectorParams params = {}) {
+  params.selection.max_objects = pile.params.objects;
+  params.scene.crop = eval::binInterior(pile.scene, pile.params);
+  return params;
+}
+
+eval::Score score(const std::string& part, const PreparedModel& model, const Pile& pile,
+                  const DetectionResult& result) {
+  return eval::scoreDetections(result.detections, pile.scene.objects, sim::makePart(part).symmetry,
+                               {model.diameter / 10.0, 10.0});
+}
+
+std::string describe(const eval::Score& s, const DetectionResult& r) {
+  std::string text = "found " + std::to_string(s.found) + " of " + std::to_string(s.findable) + " findable, " +
+                     std::to_string(r.detections.size()) + " detections, matched objects:";
+  for (int m : s.matched_object) text += " " + std::to_string(m);
+  return text;
+}
+
+struct PileCase {
+  std::string part;
+  int objects;
+  uint64_t seed;
+};
+
+void PrintTo(const PileCase& c, std::ostream* os) {
+  *os << c.part << ", " << c.objects << " objects, seed " << c.seed;
+}
+
+class DetectorOnPiles : public ::testing::TestWithParam<PileCase> {};
+
+TEST_P(DetectorOnPiles, FindsEveryHalfVisibleObjectAndTheFirstPicksAreRight) {
+  const PileCase& c = GetParam();
+  const PreparedModel& model = cachedModel(c.part);
+  const Pile& pile = cachedPile(c.part, c.objects, c.seed);
+  const Detector detector(model, paramsFor(pile));
+  const DetectionResult result = detector.detect(pile.scene.cloud);
+  const eval::Score s = score(c.part, model, pile, result);
+  SCOPED_TRACE(describe(s, result));
+  RecordProperty("score", describe(s, result));
+
+  ASSERT_GT(s.findable, 0);
+  EXPECT_EQ(s.found, s.findable);
+  EXPECT_LE(static_cast<int>(result.detections.size()), c.objects);
+  const std::size_t first = std::min<std::size_t>(5, result.detections.size());
+  for (std::size_t k = 0; k < first; ++k) EXPECT_GE(s.matched_object[k], 0) << "detection " << k << " is wrong";
+
+  // What the result reports about itself.
+  EXPECT_GT(result.scene_points, 0u);
+  EXPECT_GT(result.candidates, 0u);
+  EXPECT_GT(result.refreshes, 0u);
+  for (const Detection& d : result.detections) {
+    EXPECT_GT(d.score, 0.0f);
+    EXPECT_LE(d.score, 1.0f);
+    EXPECT_GE(d.coverage, 0.0f);
+    EXPECT_LE(d.coverage, 1.0f);
+    EXPECT_GT(d.votes, 0u);
+    EXPECT_TRUE(d.T_camera_model.matrix().allFinite());
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Piles, DetectorOnPiles,
+                         ::testing::Values(PileCase{"l_bracket", 10, 11}, PileCase{"l_bracket", 12, 12},
+                                           PileCase{"clamp", 10, 11}, PileCase{"clamp", 12, 12}),
+                         [](const ::testing::TestParamInfo<PileCase>& case_info) {
+                           return case_info.param.part + "_" + std::to_string(case_info.param.objects) + "_objects_seed_" +
+                                  std::to_string(case_info.param.seed);
+                         });
+
+TEST(DetectorDrost, FindsTheMostVisibleObject) {
+  const std::string part = "clamp";
+  const PreparedModel& model = cachedModel(part);
+  const Pile& pile = cachedPile(part, 10, 11);
+  const Detector detector(model, paramsFor(pile, DetectorParams::drost(0.2f)));
+  EXPECT_EQ(detector.params().method, Method::Drost);
+  const DetectionResult result = detector.detect(pile.scene.cloud);
+  const eval::Score s = score(part, model, pile, result);
+  SCOPED_TRACE(describe(s, result));
+  RecordProperty("score", describe(s, result));
+
+  const auto& objects = pile.scene.objects;
+  const auto most_visible = static_cast<int>(
+      std::max_element(objects.begin(), objects.end(),
+                       [](const auto& a, const auto& b) { return a.visible_pixels < b.visible_pixels; }) -
+      objects.begin());
+  EXPECT_NE(std::find(s.matched_object.begin(), s.matched_object.end(), most_visible), s.matched_object.end())
+      << "object " << most_visible << " (" << objects[most_visible].visible_pixels << " pixels) not found";
+  ASSERT_FALSE(result.detections.empty());
+  EXPECT_GE(s.matched_object[0], 0) << "the best cluster is a correct pose";
+  EXPECT_EQ(result.detections[0].score, 1.0f) << "Drost scores are relative to the best cluster";
+}
+
+void expectIdentical(const DetectionResult& a, const DetectionResult& b) {
+  EXPECT_EQ(a.scene_points, b.scene_points);
+  EXPECT_EQ(a.candidates, b.candidates);
+  EXPECT_EQ(a.refreshes, b.refreshes);
+  ASSERT_EQ(a.detections.size(), b.detections.size());
+  for (std::size_t k = 0; k < a.detections.size(); ++k) {
+    SCOPED_TRACE(k);
+    EXPECT_TRUE(a.detections[k].T_camera_model.matrix() == b.detections[k].T_camera_model.matrix());
+    EXPECT_EQ(a.detections[k].score, b.detections[k].score);
+    EXPECT_EQ(a.detections[k].coverage, b.detections[k].coverage);
+    EXPECT_EQ(a.detections[k].icp_rmse, b.detections[k].icp_rmse);
+    EXPECT_EQ(a.detections[k].votes, b.detections[k].votes);
+    EXPECT_EQ(a.detections[k].icp_iterations, b.detections[k].icp_iterations);
+  }
+}
+
+TEST(DetectorDeterminism, RepeatedCallsAndThreadCountsGiveIdenticalResults) {
+  const PreparedModel& model = cachedModel("clamp");
+  const Pile& pile = cachedPile("clamp", 10, 11);
+  DetectorParams params = paramsFor(pile);
+  params.threads = 2;
+  const Detector two(model, params);
+  const DetectionResult first = two.detect(pile.scene.cloud);
+  ASSERT_FALSE(first.detections.empty());
+  expectIdentical(first, two.detect(pile.scene.cloud));
+
+  params.threads = 1;
+  const Detector one(model, params);
+  expectIdentical(first, one.detect(pile.scene.cloud));
+}
+
+TEST(DetectorDeterminism, ConcurrentCallsOnOneDetectorGiveTheSequentialResult) {
+  const PreparedModel& model = cachedModel("l_bracket");
+  const Pile& pile = cachedPile("l_bracket", 10, 11);
+  DetectorParams params = paramsFor(pile);
+  params.threads = 1;
+  const Detector detector(model, params);
+  const DetectionResult sequential = detector.detect(pile.scene.cloud);
+  DetectionResult a, b;
+  std::thread first([&] { a = detector.detect(pile.scene.cloud); });
+  std::thread second([&] { b = detector.detect(pile.scene.cloud); });
+  first.join();
+  second.join();
+  expectIdentical(sequential, a);
+  expectIdentical(sequential, b);
+}
+
+}  // namespace
+}  // namespace binpick::estimation

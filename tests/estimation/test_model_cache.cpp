@@ -1,0 +1,275 @@
+// Prepared-model cache files: exact round trip, and rejection of every kind of damaged file.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "binpick/estimation/detector.hpp"
+#include "binpick/estimation/model_cache.hpp"
+#include "binpick/io/geometry_io.hpp"
+#include "binpick/simulation/pile.hpp"
+#include "estimation_test_support.hpp"
+#include "evaluation.hpp"
+
+namespace binpick::estimation {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::errorMessage;
+using testing::smallModel;
+
+std::vector<uint8_t> readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
+}
+
+void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+template <class T>
+bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void expectIdenticalModels(const PreparedModel& a, const PreparedModel& b) {
+  EXPECT_TRUE(sameBytes(a.points, b.points));
+  EXPECT_TRUE(sameBytes(a.normals, b.normals));
+  EXPECT_EQ(a.diameter, b.diameter);
+  EXPECT_EQ(a.step, b.step);
+  EXPECT_TRUE(a.centre == b.centre);
+  EXPECT_EQ(a.params.sampling_ratio, b.params.sampling_ratio);
+  EXPECT_EQ(a.params.angle_step_deg, b.params.angle_step_deg);
+  EXPECT_EQ(a.params.dense_samples_per_step2, b.params.dense_samples_per_step2);
+  EXPECT_EQ(a.params.normal_radius_ratio, b.params.normal_radius_ratio);
+  EXPECT_EQ(a.params.normal_cluster_angle_deg, b.params.normal_cluster_angle_deg);
+  EXPECT_EQ(a.params.seed, b.params.seed);
+  EXPECT_EQ(a.table.offsets(), b.table.offsets());
+  EXPECT_TRUE(sameBytes(a.table.entries(), b.table.entries()));
+}
+
+class ModelCache : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = fs::temp_directory_path() /
+          ("binpick_test_estimation_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  // Expects loadModelCache to reject the file with a binpick::Error naming it.
+  void expectRejected(const fs::path& path, const std::string& what) {
+    SCOPED_TRACE(what);
+    const std::string message = errorMessage([&] { loadModelCache(path.string()); });
+    EXPECT_NE(message.find(path.string()), std::string::npos) << "message: " << message;
+  }
+
+  fs::path dir;
+};
+
+TEST_F(ModelCache, RoundTripIsExactAndDetectsTheSame) {
+  const PreparedModel& model = smallModel();
+  const fs::path path = dir / "clamp.bpmodel";
+  saveModelCache(model, 0x1234567890abcdefULL, path.string());
+  EXPECT_FALSE(fs::exists(path.string() + ".partial")) << "the temporary file is moved into place";
+  const CachedModel loaded = loadModelCache(path.string());
+  EXPECT_EQ(loaded.source_fingerprint, 0x1234567890abcdefULL);
+  expectIdenticalModels(model, loaded.model);
+
+  // Saving the loaded model gives the same bytes.
+  const fs::path again = dir / "again.bpmodel";
+  saveModelCache(loaded.model, 0x1234567890abcdefULL, again.string());
+  EXPECT_EQ(readBytes(path), readBytes(again));
+
+  // The same detections, bit for bit, from a small pile.
+  sim::PileParams pile;
+  pile.objects = 4;
+  pile.seed = 8;
+  pile.camera.width = 640;
+  pile.camera.height = 512;
+  pile.camera.fx = pile.camera.fy = 800.0;
+  pile.camera.cx = 319.5;
+  pile.camera.cy = 255.5;
+  const sim::PileScene scene = sim::generatePile(sim::makePart("clamp").mesh, pile);
+  DetectorParams params;
+  params.selection.max_objects = 4;
+  params.scene.crop = eval::binInterior(scene, pile);
+  params.threads = 2;
+  const DetectionResult a = Detector(model, params).detect(scene.cloud);
+  const DetectionResult b = Detector(loaded.model, params).detect(scene.cloud);
+  ASSERT_FALSE(a.detections.empty());
+  ASSERT_EQ(a.detections.size(), b.detections.size());
+  for (std::size_t k = 0; k < a.detections.size(); ++k) {
+    EXPECT_TRUE(a.detections[k].T_camera_model.matrix() == b.detections[k].T_camera_model.matrix());
+    EXPECT_EQ(a.detections[k].score, b.detections[k].score);
+    EXPECT_EQ(a.detections[k].votes, b.detections[k].votes);
+  }
+}
+
+TEST_F(ModelCache, RejectsDamagedFilesWithTheirName) {
+  const fs::path good = dir / "good.bpmodel";
+  saveModelCache(smallModel(), 42, good.string());
+  const std::vector<uint8_t> bytes = readBytes(good);
+  ASSERT_GT(bytes.size(), 1000u);
+
+  // Truncated at several lengths, down to inside the magic.
+  for (std::size_t length : {std::size_t{3}, std::size_t{8}, std::size_t{12}, std::size_t{19}, std::size_t{20},
+                             std::size_t{40}, std::size_t{100}, bytes.size() / 2, bytes.size() - 9,
+                             bytes.size() - 8, bytes.size() - 1}) {
+    const fs::path path = dir / ("truncated_" + std::to_string(length) + ".bpmodel");
+    writeBytes(path, std::vector<uint8_t>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(length)));
+    expectRejected(path, "truncated to " + std::to_string(length));
+  }
+  // One flipped byte anywhere after the header (payload and checksum).
+  for (std::size_t offset : {std::size_t{12}, std::size_t{20}, std::size_t{45}, std::size_t{200}, bytes.size() / 3,
+                             bytes.size() - 20, bytes.size() - 9, bytes.size() - 1}) {
+    std::vector<uint8_t> flipped = bytes;
+    flipped[offset] ^= 0x10;
+    const fs::path path = dir / ("flipped_" + std::to_string(offset) + ".bpmodel");
+    writeBytes(path, flipped);
+    expectRejected(path, "byte flipped at " + std::to_string(offset));
+  }
+  // Trailing garbage.
+  std::vector<uint8_t> longer = bytes;
+  longer.insert(longer.end(), {1, 2, 3, 4});
+  writeBytes(dir / "longer.bpmodel", longer);
+  expectRejected(dir / "longer.bpmodel", "trailing bytes");
+  // Wrong magic: another file format.
+  const fs::path ply = dir / "clamp.ply";
+  writeMesh(ply.string(), sim::makePart("clamp").mesh);
+  expectRejected(ply, "a PLY file");
+  std::vector<uint8_t> magic = bytes;
+  magic[0] = 'X';
+  writeBytes(dir / "magic.bpmodel", magic);
+  expectRejected(dir / "magic.bpmodel", "wrong magic");
+  // A future version (bytes 8..11, little endian), otherwise intact.
+  std::vector<uint8_t> future = bytes;
+  const uint32_t version = kModelCacheVersion + 1;
+  std::memcpy(future.data() + 8, &version, sizeof(version));
+  writeBytes(dir / "future.bpmodel", future);
+  expectRejected(dir / "future.bpmodel", "future version");
+  // Empty and missing files.
+  writeBytes(dir / "empty.bpmodel", {});
+  expectRejected(dir / "empty.bpmodel", "empty file");
+  expectRejected(dir / "missing.bpmodel", "missing file");
+}
+
+// Files whose checksum is right but whose content is not (a crafted or buggy writer): the counts
+// and indices are checked, never trusted. The checksum is re-signed with FNV-1a 64, which is what
+// fingerprintFile computes; the first assertion checks that this is the cache's checksum too.
+TEST_F(ModelCache, RejectsConsistentlySignedFilesWithBadContent) {
+  const PreparedModel& model = smallModel();
+  const fs::path good = dir / "good.bpmodel";
+  saveModelCache(model, 42, good.string());
+  const std::vector<uint8_t> bytes = readBytes(good);
+  const std::size_t header = 12, checksum_at = bytes.size() - 8;
+  const auto resign = [&](std::vector<uint8_t> changed, const std::string& name) {
+    writeBytes(dir / "payload", std::vector<uint8_t>(changed.begin() + header, changed.begin() + checksum_at));
+    const uint64_t checksum = fingerprintFile((dir / "payload").string());
+    std::memcpy(changed.data() + checksum_at, &checksum, sizeof(checksum));
+    writeBytes(dir / name, changed);
+    return dir / name;
+  };
+  ASSERT_EQ(readBytes(resign(bytes, "resigned.bpmodel")), bytes) << "the cache checksum is FNV-1a 64 of the payload";
+  EXPECT_NO_THROW(loadModelCache((dir / "resigned.bpmodel").string()));
+
+  // Layout: magic, version | params (28), fingerprint (8), diameter, step (8), centre (12),
+  // points (count + 12 n), normals (count + 12 n), offsets (count + 4 k), entries (count + 8 e) | checksum.
+  const std::size_t points_count_at = header + 28 + 8 + 8 + 12;
+  const std::size_t entries_at = checksum_at - 8 * model.table.pairCount();
+  uint64_t stored_count = 0;
+  std::memcpy(&stored_count, bytes.data() + points_count_at, sizeof(stored_count));
+  ASSERT_EQ(stored_count, model.size()) << "layout assumption";
+
+  std::vector<uint8_t> changed = bytes;
+  const uint64_t huge = uint64_t{1} << 61;
+  std::memcpy(changed.data() + points_count_at, &huge, sizeof(huge));
+  expectRejected(resign(changed, "huge_count.bpmodel"), "a point count larger than the file");
+
+  changed = bytes;
+  const uint32_t past = 0xffffffffu;
+  std::memcpy(changed.data() + entries_at, &past, sizeof(past));
+  expectRejected(resign(changed, "bad_entry.bpmodel"), "an entry referring past the points");
+
+  changed = bytes;
+  const float nan = std::nanf("");
+  std::memcpy(changed.data() + points_count_at + 8, &nan, sizeof(nan));
+  expectRejected(resign(changed, "nan_point.bpmodel"), "a NaN model point");
+
+  changed = bytes;
+  const float zero = 0.0f;
+  std::memcpy(changed.data() + header, &zero, sizeof(zero));  // sampling_ratio
+  expectRejected(resign(changed, "bad_params.bpmodel"), "invalid params");
+}
+
+TEST_F(ModelCache, RejectsADirectoryAndUnwritablePathsWithBinpickError) {
+  expectRejected(dir, "a directory instead of a file");
+  EXPECT_NE(errorMessage([&] { fingerprintFile(dir.string()); }).find(dir.string()), std::string::npos);
+  const std::string unwritable = (dir / "no_such_directory" / "model.bpmodel").string();
+  EXPECT_NE(errorMessage([&] { saveModelCache(smallModel(), 1, unwritable); }).find(unwritable), std::string::npos);
+}
+
+TEST_F(ModelCache, LoadOrPrepareReusesOnlyAValidMatchingCache) {
+  const fs::path source = dir / "clamp.ply";
+  const fs::path cache = dir / "clamp.bpmodel";
+  writeMesh(source.string(), sim::makePart("clamp").mesh);
+  ModelParams params;
+  params.sampling_ratio = 0.08f;
+
+  bool reused = true;
+  const PreparedModel built = loadOrPrepareModel(source.string(), params, cache.string(), &reused);
+  EXPECT_FALSE(reused);
+  ASSERT_TRUE(fs::exists(cache));
+  EXPECT_EQ(loadModelCache(cache.string()).source_fingerprint, fingerprintFile(source.string()));
+
+  const PreparedModel again = loadOrPrepareModel(source.string(), params, cache.string(), &reused);
+  EXPECT_TRUE(reused);
+  expectIdenticalModels(built, again);
+  EXPECT_NO_THROW(loadOrPrepareModel(source.string(), params, cache.string()));  // reused may be null
+
+  // Other params: rebuilt, and the cache now holds the new params.
+  ModelParams coarser = params;
+  coarser.angle_step_deg = 15.0f;
+  const PreparedModel other = loadOrPrepareModel(source.string(), coarser, cache.string(), &reused);
+  EXPECT_FALSE(reused);
+  EXPECT_EQ(other.params.angle_step_deg, 15.0f);
+  EXPECT_EQ(loadModelCache(cache.string()).model.params.angle_step_deg, 15.0f);
+  loadOrPrepareModel(source.string(), coarser, cache.string(), &reused);
+  EXPECT_TRUE(reused);
+  loadOrPrepareModel(source.string(), params, cache.string(), &reused);
+  EXPECT_FALSE(reused);
+
+  // A corrupt cache: rebuilt and rewritten, then reused.
+  std::vector<uint8_t> bytes = readBytes(cache);
+  bytes[bytes.size() / 2] ^= 0xff;
+  writeBytes(cache, bytes);
+  const PreparedModel repaired = loadOrPrepareModel(source.string(), params, cache.string(), &reused);
+  EXPECT_FALSE(reused);
+  expectIdenticalModels(built, repaired);
+  EXPECT_NO_THROW(loadModelCache(cache.string()));
+  loadOrPrepareModel(source.string(), params, cache.string(), &reused);
+  EXPECT_TRUE(reused);
+
+  // Another source file (same name, other bytes): rebuilt.
+  TriangleMesh moved = sim::makePart("clamp").mesh;
+  for (auto& v : moved.vertices) v.x() += 0.001f;
+  writeMesh(source.string(), moved);
+  loadOrPrepareModel(source.string(), params, cache.string(), &reused);
+  EXPECT_FALSE(reused);
+
+  // A missing source is an error naming it, even with a valid cache.
+  const std::string missing = (dir / "missing.ply").string();
+  EXPECT_NE(errorMessage([&] { loadOrPrepareModel(missing, params, cache.string()); }).find(missing),
+            std::string::npos);
+  EXPECT_NE(errorMessage([&] { fingerprintFile(missing); }).find(missing), std::string::npos);
+}
+
+}  // namespace
+}  // namespace binpick::estimation
