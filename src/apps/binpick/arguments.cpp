@@ -33,32 +33,36 @@ std::string Arguments::required(const std::string& name) const {
   return *v;
 }
 
-std::optional<int> Arguments::integer(const std::string& name) const {
-  const auto v = value(name);
-  if (!v) return std::nullopt;
+namespace {
+
+// Parses the whole text with `parse` (std::stoi, std::stod, ...) or throws naming the option.
+template <class T, class Parse>
+T parseWhole(const std::string& name, const std::string& text, const char* kind, Parse parse) {
   std::size_t used = 0;
-  int parsed = 0;
+  T parsed{};
   try {
-    parsed = std::stoi(*v, &used);
+    parsed = parse(text, &used);
   } catch (const std::exception&) {
     used = 0;
   }
-  if (used == 0 || used != v->size()) throw Error(name + " needs a whole number, not '" + *v + "'");
+  if (used == 0 || used != text.size() || !std::isfinite(static_cast<double>(parsed))) {
+    throw Error(name + " needs " + kind + ", not '" + text + "'");
+  }
   return parsed;
+}
+
+}  // namespace
+
+std::optional<int> Arguments::integer(const std::string& name) const {
+  const auto v = value(name);
+  if (!v) return std::nullopt;
+  return parseWhole<int>(name, *v, "a whole number", [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
 }
 
 std::optional<double> Arguments::number(const std::string& name) const {
   const auto v = value(name);
   if (!v) return std::nullopt;
-  std::size_t used = 0;
-  double parsed = 0;
-  try {
-    parsed = std::stod(*v, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != v->size() || !std::isfinite(parsed)) throw Error(name + " needs a number, not '" + *v + "'");
-  return parsed;
+  return parseWhole<double>(name, *v, "a number", [](const std::string& t, std::size_t* used) { return std::stod(t, used); });
 }
 
 }  // namespace binpick::cli

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# End to end through the command line: simulate a pile, detect with a model cache, evaluate, and
+# check that bad input gives one line on stderr naming the problem and exit code 1.
+set -uo pipefail
+binpick="$1"
+config_dir="$2"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+"$binpick" simulate --part clamp --objects 8 --seed 5 --out "$work/pile" 2>/dev/null || fail "simulate exited $?"
+for f in scene.ply model.ply truth.json; do [ -s "$work/pile/$f" ] || fail "simulate wrote no $f"; done
+
+run_detect() {
+  "$binpick" detect --model "$work/pile/model.ply" --scene "$work/pile/scene.ply" \
+    --config "$config_dir/virtual-cell.yaml" --model-cache "$work/model.cache" --max-objects 8 --out "$1"
+}
+run_detect "$work/first.json" || fail "detect exited $?"
+[ -s "$work/model.cache" ] || fail "detect wrote no model cache"
+run_detect "$work/second.json" || fail "detect with a cache exited $?"
+grep -q '"detections"' "$work/first.json" || fail "result has no detections key"
+# The cached model gives the same poses (timings differ).
+diff <(grep -A4 '"pose"' "$work/first.json") <(grep -A4 '"pose"' "$work/second.json") >/dev/null ||
+  fail "cached model changed the poses"
+
+summary=$("$binpick" evaluate --result "$work/first.json" --truth "$work/pile/truth.json" --part clamp | tail -n 1)
+found=$(echo "$summary" | sed -n 's/^found \([0-9]*\) of \([0-9]*\).*/\1 \2/p')
+read -r got want <<<"$found"
+[ -n "${want:-}" ] && [ "$got" = "$want" ] || fail "evaluate: '$summary'"
+
+expect_error() {  # expect_error "pattern" command...
+  local pattern="$1"; shift
+  local err
+  err=$("$@" 2>&1 >/dev/null)
+  local code=$?
+  [ "$code" -eq 1 ] || fail "'$*' exited $code, expected 1"
+  [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
+  echo "$err" | grep -q -- "$pattern" || fail "'$*' said '$err', expected '$pattern'"
+}
+printf 'ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\nproperty float y\nproperty float z\nend_header\n\x01\x02' > "$work/truncated.ply"
+printf 'not a cache' > "$work/bad.cache"
+printf 'detection:\n  voting: {reference_fractoin: 0.3}\n' > "$work/typo.yaml"
+expect_error "missing.ply" "$binpick" detect --model "$work/missing.ply" --scene "$work/pile/scene.ply"
+expect_error "truncated.ply" "$binpick" detect --model "$work/pile/model.ply" --scene "$work/truncated.ply"
+expect_error "reference_fractoin" "$binpick" detect --model "$work/pile/model.ply" --scene "$work/pile/scene.ply" --config "$work/typo.yaml"
+expect_error "max-objects" "$binpick" detect --model "$work/pile/model.ply" --scene "$work/pile/scene.ply" --max-objects -3x
+expect_error "--scene is required" "$binpick" detect --model "$work/pile/model.ply"
+expect_error "unknown option" "$binpick" detect --modle x
+expect_error "gizmo" "$binpick" simulate --part gizmo --out "$work/x"
+# A corrupt cache is rebuilt from the model, not trusted.
+"$binpick" detect --model "$work/pile/model.ply" --scene "$work/pile/scene.ply" --config "$config_dir/virtual-cell.yaml" \
+  --model-cache "$work/bad.cache" --max-objects 1 >/dev/null || fail "a corrupt cache was not rebuilt"
+
+if [ "$failures" -eq 0 ]; then echo "cli: all checks passed"; else exit 1; fi
