@@ -48,6 +48,7 @@ int runEvaluate(const std::vector<std::string>& raw) {
     estimation::Detection detection;
     detection.T_camera_model.matrix() = poseFrom(d.value("pose", nlohmann::json()), result_path).cast<float>();
     detection.score = d.value("score", 0.0f);
+    detection.coverage = d.value("coverage", 0.0f);
     detections.push_back(detection);
   }
   std::vector<sim::ObjectTruth> objects;
@@ -62,7 +63,8 @@ int runEvaluate(const std::vector<std::string>& raw) {
                                                   args.number("--min-visible").value_or(0.5));
   for (std::size_t d = 0; d < detections.size(); ++d) {
     const int o = score.matched_object[d];
-    std::printf("detection %2zu  score %.3f  %s", d, detections[d].score, o >= 0 ? "correct" : "WRONG");
+    std::printf("detection %2zu  score %.3f  coverage %.2f  %s", d, detections[d].score, detections[d].coverage,
+                o >= 0 ? "correct" : "WRONG");
     if (o >= 0) {
       const sim::PoseError e = sim::poseError(detections[d].T_camera_model.cast<double>(),
                                               objects[o].T_camera_object, part.symmetry);
