@@ -1,12 +1,12 @@
 // binpick evaluate --result result.json --truth truth.json --part NAME [--min-visible 0.5]
 // Scores a detect result against a simulated pile's truth with the paper's criterion
 // (diam(M)/10 and 10 degrees, symmetry-aware; repeats count as wrong).
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "arguments.hpp"
-#include "binpick/estimation/model.hpp"
 #include "binpick/io/error.hpp"
 #include "commands.hpp"
 #include "evaluation.hpp"
@@ -35,6 +35,15 @@ Eigen::Matrix4d poseFrom(const nlohmann::json& rows, const std::string& where) {
   return m;
 }
 
+// The largest distance between two points of a mesh is attained at two of its vertices.
+double meshDiameter(const TriangleMesh& mesh) {
+  double best = 0.0;
+  for (std::size_t a = 0; a < mesh.vertices.size(); ++a)
+    for (std::size_t b = a + 1; b < mesh.vertices.size(); ++b)
+      best = std::max(best, static_cast<double>((mesh.vertices[a] - mesh.vertices[b]).norm()));
+  return best;
+}
+
 }  // namespace
 
 int runEvaluate(const std::vector<std::string>& raw) {
@@ -58,7 +67,7 @@ int runEvaluate(const std::vector<std::string>& raw) {
     object.visible_fraction = o.value("visible_fraction", 0.0);
     objects.push_back(object);
   }
-  const double diameter = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {}).diameter;
+  const double diameter = meshDiameter(part.mesh);
   const eval::Score score = eval::scoreDetections(detections, objects, part.symmetry, {diameter / 10.0, 10.0},
                                                   args.number("--min-visible").value_or(0.5));
   for (std::size_t d = 0; d < detections.size(); ++d) {
