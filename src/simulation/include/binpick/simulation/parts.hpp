@@ -35,6 +35,14 @@ Part makePart(const std::string& name);
 // and repeated or collinear points are dropped, so the mesh is always closed with outward normals.
 TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thickness);
 
+// A lathe (surface of revolution): a simple polygon in the (r, z) half-plane (r >= 0; either
+// orientation; repeated or collinear points are dropped) revolved about the z axis with `segments`
+// facets (>= 3), the first at angle 0 (on +x). Profile points on the axis (r = 0) become a single
+// vertex each (no degenerate triangles), and a profile edge lying on the axis bounds no surface.
+// The mesh is closed with outward normals and keeps the profile's z (no re-centring). Throws on a
+// point with r < 0, a degenerate or self-intersecting profile, or too few segments.
+TriangleMesh makeLathe(const std::vector<Eigen::Vector2d>& profile, int segments);
+
 // Rotation + translation error between an estimate and the truth, minimised over the symmetry:
 // the estimate is compared with every truth * S (S a symmetry rotation, in the model frame), and
 // with a continuous axis a only the angle between R_est a and R_true S a counts. The translation
