@@ -50,6 +50,7 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
 
   const PoseRefiner refiner(scene, model.step, p.icp);
   MultipleSelection selection(verified, scene.size());
+  const float removal_radius = 1.5f * grid.voxelSize();
   const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
   double icp_ms = 0.0;
@@ -62,8 +63,10 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
     if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
     d.score = static_cast<float>(pick->score) / static_cast<float>(model.size());
     d.votes = verified[pick->candidate].votes;
-    // Algorithm 1 lines 2-6, at the refined pose.
-    selection.removeExplained(correspondingScenePoints(model, d.T_camera_model, grid, scene.normals, -2.0f));
+    // Algorithm 1 lines 2-6, at the refined pose and for every scene point within the fit
+    // tolerance: a voxel holds one scene point, so removing only those leaves most of a flat face
+    // existing, and candidates sliding over that face would be picked (and refined) again and again.
+    selection.removeExplained(refiner.scenePointsNear(model, d.T_camera_model, removal_radius));
     result.detections.push_back(d);
   }
   result.refreshes = selection.refreshCount();

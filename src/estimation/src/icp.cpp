@@ -91,6 +91,21 @@ PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams param
 
 PoseRefiner::~PoseRefiner() = default;
 
+std::vector<uint32_t> PoseRefiner::scenePointsNear(const PreparedModel& model, const Eigen::Isometry3f& pose,
+                                                   float radius) const {
+  std::vector<uint8_t> near(scene_.points.size(), 0);
+  std::vector<uint32_t> found;
+  for (const Eigen::Vector3f& m : model.points) {
+    index_->tree.withinRadius(pose * m, radius, found);
+    for (uint32_t s : found) near[s] = 1;
+  }
+  std::vector<uint32_t> indices;
+  for (uint32_t s = 0; s < near.size(); ++s) {
+    if (near[s]) indices.push_back(s);
+  }
+  return indices;
+}
+
 IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3f& initial) const {
   IcpResult result;
   result.T_camera_model = initial;

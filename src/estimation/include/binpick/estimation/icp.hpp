@@ -46,6 +46,9 @@ class PoseRefiner {
   PoseRefiner& operator=(const PoseRefiner&) = delete;
 
   IcpResult refine(const PreparedModel& model, const Eigen::Isometry3f& initial) const;
+  // Scene points within `radius` of any model point at `pose` (each once, ascending).
+  std::vector<uint32_t> scenePointsNear(const PreparedModel& model, const Eigen::Isometry3f& pose,
+                                        float radius) const;
 
  private:
   struct Index;
