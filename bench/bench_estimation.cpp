@@ -3,7 +3,7 @@
 // for the paper's method and its Drost baselines (Table I).
 //
 //   bench_estimation [--parts l_bracket,clamp] [--scenes 5] [--objects 20] [--seed 1]
-//                    [--method li_hashimoto|ppf1|ppf5] [--threads 0]
+//                    [--method li_hashimoto|ppf1|ppf5] [--threads 0] [--max-pairs-per-feature 0]
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -28,6 +28,7 @@ struct Options {
   uint64_t seed = 1;
   std::string method = "li_hashimoto";
   int threads = 0;
+  uint32_t max_pairs_per_feature = 0;
 };
 
 std::vector<std::string> splitCommas(const std::string& text) {
@@ -51,6 +52,7 @@ Options parse(int argc, char** argv) {
     else if (flag == "--seed") o.seed = std::stoull(value);
     else if (flag == "--method") o.method = value;
     else if (flag == "--threads") o.threads = std::stoi(value);
+    else if (flag == "--max-pairs-per-feature") o.max_pairs_per_feature = static_cast<uint32_t>(std::stoul(value));
     else throw Error("bench_estimation: unknown option " + flag);
   }
   if (o.scenes < 1 || o.objects < 1) throw Error("bench_estimation: --scenes and --objects must be >= 1");
@@ -96,8 +98,9 @@ std::size_t validPoints(const PointCloud& cloud) {
 
 void benchPart(const std::string& part_name, const Options& o) {
   const sim::Part part = sim::makePart(part_name);
-  const estimation::PreparedModel model =
-      estimation::prepareModel(ModelGeometry{part.mesh, {}}, estimation::ModelParams{});
+  estimation::ModelParams model_params;
+  model_params.max_pairs_per_feature = o.max_pairs_per_feature;
+  const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, model_params);
   estimation::DetectorParams params = detectorParams(o);
   Totals totals;
   for (int s = 0; s < o.scenes; ++s) {

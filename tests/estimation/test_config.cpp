@@ -17,6 +17,7 @@ TEST(EstimationConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(shipped.model.dense_samples_per_step2, m.dense_samples_per_step2);
   EXPECT_EQ(shipped.model.normal_radius_ratio, m.normal_radius_ratio);
   EXPECT_EQ(shipped.model.normal_cluster_angle_deg, m.normal_cluster_angle_deg);
+  EXPECT_EQ(shipped.model.max_pairs_per_feature, m.max_pairs_per_feature);
   const DetectorParams d;
   const DetectorParams& s = shipped.detector;
   EXPECT_EQ(s.method, d.method);

@@ -64,6 +64,39 @@ TEST(PpfHashTable, EveryOrderedPairIsFoundUnderItsKey) {
   EXPECT_EQ(total, table.pairCount());
 }
 
+TEST(PpfHashTable, CapKeepsAnEvenSubsetOfCrowdedKeys) {
+  // Coplanar points with one normal: their pairs crowd a few keys, as a flat face's do.
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<float> coord(0.0f, 0.05f);
+  Cloud c;
+  for (int i = 0; i < 60; ++i) {
+    c.points.emplace_back(coord(rng), coord(rng), 0.0f);
+    c.normals.emplace_back(0.0f, 0.0f, 1.0f);
+  }
+  const PpfQuantizer q(0.01f, rad(12.0f), 0.1f);
+  const PpfHashTable full(c.points, c.normals, q);
+  const uint32_t cap = 50;
+  const PpfHashTable capped(c.points, c.normals, q, cap);
+  bool some_key_was_capped = false;
+  for (int64_t key = 0; key < q.keyCount(); ++key) {
+    const auto all = full.lookup(key), kept = capped.lookup(key);
+    const auto n_all = static_cast<uint32_t>(all.end - all.begin), n_kept = static_cast<uint32_t>(kept.end - kept.begin);
+    ASSERT_EQ(n_kept, std::min(n_all, cap)) << "key " << key;
+    some_key_was_capped |= n_all > cap;
+    // The kept pairs are pairs of the full key, taken in order and spread over all of them.
+    const PairEntry* cursor = all.begin;
+    for (const PairEntry* e = kept.begin; e != kept.end; ++e) {
+      while (cursor != all.end && (cursor->reference != e->reference || cursor->reference_angle != e->reference_angle)) ++cursor;
+      ASSERT_NE(cursor, all.end) << "key " << key << ": a kept pair is not in the full table";
+      ++cursor;
+    }
+    if (n_all > 2 * cap) {
+      EXPECT_GT(kept.end[-1].reference, all.begin[n_all / 2].reference) << "the subset stops early at key " << key;
+    }
+  }
+  EXPECT_TRUE(some_key_was_capped);
+}
+
 TEST(PpfHashTable, LongPairsAndOutOfRangeKeysAreNotStored) {
   const Cloud c = randomCloud(40, 0.1f, 9);
   const PpfQuantizer q(0.005f, rad(12.0f), 0.08f);  // shorter than some pairs

@@ -48,6 +48,7 @@ void expectIdenticalModels(const PreparedModel& a, const PreparedModel& b) {
   EXPECT_EQ(a.params.dense_samples_per_step2, b.params.dense_samples_per_step2);
   EXPECT_EQ(a.params.normal_radius_ratio, b.params.normal_radius_ratio);
   EXPECT_EQ(a.params.normal_cluster_angle_deg, b.params.normal_cluster_angle_deg);
+  EXPECT_EQ(a.params.max_pairs_per_feature, b.params.max_pairs_per_feature);
   EXPECT_EQ(a.params.seed, b.params.seed);
   EXPECT_EQ(a.table.offsets(), b.table.offsets());
   EXPECT_TRUE(sameBytes(a.table.entries(), b.table.entries()));
@@ -180,9 +181,9 @@ TEST_F(ModelCache, RejectsConsistentlySignedFilesWithBadContent) {
   ASSERT_EQ(readBytes(resign(bytes, "resigned.bpmodel")), bytes) << "the cache checksum is FNV-1a 64 of the payload";
   EXPECT_NO_THROW(loadModelCache((dir / "resigned.bpmodel").string()));
 
-  // Layout: magic, version | params (28), fingerprint (8), diameter, step (8), centre (12),
+  // Layout: magic, version | params (32), fingerprint (8), diameter, step (8), centre (12),
   // points (count + 12 n), normals (count + 12 n), offsets (count + 4 k), entries (count + 8 e) | checksum.
-  const std::size_t points_count_at = header + 28 + 8 + 8 + 12;
+  const std::size_t points_count_at = header + 32 + 8 + 8 + 12;
   const std::size_t entries_at = checksum_at - 8 * model.table.pairCount();
   uint64_t stored_count = 0;
   std::memcpy(&stored_count, bytes.data() + points_count_at, sizeof(stored_count));

@@ -68,6 +68,7 @@ void readModel(Section s, ModelParams& p) {
   s.read("dense_samples_per_step2", p.dense_samples_per_step2);
   s.read("normal_radius_ratio", p.normal_radius_ratio);
   s.read("normal_cluster_angle_deg", p.normal_cluster_angle_deg);
+  s.read("max_pairs_per_feature", p.max_pairs_per_feature);
   s.read("seed", p.seed);
   s.finish();
 }

@@ -7,7 +7,8 @@
 namespace binpick::estimation {
 
 PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points,
-                           const std::vector<Eigen::Vector3f>& normals, const PpfQuantizer& quantizer) {
+                           const std::vector<Eigen::Vector3f>& normals, const PpfQuantizer& quantizer,
+                           uint32_t max_pairs_per_key) {
   const std::size_t n = points.size();
   std::vector<Eigen::Isometry3f> frames(n);
   for (std::size_t i = 0; i < n; ++i) frames[i] = referenceFrame(points[i], normals[i]);
@@ -17,21 +18,28 @@ PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points,
   const auto pairKey = [&](std::size_t i, std::size_t j) {
     return quantizer.key(computeFeature(points[i], normals[i], points[j], normals[j]));
   };
-  offsets_.assign(static_cast<std::size_t>(quantizer.keyCount()) + 1, 0);
+  std::vector<uint32_t> counts(static_cast<std::size_t>(quantizer.keyCount()), 0);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       const int64_t key = i == j ? -1 : pairKey(i, j);
-      if (key >= 0) ++offsets_[key + 1];
+      if (key >= 0) ++counts[key];
     }
   }
-  for (std::size_t k = 1; k < offsets_.size(); ++k) offsets_[k] += offsets_[k - 1];
+  const auto keptOf = [&](uint32_t count) {
+    return max_pairs_per_key > 0 && count > max_pairs_per_key ? max_pairs_per_key : count;
+  };
+  offsets_.assign(counts.size() + 1, 0);
+  for (std::size_t k = 0; k < counts.size(); ++k) offsets_[k + 1] = offsets_[k] + keptOf(counts[k]);
   entries_.resize(offsets_.back());
-  std::vector<uint32_t> cursor(offsets_.begin(), offsets_.end() - 1);
+  std::vector<uint32_t> seen(counts.size(), 0);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       const int64_t key = i == j ? -1 : pairKey(i, j);
       if (key < 0) continue;
-      entries_[cursor[key]++] = {static_cast<uint32_t>(i), planarAngle(frames[i] * points[j])};
+      // The a-th of `count` arrivals is kept when it starts a new one of `kept` even strides.
+      const uint64_t a = seen[key]++, count = counts[key], kept = keptOf(counts[key]);
+      if ((a + 1) * kept / count == a * kept / count) continue;
+      entries_[offsets_[key] + a * kept / count] = {static_cast<uint32_t>(i), planarAngle(frames[i] * points[j])};
     }
   }
 }

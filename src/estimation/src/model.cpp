@@ -110,7 +110,7 @@ PreparedModel prepareModel(const ModelGeometry& geometry, const ModelParams& par
                 " points after subsampling is too many for the pair table; raise sampling_ratio");
   }
   model.centre /= static_cast<float>(model.points.size());
-  model.table = PpfHashTable(model.points, model.normals, model.quantizer());
+  model.table = PpfHashTable(model.points, model.normals, model.quantizer(), params.max_pairs_per_feature);
   return model;
 }
 

@@ -96,6 +96,7 @@ void putParams(Writer& w, const ModelParams& p) {
   w.put(p.dense_samples_per_step2);
   w.put(p.normal_radius_ratio);
   w.put(p.normal_cluster_angle_deg);
+  w.put(p.max_pairs_per_feature);
   w.put(p.seed);
 }
 
@@ -106,6 +107,7 @@ ModelParams getParams(Reader& r) {
   p.dense_samples_per_step2 = r.get<float>("params");
   p.normal_radius_ratio = r.get<float>("params");
   p.normal_cluster_angle_deg = r.get<float>("params");
+  p.max_pairs_per_feature = r.get<uint32_t>("params");
   p.seed = r.get<uint64_t>("params");
   return p;
 }
@@ -114,7 +116,8 @@ bool sameParams(const ModelParams& a, const ModelParams& b) {
   return a.sampling_ratio == b.sampling_ratio && a.angle_step_deg == b.angle_step_deg &&
          a.dense_samples_per_step2 == b.dense_samples_per_step2 &&
          a.normal_radius_ratio == b.normal_radius_ratio &&
-         a.normal_cluster_angle_deg == b.normal_cluster_angle_deg && a.seed == b.seed;
+         a.normal_cluster_angle_deg == b.normal_cluster_angle_deg &&
+         a.max_pairs_per_feature == b.max_pairs_per_feature && a.seed == b.seed;
 }
 
 void checkGeometry(const PreparedModel& m, Reader& r) {

@@ -18,9 +18,11 @@ struct PairEntry {
 class PpfHashTable {
  public:
   PpfHashTable() = default;
-  // Hashes all ordered pairs (i != j) of the model points (eq. 1).
+  // Hashes all ordered pairs (i != j) of the model points (eq. 1). With max_pairs_per_key > 0, a
+  // key holding more pairs keeps that many, spread evenly over them (flat parts crowd a few keys
+  // with near-identical pairs, and every scene pair landing there votes for all of them).
   PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
-               const PpfQuantizer& quantizer);
+               const PpfQuantizer& quantizer, uint32_t max_pairs_per_key = 0);
   // Adopts arrays read from a cache; validates their consistency (throws binpick::Error).
   PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries, uint32_t point_count);
 

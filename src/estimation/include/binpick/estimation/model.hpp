@@ -19,6 +19,8 @@ struct ModelParams {
   float dense_samples_per_step2 = 25.0f;   // mesh input: dense samples per step^2 of surface
   float normal_radius_ratio = 0.5f;        // plane-fit radius for normals, in subsampling steps
   float normal_cluster_angle_deg = 30.0f;  // one voxel keeps apart points whose normals differ more
+  uint32_t max_pairs_per_feature = 2000;   // cap on model pairs per hash key (0: none, as in the
+                                           // paper); halves voting for parts with big flat faces
   uint64_t seed = 1;                       // dense surface sampling
   void validate() const;                   // throws binpick::Error naming the field
 };
