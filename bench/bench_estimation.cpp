@@ -3,7 +3,7 @@
 // for the paper's method and its Drost baselines (Table I).
 //
 //   bench_estimation [--parts l_bracket,clamp] [--scenes 5] [--objects 20] [--seed 1]
-//                    [--method li_hashimoto|ppf1|ppf5] [--threads 0] [--max-pairs-per-feature 0]
+//                    [--method li_hashimoto|ppf1|ppf5] [--threads 0] [--max-pairs-per-feature 2000]
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -28,7 +28,7 @@ struct Options {
   uint64_t seed = 1;
   std::string method = "li_hashimoto";
   int threads = 0;
-  uint32_t max_pairs_per_feature = 0;
+  uint32_t max_pairs_per_feature = estimation::ModelParams{}.max_pairs_per_feature;
 };
 
 std::vector<std::string> splitCommas(const std::string& text) {
