@@ -13,7 +13,7 @@ NeighbourGrid::NeighbourGrid(const std::vector<Eigen::Vector3f>& points,
   }
   std::vector<std::pair<uint64_t, uint32_t>> keyed;
   keyed.reserve(members.size());
-  for (uint32_t i : members) keyed.emplace_back(pack(cellOf(points[i])), i);
+  for (uint32_t i : members) keyed.emplace_back(packCell(cellOf(points[i], origin_, cell_size_)), i);
   std::sort(keyed.begin(), keyed.end());
   sorted_.reserve(keyed.size());
   for (std::size_t k = 0; k < keyed.size(); ++k) {

@@ -7,6 +7,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "cell_key.hpp"
+
 namespace binpick::estimation {
 
 class NeighbourGrid {
@@ -18,25 +20,17 @@ class NeighbourGrid {
   // within cell_size of p (callers check the exact distance).
   template <class Visit>
   void forEachNear(const Eigen::Vector3f& p, Visit&& visit) const {
-    const Eigen::Vector3i c = cellOf(p);
+    const Eigen::Vector3i c = cellOf(p, origin_, cell_size_);
     for (int dz = -1; dz <= 1; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          const auto it = cells_.find(pack(c + Eigen::Vector3i(dx, dy, dz)));
+          const auto it = cells_.find(packCell(c + Eigen::Vector3i(dx, dy, dz)));
           if (it == cells_.end()) continue;
           for (uint32_t k = it->second.first; k < it->second.second; ++k) visit(sorted_[k]);
         }
   }
 
  private:
-  Eigen::Vector3i cellOf(const Eigen::Vector3f& p) const {
-    return ((p - origin_) / cell_size_).array().floor().cast<int>();
-  }
-  static uint64_t pack(const Eigen::Vector3i& c) {
-    const auto part = [](int v) { return static_cast<uint64_t>(static_cast<uint32_t>(v + (1 << 20))) & 0x1FFFFF; };
-    return part(c.x()) | (part(c.y()) << 21) | (part(c.z()) << 42);
-  }
-
   Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
   float cell_size_;
   std::vector<uint32_t> sorted_;

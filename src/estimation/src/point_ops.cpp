@@ -1,5 +1,7 @@
 #include "point_ops.hpp"
 
+#include "cell_key.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -67,12 +69,6 @@ class VoxelIds {
   std::vector<uint32_t> ids_;
   uint32_t count_ = 0;
 };
-
-uint64_t packVoxel(const Eigen::Vector3f& p, const Eigen::Vector3f& origin, float step) {
-  const Eigen::Vector3f q = (p - origin) / step;
-  const auto coord = [](float v) { return static_cast<uint64_t>(std::max(0.0f, v)) & 0x1FFFFF; };
-  return coord(q.x()) | (coord(q.y()) << 21) | (coord(q.z()) << 42);
-}
 
 // Greedy clusters of one voxel's points by normal direction, each as a list of positions in
 // `members`.
@@ -174,7 +170,7 @@ std::vector<uint32_t> voxelSubsample(const std::vector<Eigen::Vector3f>& points,
 
   VoxelIds voxel_ids(points.size() / 4 + 16);
   std::vector<uint32_t> voxel_of(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) voxel_of[i] = voxel_ids.idOf(packVoxel(points[i], origin, step));
+  for (std::size_t i = 0; i < points.size(); ++i) voxel_of[i] = voxel_ids.idOf(packCell(cellOf(points[i], origin, step)));
 
   // Counting sort of the points by voxel keeps this O(n) for million-point scenes.
   std::vector<uint32_t> start(voxel_ids.count() + 1, 0);

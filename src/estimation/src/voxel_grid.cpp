@@ -49,7 +49,7 @@ void SceneVoxelGrid::write(int64_t x, int64_t y, int64_t z, int32_t value) {
     block = static_cast<int32_t>(cells_.size() / 512);
     cells_.resize(cells_.size() + 512, kEmpty);
   }
-  cells_[static_cast<std::size_t>(block) * 512 + ((z & 7) << 6 | (y & 7) << 3 | (x & 7))] = value;
+  cells_[cellIndex(block, x, y, z)] = value;
 }
 
 }  // namespace binpick::estimation

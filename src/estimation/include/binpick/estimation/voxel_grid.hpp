@@ -28,12 +28,16 @@ class SceneVoxelGrid {
     const auto x = static_cast<int64_t>(q.x()), y = static_cast<int64_t>(q.y()), z = static_cast<int64_t>(q.z());
     const int32_t block = blocks_[blockIndex(x >> 3, y >> 3, z >> 3)];
     if (block < 0) return kEmpty;
-    return cells_[static_cast<std::size_t>(block) * 512 + ((z & 7) << 6 | (y & 7) << 3 | (x & 7))];
+    return cells_[cellIndex(block, x, y, z)];
   }
 
   float voxelSize() const { return voxel_size_; }
 
  private:
+  // Voxel (x, y, z) inside its 8x8x8 block.
+  static std::size_t cellIndex(int32_t block, int64_t x, int64_t y, int64_t z) {
+    return static_cast<std::size_t>(block) * 512 + static_cast<std::size_t>((z & 7) << 6 | (y & 7) << 3 | (x & 7));
+  }
   std::size_t blockIndex(int64_t bx, int64_t by, int64_t bz) const {
     return static_cast<std::size_t>((bz * block_dims_.y() + by) * block_dims_.x() + bx);
   }
