@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libnanoflann-dev
   libopencv-dev libopencv-contrib-dev
   libpcl-dev
+  libbullet-dev libbullet-extras-dev libembree-dev
   libaravis-dev
   libgpiod-dev
   libspdlog-dev libfmt-dev

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -56,6 +57,16 @@ void writeFileBytes(const std::string& path, std::string_view bytes) {
   // close() flushes; a full disk shows up only here.
   if (!stream) {
     fail(path, "write failed after " + std::to_string(bytes.size()) + " bytes requested");
+  }
+}
+
+void replaceFileAtomically(const std::string& path, std::string_view bytes) {
+  const std::string temporary = path + ".tmp";
+  writeFileBytes(temporary, bytes);
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temporary.c_str());
+    fail(path, "cannot be replaced: " + reason);
   }
 }
 

@@ -21,6 +21,8 @@ std::string readFileBytes(const std::string& path);
 std::string readNonEmptyFileBytes(const std::string& path);
 // Replaces the file's contents with `bytes`; throws when the file cannot be written completely.
 void writeFileBytes(const std::string& path, std::string_view bytes);
+// writeFileBytes to PATH.tmp, then a rename: readers see the old file or the whole new one.
+void replaceFileAtomically(const std::string& path, std::string_view bytes);
 
 constexpr bool kHostIsLittleEndian = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
 

@@ -1,0 +1,59 @@
+#pragma once
+// A capture directory: the camera images of one structured-light sequence, in the order they were
+// taken, with what is needed to interpret them. The same format is written by the virtual cell and
+// by acquisition (record) and read by reconstruction (replay). Layout (docs/capture-format.md):
+//   DIR/capture.json        CaptureMetadata
+//   DIR/calib.yaml          the rig (rig_calibration.hpp), optional for calibration sequences
+//   DIR/images/NNN_<pattern>.png   one image per pattern, 8- or 16-bit grey
+// Functions are stateless: thread-safe for different directories.
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+namespace binpick {
+
+// What the projector shows, as plain data; reconstruction turns it into patterns and decodes them.
+struct PatternSetSpec {
+  int projector_width = 1280;   // pixels
+  int projector_height = 800;   // pixels
+  bool column_codes = true;     // Gray code of the projector column, each bit with its inverse
+  bool row_codes = true;        // Gray code of the projector row, each bit with its inverse
+  int phase_steps = 4;          // phase-shift images per coded axis (0: none, else >= 3)
+  int phase_period = 16;        // projector pixels per sine period (>= 4)
+  void validate() const;        // throws binpick::Error naming the field
+};
+
+struct CaptureMetadata {
+  int format_version = 1;
+  std::string source;      // e.g. "virtual cell" or the camera's vendor, model and serial
+  std::string timestamp;   // ISO 8601, UTC
+  int image_width = 0;     // pixels
+  int image_height = 0;
+  int bit_depth = 8;       // 8 or 16 (16-bit images hold the sensor's value in the high bits)
+  double exposure_us = 0.0;
+  double gain_db = 0.0;
+  PatternSetSpec pattern_set;
+  std::vector<std::string> patterns;  // pattern names in capture order
+  std::vector<std::string> images;    // image file per pattern, relative to the directory
+};
+
+struct Capture {
+  CaptureMetadata metadata;
+  std::vector<cv::Mat> images;  // CV_8UC1 or CV_16UC1, one per pattern, in capture order
+};
+
+// Reads DIR/capture.json. Throws binpick::Error "PATH: ..." on a missing file, malformed JSON, a
+// missing or mistyped key, an unsupported version, or lists of different lengths.
+CaptureMetadata readCaptureMetadata(const std::string& directory);
+// Reads the metadata and every image. Throws on a missing, unreadable, extra (an image file in
+// DIR/images that the metadata does not list) or wrongly sized image, or one of another bit depth.
+Capture readCapture(const std::string& directory);
+// Creates DIR (and DIR/images) and writes the images and then the metadata, each through a
+// temporary file and a rename: a directory with a capture.json holds a complete capture.
+// `capture.metadata.images` is filled in here from the pattern names.
+void writeCapture(const std::string& directory, Capture capture);
+
+// The current time as ISO 8601 UTC, e.g. "2026-01-31T12:00:00.123Z".
+std::string utcTimestamp();
+
+}  // namespace binpick

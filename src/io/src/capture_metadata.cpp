@@ -1,0 +1,143 @@
+// capture.json: CaptureMetadata as JSON, every key required and type-checked on reading.
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "binpick/io/capture.hpp"
+#include "binpick/io/error.hpp"
+#include "byte_io.hpp"
+#include "capture_paths.hpp"
+
+namespace binpick {
+namespace {
+
+using nlohmann::json;
+using io_detail::fail;
+
+constexpr int kFormatVersion = 1;
+
+void require(bool ok, const char* field, const char* rule, int value) {
+  if (ok) return;
+  std::ostringstream message;
+  message << "PatternSetSpec." << field << " must be " << rule << " (got " << value << ")";
+  throw Error(message.str());
+}
+
+// The value at `key`, converted to T; a missing key or a wrong type names the key.
+template <typename T>
+T field(const json& object, const char* key, const std::string& path) {
+  const auto it = object.find(key);
+  if (it == object.end()) fail(path, std::string("missing key '") + key + "'");
+  try {
+    return it->get<T>();
+  } catch (const json::exception&) {
+    fail(path, std::string("key '") + key + "' has the wrong type");
+  }
+}
+
+PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
+  if (!object.is_object()) fail(path, "'pattern_set' must be an object");
+  PatternSetSpec spec;
+  spec.projector_width = field<int>(object, "projector_width", path);
+  spec.projector_height = field<int>(object, "projector_height", path);
+  spec.column_codes = field<bool>(object, "column_codes", path);
+  spec.row_codes = field<bool>(object, "row_codes", path);
+  spec.phase_steps = field<int>(object, "phase_steps", path);
+  spec.phase_period = field<int>(object, "phase_period", path);
+  try {
+    spec.validate();
+  } catch (const Error& e) {
+    fail(path, e.what());
+  }
+  return spec;
+}
+
+json toJson(const PatternSetSpec& spec) {
+  return {{"projector_width", spec.projector_width}, {"projector_height", spec.projector_height},
+          {"column_codes", spec.column_codes},       {"row_codes", spec.row_codes},
+          {"phase_steps", spec.phase_steps},         {"phase_period", spec.phase_period}};
+}
+
+void checkConsistent(const CaptureMetadata& m, const std::string& path) {
+  if (m.image_width <= 0 || m.image_height <= 0 || m.image_width > 65536 ||
+      m.image_height > 65536) {
+    fail(path, "image_width and image_height must be in [1, 65536]");
+  }
+  if (m.bit_depth != 8 && m.bit_depth != 16) fail(path, "bit_depth must be 8 or 16");
+  if (m.patterns.empty()) fail(path, "'patterns' is empty");
+  if (m.patterns.size() != m.images.size()) {
+    fail(path, "'patterns' and 'images' differ in length (" + std::to_string(m.patterns.size()) +
+                   " vs " + std::to_string(m.images.size()) + ")");
+  }
+  for (const std::string& image : m.images) {
+    if (!capture_detail::isPlainImageName(image)) {
+      fail(path, "image name '" + image + "' must be images/<name>.png");
+    }
+  }
+}
+
+}  // namespace
+
+void PatternSetSpec::validate() const {
+  require(projector_width >= 2 && projector_width <= 65536, "projector_width", "in [2, 65536]",
+          projector_width);
+  require(projector_height >= 2 && projector_height <= 65536, "projector_height",
+          "in [2, 65536]", projector_height);
+  require(column_codes || row_codes, "column_codes", "true when row_codes is false", 0);
+  require(phase_steps == 0 || (phase_steps >= 3 && phase_steps <= 64), "phase_steps",
+          "0 or in [3, 64]", phase_steps);
+  require(phase_period >= 4 && phase_period <= 65536, "phase_period", "in [4, 65536]",
+          phase_period);
+}
+
+CaptureMetadata readCaptureMetadata(const std::string& directory) {
+  const std::string path = capture_detail::metadataPath(directory);
+  json document;
+  try {
+    document = json::parse(io_detail::readNonEmptyFileBytes(path));
+  } catch (const json::exception& e) {
+    fail(path, std::string("malformed JSON: ") + e.what());
+  }
+  if (!document.is_object()) fail(path, "the document must be a JSON object");
+  CaptureMetadata m;
+  m.format_version = field<int>(document, "format_version", path);
+  if (m.format_version != kFormatVersion) {
+    fail(path, "format_version " + std::to_string(m.format_version) + " is not supported (this "
+               "build reads version " + std::to_string(kFormatVersion) + ")");
+  }
+  m.source = field<std::string>(document, "source", path);
+  m.timestamp = field<std::string>(document, "timestamp", path);
+  m.image_width = field<int>(document, "image_width", path);
+  m.image_height = field<int>(document, "image_height", path);
+  m.bit_depth = field<int>(document, "bit_depth", path);
+  m.exposure_us = field<double>(document, "exposure_us", path);
+  m.gain_db = field<double>(document, "gain_db", path);
+  m.pattern_set = patternSetFrom(field<json>(document, "pattern_set", path), path);
+  m.patterns = field<std::vector<std::string>>(document, "patterns", path);
+  m.images = field<std::vector<std::string>>(document, "images", path);
+  checkConsistent(m, path);
+  return m;
+}
+
+namespace capture_detail {
+
+void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& m) {
+  const std::string path = capture_detail::metadataPath(directory);
+  m.pattern_set.validate();
+  checkConsistent(m, path);
+  const json document = {{"format_version", m.format_version},
+                         {"source", m.source},
+                         {"timestamp", m.timestamp},
+                         {"image_width", m.image_width},
+                         {"image_height", m.image_height},
+                         {"bit_depth", m.bit_depth},
+                         {"exposure_us", m.exposure_us},
+                         {"gain_db", m.gain_db},
+                         {"pattern_set", toJson(m.pattern_set)},
+                         {"patterns", m.patterns},
+                         {"images", m.images}};
+  io_detail::replaceFileAtomically(path, document.dump(2) + "\n");
+}
+
+}  // namespace capture_detail
+
+}  // namespace binpick

@@ -1,0 +1,155 @@
+// calib.yaml: the rig in OpenCV FileStorage YAML, read with every key, size and value checked.
+#include "binpick/io/rig_calibration.hpp"
+
+#include <Eigen/LU>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "binpick/io/error.hpp"
+
+namespace binpick {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw Error(path + ": " + what);
+}
+
+cv::Mat readMatrix(const cv::FileStorage& fs, const std::string& path, const std::string& key) {
+  const cv::FileNode node = fs[key];
+  if (node.empty()) fail(path, "missing key '" + key + "'");
+  cv::Mat m;
+  try {
+    node >> m;
+  } catch (const cv::Exception&) {
+    fail(path, "'" + key + "' is not an OpenCV matrix");
+  }
+  if (m.empty()) fail(path, "'" + key + "' is not an OpenCV matrix");
+  m.convertTo(m, CV_64F);
+  for (auto it = m.begin<double>(); it != m.end<double>(); ++it) {
+    if (!std::isfinite(*it)) fail(path, "'" + key + "' holds a non-finite value");
+  }
+  return m;
+}
+
+cv::Mat readMatrixOfSize(const cv::FileStorage& fs, const std::string& path,
+                         const std::string& key, int rows, int cols) {
+  const cv::Mat m = readMatrix(fs, path, key);
+  if (m.rows != rows || m.cols != cols) {
+    std::ostringstream message;
+    message << "'" << key << "' must be " << rows << "x" << cols << " (got " << m.rows << "x"
+            << m.cols << ")";
+    fail(path, message.str());
+  }
+  return m;
+}
+
+int readInt(const cv::FileStorage& fs, const std::string& path, const std::string& key) {
+  const cv::FileNode node = fs[key];
+  if (node.empty()) fail(path, "missing key '" + key + "'");
+  if (!node.isInt()) fail(path, "'" + key + "' must be an integer");
+  return static_cast<int>(node);
+}
+
+LensIntrinsics readLens(const cv::FileStorage& fs, const std::string& path,
+                        const std::string& device) {
+  LensIntrinsics lens;
+  lens.width = readInt(fs, path, device + "_width");
+  lens.height = readInt(fs, path, device + "_height");
+  const cv::Mat k = readMatrixOfSize(fs, path, device + "_matrix", 3, 3);
+  if (k.at<double>(0, 1) != 0.0 || k.at<double>(1, 0) != 0.0 || k.at<double>(2, 0) != 0.0 ||
+      k.at<double>(2, 1) != 0.0 || k.at<double>(2, 2) != 1.0) {
+    fail(path, "'" + device + "_matrix' must be [fx 0 cx; 0 fy cy; 0 0 1]");
+  }
+  lens.fx = k.at<double>(0, 0);
+  lens.fy = k.at<double>(1, 1);
+  lens.cx = k.at<double>(0, 2);
+  lens.cy = k.at<double>(1, 2);
+  const cv::Mat d = readMatrix(fs, path, device + "_distortion");
+  const int count = static_cast<int>(d.total());
+  if ((d.rows != 1 && d.cols != 1) || (count != 4 && count != 5)) {
+    fail(path, "'" + device + "_distortion' must hold 4 or 5 values (k1 k2 p1 p2 [k3])");
+  }
+  for (int i = 0; i < count; ++i) lens.distortion[i] = d.at<double>(i);
+  try {
+    lens.validate(device);
+  } catch (const Error& e) {
+    fail(path, e.what());
+  }
+  return lens;
+}
+
+void writeLens(cv::FileStorage& fs, const std::string& device, const LensIntrinsics& lens) {
+  fs << device + "_width" << lens.width << device + "_height" << lens.height;
+  const cv::Mat k = (cv::Mat_<double>(3, 3) << lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy,
+                     0.0, 0.0, 1.0);
+  fs << device + "_matrix" << k;
+  fs << device + "_distortion" << cv::Mat(1, 5, CV_64F, const_cast<double*>(lens.distortion.data()));
+}
+
+}  // namespace
+
+void RigCalibration::validate() const {
+  camera.validate("camera");
+  projector.validate("projector");
+  const Eigen::Matrix3d r = T_projector_camera.linear();
+  if (!r.allFinite() || !T_projector_camera.translation().allFinite()) {
+    throw Error("rig R and T must be finite");
+  }
+  if ((r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
+      r.determinant() < 0.0) {
+    throw Error("rig R must be a rotation (orthonormal, determinant +1)");
+  }
+}
+
+RigCalibration readRigCalibration(const std::string& path) {
+  if (!std::ifstream(path)) fail(path, "cannot open the calibration file");
+  cv::FileStorage fs;
+  try {
+    fs.open(path, cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
+  } catch (const cv::Exception&) {
+    fail(path, "not an OpenCV FileStorage YAML file");
+  }
+  if (!fs.isOpened()) fail(path, "not an OpenCV FileStorage YAML file");
+  RigCalibration rig;
+  rig.camera = readLens(fs, path, "camera");
+  rig.projector = readLens(fs, path, "projector");
+  const cv::Mat r = readMatrixOfSize(fs, path, "R", 3, 3);
+  const cv::Mat t = readMatrix(fs, path, "T");
+  if (t.total() != 3 || (t.rows != 1 && t.cols != 1)) fail(path, "'T' must hold 3 values");
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) rig.T_projector_camera.matrix()(i, j) = r.at<double>(i, j);
+    rig.T_projector_camera.matrix()(i, 3) = t.at<double>(i);
+  }
+  try {
+    rig.validate();
+  } catch (const Error& e) {
+    fail(path, e.what());
+  }
+  return rig;
+}
+
+void writeRigCalibration(const std::string& path, const RigCalibration& rig) {
+  rig.validate();
+  const std::string temporary = path + ".tmp";
+  {
+    cv::FileStorage fs(temporary, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+    if (!fs.isOpened()) fail(temporary, "cannot write the calibration file");
+    writeLens(fs, "camera", rig.camera);
+    writeLens(fs, "projector", rig.projector);
+    cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) r.at<double>(i, j) = rig.T_projector_camera.linear()(i, j);
+      t.at<double>(i) = rig.T_projector_camera.translation()(i);
+    }
+    fs << "R" << r << "T" << t;
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    fail(path, "cannot replace the calibration file");
+  }
+}
+
+}  // namespace binpick

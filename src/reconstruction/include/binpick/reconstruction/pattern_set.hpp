@@ -1,0 +1,43 @@
+#pragma once
+// The projected pattern sequence of a PatternSetSpec (binpick/io/capture.hpp): what the projector
+// shows for each image of a capture, and in which order. The virtual cell renders it, acquisition
+// triggers it and the decoder reads it, so all three agree by construction. Order:
+//   white, black,
+//   per coded axis (columns, then rows): Gray-code bits from the most significant, each followed
+//   by its inverse, then the phase-shift steps (if any).
+// Pure functions: thread-safe.
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "binpick/io/capture.hpp"
+
+namespace binpick::reconstruction {
+
+enum class PatternKind { White, Black, GrayBit, GrayBitInverse, PhaseStep };
+enum class PatternAxis { None, Columns, Rows };
+
+struct Pattern {
+  PatternKind kind = PatternKind::White;
+  PatternAxis axis = PatternAxis::None;
+  int index = 0;  // Gray-code bit (0 = most significant) or phase step
+  // "white", "black", "gray_col_03", "gray_col_03_inv", "phase_row_1", ...
+  std::string name() const;
+};
+
+std::vector<Pattern> patternSequence(const PatternSetSpec& spec);
+std::vector<std::string> patternNames(const PatternSetSpec& spec);
+
+// Bits needed to give each of `size` projector columns (or rows) its own code: ceil(log2(size)).
+int grayCodeBits(int size);
+// The reflected binary Gray code of a column or row index, and its inverse.
+inline unsigned grayCode(unsigned index) { return index ^ (index >> 1); }
+unsigned grayDecode(unsigned code);
+
+// Brightness in [0, 1] of the projector pixel at `coordinate` (its column for a column pattern,
+// its row for a row pattern, ignored for white and black), as an 8-bit projector shows it.
+double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int coordinate);
+// The projector image (projector_width x projector_height, CV_8UC1).
+cv::Mat patternImage(const Pattern& pattern, const PatternSetSpec& spec);
+
+}  // namespace binpick::reconstruction

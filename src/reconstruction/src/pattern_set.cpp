@@ -1,0 +1,111 @@
+// Gray-code + phase-shift pattern sequence.
+#include "binpick/reconstruction/pattern_set.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "binpick/io/error.hpp"
+
+namespace binpick::reconstruction {
+namespace {
+
+void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, int size,
+                const PatternSetSpec& spec) {
+  for (int bit = 0; bit < grayCodeBits(size); ++bit) {
+    sequence.push_back({PatternKind::GrayBit, axis, bit});
+    sequence.push_back({PatternKind::GrayBitInverse, axis, bit});
+  }
+  for (int step = 0; step < spec.phase_steps; ++step) {
+    sequence.push_back({PatternKind::PhaseStep, axis, step});
+  }
+}
+
+int axisSize(PatternAxis axis, const PatternSetSpec& spec) {
+  return axis == PatternAxis::Rows ? spec.projector_height : spec.projector_width;
+}
+
+// A projector drives 8-bit levels: the phase patterns it shows are quantised.
+double eightBit(double brightness) { return std::round(255.0 * brightness) / 255.0; }
+
+}  // namespace
+
+std::string Pattern::name() const {
+  if (kind == PatternKind::White) return "white";
+  if (kind == PatternKind::Black) return "black";
+  const char* axis_name = axis == PatternAxis::Rows ? "row" : "col";
+  char text[48];
+  if (kind == PatternKind::PhaseStep) {
+    std::snprintf(text, sizeof text, "phase_%s_%d", axis_name, index);
+  } else {
+    std::snprintf(text, sizeof text, "gray_%s_%02d%s", axis_name, index,
+                  kind == PatternKind::GrayBitInverse ? "_inv" : "");
+  }
+  return text;
+}
+
+std::vector<Pattern> patternSequence(const PatternSetSpec& spec) {
+  spec.validate();
+  std::vector<Pattern> sequence{{PatternKind::White, PatternAxis::None, 0},
+                                {PatternKind::Black, PatternAxis::None, 0}};
+  if (spec.column_codes) appendAxis(sequence, PatternAxis::Columns, spec.projector_width, spec);
+  if (spec.row_codes) appendAxis(sequence, PatternAxis::Rows, spec.projector_height, spec);
+  return sequence;
+}
+
+std::vector<std::string> patternNames(const PatternSetSpec& spec) {
+  std::vector<std::string> names;
+  for (const Pattern& p : patternSequence(spec)) names.push_back(p.name());
+  return names;
+}
+
+int grayCodeBits(int size) {
+  int bits = 0;
+  while ((1LL << bits) < size) ++bits;
+  return bits;
+}
+
+unsigned grayDecode(unsigned code) {
+  // Each binary bit is the xor of all Gray bits above it: fold the shifts in log2(32) steps.
+  for (unsigned shift = 1; shift < 32; shift <<= 1) code ^= code >> shift;
+  return code;
+}
+
+double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int coordinate) {
+  switch (pattern.kind) {
+    case PatternKind::White:
+      return 1.0;
+    case PatternKind::Black:
+      return 0.0;
+    case PatternKind::GrayBit:
+    case PatternKind::GrayBitInverse: {
+      const int bits = grayCodeBits(axisSize(pattern.axis, spec));
+      const unsigned bit =
+          (grayCode(static_cast<unsigned>(coordinate)) >> (bits - 1 - pattern.index)) & 1u;
+      return (pattern.kind == PatternKind::GrayBit) == (bit == 1u) ? 1.0 : 0.0;
+    }
+    case PatternKind::PhaseStep: {
+      // I_k(c) = 1/2 + 1/2 cos(2 pi c / period - 2 pi k / steps): the phase of pixel c is
+      // 2 pi c / period, recovered from the N steps by their first Fourier coefficient.
+      const double phase = 2.0 * M_PI * coordinate / spec.phase_period;
+      const double shift = 2.0 * M_PI * pattern.index / spec.phase_steps;
+      return eightBit(0.5 + 0.5 * std::cos(phase - shift));
+    }
+  }
+  throw Error("patternBrightness: unknown pattern kind");
+}
+
+cv::Mat patternImage(const Pattern& pattern, const PatternSetSpec& spec) {
+  spec.validate();
+  cv::Mat image(spec.projector_height, spec.projector_width, CV_8UC1);
+  const bool by_row = pattern.axis == PatternAxis::Rows;
+  for (int row = 0; row < image.rows; ++row) {
+    auto* pixels = image.ptr<uchar>(row);
+    for (int col = 0; col < image.cols; ++col) {
+      const double value = patternBrightness(pattern, spec, by_row ? row : col);
+      pixels[col] = static_cast<uchar>(std::lround(255.0 * value));
+    }
+  }
+  return image;
+}
+
+}  // namespace binpick::reconstruction

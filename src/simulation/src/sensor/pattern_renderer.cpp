@@ -1,0 +1,128 @@
+// renderPatternImages: pattern-independent pixel lighting -> one camera image per pattern.
+#include "binpick/simulation/pattern_renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "binpick/io/error.hpp"
+#include "binpick/reconstruction/pattern_set.hpp"
+#include "projector_blur.hpp"
+#include "random.hpp"
+#include "thread_count.hpp"
+
+namespace binpick::sim {
+namespace {
+
+namespace rc = binpick::reconstruction;
+
+constexpr uint32_t kImageNoiseStream = 2;
+
+// A pattern as the projector emits it along its axis (black level included), and its mean.
+struct EmittedPattern {
+  rc::PatternAxis axis = rc::PatternAxis::None;
+  std::vector<float> brightness;  // per projector column or row; one value for white/black
+  float mean = 0.0f;
+};
+
+std::vector<EmittedPattern> emittedPatterns(const PatternSetSpec& spec, double black_level) {
+  std::vector<EmittedPattern> emitted;
+  for (const rc::Pattern& pattern : rc::patternSequence(spec)) {
+    EmittedPattern e;
+    e.axis = pattern.axis;
+    const int size = e.axis == rc::PatternAxis::Columns ? spec.projector_width
+                     : e.axis == rc::PatternAxis::Rows  ? spec.projector_height
+                                                         : 1;
+    double sum = 0.0;
+    for (int i = 0; i < size; ++i) {
+      const double b = rc::patternBrightness(pattern, spec, i);
+      e.brightness.push_back(static_cast<float>(black_level + (1.0 - black_level) * b));
+      sum += e.brightness.back();
+    }
+    e.mean = static_cast<float>(sum / size);
+    emitted.push_back(std::move(e));
+  }
+  return emitted;
+}
+
+float blurred(const std::vector<float>& brightness, const detail::BlurTaps& taps) {
+  float sum = 0.0f;
+  for (int k = 0; k < taps.count; ++k) sum += taps.weight[k] * brightness[taps.first + k];
+  return sum;
+}
+
+// The projector brightness that reaches the pixel's surface point under one pattern.
+float incidentBrightness(const EmittedPattern& pattern, const detail::BlurTaps& column_taps,
+                         const detail::BlurTaps& row_taps) {
+  switch (pattern.axis) {
+    case rc::PatternAxis::Columns:
+      return blurred(pattern.brightness, column_taps);
+    case rc::PatternAxis::Rows:
+      return blurred(pattern.brightness, row_taps);
+    case rc::PatternAxis::None:
+      break;
+  }
+  return pattern.brightness.front();
+}
+
+// Counts the sensor reports: signal plus shot and read noise, quantised and saturated.
+template <typename Pixel>
+Pixel sensorValue(double signal, const PhotometryParams& params, double scale, double full_scale,
+                  detail::SplitMix64& rng) {
+  const double sigma =
+      std::sqrt(params.read_noise * params.read_noise + params.shot_noise_gain * signal);
+  const double noisy = (signal + sigma * detail::standardNormal(rng)) * scale;
+  return static_cast<Pixel>(std::clamp(std::round(noisy), 0.0, full_scale));
+}
+
+template <typename Pixel>
+void renderRows(const std::vector<PixelLighting>& pixels, int width, int height,
+                const PatternSetSpec& spec, const PhotometryParams& params,
+                const std::vector<EmittedPattern>& patterns, std::vector<cv::Mat>& images) {
+  const double scale = params.bit_depth == 16 ? 257.0 : 1.0;
+  const double full_scale = params.bit_depth == 16 ? 65535.0 : 255.0;
+  const detail::KeyedStreams noise(params.seed, kImageNoiseStream);
+  const uint64_t pixel_count = static_cast<uint64_t>(width) * height;
+#pragma omp parallel for schedule(dynamic, 8) num_threads(detail::threadCount(params.threads))
+  for (int row = 0; row < height; ++row) {
+    for (int col = 0; col < width; ++col) {
+      const std::size_t index = static_cast<std::size_t>(row) * width + col;
+      const PixelLighting& light = pixels[index];
+      const detail::BlurTaps column_taps =
+          detail::blurTaps(light.projector_x, light.blur_sigma, spec.projector_width);
+      const detail::BlurTaps row_taps =
+          detail::blurTaps(light.projector_y, light.blur_sigma, spec.projector_height);
+      for (std::size_t p = 0; p < patterns.size(); ++p) {
+        const double signal = light.ambient + light.global * patterns[p].mean +
+                              light.direct * incidentBrightness(patterns[p], column_taps, row_taps);
+        detail::SplitMix64 rng = noise.forItem(p * pixel_count + index);
+        images[p].ptr<Pixel>(row)[col] = sensorValue<Pixel>(signal, params, scale, full_scale, rng);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width,
+                                         int height, const PatternSetSpec& spec,
+                                         const PhotometryParams& params) {
+  params.validate();
+  spec.validate();
+  if (width <= 0 || height <= 0 ||
+      pixels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
+    throw Error("renderPatternImages: " + std::to_string(pixels.size()) + " pixels for a " +
+                std::to_string(width) + "x" + std::to_string(height) + " image");
+  }
+  const std::vector<EmittedPattern> patterns = emittedPatterns(spec, params.projector_black_level);
+  const int type = params.bit_depth == 16 ? CV_16UC1 : CV_8UC1;
+  std::vector<cv::Mat> images;
+  for (std::size_t p = 0; p < patterns.size(); ++p) images.emplace_back(height, width, type);
+  if (params.bit_depth == 16) {
+    renderRows<uint16_t>(pixels, width, height, spec, params, patterns, images);
+  } else {
+    renderRows<uint8_t>(pixels, width, height, spec, params, patterns, images);
+  }
+  return images;
+}
+
+}  // namespace binpick::sim
