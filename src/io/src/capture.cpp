@@ -114,6 +114,12 @@ void writeCapture(const std::string& directory, Capture capture) {
   for (std::size_t i = 0; i < m.patterns.size(); ++i) {
     m.images.push_back(capture_detail::imageName(i, m.patterns[i]));
   }
+  capture_detail::checkMetadata(m, capture_detail::metadataPath(directory));
+  // Never mix two captures, nor overwrite a recording: the caller picks a fresh directory.
+  if (fs::exists(capture_detail::metadataPath(directory)) ||
+      fs::exists(capture_detail::imagesDirectory(directory))) {
+    fail(directory, "already holds a capture; write each capture to a new directory");
+  }
   std::error_code error;
   fs::create_directories(capture_detail::imagesDirectory(directory), error);
   if (error) fail(directory, "cannot create the capture directory: " + error.message());

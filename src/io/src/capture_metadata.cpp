@@ -1,6 +1,9 @@
 // capture.json: CaptureMetadata as JSON, every key required and type-checked on reading.
+#include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <type_traits>
 
 #include "binpick/io/capture.hpp"
 #include "binpick/io/error.hpp"
@@ -22,16 +25,34 @@ void require(bool ok, const char* field, const char* rule, int value) {
   throw Error(message.str());
 }
 
+// Whether `value` holds a T exactly. nlohmann's own conversions accept any number or a boolean
+// for an arithmetic T (64.5 -> 64, true -> 1, 2^32 + 64 -> 64), which would hide a wrong file.
+template <typename T>
+bool holdsExactly(const json& value) {
+  if constexpr (std::is_same_v<T, int>) {
+    if (value.is_number_unsigned()) {
+      return value.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max());
+    }
+    if (!value.is_number_integer()) return false;
+    const std::int64_t v = value.get<std::int64_t>();
+    return v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max();
+  } else if constexpr (std::is_same_v<T, double>) {
+    return value.is_number();
+  } else {
+    return true;  // strings, booleans, arrays and objects: get<T> checks the type itself
+  }
+}
+
 // The value at `key`, converted to T; a missing key or a wrong type names the key.
 template <typename T>
 T field(const json& object, const char* key, const std::string& path) {
   const auto it = object.find(key);
   if (it == object.end()) fail(path, std::string("missing key '") + key + "'");
   try {
-    return it->get<T>();
+    if (holdsExactly<T>(*it)) return it->get<T>();
   } catch (const json::exception&) {
-    fail(path, std::string("key '") + key + "' has the wrong type");
   }
+  fail(path, std::string("key '") + key + "' has the wrong type");
 }
 
 PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
@@ -120,10 +141,18 @@ CaptureMetadata readCaptureMetadata(const std::string& directory) {
 
 namespace capture_detail {
 
+void checkMetadata(const CaptureMetadata& m, const std::string& path) {
+  try {
+    m.pattern_set.validate();
+  } catch (const Error& e) {
+    fail(path, e.what());
+  }
+  checkConsistent(m, path);
+}
+
 void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& m) {
   const std::string path = capture_detail::metadataPath(directory);
-  m.pattern_set.validate();
-  checkConsistent(m, path);
+  checkMetadata(m, path);
   const json document = {{"format_version", m.format_version},
                          {"source", m.source},
                          {"timestamp", m.timestamp},

@@ -14,6 +14,8 @@ std::string imageName(std::size_t index, const std::string& pattern);
 // outside its capture.
 bool isPlainImageName(const std::string& name);
 
+// Throws binpick::Error "PATH: ..." when the metadata is incomplete or inconsistent.
+void checkMetadata(const CaptureMetadata& metadata, const std::string& path);
 void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& metadata);
 
 }  // namespace binpick::capture_detail

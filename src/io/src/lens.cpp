@@ -2,7 +2,9 @@
 #include "binpick/io/lens.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "binpick/io/error.hpp"
@@ -61,6 +63,22 @@ bool LensIntrinsics::hasDistortion() const {
   return false;
 }
 
+LensIntrinsics LensIntrinsics::scaled(double factor) const {
+  if (!std::isfinite(factor) || factor <= 0.0) {
+    throw Error("LensIntrinsics::scaled: factor must be positive (got " + std::to_string(factor) +
+                ")");
+  }
+  LensIntrinsics lens = *this;
+  lens.width = std::max(1, static_cast<int>(std::lround(width * factor)));
+  lens.height = std::max(1, static_cast<int>(std::lround(height * factor)));
+  lens.fx = fx * factor;
+  lens.fy = fy * factor;
+  // Pixel centres sit at integers: the image's left edge (-0.5) must stay the left edge.
+  lens.cx = (cx + 0.5) * factor - 0.5;
+  lens.cy = (cy + 0.5) * factor - 0.5;
+  return lens;
+}
+
 Eigen::Vector2d LensIntrinsics::distort(const Eigen::Vector2d& normalised) const {
   return distortWithJacobian(distortion, normalised).value;
 }
@@ -73,8 +91,13 @@ Eigen::Vector2d LensIntrinsics::undistort(const Eigen::Vector2d& normalised_dist
   for (int iteration = 0; iteration < 20; ++iteration) {
     const DistortionStep step = distortWithJacobian(distortion, p);
     const Eigen::Vector2d residual = step.value - normalised_distorted;
-    if (residual.squaredNorm() < 1e-30) break;
+    if (residual.squaredNorm() < 1e-30) return p;
     p -= step.jacobian.inverse() * residual;
+  }
+  // Where the model folds over (far outside a real lens's image) there is no unique inverse:
+  // NaN rather than a confidently wrong ray.
+  if ((distort(p) - normalised_distorted).norm() > 1e-9 || !p.allFinite()) {
+    return Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
   }
   return p;
 }

@@ -27,6 +27,8 @@ cv::Mat readMatrix(const cv::FileStorage& fs, const std::string& path, const std
     fail(path, "'" + key + "' is not an OpenCV matrix");
   }
   if (m.empty()) fail(path, "'" + key + "' is not an OpenCV matrix");
+  // A multi-channel matrix would otherwise be read element by element as if it had one.
+  if (m.channels() != 1) fail(path, "'" + key + "' must have one channel");
   m.convertTo(m, CV_64F);
   for (auto it = m.begin<double>(); it != m.end<double>(); ++it) {
     if (!std::isfinite(*it)) fail(path, "'" + key + "' holds a non-finite value");
@@ -113,11 +115,18 @@ RigCalibration readRigCalibration(const std::string& path) {
     fail(path, "not an OpenCV FileStorage YAML file");
   }
   if (!fs.isOpened()) fail(path, "not an OpenCV FileStorage YAML file");
+  // Looking a key up in a document that is a list or a scalar throws a cv::Exception.
+  if (!fs.root().isMap()) fail(path, "not an OpenCV FileStorage YAML file (no map of keys)");
   RigCalibration rig;
-  rig.camera = readLens(fs, path, "camera");
-  rig.projector = readLens(fs, path, "projector");
-  const cv::Mat r = readMatrixOfSize(fs, path, "R", 3, 3);
-  const cv::Mat t = readMatrix(fs, path, "T");
+  cv::Mat r, t;
+  try {
+    rig.camera = readLens(fs, path, "camera");
+    rig.projector = readLens(fs, path, "projector");
+    r = readMatrixOfSize(fs, path, "R", 3, 3);
+    t = readMatrix(fs, path, "T");
+  } catch (const cv::Exception& e) {
+    fail(path, "malformed OpenCV FileStorage content: " + e.err);
+  }
   if (t.total() != 3 || (t.rows != 1 && t.cols != 1)) fail(path, "'T' must hold 3 values");
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) rig.T_projector_camera.matrix()(i, j) = r.at<double>(i, j);

@@ -79,6 +79,10 @@ double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int
     case PatternKind::GrayBit:
     case PatternKind::GrayBitInverse: {
       const int bits = grayCodeBits(axisSize(pattern.axis, spec));
+      if (pattern.index < 0 || pattern.index >= bits) {
+        throw Error("patternBrightness: Gray-code bit " + std::to_string(pattern.index) +
+                    " of " + pattern.name() + " is outside [0, " + std::to_string(bits) + ")");
+      }
       const unsigned bit =
           (grayCode(static_cast<unsigned>(coordinate)) >> (bits - 1 - pattern.index)) & 1u;
       return (pattern.kind == PatternKind::GrayBit) == (bit == 1u) ? 1.0 : 0.0;

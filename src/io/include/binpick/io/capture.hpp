@@ -49,7 +49,9 @@ CaptureMetadata readCaptureMetadata(const std::string& directory);
 // DIR/images that the metadata does not list) or wrongly sized image, or one of another bit depth.
 Capture readCapture(const std::string& directory);
 // Creates DIR (and DIR/images) and writes the images and then the metadata, each through a
-// temporary file and a rename: a directory with a capture.json holds a complete capture.
+// temporary file and a rename: a directory with a capture.json holds a complete capture. Throws,
+// writing nothing, on inconsistent metadata or when DIR already holds a capture (recordings are
+// never overwritten).
 // `capture.metadata.images` is filled in here from the pattern names.
 void writeCapture(const std::string& directory, Capture capture);
 

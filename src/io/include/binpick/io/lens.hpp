@@ -21,13 +21,17 @@ struct LensIntrinsics {
   // Where a point of the device frame (z > 0) lands on the image, lens distortion included.
   Eigen::Vector2d project(const Eigen::Vector3d& point) const;
   // Normalised image coordinates (x/z, y/z) with distortion applied / removed. `undistort`
-  // inverts `distort` to well below 1e-6 pixel inside the image (Newton iterations).
+  // inverts `distort` to well below 1e-6 pixel inside the image (Newton iterations), and gives
+  // NaN where the model has no unique inverse (far outside the image of a real lens).
   Eigen::Vector2d distort(const Eigen::Vector2d& normalised) const;
   Eigen::Vector2d undistort(const Eigen::Vector2d& normalised_distorted) const;
   // Unit direction of the ray through a pixel (the inverse of `project`).
   Eigen::Vector3d rayThroughPixel(const Eigen::Vector2d& pixel) const;
 
   bool hasDistortion() const;
+  // The same lens on a sensor binned by `factor` (0.5: half the pixels each way), keeping the
+  // field of view: for fast tests and previews. Distortion is in normalised coordinates: unchanged.
+  LensIntrinsics scaled(double factor) const;
 };
 
 }  // namespace binpick
