@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
-# The main job on the embedded virtual cell: simulate a pile of 20 parts in a bin as a depth
-# camera sees it, then find every part's pose. Output: demo-output/ (scene, model, truth, result).
+# The main job on the embedded virtual cell: drop 20 parts into a bin (rigid-body physics), measure
+# the pile as the structured-light sensor would, then find every part's pose and score the result
+# against the truth. Output: demo-output/ (capture with truth, result.json, model cache).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 part="${1:-l_bracket}"
 out=demo-output
-./build/src/apps/binpick simulate --part "$part" --objects 20 --seed 3 --out "$out"
-./build/src/apps/binpick detect --model "$out/model.ply" --scene "$out/scene.ply" \
+rm -rf "$out/capture"
+./build/src/apps/binpick simulate --part "$part" --objects 20 --seed 3 --cloud-only --out "$out/capture"
+./build/src/apps/binpick detect --model "$out/capture/truth/part.ply" --scene "$out/capture/cloud.ply" \
   --config config/virtual-cell.yaml --model-cache "$out/model.cache" --out "$out/result.json"
-./build/src/apps/binpick evaluate --result "$out/result.json" --truth "$out/truth.json" --part "$part"
+./build/src/apps/binpick evaluate --result "$out/result.json" --truth "$out/capture" --part "$part"

@@ -93,11 +93,7 @@ TEST_F(ModelCache, RoundTripIsExactAndDetectsTheSame) {
   sim::PileParams pile;
   pile.objects = 4;
   pile.seed = 8;
-  pile.camera.width = 640;
-  pile.camera.height = 512;
-  pile.camera.fx = pile.camera.fy = 800.0;
-  pile.camera.cx = 319.5;
-  pile.camera.cy = 255.5;
+  pile.rig.camera = pile.rig.camera.scaled(0.5);
   const sim::PileScene scene = sim::generatePile(sim::makePart("clamp").mesh, pile);
   DetectorParams params;
   params.selection.max_objects = 4;

@@ -16,11 +16,7 @@ PileParams smallPile(uint64_t seed, int objects = 20) {
   PileParams params;
   params.objects = objects;
   params.seed = seed;
-  params.camera.width = 640;
-  params.camera.height = 512;
-  params.camera.fx = params.camera.fy = 800.0;
-  params.camera.cx = 319.5;
-  params.camera.cy = 255.5;
+  params.rig.camera = params.rig.camera.scaled(0.5);
   return params;
 }
 
@@ -57,8 +53,8 @@ TEST(Pile, SameSeedGivesBitIdenticalSceneAndOtherSeedsDiffer) {
 TEST(Pile, OutputShapesAndCameraConvention) {
   const PileParams params = smallPile(3, 5);
   const PileScene scene = generatePile(makePart("clamp").mesh, params);
-  EXPECT_EQ(scene.cloud.width, params.camera.width);
-  EXPECT_EQ(scene.cloud.height, params.camera.height);
+  EXPECT_EQ(scene.cloud.width, params.rig.camera.width);
+  EXPECT_EQ(scene.cloud.height, params.rig.camera.height);
   EXPECT_TRUE(scene.cloud.isOrganized());
   EXPECT_EQ(scene.instance.size(), scene.cloud.size());
   EXPECT_EQ(scene.objects.size(), 5u);
@@ -70,8 +66,8 @@ TEST(Pile, OutputShapesAndCameraConvention) {
   EXPECT_NEAR(scene.T_camera_bin.linear().determinant(), 1.0, 1e-12);
   // The centre pixel sees the floor (or a part) about camera_height away; outside the bin nothing.
   const std::size_t centre =
-      static_cast<std::size_t>(params.camera.height / 2) * params.camera.width +
-      params.camera.width / 2;
+      static_cast<std::size_t>(params.rig.camera.height / 2) * params.rig.camera.width +
+      params.rig.camera.width / 2;
   EXPECT_LE(scene.cloud.points[centre].z(), params.camera_height + 0.005);
   EXPECT_EQ(scene.instance[0], -1);
   EXPECT_TRUE(std::isnan(scene.cloud.points[0].z()));
@@ -94,17 +90,21 @@ TEST(Pile, PartsLieInsideTheBinAndTheFirstRestsOnTheFloor) {
       EXPECT_LE(placed.box.max().y(), 0.5 * params.bin_width + 1e-3) << "part " << i;
       EXPECT_GE(placed.box.min().z(), -1e-3) << "part " << i;
     }
-    const auto first = test::place(part, binPose(scene, scene.objects[0]));
-    EXPECT_NEAR(first.box.min().z(), 0.0, 1e-5);
+    // Something rests on the floor: the collision shapes' margins keep it within a millimetre.
+    double lowest = 1.0;
+    for (const auto& object : scene.objects)
+      lowest = std::min(lowest, test::place(part, binPose(scene, object)).box.min().z());
+    EXPECT_NEAR(lowest, 0.0, 1.5e-3);
   }
 }
 
 TEST(Pile, PartsDoNotInterpenetrate) {
-  for (const auto& name : partNames()) {
+  // A flat, a toothed and a turned part: the three kinds of collision shape.
+  for (const std::string name : {"l_bracket", "gear", "ring_magnet"}) {
     SCOPED_TRACE(name);
     const TriangleMesh part = makePart(name).mesh;
     // A small bin makes a tall pile with many contacts.
-    PileParams params = smallPile(11, 25);
+    PileParams params = smallPile(11, 16);
     params.bin_length = 0.20;
     params.bin_width = 0.16;
     const PileScene scene = generatePile(part, params);
@@ -137,6 +137,7 @@ TEST(Pile, PenetrationCheckDetectsOverlappingParts) {
 TEST(Pile, VisibleFractionsAreConsistent) {
   const PileScene scene = generatePile(makePart("l_bracket").mesh, smallPile(5, 20));
   int labelled = 0;
+  double best = 0.0;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectTruth& truth = scene.objects[i];
     EXPECT_GE(truth.visible_fraction, 0.0);
@@ -145,12 +146,14 @@ TEST(Pile, VisibleFractionsAreConsistent) {
     EXPECT_GT(truth.unoccluded_pixels, 0);
     const int count =
         static_cast<int>(std::count(scene.instance.begin(), scene.instance.end(), int32_t(i)));
-    EXPECT_EQ(truth.visible_pixels, count);
+    // Visible pixels are those the camera sees lit: a subset of the pixels labelled with it.
+    EXPECT_LE(truth.visible_pixels, count);
+    EXPECT_GE(truth.visible_pixels, count / 2);
     labelled += count;
+    best = std::max(best, truth.visible_fraction);
   }
   EXPECT_GT(labelled, 0);
-  // Parts dropped last lie on top: the last one is never hidden completely.
-  EXPECT_GT(scene.objects.back().visible_fraction, 0.5);
+  EXPECT_GT(best, 0.9);  // some part lies on top, fully seen and lit
 }
 
 TEST(Pile, SinglePartIsFullyVisible) {
@@ -173,7 +176,12 @@ TEST(Pile, NoiseFreePixelsLieOnTheLabelledSurface) {
   for (std::size_t i = 0; i < scene.instance.size(); i += 97) {
     const int32_t id = scene.instance[i];
     if (id < 0) continue;
-    EXPECT_LT(test::distanceToSurface(in_camera[id], scene.cloud.points[i].cast<double>()), 1e-4);
+    EXPECT_LT(test::distanceToSurface(in_camera[id], scene.exact_cloud.points[i].cast<double>()),
+              1e-5);
+    // The measured cloud holds the lit ones among them, at the same place.
+    if (scene.cloud.points[i].allFinite()) {
+      EXPECT_EQ(scene.cloud.points[i], scene.exact_cloud.points[i]);
+    }
     ++checked;
   }
   EXPECT_GT(checked, 20);
@@ -246,7 +254,7 @@ TEST(PileParams, ValidateNamesTheBadField) {
   params.camera_height = 0.1;
   EXPECT_NE(message(params).find("camera_height"), std::string::npos);
   params = PileParams{};
-  params.camera.fx = 0.0;
+  params.rig.camera.fx = 0.0;
   EXPECT_NE(message(params).find("camera.fx"), std::string::npos);
   params = PileParams{};
   params.objects = -1;

@@ -1,13 +1,17 @@
-// binpick evaluate --result result.json --truth truth.json --part NAME [--min-visible 0.5]
+// binpick evaluate --result result.json --truth CAPTURE_DIR [--part NAME] [--min-visible 0.5]
+// (--truth may also name truth/objects.json; the part defaults to the one the pile was made of)
 // Scores a detect result against a simulated pile's truth with the paper's criterion
 // (diam(M)/10 and 10 degrees, symmetry-aware; repeats count as wrong).
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "arguments.hpp"
 #include "binpick/io/error.hpp"
+#include "binpick/io/geometry_io.hpp"
+#include "binpick/simulation/pile_truth.hpp"
 #include "commands.hpp"
 #include "evaluation.hpp"
 
@@ -44,13 +48,27 @@ double meshDiameter(const TriangleMesh& mesh) {
   return best;
 }
 
+// A built-in part by name, else the mesh stored with the truth (a user's part: no symmetry known).
+sim::Part partOf(const std::string& name, const std::string& truth_path) {
+  const auto names = sim::partNames();
+  if (std::find(names.begin(), names.end(), name) != names.end()) return sim::makePart(name);
+  const std::filesystem::path truth_dir = std::filesystem::is_directory(truth_path)
+                                              ? std::filesystem::path(truth_path) / "truth"
+                                              : std::filesystem::path(truth_path).parent_path();
+  sim::Part part;
+  part.name = name;
+  part.mesh = readMesh((truth_dir / "part.ply").string());
+  return part;
+}
+
 }  // namespace
 
 int runEvaluate(const std::vector<std::string>& raw) {
   const Arguments args(raw, {"--result", "--truth", "--part", "--min-visible"}, {});
   const std::string result_path = args.required("--result"), truth_path = args.required("--truth");
-  const nlohmann::json result = readJson(result_path), truth = readJson(truth_path);
-  const sim::Part part = sim::makePart(args.required("--part"));
+  const nlohmann::json result = readJson(result_path);
+  const sim::PileTruth truth = sim::readPileTruth(truth_path);
+  const sim::Part part = partOf(args.value("--part").value_or(truth.part), truth_path);
 
   std::vector<estimation::Detection> detections;
   for (const auto& d : result.value("detections", nlohmann::json::array())) {
@@ -60,13 +78,7 @@ int runEvaluate(const std::vector<std::string>& raw) {
     detection.coverage = d.value("coverage", 0.0f);
     detections.push_back(detection);
   }
-  std::vector<sim::ObjectTruth> objects;
-  for (const auto& o : truth.value("objects", nlohmann::json::array())) {
-    sim::ObjectTruth object;
-    object.T_camera_object.matrix() = poseFrom(o.value("pose", nlohmann::json()), truth_path);
-    object.visible_fraction = o.value("visible_fraction", 0.0);
-    objects.push_back(object);
-  }
+  const std::vector<sim::ObjectTruth>& objects = truth.objects;
   const double diameter = meshDiameter(part.mesh);
   const eval::Score score = eval::scoreDetections(detections, objects, part.symmetry, {diameter / 10.0, 10.0},
                                                   args.number("--min-visible").value_or(0.5));

@@ -1,38 +1,129 @@
-// binpick simulate --part NAME [--objects N] [--seed S] --out DIR   (depth-camera cloud of a pile)
+// binpick simulate (--part NAME | --mesh FILE [--mesh-scale S]) [--objects N] [--seed S]
+//                  [--bit-depth 8|16] [--cloud-only] [--threads T] --out DIR
+// binpick simulate --calibration-board charuco|chessboard [--poses K] [--seed S] --out DIR
 // binpick simulate --list-parts
 // binpick simulate --export-part NAME FILE
-// Writes DIR/scene.ply (organized cloud, camera frame, metres), DIR/model.ply (the part mesh) and
-// DIR/truth.json (T_camera_object and visibility of every object).
+// A pile writes one capture directory (docs/capture-format.md): capture.json, calib.yaml,
+// images/ and truth/; with --cloud-only, cloud.ply (the ideal structured-light cloud) instead of
+// the images.
+#include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "arguments.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/reconstruction/pattern_set.hpp"
+#include "binpick/simulation/calibration_sequence.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
+#include "binpick/simulation/pile_truth.hpp"
 #include "commands.hpp"
 
 namespace binpick::cli {
 namespace {
 
-nlohmann::json truthJson(const sim::PileScene& scene, const sim::Part& part) {
-  nlohmann::json objects = nlohmann::json::array();
-  for (const sim::ObjectTruth& o : scene.objects) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (int r = 0; r < 4; ++r) {
-      const auto m = o.T_camera_object.matrix();
-      rows.push_back({m(r, 0), m(r, 1), m(r, 2), m(r, 3)});
-    }
-    objects.push_back({{"pose", rows}, {"visible_fraction", o.visible_fraction}, {"visible_pixels", o.visible_pixels}});
-  }
-  return {{"part", part.name}, {"units", "m"}, {"objects", objects}};
-}
+namespace fs = std::filesystem;
 
 int listParts() {
-  for (const std::string& name : sim::partNames()) std::cout << name << "  " << sim::makePart(name).description << "\n";
+  for (const std::string& name : sim::partNames()) {
+    std::cout << name << "  " << sim::makePart(name).description << "\n";
+  }
+  return 0;
+}
+
+// A built-in part, or a user's mesh file (its symmetry unknown: none is assumed).
+sim::Part partFrom(const Arguments& args) {
+  if (args.value("--part") && args.value("--mesh")) {
+    throw Error("simulate: give --part or --mesh, not both");
+  }
+  if (args.value("--part")) return sim::makePart(*args.value("--part"));
+  sim::Part part;
+  part.name = args.required("--mesh");
+  part.mesh = readMesh(part.name);
+  const double scale = args.number("--mesh-scale").value_or(1.0);
+  if (!(scale > 0.0)) throw Error("--mesh-scale must be positive");
+  for (auto& v : part.mesh.vertices) v *= static_cast<float>(scale);
+  return part;
+}
+
+// Refuses to mix a new capture into an old one: the output directory must be new or empty.
+void requireFreshDirectory(const fs::path& out) {
+  if (fs::exists(out) && !(fs::is_directory(out) && fs::is_empty(out))) {
+    throw Error(out.string() + ": already exists and is not empty; choose a new --out directory");
+  }
+  fs::create_directories(out);
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+CaptureMetadata metadataFor(const sim::PileParams& params, const sim::PhotometryParams& photometry,
+                            const PatternSetSpec& patterns, const std::string& part, int objects) {
+  CaptureMetadata m;
+  m.source = "binpick virtual cell (part " + part + ", " + std::to_string(objects) +
+             " objects, seed " + std::to_string(params.seed) + ")";
+  m.timestamp = utcTimestamp();
+  m.image_width = params.rig.camera.width;
+  m.image_height = params.rig.camera.height;
+  m.bit_depth = photometry.bit_depth;
+  m.exposure_us = 8000.0;
+  m.pattern_set = patterns;
+  m.patterns = reconstruction::patternNames(patterns);
+  return m;
+}
+
+int simulatePile(const Arguments& args) {
+  const auto start = std::chrono::steady_clock::now();
+  const sim::Part part = partFrom(args);
+  sim::PileParams params;
+  params.objects = args.integer("--objects").value_or(params.objects);
+  params.seed = static_cast<uint64_t>(args.integer("--seed").value_or(1));
+  params.threads = args.integer("--threads").value_or(0);
+  params.validate();
+  sim::PhotometryParams photometry;
+  photometry.bit_depth = args.integer("--bit-depth").value_or(8);
+  photometry.seed = params.seed;
+  photometry.threads = params.threads;
+  photometry.validate();
+  PatternSetSpec patterns;
+  patterns.projector_width = params.rig.projector.width;
+  patterns.projector_height = params.rig.projector.height;
+
+  const fs::path out = args.required("--out");
+  requireFreshDirectory(out);
+  const sim::PileScene scene = sim::generatePile(part.mesh, params);
+  const double pile_seconds = secondsSince(start);
+  if (args.flag("--cloud-only")) {
+    writePointCloud((out / "cloud.ply").string(), scene.cloud);
+  } else {
+    Capture capture;
+    capture.images = sim::renderPileImages(part.mesh, scene, params, patterns, photometry);
+    capture.metadata = metadataFor(params, photometry, patterns, part.name, params.objects);
+    writeCapture(out.string(), std::move(capture));
+  }
+  writeRigCalibration((out / "calib.yaml").string(), scene.rig);
+  sim::writePileTruth(out.string(), scene, part.name, part.mesh);
+  std::cerr << "simulated " << scene.objects.size() << " x " << part.name << " into "
+            << out.string() << " (pile + geometry " << pile_seconds << " s, total "
+            << secondsSince(start) << " s" << (scene.physics.settled ? "" : ", pile not settled")
+            << ")\n";
+  return 0;
+}
+
+int simulateCalibration(const Arguments& args) {
+  sim::CalibrationSequenceParams params;
+  params.board.type = sim::boardTypeFromName(args.required("--calibration-board"));
+  params.poses.count = args.integer("--poses").value_or(params.poses.count);
+  params.poses.seed = static_cast<uint64_t>(args.integer("--seed").value_or(1));
+  params.photometry.bit_depth = args.integer("--bit-depth").value_or(8);
+  params.pattern_set.projector_width = params.rig.projector.width;
+  params.pattern_set.projector_height = params.rig.projector.height;
+  params.validate();
+  const std::string out = args.required("--out");
+  const auto poses = sim::writeCalibrationSequence(out, params);
+  std::cerr << "rendered " << poses.size() << " board poses into " << out << "\n";
   return 0;
 }
 
@@ -44,22 +135,12 @@ int runSimulate(const std::vector<std::string>& raw) {
     writeMesh(raw[2], sim::makePart(raw[1]).mesh);
     return 0;
   }
-  const Arguments args(raw, {"--part", "--objects", "--seed", "--out"}, {});
-  const sim::Part part = sim::makePart(args.required("--part"));
-  sim::PileParams params;
-  params.objects = args.integer("--objects").value_or(params.objects);
-  params.seed = static_cast<uint64_t>(args.integer("--seed").value_or(1));
-  params.validate();
-  const std::filesystem::path out = args.required("--out");
-  std::filesystem::create_directories(out);
-  const sim::PileScene scene = sim::generatePile(part.mesh, params);
-  writePointCloud((out / "scene.ply").string(), scene.cloud);
-  writeMesh((out / "model.ply").string(), part.mesh);
-  std::ofstream truth(out / "truth.json");
-  truth << truthJson(scene, part).dump(2) << "\n";
-  if (!truth) throw Error((out / "truth.json").string() + ": cannot write");
-  std::cerr << "simulated " << params.objects << " x " << part.name << " into " << out.string() << "\n";
-  return 0;
+  const Arguments args(raw,
+                       {"--part", "--mesh", "--mesh-scale", "--objects", "--seed", "--out",
+                        "--bit-depth", "--threads", "--calibration-board", "--poses"},
+                       {"--cloud-only"});
+  if (args.value("--calibration-board")) return simulateCalibration(args);
+  return simulatePile(args);
 }
 
 }  // namespace binpick::cli

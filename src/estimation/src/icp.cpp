@@ -1,6 +1,7 @@
 #include "binpick/estimation/icp.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -19,24 +20,35 @@ struct Correspondence {
 };
 
 // Gauss-Newton step of the point-to-plane cost with Huber weights; returns the increment as an
-// isometry applied on the left.
+// isometry applied on the left. Rotations are taken about the correspondences' centroid (not the
+// camera origin ~1 m away), and a little damping keeps directions that the points do not
+// constrain (sliding along a lone plane) where they are instead of sending them anywhere.
 Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, float huber) {
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+  for (const Correspondence& c : pairs) centre += c.source;
+  centre /= static_cast<float>(std::max<std::size_t>(pairs.size(), 1));
   Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
   for (const Correspondence& c : pairs) {
     const double r = static_cast<double>((c.source - c.target).dot(c.normal));
     const double w = std::abs(r) <= huber ? 1.0 : huber / std::abs(r);
     Eigen::Matrix<double, 6, 1> J;
-    J << c.source.cross(c.normal).cast<double>(), c.normal.cast<double>();
+    J << (c.source - centre).cross(c.normal).cast<double>(), c.normal.cast<double>();
     H += w * J * J.transpose();
     g += w * J * r;
   }
+  constexpr double kRelativeDamping = 1e-3;
+  H.diagonal().array() += kRelativeDamping * H.trace() / 6.0 + 1e-12;
   const Eigen::Matrix<double, 6, 1> x = H.ldlt().solve(-g);
   Eigen::Isometry3f delta = Eigen::Isometry3f::Identity();
   if (!x.allFinite()) return delta;
   const Eigen::Vector3d omega = x.head<3>();
-  if (omega.norm() > 1e-12) delta.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix().cast<float>();
-  delta.translation() = x.tail<3>().cast<float>();
+  if (omega.norm() > 1e-12) {
+    delta.linear() =
+        Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix().cast<float>();
+  }
+  // p' = R (p - centre) + centre + t
+  delta.translation() = centre - delta.linear() * centre + x.tail<3>().cast<float>();
   return delta;
 }
 

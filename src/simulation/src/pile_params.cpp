@@ -17,8 +17,6 @@ void require(bool ok, const char* field, const char* rule, double value) {
 
 bool positive(double value) { return std::isfinite(value) && value > 0.0; }
 
-// Guards against an image size that would exhaust memory rather than describe a real sensor.
-constexpr int kMaxImageSide = 16384;
 constexpr int kMaxObjects = 10000;
 
 }  // namespace
@@ -33,14 +31,16 @@ void PileParams::validate() const {
   require(std::isfinite(depth_noise) && depth_noise >= 0.0, "depth_noise", ">= 0", depth_noise);
   require(std::isfinite(dropout) && dropout >= 0.0 && dropout < 1.0, "dropout", "in [0, 1)",
           dropout);
-  require(camera.width > 0 && camera.width <= kMaxImageSide, "camera.width", "in [1, 16384]",
-          camera.width);
-  require(camera.height > 0 && camera.height <= kMaxImageSide, "camera.height", "in [1, 16384]",
-          camera.height);
-  require(positive(camera.fx), "camera.fx", "positive", camera.fx);
-  require(positive(camera.fy), "camera.fy", "positive", camera.fy);
-  require(std::isfinite(camera.cx), "camera.cx", "finite", camera.cx);
-  require(std::isfinite(camera.cy), "camera.cy", "finite", camera.cy);
+  require(std::isfinite(max_view_angle_deg) && max_view_angle_deg > 0.0 &&
+              max_view_angle_deg <= 90.0,
+          "max_view_angle_deg", "in (0, 90]", max_view_angle_deg);
+  require(std::isfinite(part_albedo) && part_albedo >= 0.0 && part_albedo <= 1.0, "part_albedo",
+          "in [0, 1]", part_albedo);
+  require(std::isfinite(bin_albedo) && bin_albedo >= 0.0 && bin_albedo <= 1.0, "bin_albedo",
+          "in [0, 1]", bin_albedo);
+  require(threads >= 0, "threads", ">= 0", threads);
+  rig.validate();
+  physics.validate("PileParams.physics");
 }
 
 }  // namespace binpick::sim

@@ -6,9 +6,10 @@
 
 #include "binpick/io/error.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
+#include "normal_table.hpp"
 #include "projector_blur.hpp"
 #include "random.hpp"
-#include "thread_count.hpp"
+#include "render/thread_count.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -70,7 +71,7 @@ Pixel sensorValue(double signal, const PhotometryParams& params, double scale, d
                   detail::SplitMix64& rng) {
   const double sigma =
       std::sqrt(params.read_noise * params.read_noise + params.shot_noise_gain * signal);
-  const double noisy = (signal + sigma * detail::standardNormal(rng)) * scale;
+  const double noisy = (signal + sigma * detail::tabulatedStandardNormal(rng())) * scale;
   return static_cast<Pixel>(std::clamp(std::round(noisy), 0.0, full_scale));
 }
 
@@ -82,7 +83,7 @@ void renderRows(const std::vector<PixelLighting>& pixels, int width, int height,
   const double full_scale = params.bit_depth == 16 ? 65535.0 : 255.0;
   const detail::KeyedStreams noise(params.seed, kImageNoiseStream);
   const uint64_t pixel_count = static_cast<uint64_t>(width) * height;
-#pragma omp parallel for schedule(dynamic, 8) num_threads(detail::threadCount(params.threads))
+#pragma omp parallel for schedule(dynamic, 8) num_threads(detail::resolveThreadCount(params.threads))
   for (int row = 0; row < height; ++row) {
     for (int col = 0; col < width; ++col) {
       const std::size_t index = static_cast<std::size_t>(row) * width + col;

@@ -17,6 +17,10 @@ BlurTaps blurTaps(float x, float sigma, int size) {
   BlurTaps taps;
   if (!std::isfinite(x) || !std::isfinite(sigma)) return taps;
   sigma = std::clamp(sigma, kSigmaFloor, kMaxBlurSigma);
+  // Far outside the projector image nothing arrives; returning here also keeps the float -> int
+  // conversions below in range for huge coordinates (a grazing or distant surface point).
+  const float reach = kSpan * sigma + 1.0f;
+  if (x < -reach || x > static_cast<float>(size) + reach) return taps;
   const int lo = std::max(0, static_cast<int>(std::floor(x - kSpan * sigma + 0.5f)));
   const int hi = std::min(size - 1, static_cast<int>(std::floor(x + kSpan * sigma + 0.5f)));
   if (hi < lo) return taps;

@@ -16,7 +16,7 @@ namespace binpick::sim {
 struct PhotometryParams {
   // Counts a full-white projector pixel gives on a white Lambertian surface facing the projector
   // at `reference_distance` (8-bit full scale is 255).
-  double projector_white = 200.0;
+  double projector_white = 280.0;
   double reference_distance = 0.9;    // metres
   double projector_black_level = 0.01;  // share of white a black projector pixel still emits
   double ambient = 6.0;               // counts on a white surface from room light

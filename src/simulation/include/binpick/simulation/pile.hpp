@@ -1,53 +1,71 @@
 #pragma once
-// A pile of identical parts in a bin, seen by a depth camera above it, with ground truth.
-// Deterministic for a seed. Stateless: thread-safe.
+// A pile of identical parts in a bin, seen by the structured-light rig above it, with ground
+// truth. Deterministic for a seed. Stateless: thread-safe.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
-#include "binpick/simulation/depth_renderer.hpp"
+#include "binpick/io/capture.hpp"
+#include "binpick/io/rig_calibration.hpp"
+#include "binpick/simulation/pattern_renderer.hpp"
+#include "binpick/simulation/physics_pile.hpp"
+#include "binpick/simulation/virtual_rig.hpp"
 
 namespace binpick::sim {
 
 struct PileParams {
   int objects = 20;
-  double bin_length = 0.40;      // metres, inner size along world x
-  double bin_width = 0.30;       // metres, inner size along world y
+  double bin_length = 0.40;      // metres, inner size along the bin's x
+  double bin_width = 0.30;       // metres, inner size along the bin's y
   double bin_wall_height = 0.15; // metres
   double camera_height = 0.90;   // metres from the bin floor to the camera centre
-  double depth_noise = 0.0003;   // metres, standard deviation along the viewing ray
-  double dropout = 0.0;          // fraction of valid pixels randomly lost
-  PinholeCamera camera;
+  // The measured cloud (PileScene::cloud): noise along the viewing ray, random dropouts, and the
+  // steepest viewing angle at which a surface is still decoded.
+  double depth_noise = 0.0003;   // metres, standard deviation
+  double dropout = 0.0;          // fraction of measurable pixels randomly lost
+  double max_view_angle_deg = 80.0;
+  double part_albedo = 0.55;     // diffuse reflectance of the parts' surface
+  double bin_albedo = 0.30;      // and of the bin's
+  RigCalibration rig = makeVirtualRig();
+  PhysicsParams physics;
   uint64_t seed = 1;
-  void validate() const;
+  int threads = 0;               // 0: all cores
+  void validate() const;         // throws binpick::Error naming the field
 };
 
 struct ObjectTruth {
   Eigen::Isometry3d T_camera_object = Eigen::Isometry3d::Identity();
-  int visible_pixels = 0;        // pixels showing this object in the pile
-  int unoccluded_pixels = 0;     // pixels it would cover alone at the same pose
-  // Visible share of what the camera could see of it (BOP's visib_fract): visible/unoccluded.
+  int visible_pixels = 0;     // pixels where the camera sees it lit by the projector, in the pile
+  int unoccluded_pixels = 0;  // the same were it alone at its pose
+  // BOP's visib_fract with the projector's shadows: visible_pixels / unoccluded_pixels.
   double visible_fraction = 0.0;
 };
 
 struct PileScene {
-  PointCloud cloud;                 // organized, camera frame, noisy
-  // Per pixel: object index, -2 bin, -1 nothing. From the noise-free render: a pixel lost to
-  // dropout keeps its label.
-  std::vector<int32_t> instance;
-  std::vector<ObjectTruth> objects;  // in drop order: objects[i] has instance id i
-  PinholeCamera camera;
+  // What the sensor measures (an ideal decoder): organized, camera frame, the points both seen and
+  // lit, with noise and dropouts; NaN elsewhere.
+  PointCloud cloud;
+  PointCloud exact_cloud;      // every surface point the camera sees, with normals; no noise
+  std::vector<float> depth;    // exact camera z per pixel, NaN where nothing is seen
+  std::vector<int32_t> instance;  // per pixel: object index, -2 the bin, -1 nothing
+  std::vector<ObjectTruth> objects;  // objects[i] has instance id i
+  RigCalibration rig;
   // Bin frame: origin at the centre of the floor's top face, x along bin_length, z up. The camera
   // looks straight down: bin x = camera x, bin y = camera -y, floor centre at camera z =
   // camera_height.
   Eigen::Isometry3d T_camera_bin = Eigen::Isometry3d::Identity();
+  PhysicsPile physics;  // how the drop went
 };
 
-// Drops the parts one by one onto a height field of the bin and what lies in it (no physics:
-// each part keeps its random orientation and rests where its lowest point first touches), then
-// renders the scene from above. The part is rotated about its model origin, and each
-// ObjectTruth::T_camera_object places that origin. Every part stays inside the inner walls; throws
-// binpick::Error on bad params or a part too large to fit the bin in every orientation.
+// Drops the parts into the bin (Bullet rigid bodies, physics_pile.hpp), then casts the rig's
+// camera and projector rays into the scene. Throws binpick::Error on bad params or a part that
+// cannot be dropped between the walls.
 PileScene generatePile(const TriangleMesh& part, const PileParams& params);
+
+// The camera images of `scene` under every pattern of `patterns` (patternSequence order).
+std::vector<cv::Mat> renderPileImages(const TriangleMesh& part, const PileScene& scene,
+                                      const PileParams& params, const PatternSetSpec& patterns,
+                                      const PhotometryParams& photometry);
 
 }  // namespace binpick::sim

@@ -1,0 +1,92 @@
+#pragma once
+// A physical pile: identical rigid parts dropped into a bin and simulated (Bullet) until they come
+// to rest. Deterministic for a seed: the same inputs give bit-identical poses on the same build.
+// Stateless: every call builds its own world, so concurrent calls do not influence each other.
+// (Bullet itself updates a few global statistics counters without locking; nothing reads them,
+// but a race detector will report them when calls run on several threads.)
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "binpick/io/point_cloud.hpp"
+
+namespace binpick::sim {
+
+// The inside of the bin. Bin frame: origin at the centre of the floor's top face, x along the
+// length, z up; the walls stand outside this area, from the floor up to wall_height.
+struct BinInterior {
+  double length = 0.40;       // metres, along x
+  double width = 0.30;        // metres, along y
+  double wall_height = 0.15;  // metres
+};
+
+struct PhysicsParams {
+  // Parts are released in layers above whatever already lies in the bin: each part's lowest point
+  // starts this far above the highest point of the pile (or of the floor), uniformly at random.
+  // The next layer follows once the pile has come to rest.
+  double drop_height_min = 0.02;  // metres
+  double drop_height_max = 0.10;  // metres
+
+  double friction = 0.5;     // Coulomb coefficient between two parts and between a part and the bin
+  double restitution = 0.1;  // share of the approach speed kept after an impact, in [0, 1]
+  // Lever arm of the torque that resists rolling and spinning on a contact, as a multiple of the
+  // normal force. Without it a ring standing on its rim could roll around the bin for ever.
+  double rolling_resistance = 0.0005;  // metres
+
+  // The world advances in steps of time_step / substeps; settling and escapes are checked after
+  // every time_step. Thin parts, or parts that fall far, need shorter steps not to pass through
+  // each other.
+  double time_step = 1.0 / 120.0;  // seconds
+  int substeps = 2;
+  double max_simulated_time = 30.0;  // seconds, all layers together; the run stops there
+
+  // The pile has come to rest when, over a window of settle_time, every part's centre of mass has
+  // moved slower than settle_linear_velocity and the part has turned slower than
+  // settle_angular_velocity, on average: the mean over a window is not kept up by the contact
+  // solver's jitter as instantaneous velocities are.
+  double settle_linear_velocity = 0.005;  // metres per second
+  double settle_angular_velocity = 0.1;   // radians per second
+  double settle_time = 0.2;               // seconds
+
+  // Collision shape: a union of convex pieces containing the mesh, each reaching at most about
+  // decomposition_tolerance beyond it (measured on a grid of half that size, which is coarsened
+  // for large parts so that it has at most a few million cells: a part much larger than about
+  // 150 mm gets a tolerance of about 1/80 of its size). If max_convex_pieces is not enough to
+  // meet the tolerance, the shape is coarser where it must be.
+  double decomposition_tolerance = 0.001;  // metres
+  int max_convex_pieces = 48;
+  // Bullet's contact shell around every convex piece (outwards: it adds to the shape); part to
+  // part gaps at rest are about twice this.
+  double collision_margin = 0.0004;  // metres
+
+  // Throws binpick::Error naming the first bad field as `name`.field, e.g.
+  // "PhysicsParams.friction".
+  void validate(const std::string& name = "PhysicsParams") const;
+};
+
+struct PhysicsPile {
+  // Every part that ended inside the bin, in the order of its (last) drop. All of a part's mesh
+  // lies within the inner walls and above the floor, up to 0.5 mm.
+  std::vector<Eigen::Isometry3d> T_bin_object;
+  bool settled = false;  // every part came to rest inside the bin before max_simulated_time
+  int lost = 0;          // parts that were not inside the bin when the time ran out
+  int redrops =
+      0;  // times a part came to rest outside the bin (e.g. on a wall) and was dropped again
+  int layers = 0;               // how many times parts were released
+  double simulated_time = 0.0;  // seconds
+  long steps = 0;               // Bullet steps of time_step / substeps
+  int convex_pieces = 0;        // in the part's collision shape
+};
+
+// Drops `objects` copies of `part` (a closed triangle mesh with outward normals, metres; the model
+// frame may be anywhere, the poses place it) into the bin and simulates until the pile settles or
+// max_simulated_time runs out. The orientations, positions and release heights are random, drawn
+// from `seed`. A part that comes to rest outside the bin is taken out and dropped again; one still
+// outside when the time runs out is left out of the result and counted in `lost`, never returned.
+// Throws binpick::Error on bad params, a bad or open mesh, or a part too large to be released
+// between the walls in every orientation.
+PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterior& bin,
+                         const PhysicsParams& params, uint64_t seed);
+
+}  // namespace binpick::sim

@@ -1,0 +1,92 @@
+// renderCalibrationCapture: one board pose under every pattern of the set.
+#include <algorithm>
+
+#include "binpick/reconstruction/pattern_set.hpp"
+#include "binpick/simulation/calibration_sequence.hpp"
+#include "binpick/simulation/pixel_lighting.hpp"
+#include "binpick/simulation/ray_caster.hpp"
+#include "board_albedo.hpp"
+
+namespace binpick::sim {
+namespace {
+
+constexpr int32_t kBoardId = 0;
+constexpr int32_t kBackgroundId = 1;
+
+// A square facing the camera (normal -z of its frame, which is the camera's), large enough to
+// fill any usable field of view at its distance.
+TriangleMesh wallMesh(double distance) {
+  const auto half = static_cast<float>(2.0 * distance);
+  TriangleMesh mesh;
+  mesh.vertices = {
+      {-half, -half, 0.0f}, {half, -half, 0.0f}, {half, half, 0.0f}, {-half, half, 0.0f}};
+  mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
+  return mesh;
+}
+
+// The share of the nominal exposure that keeps the board's brightest pixel of the white image
+// (full projector light, indirect light and ambient) at or below `max_counts`.
+double exposureShare(const std::vector<PixelLighting>& lighting, const SensorGeometry& geometry,
+                     double max_counts) {
+  if (max_counts <= 0.0) return 1.0;
+  double peak = 0.0;
+  for (std::size_t i = 0; i < lighting.size(); ++i) {
+    if (geometry.object_id[i] != kBoardId) continue;
+    const PixelLighting& l = lighting[i];
+    peak = std::max(peak, static_cast<double>(l.ambient + l.direct + l.global));
+  }
+  return peak > max_counts ? max_counts / peak : 1.0;
+}
+
+// Every light contribution is proportional to the exposure time.
+void scaleExposure(std::vector<PixelLighting>& lighting, double share) {
+  const auto s = static_cast<float>(share);
+  for (PixelLighting& l : lighting) {
+    l.direct *= s;
+    l.ambient *= s;
+    l.global *= s;
+  }
+}
+
+}  // namespace
+
+Capture renderCalibrationCapture(const CalibrationBoard& board,
+                                 const Eigen::Isometry3d& T_camera_board,
+                                 const CalibrationSequenceParams& params, uint64_t noise_seed) {
+  params.validate();
+  std::vector<RenderObject> objects{{&board.mesh(), T_camera_board, kBoardId}};
+  const TriangleMesh wall = wallMesh(params.background_distance);
+  if (params.background_distance > 0.0) {
+    Eigen::Isometry3d T_camera_wall = Eigen::Isometry3d::Identity();
+    T_camera_wall.translation().z() = params.background_distance;
+    objects.push_back({&wall, T_camera_wall, kBackgroundId});
+  }
+  const RayCaster scene(objects);
+  const RigCalibration& rig = params.rig;
+  const SensorGeometry geometry = computeSensorGeometry(rig, scene, params.geometry);
+  const AlbedoFunction albedo =
+      detail::boardPixelAlbedo(board, rig.camera, T_camera_board, kBoardId, params.pixel_samples,
+                               static_cast<float>(params.background_albedo));
+  std::vector<PixelLighting> lighting =
+      computePixelLighting(geometry, rig, params.photometry, albedo);
+  const double share = exposureShare(lighting, geometry, params.max_white_counts);
+  scaleExposure(lighting, share);
+
+  PhotometryParams photometry = params.photometry;
+  photometry.seed = noise_seed;
+  Capture capture;
+  capture.images = renderPatternImages(lighting, geometry.width, geometry.height,
+                                       params.pattern_set, photometry);
+  CaptureMetadata& m = capture.metadata;
+  m.source = params.source;
+  m.timestamp = utcTimestamp();
+  m.image_width = geometry.width;
+  m.image_height = geometry.height;
+  m.bit_depth = photometry.bit_depth;
+  m.exposure_us = params.exposure_us * share;
+  m.pattern_set = params.pattern_set;
+  m.patterns = reconstruction::patternNames(params.pattern_set);
+  return capture;
+}
+
+}  // namespace binpick::sim

@@ -1,0 +1,50 @@
+#pragma once
+// The running simulation of one pile: releases parts into the Bullet world, steps it until the
+// parts come to rest, and takes out parts that ended outside the bin. Internal to
+// binpick::simulation; not copyable, not for concurrent use.
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "binpick/simulation/physics_pile.hpp"
+#include "bullet_world.hpp"
+#include "part_shape.hpp"
+
+namespace binpick::sim::detail {
+
+class PileSimulation {
+ public:
+  // `part` must outlive the simulation.
+  PileSimulation(const PartShape& part, const BinInterior& bin, const PhysicsParams& params);
+
+  // Highest point of any part in the world (0, the floor, when there is none). Metres, bin frame.
+  double pileTop() const;
+  void release(const std::vector<Eigen::Isometry3d>& T_bin_model);
+
+  // Steps until every part has come to rest (true), or until max_simulated_time (false).
+  bool settle();
+  // Takes out every part not inside the bin (see isInsideBin) and returns how many.
+  int removeEscaped();
+
+  std::vector<Eigen::Isometry3d> poses() const;  // T_bin_model of the parts, in release order
+  int frames() const { return frames_; }
+  long steps() const { return static_cast<long>(frames_) * params_.substeps; }
+  double simulatedTime() const { return frames_ * params_.time_step; }
+
+ private:
+  Eigen::Isometry3d T_bin_model(const btRigidBody* body) const;
+  bool atRest(const btRigidBody* body, const btTransform& window_start, double window) const;
+  bool isInsideBin(const btRigidBody* body) const;
+  bool outOfTime() const;
+  bool removeFallen();  // true if any
+  void remove(btRigidBody* body);
+
+  const PartShape& part_;
+  BinInterior bin_;
+  PhysicsParams params_;
+  BulletWorld world_;
+  std::vector<btRigidBody*> bodies_;  // in release order
+  int frames_ = 0;                    // time steps simulated
+  int fallen_ = 0;                    // taken out while falling off the world
+};
+
+}  // namespace binpick::sim::detail

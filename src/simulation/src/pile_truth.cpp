@@ -1,0 +1,127 @@
+// writePileTruth / readPileTruth: the pile's ground truth beside its capture.
+#include "binpick/simulation/pile_truth.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "binpick/io/error.hpp"
+#include "binpick/io/geometry_io.hpp"
+
+namespace binpick::sim {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+json poseJson(const Eigen::Isometry3d& pose) {
+  json rows = json::array();
+  for (int r = 0; r < 4; ++r) {
+    rows.push_back({pose(r, 0), pose(r, 1), pose(r, 2), pose(r, 3)});
+  }
+  return rows;
+}
+
+Eigen::Isometry3d poseFrom(const json& rows, const std::string& path) {
+  Eigen::Matrix4d m;
+  try {
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) m(r, c) = rows.at(r).at(c).get<double>();
+  } catch (const json::exception&) {
+    throw Error(path + ": a pose must be 4 rows of 4 numbers");
+  }
+  const Eigen::Matrix3d rotation = m.topLeftCorner<3, 3>();
+  if (!m.allFinite() || (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-6) {
+    throw Error(path + ": a pose is not a finite rigid transform");
+  }
+  Eigen::Isometry3d pose;
+  pose.matrix() = m;
+  return pose;
+}
+
+json objectsJson(const PileScene& scene, const std::string& part_name) {
+  json objects = json::array();
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    const ObjectTruth& o = scene.objects[i];
+    objects.push_back({{"id", i},
+                       {"pose", poseJson(o.T_camera_object)},
+                       {"visible_pixels", o.visible_pixels},
+                       {"unoccluded_pixels", o.unoccluded_pixels},
+                       {"visible_fraction", o.visible_fraction}});
+  }
+  return {{"part", part_name}, {"units", "m"}, {"T_camera_bin", poseJson(scene.T_camera_bin)},
+          {"objects", objects}};
+}
+
+void writeImage(const fs::path& path, const cv::Mat& image) {
+  bool written = false;
+  try {
+    written = cv::imwrite(path.string(), image);
+  } catch (const cv::Exception&) {
+    written = false;
+  }
+  if (!written) throw Error(path.string() + ": cannot write the image");
+}
+
+// 16-bit labels: 0 nothing, 1 the bin, 2 + i object i (instance ids: -1, -2, i).
+cv::Mat maskImage(const PileScene& scene) {
+  cv::Mat mask(scene.cloud.height, scene.cloud.width, CV_16UC1);
+  for (int row = 0; row < mask.rows; ++row) {
+    for (int col = 0; col < mask.cols; ++col) {
+      const int32_t id = scene.instance[static_cast<std::size_t>(row) * mask.cols + col];
+      const int label = id >= 0 ? std::min(id + 2, 65535) : (id == -1 ? 0 : 1);
+      mask.at<uint16_t>(row, col) = static_cast<uint16_t>(label);
+    }
+  }
+  return mask;
+}
+
+}  // namespace
+
+void writePileTruth(const std::string& capture_directory, const PileScene& scene,
+                    const std::string& part_name, const TriangleMesh& part) {
+  const fs::path truth = fs::path(capture_directory) / "truth";
+  std::error_code error;
+  fs::create_directories(truth, error);
+  if (error) throw Error(truth.string() + ": cannot create: " + error.message());
+  std::ofstream objects(truth / "objects.json");
+  objects << objectsJson(scene, part_name).dump(2) << "\n";
+  if (!objects) throw Error((truth / "objects.json").string() + ": cannot write");
+  cv::Mat depth(scene.cloud.height, scene.cloud.width, CV_32FC1,
+                const_cast<float*>(scene.depth.data()));
+  writeImage(truth / "depth.tiff", depth);
+  writeImage(truth / "mask.png", maskImage(scene));
+  writePointCloud((truth / "cloud.ply").string(), scene.exact_cloud);
+  writeMesh((truth / "part.ply").string(), part);
+}
+
+PileTruth readPileTruth(const std::string& path) {
+  const fs::path file = fs::is_directory(path) ? fs::path(path) / "truth" / "objects.json" : fs::path(path);
+  std::ifstream in(file);
+  if (!in) throw Error(file.string() + ": cannot open the truth file");
+  json document;
+  try {
+    document = json::parse(in);
+  } catch (const json::exception& e) {
+    throw Error(file.string() + ": not valid JSON: " + e.what());
+  }
+  PileTruth truth;
+  try {
+    truth.part = document.at("part").get<std::string>();
+    truth.T_camera_bin = poseFrom(document.at("T_camera_bin"), file.string());
+    for (const json& o : document.at("objects")) {
+      ObjectTruth object;
+      object.T_camera_object = poseFrom(o.at("pose"), file.string());
+      object.visible_pixels = o.at("visible_pixels").get<int>();
+      object.unoccluded_pixels = o.at("unoccluded_pixels").get<int>();
+      object.visible_fraction = o.at("visible_fraction").get<double>();
+      truth.objects.push_back(object);
+    }
+  } catch (const json::exception& e) {
+    throw Error(file.string() + ": malformed truth: " + e.what());
+  }
+  return truth;
+}
+
+}  // namespace binpick::sim

@@ -1,0 +1,14 @@
+#pragma once
+// The OpenMP thread count for a `threads` parameter. Internal to binpick::simulation.
+#include <thread>
+
+namespace binpick::sim::detail {
+
+// `requested` > 0 as is; 0 means every hardware thread.
+inline int resolveThreadCount(int requested) {
+  if (requested > 0) return requested;
+  const unsigned hardware = std::thread::hardware_concurrency();
+  return hardware == 0 ? 1 : static_cast<int>(hardware);
+}
+
+}  // namespace binpick::sim::detail
