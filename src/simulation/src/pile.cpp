@@ -66,9 +66,10 @@ PileScene generatePile(const TriangleMesh& part, const PileParams& params) {
       detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
   const RayCaster caster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin));
   const SensorGeometry geometry = computeSensorGeometry(params.rig, caster, geometryParams(params));
-  std::vector<ObjectVisibility> visibility =
-      computeObjectVisibility(params.rig, caster, geometry, geometryParams(params));
-  visibility.resize(scene.objects.size());  // the bin's entry comes last
+  std::vector<int> parts(scene.objects.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) parts[i] = static_cast<int>(i);  // the bin is last
+  const std::vector<ObjectVisibility> visibility =
+      computeObjectVisibilityOf(params.rig, caster, geometry, parts, geometryParams(params));
   recordTruth(scene, geometry, visibility);
   scene.cloud = detail::measurableCloud(geometry, params.max_view_angle_deg);
   detail::applySensorNoise(scene.cloud, params.depth_noise, params.dropout, params.seed,
