@@ -8,7 +8,8 @@
 namespace binpick::sim {
 namespace {
 
-// Typical of a 2/3" machine-vision camera with a 12 mm lens: a little barrel distortion.
+// A 1.3 MP machine-vision camera whose lens frames 0.72 x 0.58 m at 0.9 m, with a little barrel
+// distortion and an off-centre principal point, as real ones have.
 LensIntrinsics cameraLens() {
   LensIntrinsics lens;
   lens.width = 1280;
