@@ -17,7 +17,7 @@ done
 "$binpick" simulate --part clamp --objects 3 --seed 5 --out "$work/capture" 2>/dev/null || fail "simulate (images) exited $?"
 [ "$(ls "$work/capture/images" | wc -l)" -eq 52 ] || fail "simulate wrote $(ls "$work/capture/images" | wc -l) images, expected 52"
 grep -q '"gray_col_00_inv"' "$work/capture/capture.json" || fail "capture.json lists no gray_col_00_inv"
-# Any mesh file can be piled instead of a built-in part (here one in millimetres).
+# Any mesh file can be piled instead of a built-in part.
 "$binpick" simulate --export-part gear "$work/gear.stl" || fail "export-part exited $?"
 "$binpick" simulate --mesh "$work/gear.stl" --objects 2 --cloud-only --out "$work/user" 2>/dev/null ||
   fail "simulate --mesh exited $?"
