@@ -149,6 +149,34 @@ inline double penetrationDepth(const PlacedMesh& a, const PlacedMesh& b, int ste
   return deepest;
 }
 
+// Points on every triangle no farther than about `spacing` apart (a barycentric grid sized by the
+// triangle's longest edge), vertices included: unlike surfacePoints, large faces get as dense a
+// sampling as small ones.
+inline std::vector<Eigen::Vector3d> surfaceSamples(const PlacedMesh& mesh, double spacing) {
+  std::vector<Eigen::Vector3d> points = mesh.vertices;
+  for (const auto& t : mesh.triangles) {
+    const auto &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int steps = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
+    for (int i = 0; i <= steps; ++i) {
+      for (int j = 0; i + j <= steps; ++j) {
+        points.push_back(a + (b - a) * (double(i) / steps) + (c - a) * (double(j) / steps));
+      }
+    }
+  }
+  return points;
+}
+
+// How deep the surface of `a` reaches into the volume of `b`, from samples `spacing` apart.
+inline double sampledPenetrationDepth(const PlacedMesh& a, const PlacedMesh& b, double spacing) {
+  if (!a.box.intersects(b.box)) return 0.0;
+  double deepest = 0.0;
+  for (const auto& p : surfaceSamples(a, spacing)) {
+    if (insideMesh(b, p)) deepest = std::max(deepest, distanceToSurface(b, p));
+  }
+  return deepest;
+}
+
 inline double rotationAngleDeg(const Eigen::Matrix3d& r) {
   return Eigen::AngleAxisd(r).angle() * 180.0 / 3.14159265358979323846;
 }

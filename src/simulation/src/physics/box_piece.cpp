@@ -1,5 +1,7 @@
 #include "box_piece.hpp"
 
+#include <algorithm>
+
 namespace binpick::sim::detail {
 namespace {
 
@@ -67,12 +69,20 @@ std::vector<SurfacePolygon> meshPolygons(const TriangleMesh& mesh) {
 
 BoxPiece makeBoxPiece(const CellBox& box, std::vector<SurfacePolygon> polygons,
                       const CellGrid& grid, const MeshColumns& columns) {
-  std::vector<Eigen::Vector3d> points;
-  for (const auto& polygon : polygons) points.insert(points.end(), polygon.begin(), polygon.end());
-  addInsideCorners(box, grid, columns, points);
   BoxPiece piece;
   piece.box = box;
+  for (const auto& polygon : polygons) {
+    piece.corners.insert(piece.corners.end(), polygon.begin(), polygon.end());
+  }
+  // A closed mesh repeats each vertex in about six triangles.
+  const auto before = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  std::sort(piece.corners.begin(), piece.corners.end(), before);
+  piece.corners.erase(std::unique(piece.corners.begin(), piece.corners.end()), piece.corners.end());
   piece.polygons = std::move(polygons);
+  std::vector<Eigen::Vector3d> points = piece.corners;
+  addInsideCorners(box, grid, columns, points);
   piece.hull = convexHull(points);
   return piece;
 }
@@ -91,17 +101,20 @@ SplitVolumes estimateSplitVolumes(const BoxPiece& piece, int axis, int index,
                                   std::size_t max_points) {
   const double position = grid.border(axis, index);
   SidePoints below, above;
+  for (const Eigen::Vector3d& p : piece.corners) {
+    if (p[axis] < position) below.interior.push_back(p);
+    if (p[axis] > position) above.interior.push_back(p);
+    if (p[axis] == position) {
+      below.boundary.push_back(p);
+      above.boundary.push_back(p);
+    }
+  }
   for (const auto& polygon : piece.polygons) {
     for (std::size_t k = 0; k < polygon.size(); ++k) {
       const Eigen::Vector3d& a = polygon[k];
       const Eigen::Vector3d& b = polygon[(k + 1) % polygon.size()];
       const double da = a[axis] - position, db = b[axis] - position;
-      if (da < 0.0) below.interior.push_back(a);
-      if (da > 0.0) above.interior.push_back(a);
-      if (da == 0.0) {
-        below.boundary.push_back(a);
-        above.boundary.push_back(a);
-      } else if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
+      if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
         Eigen::Vector3d crossing = a + (da / (da - db)) * (b - a);
         crossing[axis] = position;
         below.boundary.push_back(crossing);

@@ -19,6 +19,7 @@ using SurfacePolygon = std::vector<Eigen::Vector3d>;
 struct BoxPiece {
   CellBox box;
   std::vector<SurfacePolygon> polygons;  // the mesh surface within the box
+  std::vector<Eigen::Vector3d> corners;  // of the polygons, each point once
   ConvexHull hull;                       // of the solid within the box
 };
 
@@ -37,7 +38,7 @@ BoxSplit splitBoxPiece(const BoxPiece& piece, int axis, int index, const CellGri
 
 // The hull volumes the two sides of that split would have, for comparing cuts cheaply: on a mesh
 // with many vertices only about `max_points` of each side's surface points are used (every
-// vertex on the cut plane and every box corner always), so the volumes are estimates then.
+// point on the cut plane and every box corner always), so the volumes are estimates then.
 struct SplitVolumes {
   double below = 0.0, above = 0.0;
 };

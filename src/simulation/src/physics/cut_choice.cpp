@@ -10,7 +10,7 @@ namespace {
 
 constexpr int kCoarseCutsPerAxis = 8;
 // Surface points per side used to compare cuts (more on a side only thin out the estimate).
-constexpr std::size_t kScoringPoints = 1500;
+constexpr std::size_t kScoringPoints = 300;
 // A cut must remove at least this share of the piece's excess volume to be chosen for it. Some
 // concavities need two cuts before either helps (a hole: each half of a ring still wraps half the
 // hole), and then a cut that merely shaves a little off is worse than halving the piece.

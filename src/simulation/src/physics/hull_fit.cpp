@@ -32,23 +32,22 @@ std::pair<int, int> cellsInColumn(const CellGrid& grid, const ConvexHull& hull, 
 
 }  // namespace
 
-long farCellsInHull(const SolidGrid& solid, const ConvexHull& hull, long enough) {
-  if (hull.planes.empty()) return 0;
+bool hullFits(const SolidGrid& solid, const ConvexHull& hull) {
+  if (hull.planes.empty()) return true;
   const CellGrid& grid = solid.grid();
   const int i0 = std::max(0, grid.firstCentreAtOrAbove(0, hull.box.min().x()));
   const int i1 = std::min(grid.size.x() - 1, grid.lastCentreAtOrBelow(0, hull.box.max().x()));
   const int j0 = std::max(0, grid.firstCentreAtOrAbove(1, hull.box.min().y()));
   const int j1 = std::min(grid.size.y() - 1, grid.lastCentreAtOrBelow(1, hull.box.max().y()));
-  long far = 0;
   for (int j = j0; j <= j1; ++j) {
     for (int i = i0; i <= i1; ++i) {
       const auto [first, last] = cellsInColumn(grid, hull, grid.centre(0, i), grid.centre(1, j));
       if (first > last) continue;
-      far += solid.farCells({Eigen::Vector3i(i, j, first), Eigen::Vector3i(i + 1, j + 1, last + 1)});
-      if (far > enough) return far;
+      const CellBox column{Eigen::Vector3i(i, j, first), Eigen::Vector3i(i + 1, j + 1, last + 1)};
+      if (solid.farCells(column) > 0) return false;
     }
   }
-  return far;
+  return true;
 }
 
 }  // namespace binpick::sim::detail

@@ -38,7 +38,7 @@ constexpr double kMaxFriction = 10.0;     // Bullet clamps combined friction the
 constexpr double kMaxTimeStep = 0.1;      // seconds
 constexpr int kMaxSubsteps = 1000;
 constexpr double kMaxSimulatedTime = 3600.0;  // seconds
-constexpr double kMaxTolerance = 0.1;     // metres
+constexpr double kMaxSmallLength = 0.1;   // metres: tolerances, margins, lever arms
 constexpr int kMaxPieces = 1024;
 
 }  // namespace
@@ -51,7 +51,7 @@ void PhysicsParams::validate(const std::string& name) const {
                 "in [drop_height_min, 10]", drop_height_max);
   check.require(finiteIn(friction, 0.0, kMaxFriction), "friction", "in [0, 10]", friction);
   check.require(finiteIn(restitution, 0.0, 1.0), "restitution", "in [0, 1]", restitution);
-  check.require(finiteIn(rolling_resistance, 0.0, kMaxTolerance), "rolling_resistance",
+  check.require(finiteIn(rolling_resistance, 0.0, kMaxSmallLength), "rolling_resistance",
                 "in [0, 0.1]", rolling_resistance);
   check.require(positiveUpTo(time_step, kMaxTimeStep), "time_step", "in (0, 0.1]", time_step);
   check.require(substeps >= 1 && substeps <= kMaxSubsteps, "substeps", "in [1, 1000]", substeps);
@@ -63,11 +63,11 @@ void PhysicsParams::validate(const std::string& name) const {
                 "settle_angular_velocity", "positive", settle_angular_velocity);
   check.require(finiteIn(settle_time, 0.0, max_simulated_time), "settle_time",
                 "in [0, max_simulated_time]", settle_time);
-  check.require(positiveUpTo(decomposition_tolerance, kMaxTolerance), "decomposition_tolerance",
+  check.require(positiveUpTo(decomposition_tolerance, kMaxSmallLength), "decomposition_tolerance",
                 "in (0, 0.1]", decomposition_tolerance);
   check.require(max_convex_pieces >= 1 && max_convex_pieces <= kMaxPieces, "max_convex_pieces",
                 "in [1, 1024]", max_convex_pieces);
-  check.require(positiveUpTo(collision_margin, kMaxTolerance), "collision_margin", "in (0, 0.1]",
+  check.require(positiveUpTo(collision_margin, kMaxSmallLength), "collision_margin", "in (0, 0.1]",
                 collision_margin);
 }
 

@@ -3,10 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <string>
 #include <sstream>
+#include <string>
 
 #include "../random.hpp"
 #include "binpick/io/error.hpp"
@@ -18,11 +16,17 @@
 namespace binpick::sim {
 namespace {
 
-// Random streams under one seed: generatePile uses 1 for the sensor noise (and used 0 for its
-// former height-field placement); the physical drop draws from its own.
+// The release poses' random stream under the seed (generatePile draws its sensor noise from 1).
 constexpr uint32_t kReleaseStream = 2;
 // Gap kept at release between a part's footprint and the inner walls, beyond the collision margin.
 constexpr double kWallClearance = 0.0005;  // metres
+
+void requirePositive(double value, const char* field) {
+  if (std::isfinite(value) && value > 0.0) return;
+  std::ostringstream message;
+  message << "simulatePile: " << field << " must be positive (got " << value << ")";
+  throw Error(message.str());
+}
 
 void requireValidInputs(const TriangleMesh& part, int objects, const BinInterior& bin,
                         const PhysicsParams& params) {
@@ -30,23 +34,24 @@ void requireValidInputs(const TriangleMesh& part, int objects, const BinInterior
   if (objects < 0) {
     throw Error("simulatePile: objects must be >= 0 (got " + std::to_string(objects) + ")");
   }
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!positive(bin.length)) throw Error("simulatePile: bin.length must be positive");
-  if (!positive(bin.width)) throw Error("simulatePile: bin.width must be positive");
-  if (!positive(bin.wall_height)) throw Error("simulatePile: bin.wall_height must be positive");
+  requirePositive(bin.length, "bin.length");
+  requirePositive(bin.width, "bin.width");
+  requirePositive(bin.wall_height, "bin.wall_height");
   if (part.empty()) throw Error("simulatePile: the part mesh has no triangles");
   validateMesh(part, "simulatePile part");
-  if (!(detail::massProperties(part).volume > 0.0)) {
-    throw Error("simulatePile: the part mesh encloses no volume (it must be closed, normals out)");
-  }
 }
 
 // Released in any orientation, the part must fit between the walls: its extent in any direction is
-// at most the diameter of the sphere around its centroid that holds it.
+// at most the diameter of the sphere around its centroid that holds it. Returns the clearance
+// kept from the walls at release.
 double requireFitsInBin(const TriangleMesh& part, const BinInterior& bin,
                         const PhysicsParams& params) {
+  const detail::MassProperties mass = detail::massProperties(part);
+  if (!(mass.volume > 0.0)) {
+    throw Error("simulatePile: the part mesh encloses no volume (it must be closed, normals out)");
+  }
   const double clearance = params.collision_margin + kWallClearance;
-  const Eigen::Vector3d centroid = detail::massProperties(part).centroid;
+  const Eigen::Vector3d& centroid = mass.centroid;
   double radius = 0.0;
   for (const auto& v : part.vertices) radius = std::max(radius, (v.cast<double>() - centroid).norm());
   const double diameter = 2.0 * radius + 2.0 * clearance;
@@ -82,7 +87,6 @@ PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterio
     ++result.layers;
     settled = simulation.settle();
     const int escaped = simulation.removeEscaped();  // never kept, settled or not
-    if (std::getenv("PILE_DEBUG")) std::fprintf(stderr, "layer %d: %zu parts, t=%.2f, top %.3f, escaped %d\n", result.layers, layer.size(), simulation.simulatedTime(), simulation.pileTop(), escaped);  // DEBUG-REMOVE
     if (!settled) {
       result.lost = waiting + escaped;
       break;

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "bullet_units.hpp"
 
@@ -78,12 +76,6 @@ bool PileSimulation::settle() {
     bool quiet = true;
     for (std::size_t i = 0; i < bodies_.size() && quiet; ++i)
       quiet = atRest(bodies_[i], window_start[i], window);
-    if (std::getenv("PILE_DEBUG") && std::getenv("PILE_DEBUG")[0] == '2') {  // DEBUG-REMOVE
-      for (std::size_t i = 0; i < bodies_.size(); ++i) if (!atRest(bodies_[i], window_start[i], window)) {
-        const btTransform& now = bodies_[i]->getWorldTransform();
-        std::fprintf(stderr, "  t %.2f body %zu moved %.2f mm turned %.2f deg  v %.4f w %.3f z %.4f sleeping %d\n", simulatedTime(), i, (now.getOrigin() - window_start[i].getOrigin()).length() / kWorldScale * 1e3, now.getRotation().angleShortestPath(window_start[i].getRotation()) * 57.3, bodies_[i]->getLinearVelocity().length()/kWorldScale, bodies_[i]->getAngularVelocity().length(), now.getOrigin().z()/kWorldScale, bodies_[i]->getActivationState());
-      }
-    }
     if (quiet) return true;
   }
   return false;

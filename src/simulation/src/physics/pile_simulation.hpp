@@ -26,7 +26,6 @@ class PileSimulation {
   int removeEscaped();
 
   std::vector<Eigen::Isometry3d> poses() const;  // T_bin_model of the parts, in release order
-  int frames() const { return frames_; }
   long steps() const { return static_cast<long>(frames_) * params_.substeps; }
   double simulatedTime() const { return frames_ * params_.time_step; }
 

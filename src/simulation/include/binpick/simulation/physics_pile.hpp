@@ -50,10 +50,13 @@ struct PhysicsParams {
   double settle_time = 0.2;               // seconds
 
   // Collision shape: a union of convex pieces containing the mesh, each reaching at most about
-  // decomposition_tolerance beyond it (measured on a grid of half that size, which is coarsened
-  // for large parts so that it has at most a few million cells: a part much larger than about
-  // 150 mm gets a tolerance of about 1/80 of its size). If max_convex_pieces is not enough to
-  // meet the tolerance, the shape is coarser where it must be.
+  // decomposition_tolerance beyond it. The reach is measured on a grid of cells half that size,
+  // capped at 4 million cells: beyond about 80 x 80 x 80 mm (at 1 mm) the cells grow with the
+  // part and the tolerance becomes twice the cell size, about 1/80 of a cubic part's size. If
+  // max_convex_pieces is not enough to meet the tolerance, the shape is coarser where it must be.
+  // The pieces follow the part's own axes or its principal axes of inertia, whichever box is
+  // tighter; decomposing takes 0.03-0.15 s for the built-in parts and grows with the number of
+  // triangles (about 1 s at 10 000).
   double decomposition_tolerance = 0.001;  // metres
   int max_convex_pieces = 48;
   // Bullet's contact shell around every convex piece (outwards: it adds to the shape); part to
@@ -71,8 +74,8 @@ struct PhysicsPile {
   std::vector<Eigen::Isometry3d> T_bin_object;
   bool settled = false;  // every part came to rest inside the bin before max_simulated_time
   int lost = 0;          // parts that were not inside the bin when the time ran out
-  int redrops =
-      0;  // times a part came to rest outside the bin (e.g. on a wall) and was dropped again
+  // Times a part came to rest outside the bin (e.g. across a wall) and was dropped again.
+  int redrops = 0;
   int layers = 0;               // how many times parts were released
   double simulated_time = 0.0;  // seconds
   long steps = 0;               // Bullet steps of time_step / substeps
@@ -84,8 +87,10 @@ struct PhysicsPile {
 // max_simulated_time runs out. The orientations, positions and release heights are random, drawn
 // from `seed`. A part that comes to rest outside the bin is taken out and dropped again; one still
 // outside when the time runs out is left out of the result and counted in `lost`, never returned.
-// Throws binpick::Error on bad params, a bad or open mesh, or a part too large to be released
-// between the walls in every orientation.
+// Throws binpick::Error on bad params or bin, a mesh with bad indices or no enclosed volume (empty,
+// inside out), or a part too large to be released between the walls in every orientation. A mesh
+// with holes is not detected: its collision shape is then the decomposition of what its surface
+// appears to enclose.
 PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterior& bin,
                          const PhysicsParams& params, uint64_t seed);
 
