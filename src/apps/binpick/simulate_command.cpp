@@ -109,6 +109,10 @@ int simulatePile(const Arguments& args) {
             << out.string() << " (pile + geometry " << pile_seconds << " s, total "
             << secondsSince(start) << " s" << (scene.physics.settled ? "" : ", pile not settled")
             << ")\n";
+  if (scene.physics.lost > 0) {
+    std::cerr << scene.physics.lost << " of " << params.objects
+              << " parts did not stay in the bin and were left out\n";
+  }
   return 0;
 }
 
