@@ -77,12 +77,6 @@ TriangleMesh translated(const TriangleMesh& mesh, const Eigen::Vector3d& offset)
   return moved;
 }
 
-double boundingRadius(const TriangleMesh& mesh) {
-  double radius = 0.0;
-  for (const auto& v : mesh.vertices) radius = std::max(radius, static_cast<double>(v.norm()));
-  return radius;
-}
-
 std::vector<Eigen::Vector3f> surfaceSamples(const TriangleMesh& mesh, double coverage_radius) {
   // Rows and samples `step` apart leave every point within sqrt(step^2 + (step/2)^2) of a sample.
   const double step = coverage_radius / std::sqrt(1.25);

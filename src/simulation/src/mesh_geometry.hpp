@@ -16,10 +16,6 @@ Eigen::Vector3d volumeCentroid(const TriangleMesh& mesh);
 // The same mesh with every vertex moved by `offset`.
 TriangleMesh translated(const TriangleMesh& mesh, const Eigen::Vector3d& offset);
 
-// Largest distance of a vertex from the model origin: the part fits in a sphere of this radius
-// whatever its orientation.
-double boundingRadius(const TriangleMesh& mesh);
-
 // Points on the surface such that every surface point lies within `coverage_radius` of one of
 // them; includes every vertex. About 1.25 / coverage_radius^2 points per unit area.
 std::vector<Eigen::Vector3f> surfaceSamples(const TriangleMesh& mesh, double coverage_radius);

@@ -160,25 +160,4 @@ void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& t
   }
 }
 
-int countCoveredPixels(const PinholeCamera& camera, const RenderObject& object) {
-  const std::vector<ScreenTriangle> triangles = setupTriangles(camera, {object});
-  if (triangles.empty()) return 0;
-  PixelWindow window{camera.width, camera.height, 0, 0};
-  int u_end = 0, v_end = 0;
-  for (const auto& t : triangles) {
-    window.u0 = std::min(window.u0, t.u_min);
-    window.v0 = std::min(window.v0, t.v_min);
-    u_end = std::max(u_end, t.u_max + 1);
-    v_end = std::max(v_end, t.v_max + 1);
-  }
-  window.width = u_end - window.u0;
-  window.height = v_end - window.v0;
-  const std::size_t size = static_cast<std::size_t>(window.width) * window.height;
-  std::vector<float> depth(size, std::numeric_limits<float>::infinity());
-  std::vector<int32_t> instance(size, -1);
-  rasterize(camera, triangles, window, depth.data(), instance.data());
-  return static_cast<int>(
-      std::count_if(depth.begin(), depth.end(), [](float z) { return std::isfinite(z); }));
-}
-
 }  // namespace binpick::sim::detail

@@ -42,7 +42,4 @@ struct PixelWindow {
 void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& triangles,
                const PixelWindow& window, float* depth, int32_t* instance);
 
-// Pixels covered by `object` drawn alone, through a buffer no larger than its bounding box.
-int countCoveredPixels(const PinholeCamera& camera, const RenderObject& object);
-
 }  // namespace binpick::sim::detail

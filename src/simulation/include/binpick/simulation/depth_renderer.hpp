@@ -1,7 +1,8 @@
 #pragma once
-// A z-buffer rasteriser for an ideal pinhole depth sensor: what a structured-light camera would
-// measure before decoding noise. The camera sits at the origin looking along +z, x right, y down.
-// Stateless functions: thread-safe.
+// A z-buffer rasteriser for an ideal pinhole depth sensor. The virtual cell renders with the ray
+// caster (ray_caster.hpp, sensor_geometry.hpp); this independent implementation checks it in the
+// tests, and defines RenderObject. The camera sits at the origin looking along +z, x right, y
+// down. Stateless functions: thread-safe.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
