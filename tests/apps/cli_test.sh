@@ -61,6 +61,7 @@ expect_error "max-objects" "$binpick" detect --model "$work/pile/truth/part.ply"
 expect_error "--scene is required" "$binpick" detect --model "$work/pile/truth/part.ply"
 expect_error "unknown option" "$binpick" detect --modle x
 expect_error "gizmo" "$binpick" simulate --part gizmo --out "$work/x"
+expect_error "bin_width" "$binpick" simulate --part clamp --bin-width -0.3 --out "$work/y"
 expect_error "not empty" "$binpick" simulate --part clamp --objects 1 --out "$work/pile"
 expect_error "BoardSpec\|board" "$binpick" simulate --calibration-board hexagons --out "$work/board"
 # A corrupt cache is rebuilt from the model, not trusted.

@@ -1,4 +1,5 @@
 // binpick simulate (--part NAME | --mesh FILE [--mesh-scale S]) [--objects N] [--seed S]
+//                  [--bin-length L --bin-width W --bin-wall-height H] [--camera-height Z]
 //                  [--bit-depth 8|16] [--cloud-only] [--threads T] --out DIR
 // binpick simulate --calibration-board charuco|chessboard [--poses K] [--seed S] --out DIR
 // binpick simulate --list-parts
@@ -81,6 +82,10 @@ int simulatePile(const Arguments& args) {
   params.objects = args.integer("--objects").value_or(params.objects);
   params.seed = static_cast<uint64_t>(args.integer("--seed").value_or(1));
   params.threads = args.integer("--threads").value_or(0);
+  params.bin_length = args.number("--bin-length").value_or(params.bin_length);
+  params.bin_width = args.number("--bin-width").value_or(params.bin_width);
+  params.bin_wall_height = args.number("--bin-wall-height").value_or(params.bin_wall_height);
+  params.camera_height = args.number("--camera-height").value_or(params.camera_height);
   params.validate();
   sim::PhotometryParams photometry;
   photometry.bit_depth = args.integer("--bit-depth").value_or(8);
@@ -141,7 +146,8 @@ int runSimulate(const std::vector<std::string>& raw) {
   }
   const Arguments args(raw,
                        {"--part", "--mesh", "--mesh-scale", "--objects", "--seed", "--out",
-                        "--bit-depth", "--threads", "--calibration-board", "--poses"},
+                        "--bit-depth", "--threads", "--calibration-board", "--poses", "--bin-length",
+                        "--bin-width", "--bin-wall-height", "--camera-height"},
                        {"--cloud-only"});
   if (args.value("--calibration-board")) return simulateCalibration(args);
   return simulatePile(args);
