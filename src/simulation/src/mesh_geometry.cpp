@@ -77,6 +77,28 @@ TriangleMesh translated(const TriangleMesh& mesh, const Eigen::Vector3d& offset)
   return moved;
 }
 
+void appendBox(TriangleMesh& mesh, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi) {
+  const int base = static_cast<int>(mesh.vertices.size());
+  // Corner k has x from bit 0, y from bit 1, z from bit 2 (0 = lo, 1 = hi).
+  for (int k = 0; k < 8; ++k) {
+    mesh.vertices.emplace_back((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(),
+                               (k & 4) ? hi.z() : lo.z());
+  }
+  // Each face as a counter-clockwise quad seen from outside.
+  const std::array<std::array<int, 4>, 6> faces{{
+      {0, 2, 3, 1},  // z = lo
+      {4, 5, 7, 6},  // z = hi
+      {0, 1, 5, 4},  // y = lo
+      {2, 6, 7, 3},  // y = hi
+      {0, 4, 6, 2},  // x = lo
+      {1, 3, 7, 5},  // x = hi
+  }};
+  for (const auto& f : faces) {
+    mesh.triangles.emplace_back(base + f[0], base + f[1], base + f[2]);
+    mesh.triangles.emplace_back(base + f[0], base + f[2], base + f[3]);
+  }
+}
+
 std::vector<Eigen::Vector3f> surfaceSamples(const TriangleMesh& mesh, double coverage_radius) {
   // Rows and samples `step` apart leave every point within sqrt(step^2 + (step/2)^2) of a sample.
   const double step = coverage_radius / std::sqrt(1.25);

@@ -16,6 +16,10 @@ Eigen::Vector3d volumeCentroid(const TriangleMesh& mesh);
 // The same mesh with every vertex moved by `offset`.
 TriangleMesh translated(const TriangleMesh& mesh, const Eigen::Vector3d& offset);
 
+// Appends the closed axis-aligned box [lo, hi] with outward-facing triangles (12, two per face;
+// the first face is z = lo).
+void appendBox(TriangleMesh& mesh, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi);
+
 // Points on the surface such that every surface point lies within `coverage_radius` of one of
 // them; includes every vertex. About 1.25 / coverage_radius^2 points per unit area.
 std::vector<Eigen::Vector3f> surfaceSamples(const TriangleMesh& mesh, double coverage_radius);

@@ -7,6 +7,7 @@
 
 #include "binpick/io/error.hpp"
 #include "board_print.hpp"
+#include "mesh_geometry.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -14,18 +15,8 @@ namespace {
 // A box over `face` from z = 0 (the print, normal -z) to z = thickness, outward winding.
 TriangleMesh boardBox(const Eigen::AlignedBox2d& face, double thickness) {
   TriangleMesh mesh;
-  for (int i = 0; i < 8; ++i) {
-    mesh.vertices.emplace_back(static_cast<float>((i & 1) ? face.max().x() : face.min().x()),
-                               static_cast<float>((i & 2) ? face.max().y() : face.min().y()),
-                               static_cast<float>((i & 4) ? thickness : 0.0));
-  }
-  // Each face as a quad, counter-clockwise seen from outside; the first is the print (z = 0).
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : quads) {
-    mesh.triangles.emplace_back(q[0], q[1], q[2]);
-    mesh.triangles.emplace_back(q[0], q[2], q[3]);
-  }
+  detail::appendBox(mesh, Eigen::Vector3d(face.min().x(), face.min().y(), 0.0).cast<float>(),
+                    Eigen::Vector3d(face.max().x(), face.max().y(), thickness).cast<float>());
   return mesh;
 }
 
