@@ -98,22 +98,23 @@ int simulatePile(const Arguments& args) {
 
   const fs::path out = args.required("--out");
   requireFreshDirectory(out);
-  const sim::PileScene scene = sim::generatePile(part.mesh, params);
-  const double pile_seconds = secondsSince(start);
+  sim::PileScene scene;
   if (args.flag("--cloud-only")) {
+    scene = sim::generatePile(part.mesh, params);
     writePointCloud((out / "cloud.ply").string(), scene.cloud);
   } else {
+    sim::PileCapture simulated = sim::generatePileCapture(part.mesh, params, patterns, photometry);
+    scene = std::move(simulated.scene);
     Capture capture;
-    capture.images = sim::renderPileImages(part.mesh, scene, params, patterns, photometry);
+    capture.images = std::move(simulated.images);
     capture.metadata = metadataFor(params, photometry, patterns, part.name, params.objects);
     writeCapture(out.string(), std::move(capture));
   }
   writeRigCalibration((out / "calib.yaml").string(), scene.rig);
   sim::writePileTruth(out.string(), scene, part.name, part.mesh);
   std::cerr << "simulated " << scene.objects.size() << " x " << part.name << " into "
-            << out.string() << " (pile + geometry " << pile_seconds << " s, total "
-            << secondsSince(start) << " s" << (scene.physics.settled ? "" : ", pile not settled")
-            << ")\n";
+            << out.string() << " (" << secondsSince(start) << " s"
+            << (scene.physics.settled ? "" : ", pile not settled") << ")\n";
   if (scene.physics.lost > 0) {
     std::cerr << scene.physics.lost << " of " << params.objects
               << " parts did not stay in the bin and were left out\n";

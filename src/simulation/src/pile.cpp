@@ -46,9 +46,24 @@ void recordTruth(PileScene& scene, const SensorGeometry& geometry,
   scene.exact_cloud = detail::exactCloud(geometry);
 }
 
-}  // namespace
+// The pile as the rig sees it: what every camera pixel hits, lit or not.
+SensorGeometry viewPile(const TriangleMesh& part, const PileScene& scene, const PileParams& params,
+                        std::vector<ObjectVisibility>* visibility = nullptr) {
+  const TriangleMesh bin_mesh =
+      detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
+  const RayCaster caster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin));
+  SensorGeometry geometry = computeSensorGeometry(scene.rig, caster, geometryParams(params));
+  if (visibility) {
+    std::vector<int> parts(scene.objects.size());
+    for (std::size_t i = 0; i < parts.size(); ++i) parts[i] = static_cast<int>(i);  // bin: last
+    *visibility = computeObjectVisibilityOf(scene.rig, caster, geometry, parts, geometryParams(params));
+  }
+  return geometry;
+}
 
-PileScene generatePile(const TriangleMesh& part, const PileParams& params) {
+// generatePile, handing out the sensor geometry it cast so that images need not cast it again.
+PileScene generatePileWithGeometry(const TriangleMesh& part, const PileParams& params,
+                                   SensorGeometry& geometry) {
   params.validate();
   if (part.empty()) throw Error("generatePile: the part mesh has no triangles");
   validateMesh(part, "generatePile part");
@@ -61,15 +76,8 @@ PileScene generatePile(const TriangleMesh& part, const PileParams& params) {
   for (const Eigen::Isometry3d& T_bin_object : scene.physics.T_bin_object) {
     scene.objects.push_back({scene.T_camera_bin * T_bin_object, 0, 0, 0.0});
   }
-
-  const TriangleMesh bin_mesh =
-      detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
-  const RayCaster caster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin));
-  const SensorGeometry geometry = computeSensorGeometry(params.rig, caster, geometryParams(params));
-  std::vector<int> parts(scene.objects.size());
-  for (std::size_t i = 0; i < parts.size(); ++i) parts[i] = static_cast<int>(i);  // the bin is last
-  const std::vector<ObjectVisibility> visibility =
-      computeObjectVisibilityOf(params.rig, caster, geometry, parts, geometryParams(params));
+  std::vector<ObjectVisibility> visibility;
+  geometry = viewPile(part, scene, params, &visibility);
   recordTruth(scene, geometry, visibility);
   scene.cloud = detail::measurableCloud(geometry, params.max_view_angle_deg);
   detail::applySensorNoise(scene.cloud, params.depth_noise, params.dropout, params.seed,
@@ -77,17 +85,36 @@ PileScene generatePile(const TriangleMesh& part, const PileParams& params) {
   return scene;
 }
 
+std::vector<cv::Mat> imagesOf(const SensorGeometry& geometry, const PileScene& scene,
+                              const PileParams& params, const PatternSetSpec& patterns,
+                              const PhotometryParams& photometry) {
+  const std::vector<PixelLighting> lighting =
+      computePixelLighting(geometry, scene.rig, photometry, detail::pileAlbedo(params));
+  return renderPatternImages(lighting, geometry.width, geometry.height, patterns, photometry);
+}
+
+}  // namespace
+
+PileScene generatePile(const TriangleMesh& part, const PileParams& params) {
+  SensorGeometry geometry;
+  return generatePileWithGeometry(part, params, geometry);
+}
+
 std::vector<cv::Mat> renderPileImages(const TriangleMesh& part, const PileScene& scene,
                                       const PileParams& params, const PatternSetSpec& patterns,
                                       const PhotometryParams& photometry) {
   params.validate();
-  const TriangleMesh bin_mesh =
-      detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
-  const RayCaster caster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin));
-  const SensorGeometry geometry = computeSensorGeometry(scene.rig, caster, geometryParams(params));
-  const std::vector<PixelLighting> lighting =
-      computePixelLighting(geometry, scene.rig, photometry, detail::pileAlbedo(params));
-  return renderPatternImages(lighting, geometry.width, geometry.height, patterns, photometry);
+  return imagesOf(viewPile(part, scene, params), scene, params, patterns, photometry);
+}
+
+PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& params,
+                                const PatternSetSpec& patterns,
+                                const PhotometryParams& photometry) {
+  SensorGeometry geometry;
+  PileCapture capture;
+  capture.scene = generatePileWithGeometry(part, params, geometry);
+  capture.images = imagesOf(geometry, capture.scene, params, patterns, photometry);
+  return capture;
 }
 
 }  // namespace binpick::sim

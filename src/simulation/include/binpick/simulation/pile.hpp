@@ -68,4 +68,13 @@ std::vector<cv::Mat> renderPileImages(const TriangleMesh& part, const PileScene&
                                       const PileParams& params, const PatternSetSpec& patterns,
                                       const PhotometryParams& photometry);
 
+struct PileCapture {
+  PileScene scene;
+  std::vector<cv::Mat> images;  // one per pattern, patternSequence order
+};
+
+// generatePile and renderPileImages in one pass: the rig's rays are cast once for both.
+PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& params,
+                                const PatternSetSpec& patterns, const PhotometryParams& photometry);
+
 }  // namespace binpick::sim
