@@ -5,39 +5,18 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "arguments.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/io/json_fields.hpp"
 #include "binpick/simulation/pile_truth.hpp"
 #include "commands.hpp"
 #include "evaluation.hpp"
 
 namespace binpick::cli {
 namespace {
-
-nlohmann::json readJson(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path + ": not valid JSON: " + e.what());
-  }
-}
-
-Eigen::Matrix4d poseFrom(const nlohmann::json& rows, const std::string& where) {
-  Eigen::Matrix4d m;
-  try {
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) m(r, c) = rows.at(r).at(c).get<double>();
-  } catch (const nlohmann::json::exception&) {
-    throw Error(where + ": pose must be 4 rows of 4 numbers");
-  }
-  return m;
-}
 
 // The largest distance between two points of a mesh is attained at two of its vertices.
 double meshDiameter(const TriangleMesh& mesh) {
@@ -66,14 +45,14 @@ sim::Part partOf(const std::string& name, const std::string& truth_path) {
 int runEvaluate(const std::vector<std::string>& raw) {
   const Arguments args(raw, {"--result", "--truth", "--part", "--min-visible"}, {});
   const std::string result_path = args.required("--result"), truth_path = args.required("--truth");
-  const nlohmann::json result = readJson(result_path);
+  const nlohmann::json result = readJsonFile(result_path);
   const sim::PileTruth truth = sim::readPileTruth(truth_path);
   const sim::Part part = partOf(args.value("--part").value_or(truth.part), truth_path);
 
   std::vector<estimation::Detection> detections;
   for (const auto& d : result.value("detections", nlohmann::json::array())) {
     estimation::Detection detection;
-    detection.T_camera_model.matrix() = poseFrom(d.value("pose", nlohmann::json()), result_path).cast<float>();
+    detection.T_camera_model = poseFromRows(d.value("pose", nlohmann::json()), result_path, "pose").cast<float>();
     detection.score = d.value("score", 0.0f);
     detection.coverage = d.value("coverage", 0.0f);
     detections.push_back(detection);

@@ -1,19 +1,8 @@
 #include "binpick/estimation/result_json.hpp"
 
+#include "binpick/io/json_fields.hpp"
+
 namespace binpick::estimation {
-namespace {
-
-nlohmann::json poseRows(const Eigen::Isometry3f& T) {
-  nlohmann::json rows = nlohmann::json::array();
-  const Eigen::Matrix4f m = T.matrix();
-  for (int r = 0; r < 4; ++r) {
-    rows.push_back({m(r, 0), m(r, 1), m(r, 2), m(r, 3)});
-  }
-  return rows;
-}
-
-}  // namespace
-
 nlohmann::json toJson(const DetectionResult& result) {
   nlohmann::json detections = nlohmann::json::array();
   for (const Detection& d : result.detections) {

@@ -1,12 +1,9 @@
 // capture.json: CaptureMetadata as JSON, every key required and type-checked on reading.
-#include <cstdint>
-#include <limits>
-#include <nlohmann/json.hpp>
 #include <sstream>
-#include <type_traits>
 
 #include "binpick/io/capture.hpp"
 #include "binpick/io/error.hpp"
+#include "binpick/io/json_fields.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
 
@@ -25,45 +22,15 @@ void require(bool ok, const char* field, const char* rule, int value) {
   throw Error(message.str());
 }
 
-// Whether `value` holds a T exactly. nlohmann's own conversions accept any number or a boolean
-// for an arithmetic T (64.5 -> 64, true -> 1, 2^32 + 64 -> 64), which would hide a wrong file.
-template <typename T>
-bool holdsExactly(const json& value) {
-  if constexpr (std::is_same_v<T, int>) {
-    if (value.is_number_unsigned()) {
-      return value.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max());
-    }
-    if (!value.is_number_integer()) return false;
-    const std::int64_t v = value.get<std::int64_t>();
-    return v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max();
-  } else if constexpr (std::is_same_v<T, double>) {
-    return value.is_number();
-  } else {
-    return true;  // strings, booleans, arrays and objects: get<T> checks the type itself
-  }
-}
-
-// The value at `key`, converted to T; a missing key or a wrong type names the key.
-template <typename T>
-T field(const json& object, const char* key, const std::string& path) {
-  const auto it = object.find(key);
-  if (it == object.end()) fail(path, std::string("missing key '") + key + "'");
-  try {
-    if (holdsExactly<T>(*it)) return it->get<T>();
-  } catch (const json::exception&) {
-  }
-  fail(path, std::string("key '") + key + "' has the wrong type");
-}
-
 PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
   if (!object.is_object()) fail(path, "'pattern_set' must be an object");
   PatternSetSpec spec;
-  spec.projector_width = field<int>(object, "projector_width", path);
-  spec.projector_height = field<int>(object, "projector_height", path);
-  spec.column_codes = field<bool>(object, "column_codes", path);
-  spec.row_codes = field<bool>(object, "row_codes", path);
-  spec.phase_steps = field<int>(object, "phase_steps", path);
-  spec.phase_period = field<int>(object, "phase_period", path);
+  spec.projector_width = jsonField<int>(object, "projector_width", path);
+  spec.projector_height = jsonField<int>(object, "projector_height", path);
+  spec.column_codes = jsonField<bool>(object, "column_codes", path);
+  spec.row_codes = jsonField<bool>(object, "row_codes", path);
+  spec.phase_steps = jsonField<int>(object, "phase_steps", path);
+  spec.phase_period = jsonField<int>(object, "phase_period", path);
   try {
     spec.validate();
   } catch (const Error& e) {
@@ -112,29 +79,24 @@ void PatternSetSpec::validate() const {
 
 CaptureMetadata readCaptureMetadata(const std::string& directory) {
   const std::string path = capture_detail::metadataPath(directory);
-  json document;
-  try {
-    document = json::parse(io_detail::readNonEmptyFileBytes(path));
-  } catch (const json::exception& e) {
-    fail(path, std::string("malformed JSON: ") + e.what());
-  }
+  const json document = readJsonFile(path);
   if (!document.is_object()) fail(path, "the document must be a JSON object");
   CaptureMetadata m;
-  m.format_version = field<int>(document, "format_version", path);
+  m.format_version = jsonField<int>(document, "format_version", path);
   if (m.format_version != kFormatVersion) {
     fail(path, "format_version " + std::to_string(m.format_version) + " is not supported (this "
                "build reads version " + std::to_string(kFormatVersion) + ")");
   }
-  m.source = field<std::string>(document, "source", path);
-  m.timestamp = field<std::string>(document, "timestamp", path);
-  m.image_width = field<int>(document, "image_width", path);
-  m.image_height = field<int>(document, "image_height", path);
-  m.bit_depth = field<int>(document, "bit_depth", path);
-  m.exposure_us = field<double>(document, "exposure_us", path);
-  m.gain_db = field<double>(document, "gain_db", path);
-  m.pattern_set = patternSetFrom(field<json>(document, "pattern_set", path), path);
-  m.patterns = field<std::vector<std::string>>(document, "patterns", path);
-  m.images = field<std::vector<std::string>>(document, "images", path);
+  m.source = jsonField<std::string>(document, "source", path);
+  m.timestamp = jsonField<std::string>(document, "timestamp", path);
+  m.image_width = jsonField<int>(document, "image_width", path);
+  m.image_height = jsonField<int>(document, "image_height", path);
+  m.bit_depth = jsonField<int>(document, "bit_depth", path);
+  m.exposure_us = jsonField<double>(document, "exposure_us", path);
+  m.gain_db = jsonField<double>(document, "gain_db", path);
+  m.pattern_set = patternSetFrom(jsonField<json>(document, "pattern_set", path), path);
+  m.patterns = jsonField<std::vector<std::string>>(document, "patterns", path);
+  m.images = jsonField<std::vector<std::string>>(document, "images", path);
   checkConsistent(m, path);
   return m;
 }

@@ -8,6 +8,7 @@
 
 #include "binpick/io/error.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/io/json_fields.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -15,42 +16,17 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json poseJson(const Eigen::Isometry3d& pose) {
-  json rows = json::array();
-  for (int r = 0; r < 4; ++r) {
-    rows.push_back({pose(r, 0), pose(r, 1), pose(r, 2), pose(r, 3)});
-  }
-  return rows;
-}
-
-Eigen::Isometry3d poseFrom(const json& rows, const std::string& path) {
-  Eigen::Matrix4d m;
-  try {
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) m(r, c) = rows.at(r).at(c).get<double>();
-  } catch (const json::exception&) {
-    throw Error(path + ": a pose must be 4 rows of 4 numbers");
-  }
-  const Eigen::Matrix3d rotation = m.topLeftCorner<3, 3>();
-  if (!m.allFinite() || (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-6) {
-    throw Error(path + ": a pose is not a finite rigid transform");
-  }
-  Eigen::Isometry3d pose;
-  pose.matrix() = m;
-  return pose;
-}
-
 json objectsJson(const PileScene& scene, const std::string& part_name) {
   json objects = json::array();
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectTruth& o = scene.objects[i];
     objects.push_back({{"id", i},
-                       {"pose", poseJson(o.T_camera_object)},
+                       {"pose", poseRows(o.T_camera_object)},
                        {"visible_pixels", o.visible_pixels},
                        {"unoccluded_pixels", o.unoccluded_pixels},
                        {"visible_fraction", o.visible_fraction}});
   }
-  return {{"part", part_name}, {"units", "m"}, {"T_camera_bin", poseJson(scene.T_camera_bin)},
+  return {{"part", part_name}, {"units", "m"}, {"T_camera_bin", poseRows(scene.T_camera_bin)},
           {"objects", objects}};
 }
 
@@ -98,21 +74,14 @@ void writePileTruth(const std::string& capture_directory, const PileScene& scene
 
 PileTruth readPileTruth(const std::string& path) {
   const fs::path file = fs::is_directory(path) ? fs::path(path) / "truth" / "objects.json" : fs::path(path);
-  std::ifstream in(file);
-  if (!in) throw Error(file.string() + ": cannot open the truth file");
-  json document;
-  try {
-    document = json::parse(in);
-  } catch (const json::exception& e) {
-    throw Error(file.string() + ": not valid JSON: " + e.what());
-  }
+  const json document = readJsonFile(file.string());
   PileTruth truth;
   try {
     truth.part = document.at("part").get<std::string>();
-    truth.T_camera_bin = poseFrom(document.at("T_camera_bin"), file.string());
+    truth.T_camera_bin = poseFromRows(document.at("T_camera_bin"), file.string(), "T_camera_bin");
     for (const json& o : document.at("objects")) {
       ObjectTruth object;
-      object.T_camera_object = poseFrom(o.at("pose"), file.string());
+      object.T_camera_object = poseFromRows(o.at("pose"), file.string(), "pose");
       object.visible_pixels = o.at("visible_pixels").get<int>();
       object.unoccluded_pixels = o.at("unoccluded_pixels").get<int>();
       object.visible_fraction = o.at("visible_fraction").get<double>();

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "binpick/io/error.hpp"
+#include "binpick/io/json_fields.hpp"
 #include "calibration_truth.hpp"
 
 namespace binpick::sim::detail {
@@ -26,14 +27,6 @@ json specJson(const BoardSpec& spec) {
           {"black_albedo", spec.black_albedo}};
 }
 
-json rowsJson(const Eigen::Isometry3d& T) {
-  json rows = json::array();
-  for (int r = 0; r < 4; ++r) {
-    rows.push_back({T.matrix()(r, 0), T.matrix()(r, 1), T.matrix()(r, 2), T.matrix()(r, 3)});
-  }
-  return rows;
-}
-
 json poseJson(const CalibrationTruthPose& pose) {
   json corners = json::array();
   for (const CornerObservation& c : pose.corners) {
@@ -42,7 +35,7 @@ json poseJson(const CalibrationTruthPose& pose) {
                        {"projector", {c.projector_pixel.x(), c.projector_pixel.y()}}});
   }
   return {{"capture", pose.capture},
-          {"T_camera_board", rowsJson(pose.T_camera_board)},
+          {"T_camera_board", poseRows(pose.T_camera_board)},
           {"corners", corners}};
 }
 
