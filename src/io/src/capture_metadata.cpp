@@ -1,5 +1,4 @@
 // capture.json: CaptureMetadata as JSON, every key required and type-checked on reading.
-#include <sstream>
 
 #include "binpick/io/capture.hpp"
 #include "binpick/io/error.hpp"
@@ -16,10 +15,7 @@ using io_detail::fail;
 constexpr int kFormatVersion = 1;
 
 void require(bool ok, const char* field, const char* rule, int value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "PatternSetSpec." << field << " must be " << rule << " (got " << value << ")";
-  throw Error(message.str());
+  requireField(ok, "PatternSetSpec", field, rule, value);
 }
 
 PatternSetSpec patternSetFrom(const json& object, const std::string& path) {

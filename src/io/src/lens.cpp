@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include "binpick/io/error.hpp"
 
@@ -13,10 +12,7 @@ namespace binpick {
 namespace {
 
 void require(bool ok, const std::string& what, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << what << "." << field << " must be " << rule << " (got " << value << ")";
-  throw Error(message.str());
+  requireField(ok, what, field, rule, value);
 }
 
 constexpr int kMaxImageSide = 65536;

@@ -1,6 +1,5 @@
 // PileParams::validate: every field checked, the message names the first bad one.
 #include <cmath>
-#include <sstream>
 
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/pile.hpp"
@@ -9,10 +8,7 @@ namespace binpick::sim {
 namespace {
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "PileParams." << field << " must be " << rule << " (got " << value << ")";
-  throw Error(message.str());
+  requireField(ok, "PileParams", field, rule, value);
 }
 
 bool positive(double value) { return std::isfinite(value) && value > 0.0; }

@@ -15,10 +15,7 @@ constexpr double kTwoPi = 6.28318530717958647692;
 constexpr double kHalfPi = 1.57079632679489661923;
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "BoardPoseParams." << field << " must be " << rule << " (got " << value << ")";
-  throw Error(message.str());
+  requireField(ok, "BoardPoseParams", field, rule, value);
 }
 
 bool finite(double v) { return std::isfinite(v); }

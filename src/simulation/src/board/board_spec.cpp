@@ -11,10 +11,7 @@ namespace {
 
 template <typename T>
 void require(bool ok, const char* field, const char* rule, const T& value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "BoardSpec." << field << " must be " << rule << " (got " << value << ")";
-  throw Error(message.str());
+  requireField(ok, "BoardSpec", field, rule, value);
 }
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }

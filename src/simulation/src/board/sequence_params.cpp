@@ -2,7 +2,6 @@
 // prefixed with the member it came from.
 #include <cmath>
 #include <functional>
-#include <sstream>
 
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
@@ -11,11 +10,7 @@ namespace binpick::sim {
 namespace {
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "CalibrationSequenceParams." << field << " must be " << rule << " (got " << value
-          << ")";
-  throw Error(message.str());
+  requireField(ok, "CalibrationSequenceParams", field, rule, value);
 }
 
 void nested(const char* member, const std::function<void()>& validate) {

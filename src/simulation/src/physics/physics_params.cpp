@@ -1,6 +1,5 @@
 // PhysicsParams::validate: every field checked, the message names the first bad one.
 #include <cmath>
-#include <sstream>
 
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/physics_pile.hpp"
@@ -13,10 +12,7 @@ class Checker {
   explicit Checker(const std::string& name) : name_(name) {}
 
   void require(bool ok, const char* field, const char* rule, double value) const {
-    if (ok) return;
-    std::ostringstream message;
-    message << name_ << "." << field << " must be " << rule << " (got " << value << ")";
-    throw Error(message.str());
+    requireField(ok, name_, field, rule, value);
   }
 
  private:

@@ -1,6 +1,5 @@
 // SensorGeometryParams::validate: every field checked, the message names the first bad one.
 #include <cmath>
-#include <sstream>
 
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
@@ -9,10 +8,7 @@ namespace binpick::sim {
 namespace {
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "SensorGeometryParams." << field << " must be " << rule << " (got " << value << ")";
-  throw Error(message.str());
+  requireField(ok, "SensorGeometryParams", field, rule, value);
 }
 
 constexpr int kMaxThreads = 1024;

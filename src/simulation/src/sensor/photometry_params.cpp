@@ -1,6 +1,5 @@
 // PhotometryParams::validate: every field checked, the message names the first bad one.
 #include <cmath>
-#include <sstream>
 
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/pattern_renderer.hpp"
@@ -9,10 +8,7 @@ namespace binpick::sim {
 namespace {
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  if (ok) return;
-  std::ostringstream message;
-  message << "PhotometryParams." << field << " must be " << rule << " (got " << value << ")";
-  throw Error(message.str());
+  requireField(ok, "PhotometryParams", field, rule, value);
 }
 
 bool nonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
