@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <thread>
 
 namespace binpick::estimation {
 namespace {
@@ -216,12 +215,6 @@ std::optional<Eigen::Vector3f> PlaneFit::normal(std::size_t min_neighbours) cons
   // A line or a single point has two vanishing eigenvalues: no plane, no normal.
   if (!(eigenvalues[1] > 1e-12 * std::max(eigenvalues[2], 1e-30))) return std::nullopt;
   return solver.eigenvectors().col(0).normalized().cast<float>();
-}
-
-int resolveThreadCount(int requested) {
-  if (requested > 0) return requested;
-  const unsigned hardware = std::thread::hardware_concurrency();
-  return hardware == 0 ? 1 : static_cast<int>(hardware);
 }
 
 }  // namespace binpick::estimation

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "binpick/io/thread_count.hpp"
 #include "binpick/io/point_cloud.hpp"
 
 namespace binpick::estimation {
@@ -42,6 +43,5 @@ class PlaneFit {
   std::size_t count_ = 0;
 };
 
-int resolveThreadCount(int requested);
 
 }  // namespace binpick::estimation

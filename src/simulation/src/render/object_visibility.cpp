@@ -2,9 +2,9 @@
 #include "binpick/simulation/object_visibility.hpp"
 
 #include "binpick/io/error.hpp"
+#include "binpick/io/thread_count.hpp"
 #include "lens_bounds.hpp"
 #include "projector_view.hpp"
-#include "thread_count.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -97,7 +97,7 @@ std::vector<int> countAloneLit(const RigCalibration& rig, const RayCaster& scene
   const detail::ProjectorView projector(rig);
   const std::vector<RowTask> tasks = rowTasks(rig, scene, object_indices);
   std::vector<int> row_counts(tasks.size(), 0);
-  const int threads = detail::resolveThreadCount(params.threads);
+  const int threads = resolveThreadCount(params.threads);
   // All objects' rows in one loop: a single barrier, however many objects. Each row is batched
   // the same way whichever thread takes it, so the counts do not depend on the split.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)

@@ -5,8 +5,8 @@
 #include <functional>
 #include <limits>
 
+#include "binpick/io/thread_count.hpp"
 #include "projector_view.hpp"
-#include "thread_count.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -83,7 +83,7 @@ SensorGeometry computeSensorGeometry(const RigCalibration& rig, const RayCaster&
                                      const SensorGeometryParams& params) {
   rig.validate();
   params.validate();
-  const int threads = detail::resolveThreadCount(params.threads);
+  const int threads = resolveThreadCount(params.threads);
   SensorGeometry g = emptyGeometry(rig.camera.width, rig.camera.height, threads);
   const detail::ProjectorView projector(rig);
   // Each row is traced the same way whichever thread takes it, so the split among threads

@@ -5,11 +5,11 @@
 #include <cmath>
 
 #include "binpick/io/error.hpp"
+#include "binpick/io/thread_count.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "normal_table.hpp"
 #include "projector_blur.hpp"
 #include "random.hpp"
-#include "render/thread_count.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -83,7 +83,7 @@ void renderRows(const std::vector<PixelLighting>& pixels, int width, int height,
   const double full_scale = params.bit_depth == 16 ? 65535.0 : 255.0;
   const detail::KeyedStreams noise(params.seed, kImageNoiseStream);
   const uint64_t pixel_count = static_cast<uint64_t>(width) * height;
-#pragma omp parallel for schedule(dynamic, 8) num_threads(detail::resolveThreadCount(params.threads))
+#pragma omp parallel for schedule(dynamic, 8) num_threads(resolveThreadCount(params.threads))
   for (int row = 0; row < height; ++row) {
     for (int col = 0; col < width; ++col) {
       const std::size_t index = static_cast<std::size_t>(row) * width + col;

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "binpick/io/error.hpp"
-#include "render/thread_count.hpp"
+#include "binpick/io/thread_count.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -67,7 +67,7 @@ std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry,
   const Eigen::Vector3f projector_centre =
       rig.T_projector_camera.inverse().translation().cast<float>();
   std::vector<PixelLighting> lighting(count);
-#pragma omp parallel for schedule(dynamic, 4096) num_threads(detail::resolveThreadCount(params.threads))
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(resolveThreadCount(params.threads))
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {
     const auto i = static_cast<std::size_t>(k);
     if (geometry.object_index[i] < 0) continue;

@@ -1,8 +1,8 @@
 #pragma once
-// The OpenMP thread count for a `threads` parameter. Internal to binpick::simulation.
+// The thread count a params struct's `threads` field asks for. Pure: thread-safe.
 #include <thread>
 
-namespace binpick::sim::detail {
+namespace binpick {
 
 // `requested` > 0 as is; 0 means every hardware thread.
 inline int resolveThreadCount(int requested) {
@@ -11,4 +11,4 @@ inline int resolveThreadCount(int requested) {
   return hardware == 0 ? 1 : static_cast<int>(hardware);
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick
