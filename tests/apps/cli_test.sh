@@ -58,7 +58,7 @@ expect_error "missing.ply" "$binpick" detect --model "$work/missing.ply" --scene
 expect_error "truncated.ply" "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/truncated.ply"
 expect_error "reference_fractoin" "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" --config "$work/typo.yaml"
 expect_error "max-objects" "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" --max-objects -3x
-expect_error "--scene is required" "$binpick" detect --model "$work/pile/truth/part.ply"
+expect_error "either --scene or --capture" "$binpick" detect --model "$work/pile/truth/part.ply"
 expect_error "unknown option" "$binpick" detect --modle x
 expect_error "gizmo" "$binpick" simulate --part gizmo --out "$work/x"
 expect_error "bin_width" "$binpick" simulate --part clamp --bin-width -0.3 --out "$work/y"
@@ -67,5 +67,35 @@ expect_error "BoardSpec\|board" "$binpick" simulate --calibration-board hexagons
 # A corrupt cache is rebuilt from the model, not trusted.
 "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" --config "$config_dir/virtual-cell.yaml" \
   --model-cache "$work/bad.cache" --max-objects 1 >/dev/null || fail "a corrupt cache was not rebuilt"
+
+# From pattern images: reconstruct alone, and detect straight from the capture directory.
+"$binpick" reconstruct --capture "$work/capture" --out "$work/reconstructed.ply" --status "$work/status.png" \
+  2>"$work/reconstruct.log" || fail "reconstruct exited $?"
+[ -s "$work/reconstructed.ply" ] && [ -s "$work/status.png" ] || fail "reconstruct wrote no cloud or status image"
+grep -q "obj_info organized 1280 1024" "$work/reconstructed.ply" || fail "the reconstructed cloud is not organized"
+grep -q "property float intensity" "$work/reconstructed.ply" || fail "the reconstructed cloud has no intensity"
+grep -q "points of 1310720 pixels" "$work/reconstruct.log" || fail "reconstruct summary: $(cat "$work/reconstruct.log")"
+"$binpick" detect --model "$work/capture/truth/part.ply" --capture "$work/capture" \
+  --config "$config_dir/virtual-cell.yaml" --model-cache "$work/model.cache" --max-objects 3 --out "$work/captured.json" \
+  2>/dev/null || fail "detect --capture exited $?"
+summary=$("$binpick" evaluate --result "$work/captured.json" --truth "$work/capture" | tail -n 1)
+echo "$summary" | grep -q "^found [1-9]" || fail "detect --capture: '$summary'"
+
+# Damaged captures: one line naming what is wrong, exit code 1.
+damaged() {  # a copy of the capture to damage
+  rm -rf "$work/damaged" && cp -r "$work/capture" "$work/damaged"
+}
+damaged && rm "$work/damaged/images/012_gray_col_05.png"
+expect_error "012_gray_col_05.png" "$binpick" reconstruct --capture "$work/damaged" --out "$work/x.ply"
+damaged && printf 'not a png' > "$work/damaged/images/013_gray_col_05_inv.png"
+expect_error "013_gray_col_05_inv.png" "$binpick" reconstruct --capture "$work/damaged" --out "$work/x.ply"
+damaged && cp "$work/damaged/images/001_black.png" "$work/damaged/images/014_gray_col_06.png"
+expect_error "gray_col_06.*a frame is missing, black or out of order" "$binpick" reconstruct --capture "$work/damaged" --out "$work/x.ply"
+damaged && sed -i 's/"phase_steps": 4/"phase_steps": 3/' "$work/damaged/capture.json"
+expect_error "pattern set" "$binpick" reconstruct --capture "$work/damaged" --out "$work/x.ply"
+expect_error "missing.yaml" "$binpick" reconstruct --capture "$work/capture" --calib "$work/missing.yaml" --out "$work/x.ply"
+sed 's/camera_width: 1280/camera_width: 640/' "$work/capture/calib.yaml" > "$work/small_camera.yaml"
+expect_error "calibration's camera is 640x1024" "$binpick" reconstruct --capture "$work/capture" --calib "$work/small_camera.yaml" --out "$work/x.ply"
+[ -e "$work/x.ply" ] && fail "a failed reconstruct wrote a cloud"
 
 if [ "$failures" -eq 0 ]; then echo "cli: all checks passed"; else exit 1; fi

@@ -134,6 +134,25 @@ inline PointCloud organizedCloudWithHoles() {
   return cloud;
 }
 
+// A NaN with a payload, so that tests can see whether its bits survive.
+inline float nanWithPayload() {
+  const std::uint32_t bits = 0x7fc01234u;
+  float value;
+  std::memcpy(&value, &bits, sizeof(value));
+  return value;
+}
+
+// `cloud` with one intensity per point: values in (0, 1) without a short decimal form on valid
+// points, and NaN (with a payload) on invalid pixels, as a sensor pipeline leaves them.
+inline PointCloud withIntensities(PointCloud cloud) {
+  cloud.intensities.resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    cloud.intensities[i] =
+        cloud.points[i].allFinite() ? 1.0f / static_cast<float>(i + 3) : nanWithPayload();
+  }
+  return cloud;
+}
+
 // An unorganized cloud with awkward values: tiny, huge, negative zero, many digits.
 inline PointCloud awkwardCloud() {
   PointCloud cloud;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "binpick/io/geometry_io.hpp"
 #include "io_test_support.hpp"
@@ -57,6 +58,44 @@ TEST_P(PcdRoundTrip, UnorganizedCloudStaysUnorganized) {
   }
 }
 
+// Binary keeps every bit, the NaN payloads of invalid pixels included; ascii writes "nan" there.
+TEST_P(PcdRoundTrip, OrganizedCloudKeepsIntensities) {
+  const PointCloud written = withIntensities(organizedCloudWithHoles());
+  const std::string path = pathOf("intensities.pcd");
+  writePointCloud(path, written, GetParam());
+  EXPECT_NE(readFile(path).find("FIELDS x y z normal_x normal_y normal_z intensity\n"),
+            std::string::npos);
+
+  const PointCloud read = readPointCloud(path);
+  EXPECT_EQ(read.height, 3);
+  ASSERT_TRUE(read.hasNormals());
+  ASSERT_TRUE(read.hasIntensities());
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    if (GetParam() == Encoding::Binary) {
+      EXPECT_TRUE(sameBits(read.intensities[i], written.intensities[i])) << "pixel " << i;
+    } else if (written.points[i].allFinite()) {
+      EXPECT_NEAR(read.intensities[i], written.intensities[i], 1e-7f) << "pixel " << i;
+    } else {
+      EXPECT_TRUE(std::isnan(read.intensities[i])) << "pixel " << i;
+    }
+  }
+}
+
+TEST_P(PcdRoundTrip, UnorganizedCloudKeepsIntensitiesWithoutNormals) {
+  const PointCloud written = withIntensities(awkwardCloud());
+  const std::string path = pathOf("intensities.pcd");
+  writePointCloud(path, written, GetParam());
+  EXPECT_NE(readFile(path).find("FIELDS x y z intensity\n"), std::string::npos);
+
+  const PointCloud read = readPointCloud(path);
+  EXPECT_FALSE(read.hasNormals());
+  ASSERT_TRUE(read.hasIntensities());
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    // 9 significant digits round-trip every float.
+    EXPECT_TRUE(sameBits(read.intensities[i], written.intensities[i])) << i;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Pcd, PcdRoundTrip, ::testing::Values(Encoding::Binary, Encoding::Ascii),
                          [](const ::testing::TestParamInfo<Encoding>& encoding) {
                            return encoding.param == Encoding::Binary ? "Binary" : "Ascii";
@@ -104,6 +143,69 @@ TEST_F(Pcd, ReadsBinaryCompressed) {
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud.points[0], Eigen::Vector3f(1, 2, 3));
   EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6));
+}
+
+// Intensities are converted to float as stored, not rescaled to 0..1.
+TEST_F(Pcd, ReadsIntegerIntensityAsciiAndBinary) {
+  const std::string header =
+      "VERSION 0.7\nFIELDS intensity x y z\nSIZE 2 4 4 4\nTYPE U F F F\nCOUNT 1 1 1 1\n"
+      "WIDTH 2\nHEIGHT 1\nPOINTS 2\n";
+  const std::string ascii =
+      writeFile("ascii.pcd", header + "DATA ascii\n0 1 2 3\n65535 4 5 6\n");
+  std::string bytes = header + "DATA binary\n";
+  for (int v = 0; v < 2; ++v) {
+    appendBytes<std::uint16_t>(bytes, static_cast<std::uint16_t>(v * 65535));
+    for (int axis = 0; axis < 3; ++axis) appendBytes(bytes, static_cast<float>(3 * v + axis + 1));
+  }
+  const std::string binary = writeFile("binary.pcd", bytes);
+
+  for (const std::string& path : {ascii, binary}) {
+    const PointCloud cloud = readPointCloud(path);
+    EXPECT_EQ(cloud.intensities, (std::vector<float>{0, 65535})) << path;
+    EXPECT_EQ(cloud.points[1], Eigen::Vector3f(4, 5, 6)) << path;
+  }
+}
+
+TEST_F(Pcd, ReadsSignedAndDoubleIntensity) {
+  for (const char* sizeAndType : {"8 F", "1 I"}) {
+    const std::string type = std::string(sizeAndType).substr(2);
+    const std::string header = "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 " +
+                               std::string(1, sizeAndType[0]) + "\nTYPE F F F " + type +
+                               "\nCOUNT 1 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary\n";
+    std::string bytes = header;
+    for (int axis = 0; axis < 3; ++axis) appendBytes(bytes, static_cast<float>(axis));
+    if (type == "F") {
+      appendBytes(bytes, 0.7);
+    } else {
+      appendBytes<std::int8_t>(bytes, -5);
+    }
+    const std::string path = writeFile("intensity.pcd", bytes);
+    EXPECT_EQ(readPointCloud(path).intensities.at(0), type == "F" ? 0.7f : -5.0f) << sizeAndType;
+  }
+}
+
+TEST_F(Pcd, RejectsNanIntensityOfAValidPointAndIntensityWithCount) {
+  const std::string nan = writeFile(
+      "nan.pcd",
+      "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+      "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n0 0 0 nan\n1 1 1 0.5\n");
+  EXPECT_TRUE(failsWith([&] { readPointCloud(nan); }, nan,
+                        "intensity of point 0 is not finite (nan)"));
+
+  const std::string counted = writeFile(
+      "count.pcd",
+      "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 2\n"
+      "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n0 0 0 0.5 0.5\n");
+  EXPECT_TRUE(failsWith([&] { readPointCloud(counted); }, counted,
+                        "PCD field 'intensity' must be a single number"));
+}
+
+TEST_F(Pcd, RefusesToWriteWrongIntensityCount) {
+  PointCloud cloud = withIntensities(organizedCloudWithHoles());
+  cloud.intensities.resize(13, 0.5f);
+  const std::string path = pathOf("bad.pcd");
+  EXPECT_TRUE(
+      failsWith([&] { writePointCloud(path, cloud); }, path, "13 intensities for 12 points"));
 }
 
 std::string xyzHeader(const std::string& data, const std::string& size) {

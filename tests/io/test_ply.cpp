@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "binpick/io/geometry_io.hpp"
 #include "io_test_support.hpp"
@@ -53,6 +55,46 @@ TEST_P(PlyRoundTrip, UnorganizedCloudKeepsAwkwardValues) {
   }
 }
 
+// Binary keeps every bit, the NaN payloads of invalid pixels included; ascii writes "nan" there.
+TEST_P(PlyRoundTrip, OrganizedCloudKeepsIntensitiesAfterNormals) {
+  const PointCloud written = withIntensities(organizedCloudWithHoles());
+  const std::string path = pathOf("intensities.ply");
+  writePointCloud(path, written, GetParam());
+  EXPECT_NE(readFile(path).find("property float nz\nproperty float intensity\n"),
+            std::string::npos);
+
+  const PointCloud read = readPointCloud(path);
+  EXPECT_EQ(read.width, 4);
+  ASSERT_TRUE(read.hasNormals());
+  ASSERT_TRUE(read.hasIntensities());
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    if (GetParam() == Encoding::Binary || written.points[i].allFinite()) {
+      EXPECT_TRUE(sameBits(read.intensities[i], written.intensities[i])) << "pixel " << i;
+    } else {
+      EXPECT_TRUE(std::isnan(read.intensities[i])) << "pixel " << i;
+    }
+    if (written.points[i].allFinite()) {
+      EXPECT_TRUE(sameBits(read.normals[i], written.normals[i])) << "normal " << i;
+    }
+  }
+}
+
+TEST_P(PlyRoundTrip, UnorganizedCloudKeepsIntensitiesWithoutNormals) {
+  const PointCloud written = withIntensities(awkwardCloud());
+  const std::string path = pathOf("intensities.ply");
+  writePointCloud(path, written, GetParam());
+  EXPECT_NE(readFile(path).find("property float z\nproperty float intensity\n"),
+            std::string::npos);
+
+  const PointCloud read = readPointCloud(path);
+  EXPECT_FALSE(read.hasNormals());
+  ASSERT_TRUE(read.hasIntensities());
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    EXPECT_TRUE(sameBits(read.intensities[i], written.intensities[i])) << i;
+    EXPECT_TRUE(sameBits(read.points[i], written.points[i])) << i;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Ply, PlyRoundTrip, ::testing::Values(Encoding::Binary, Encoding::Ascii),
                          [](const ::testing::TestParamInfo<Encoding>& encoding) {
                            return encoding.param == Encoding::Binary ? "Binary" : "Ascii";
@@ -73,8 +115,10 @@ TEST_F(Ply, MeshRoundTripKeepsVerticesAndTriangles) {
   EXPECT_EQ(read.triangles[1], Eigen::Vector3i(0, 2, 3));
 }
 
-// Big-endian doubles, a skipped uchar and list property on the vertices, faces declared as
+// Big-endian doubles, a uchar intensity and a skipped list property on the vertices, faces
+// declared as
 // `list uint8 uint vertex_index` with a quad, and unknown elements before and after the faces.
+// The list makes vertex records vary in size, so this takes the record-by-record binary path.
 std::string bigEndianDoublePly() {
   std::string bytes =
       "ply\n"
@@ -98,7 +142,7 @@ std::string bigEndianDoublePly() {
   const double corners[4][3] = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 1.5}};
   for (int v = 0; v < 4; ++v) {
     appendBytes(bytes, corners[v][0], true);
-    appendBytes<std::uint8_t>(bytes, 200);
+    appendBytes<std::uint8_t>(bytes, static_cast<std::uint8_t>(200 + v));
     appendBytes(bytes, corners[v][1], true);
     appendBytes(bytes, corners[v][2], true);
     appendBytes<std::uint8_t>(bytes, static_cast<std::uint8_t>(v));  // v tags of 2 bytes each
@@ -129,6 +173,7 @@ TEST_F(Ply, ReadsBigEndianDoublesSkippingOtherPropertiesAndElements) {
   EXPECT_EQ(geometry.mesh.triangles[1], Eigen::Vector3i(0, 2, 3));
   EXPECT_EQ(geometry.mesh.triangles[2], Eigen::Vector3i(0, 2, 1));
   EXPECT_EQ(geometry.cloud.points, geometry.mesh.vertices);
+  EXPECT_EQ(geometry.cloud.intensities, (std::vector<float>{200, 201, 202, 203}));
 }
 
 TEST_F(Ply, ReadsAsciiWithCrLfCommentsQuadsAndNormalisesNormals) {
@@ -156,6 +201,70 @@ TEST_F(Ply, ReadsAsciiWithCrLfCommentsQuadsAndNormalisesNormals) {
   EXPECT_TRUE(geometry.cloud.normals[0].isApprox(Eigen::Vector3f(0, 0, 1)));
   EXPECT_TRUE(geometry.cloud.normals[2].isApprox(Eigen::Vector3f(0, 0.6f, 0.8f)));
   EXPECT_EQ(geometry.cloud.points[3], Eigen::Vector3f(0, 1, 0));
+}
+
+// Intensities are converted to float as stored, not rescaled to 0..1.
+TEST_F(Ply, ReadsUcharIntensityAsciiAndBinary) {
+  const std::string header =
+      "element vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar intensity\nend_header\n";
+  const std::string ascii =
+      writeFile("ascii.ply", "ply\nformat ascii 1.0\n" + header + "0 0 0 0\n1 2 3 255\n");
+  std::string bytes = "ply\nformat binary_little_endian 1.0\n" + header;
+  for (int v = 0; v < 2; ++v) {
+    for (int axis = 0; axis < 3; ++axis) appendBytes(bytes, static_cast<float>(v + axis));
+    appendBytes<std::uint8_t>(bytes, static_cast<std::uint8_t>(v * 255));
+  }
+  const std::string binary = writeFile("binary.ply", bytes);
+
+  for (const std::string& path : {ascii, binary}) {
+    const PointCloud cloud = readPointCloud(path);
+    EXPECT_EQ(cloud.intensities, (std::vector<float>{0, 255})) << path;
+  }
+}
+
+// Where the property sits in the record does not matter.
+TEST_F(Ply, ReadsDoubleIntensityBeforeTheCoordinates) {
+  const std::string header =
+      "element vertex 2\nproperty double intensity\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n";
+  const std::string ascii =
+      writeFile("ascii.ply", "ply\nformat ascii 1.0\n" + header + "0.7 0 0 0\n0.25 1 2 3\n");
+  std::string bytes = "ply\nformat binary_big_endian 1.0\n" + header;
+  for (int v = 0; v < 2; ++v) {
+    appendBytes(bytes, v == 0 ? 0.7 : 0.25, true);
+    for (int axis = 0; axis < 3; ++axis) appendBytes(bytes, static_cast<float>(v + axis), true);
+  }
+  const std::string binary = writeFile("binary.ply", bytes);
+
+  for (const std::string& path : {ascii, binary}) {
+    const PointCloud cloud = readPointCloud(path);
+    EXPECT_EQ(cloud.intensities, (std::vector<float>{0.7f, 0.25f})) << path;
+    EXPECT_EQ(cloud.points[1], Eigen::Vector3f(1, 2, 3)) << path;
+  }
+}
+
+TEST_F(Ply, RejectsNanIntensityOfAValidPoint) {
+  const std::string path = writeFile("nan_intensity.ply",
+                                     "ply\nformat ascii 1.0\nelement vertex 2\n"
+                                     "property float x\nproperty float y\nproperty float z\n"
+                                     "property float intensity\nend_header\n"
+                                     "0 0 0 0.5\n1 0 0 nan\n");
+  EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path,
+                        "intensity of point 1 is not finite (nan)"));
+}
+
+TEST_F(Ply, RefusesToWriteWrongIntensityCountOrNanIntensity) {
+  PointCloud cloud = withIntensities(awkwardCloud());
+  cloud.intensities.pop_back();
+  const std::string path = pathOf("bad.ply");
+  EXPECT_TRUE(
+      failsWith([&] { writePointCloud(path, cloud); }, path, "2 intensities for 3 points"));
+  cloud = withIntensities(awkwardCloud());
+  cloud.intensities[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_TRUE(failsWith([&] { writePointCloud(path, cloud, Encoding::Ascii); }, path,
+                        "intensity of point 0 is not finite"));
+  EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 std::string binaryCloudPly(const std::string& extraHeader, int vertices) {

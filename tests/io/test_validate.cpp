@@ -1,6 +1,7 @@
 // validateCloud / validateMesh: the rules every reader and writer applies.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 #include "binpick/io/point_cloud.hpp"
@@ -43,6 +44,34 @@ TEST(Validate, NormalsMustMatchAndBeFiniteForValidPoints) {
   cloud.normals[3] = Eigen::Vector3f(kNan, 0, 1);
   EXPECT_TRUE(
       failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "normal of point 3 is not finite"));
+}
+
+TEST(Validate, IntensitiesOfInvalidPixelsMayBeNan) {
+  const PointCloud cloud = withIntensities(organizedCloudWithHoles());
+  ASSERT_TRUE(std::isnan(cloud.intensities[5]));
+  EXPECT_NO_THROW(validateCloud(cloud, "scan"));
+}
+
+TEST(Validate, IntensitiesMustMatchAndBeFiniteForValidPoints) {
+  PointCloud cloud = withIntensities(organizedCloudWithHoles());
+  cloud.intensities.pop_back();
+  EXPECT_TRUE(
+      failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "11 intensities for 12 points"));
+
+  cloud = withIntensities(awkwardCloud());
+  cloud.intensities.push_back(0.5f);
+  EXPECT_TRUE(
+      failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "4 intensities for 3 points"));
+
+  cloud = withIntensities(organizedCloudWithHoles());
+  cloud.intensities[3] = kNan;
+  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan",
+                        "intensity of point 3 is not finite (nan)"));
+
+  cloud = withIntensities(awkwardCloud());
+  cloud.intensities[1] = -kInf;
+  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan",
+                        "intensity of point 1 is not finite (-inf)"));
 }
 
 TEST(Validate, MeshIndicesAndVerticesAreChecked) {

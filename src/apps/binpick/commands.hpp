@@ -9,5 +9,6 @@ namespace binpick::cli {
 int runDetect(const std::vector<std::string>& args);
 int runSimulate(const std::vector<std::string>& args);
 int runEvaluate(const std::vector<std::string>& args);
+int runReconstruct(const std::vector<std::string>& args);
 
 }  // namespace binpick::cli

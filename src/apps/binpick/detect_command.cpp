@@ -1,5 +1,8 @@
-// binpick detect --model MODEL --scene SCENE [--max-objects N] [--config FILE] [--out FILE]
-//                [--model-cache FILE] [--threads N] [--method li_hashimoto|drost]
+// binpick detect --model MODEL (--scene CLOUD | --capture DIR [--calib FILE]) [--max-objects N]
+//                [--config FILE] [--out FILE] [--model-cache FILE] [--threads N]
+//                [--method li_hashimoto|drost]
+// With --capture, the pattern images are reconstructed first (the config file's
+// `reconstruction:` section applies): one command from images to poses.
 #include <fstream>
 #include <iostream>
 
@@ -9,6 +12,7 @@
 #include "binpick/estimation/model_cache.hpp"
 #include "binpick/estimation/result_json.hpp"
 #include "binpick/io/error.hpp"
+#include "capture_reconstruction.hpp"
 #include "commands.hpp"
 
 namespace binpick::cli {
@@ -41,16 +45,32 @@ void writeOutput(const Arguments& args, const std::string& text) {
   if (!file) throw Error(*out + ": cannot write the result");
 }
 
+// The scene: a point cloud file, or the cloud reconstructed from a capture directory.
+PointCloud sceneFrom(const Arguments& args) {
+  const auto scene = args.value("--scene");
+  const auto capture = args.value("--capture");
+  if (scene.has_value() == capture.has_value()) throw Error("give either --scene or --capture");
+  if (scene) {
+    if (args.value("--calib")) throw Error("--calib applies to --capture only");
+    return readPointCloud(*scene);
+  }
+  CaptureInput input;
+  input.capture_dir = *capture;
+  input.calibration = args.value("--calib");
+  input.config = args.value("--config");
+  input.threads = args.integer("--threads");
+  return reconstructCaptureDirectory(input).cloud;
+}
+
 }  // namespace
 
 int runDetect(const std::vector<std::string>& raw) {
-  const Arguments args(raw, {"--model", "--scene", "--max-objects", "--config", "--out", "--model-cache",
-                             "--threads", "--method"},
+  const Arguments args(raw, {"--model", "--scene", "--capture", "--calib", "--max-objects", "--config", "--out",
+                             "--model-cache", "--threads", "--method"},
                        {});
   const estimation::EstimationConfig config = configFrom(args);
-  const std::string scene_path = args.required("--scene");
   const estimation::Detector detector(modelFrom(args, config.model), config.detector);
-  const PointCloud scene = readPointCloud(scene_path);
+  const PointCloud scene = sceneFrom(args);
   const estimation::DetectionResult result = detector.detect(scene);
   writeOutput(args, estimation::toJson(result).dump(2));
   return 0;

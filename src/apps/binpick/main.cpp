@@ -10,10 +10,15 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: binpick <command> [options]\n"
-    "  detect   --model MODEL --scene SCENE [--max-objects N] [--config FILE] [--out result.json]\n"
-    "           [--model-cache FILE] [--threads N] [--method li_hashimoto|drost]\n"
-    "  simulate --part NAME [--objects N] [--seed S] --out DIR | --list-parts | --export-part NAME FILE\n"
-    "  evaluate --result result.json --truth truth.json --part NAME [--min-visible 0.5]\n";
+    "  reconstruct --capture DIR [--calib FILE] [--config FILE] [--threads N] [--out cloud.ply]\n"
+    "              [--status status.png]\n"
+    "  detect   --model MODEL (--scene CLOUD | --capture DIR [--calib FILE]) [--max-objects N]\n"
+    "           [--config FILE] [--out result.json] [--model-cache FILE] [--threads N]\n"
+    "           [--method li_hashimoto|drost]\n"
+    "  simulate (--part NAME | --mesh FILE) [--objects N] [--seed S] [--cloud-only] --out DIR\n"
+    "           | --calibration-board charuco|chessboard --poses K --out DIR\n"
+    "           | --list-parts | --export-part NAME FILE\n"
+    "  evaluate --result result.json --truth CAPTURE_DIR [--part NAME] [--min-visible 0.5]\n";
 
 }  // namespace
 
@@ -28,6 +33,7 @@ int main(int argc, char** argv) {
     if (command == "detect") return binpick::cli::runDetect(args);
     if (command == "simulate") return binpick::cli::runSimulate(args);
     if (command == "evaluate") return binpick::cli::runEvaluate(args);
+    if (command == "reconstruct") return binpick::cli::runReconstruct(args);
     std::cerr << "binpick: unknown command '" << command << "'\n" << kUsage;
     return 2;
   } catch (const std::exception& e) {

@@ -14,7 +14,6 @@
 #include "arguments.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/io/geometry_io.hpp"
-#include "binpick/reconstruction/pattern_set.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
@@ -60,21 +59,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-CaptureMetadata metadataFor(const sim::PileParams& params, const sim::PhotometryParams& photometry,
-                            const PatternSetSpec& patterns, const std::string& part, int objects) {
-  CaptureMetadata m;
-  m.source = "binpick virtual cell (part " + part + ", " + std::to_string(objects) +
-             " objects, seed " + std::to_string(params.seed) + ")";
-  m.timestamp = utcTimestamp();
-  m.image_width = params.rig.camera.width;
-  m.image_height = params.rig.camera.height;
-  m.bit_depth = photometry.bit_depth;
-  m.exposure_us = 8000.0;
-  m.pattern_set = patterns;
-  m.patterns = reconstruction::patternNames(patterns);
-  return m;
-}
-
 int simulatePile(const Arguments& args) {
   const auto start = std::chrono::steady_clock::now();
   const sim::Part part = partFrom(args);
@@ -105,10 +89,11 @@ int simulatePile(const Arguments& args) {
   } else {
     sim::PileCapture simulated = sim::generatePileCapture(part.mesh, params, patterns, photometry);
     scene = std::move(simulated.scene);
-    Capture capture;
-    capture.images = std::move(simulated.images);
-    capture.metadata = metadataFor(params, photometry, patterns, part.name, params.objects);
-    writeCapture(out.string(), std::move(capture));
+    const std::string source = "binpick virtual cell (part " + part.name + ", " +
+                               std::to_string(params.objects) + " objects, seed " +
+                               std::to_string(params.seed) + ")";
+    writeCapture(out.string(),
+                 sim::recordedCapture(std::move(simulated.images), params, patterns, photometry, source));
   }
   writeRigCalibration((out / "calib.yaml").string(), scene.rig);
   sim::writePileTruth(out.string(), scene, part.name, part.mesh);

@@ -1,65 +1,20 @@
 #include "binpick/estimation/config.hpp"
 
-#include <yaml-cpp/yaml.h>
-
-#include <fstream>
-#include <set>
-#include <sstream>
+#include <cmath>
 
 #include "binpick/io/error.hpp"
+#include "binpick/io/yaml_section.hpp"
 
 namespace binpick::estimation {
 namespace {
 
-// One YAML mapping being read: remembers which keys were used so that typos are reported.
-class Section {
- public:
-  Section(const YAML::Node& node, std::string path, const std::string& origin)
-      : node_(node), path_(std::move(path)), origin_(origin) {
-    if (node_ && !node_.IsNull() && !node_.IsMap()) fail(path_, "must be a mapping");
-  }
-
-  template <class T>
-  void read(const char* key, T& value) {
-    used_.insert(key);
-    if (!node_ || !node_[key]) return;
-    try {
-      value = node_[key].as<T>();
-    } catch (const YAML::Exception&) {
-      fail(path_ + key, "has the wrong type");
-    }
-  }
-  Section child(const char* key) {
-    used_.insert(key);
-    return Section(node_ ? node_[key] : YAML::Node(), path_ + key + ".", origin_);
-  }
-  bool has(const char* key) const { return node_ && node_[key]; }
-  const YAML::Node& node() const { return node_; }
-
-  // Every key of the mapping must have been read.
-  void finish() const {
-    if (!node_ || !node_.IsMap()) return;
-    for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
-      if (!used_.count(key)) fail(path_ + key, "is not a known setting");
-    }
-  }
-  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
-    throw Error(origin_ + ": " + key + " " + why);
-  }
-
- private:
-  YAML::Node node_;
-  std::string path_;
-  const std::string& origin_;
-  std::set<std::string> used_;
-};
+using Section = YamlSection;
 
 Eigen::Vector3f vector3(Section& section, const char* key) {
-  std::vector<float> values;
-  section.read(key, values);
-  if (values.size() != 3) section.fail(key, "needs three numbers");
-  return Eigen::Vector3f(values[0], values[1], values[2]);
+  Eigen::Vector3d value = Eigen::Vector3d::Constant(std::nan(""));
+  section.readVector3(key, value);
+  if (!value.allFinite()) section.fail(key, "needs three numbers");
+  return value.cast<float>();
 }
 
 void readModel(Section s, ModelParams& p) {
@@ -134,16 +89,12 @@ void readDetector(Section s, DetectorParams& p) {
 }  // namespace
 
 EstimationConfig parseEstimationConfig(const std::string& yaml_text, const std::string& origin) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw Error(origin + ": not valid YAML (line " + std::to_string(e.mark.line + 1) + "): " + e.msg);
-  }
+  const YAML::Node root = parseYaml(yaml_text, origin);
   EstimationConfig config;
   Section top(root, "", origin);
   readModel(top.child("model"), config.model);
   readDetector(top.child("detection"), config.detector);
+  top.skip("reconstruction");  // the same cell file configures reconstruction
   top.finish();
   try {
     config.model.validate();
@@ -155,11 +106,7 @@ EstimationConfig parseEstimationConfig(const std::string& yaml_text, const std::
 }
 
 EstimationConfig loadEstimationConfig(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the configuration file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseEstimationConfig(text.str(), path);
+  return parseEstimationConfig(readConfigFile(path), path);
 }
 
 }  // namespace binpick::estimation

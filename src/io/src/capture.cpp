@@ -51,13 +51,16 @@ namespace {
 int expectedType(int bit_depth) { return bit_depth == 16 ? CV_16UC1 : CV_8UC1; }
 
 cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
+  if (!fs::exists(path)) fail(path, "the image listed in capture.json is missing");
+  // Decoded from memory: cv::imread logs its own warning for unreadable files, our error says it.
+  const std::string bytes = io_detail::readFileBytes(path);
   cv::Mat image;
   try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
+                         cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception&) {
     image.release();
   }
-  if (!fs::exists(path)) fail(path, "the image listed in capture.json is missing");
   if (image.empty()) fail(path, "not a readable PNG image");
   if (image.cols != m.image_width || image.rows != m.image_height) {
     fail(path, "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +

@@ -65,7 +65,10 @@ void appendFloatField(pcl::PCLPointCloud2& blob, const char* name) {
   blob.point_step += sizeof(float);
 }
 
-pcl::PCLPointCloud2 toBlob(const PointCloud& cloud) {
+// The fields of a cloud, in record order: x y z, then normal_x/y/z and intensity when present
+// (the fields of pcl::PointXYZ, PointNormal, PointXYZI or PointXYZINormal, which PCL matches by
+// name), all float.
+pcl::PCLPointCloud2 blobLayoutFor(const PointCloud& cloud) {
   pcl::PCLPointCloud2 blob;
   const bool organized = cloud.isOrganized();
   blob.width = organized ? cloud.width : static_cast<std::uint32_t>(cloud.size());
@@ -74,17 +77,25 @@ pcl::PCLPointCloud2 toBlob(const PointCloud& cloud) {
   if (cloud.hasNormals()) {
     for (const char* name : {"normal_x", "normal_y", "normal_z"}) appendFloatField(blob, name);
   }
+  if (cloud.hasIntensities()) appendFloatField(blob, "intensity");
   blob.row_step = blob.point_step * blob.width;
+  return blob;
+}
+
+std::uint8_t* copyFloats(std::uint8_t* out, const float* values, std::size_t count) {
+  std::memcpy(out, values, count * sizeof(float));
+  return out + count * sizeof(float);
+}
+
+pcl::PCLPointCloud2 toBlob(const PointCloud& cloud) {
+  pcl::PCLPointCloud2 blob = blobLayoutFor(cloud);
   blob.is_dense = true;
   blob.data.resize(std::size_t{blob.point_step} * cloud.size());
   std::uint8_t* out = blob.data.data();
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    std::memcpy(out, cloud.points[i].data(), 3 * sizeof(float));
-    out += 3 * sizeof(float);
-    if (cloud.hasNormals()) {
-      std::memcpy(out, cloud.normals[i].data(), 3 * sizeof(float));
-      out += 3 * sizeof(float);
-    }
+    out = copyFloats(out, cloud.points[i].data(), 3);
+    if (cloud.hasNormals()) out = copyFloats(out, cloud.normals[i].data(), 3);
+    if (cloud.hasIntensities()) out = copyFloats(out, &cloud.intensities[i], 1);
     blob.is_dense = blob.is_dense && cloud.points[i].allFinite();
   }
   return blob;

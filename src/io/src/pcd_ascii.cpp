@@ -11,13 +11,19 @@ namespace binpick::io_detail {
 
 namespace {
 
-// Position of each wanted value within a line: [x y z nx ny nz], -1 when absent.
+// Values of one line by slot: [x y z nx ny nz intensity].
+constexpr int kPointSlots = 7;
+constexpr int kIntensitySlot = 6;
+using PointValues = float[kPointSlots];
+
+// Slot of each value within a line, -1 for values we skip.
 std::vector<int> slotOfValues(const PcdHeader& header) {
-  static constexpr const char* kNames[] = {"x", "y", "z", "normal_x", "normal_y", "normal_z"};
+  static constexpr const char* kNames[kPointSlots] = {
+      "x", "y", "z", "normal_x", "normal_y", "normal_z", "intensity"};
   std::vector<int> slots;
   for (const PcdField& field : header.fields) {
     int slot = -1;
-    for (int candidate = 0; candidate < 6; ++candidate) {
+    for (int candidate = 0; candidate < kPointSlots; ++candidate) {
       if (field.name == kNames[candidate]) slot = candidate;
     }
     for (std::size_t c = 0; c < field.count; ++c) slots.push_back(slot);
@@ -39,14 +45,12 @@ class AsciiBodyParser {
     PointCloud cloud;
     cloud.points.resize(header_.points);
     if (header_.hasNormals) cloud.normals.resize(header_.points);
+    if (header_.hasIntensities) cloud.intensities.resize(header_.points);
     for (std::size_t point = 0; point < header_.points; ++point) {
       const std::string_view line = nextNonEmptyLine(point);
-      float values[6] = {};
+      PointValues values = {};
       parseLine(line, point, values);
-      cloud.points[point] = Eigen::Vector3f(values[0], values[1], values[2]);
-      if (header_.hasNormals) {
-        cloud.normals[point] = Eigen::Vector3f(values[3], values[4], values[5]);
-      }
+      store(values, point, cloud);
     }
     return cloud;
   }
@@ -69,7 +73,7 @@ class AsciiBodyParser {
 
   // The count is checked first: a line with too few or too many values means the file is out of
   // step, and its values should not be trusted.
-  void parseLine(std::string_view line, std::size_t point, float values[6]) const {
+  void parseLine(std::string_view line, std::size_t point, PointValues& values) const {
     std::vector<std::string_view> tokens;
     TextCursor cursor(line);
     for (std::string_view token = cursor.nextToken(); !token.empty(); token = cursor.nextToken()) {
@@ -85,6 +89,14 @@ class AsciiBodyParser {
         failAt(point, "'" + std::string(tokens[i].substr(0, 40)) + "' is not a number");
       }
     }
+  }
+
+  void store(const PointValues& values, std::size_t point, PointCloud& cloud) const {
+    cloud.points[point] = Eigen::Vector3f(values[0], values[1], values[2]);
+    if (header_.hasNormals) {
+      cloud.normals[point] = Eigen::Vector3f(values[3], values[4], values[5]);
+    }
+    if (header_.hasIntensities) cloud.intensities[point] = values[kIntensitySlot];
   }
 
   [[noreturn]] void failAt(std::size_t point, const std::string& what) const {

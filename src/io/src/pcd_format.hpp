@@ -33,6 +33,7 @@ struct PcdHeader {
   std::size_t bodyOffset = 0;
   std::uint64_t pointBytes = 0;  // binary size of one point
   bool hasNormals = false;       // normal_x, normal_y and normal_z are all present
+  bool hasIntensities = false;   // an `intensity` field is present (one number of any type)
   std::size_t headerLines = 0;   // so ascii body errors can give file line numbers
 
   const PcdField* find(std::string_view name) const;
@@ -44,13 +45,14 @@ struct PcdHeader {
 // malformed, lacks x/y/z, or claims more points (or compressed bytes) than the file can hold.
 PcdHeader checkPcdHeader(std::string_view bytes, const std::string& path);
 
-// The points (and normals) of an ascii body: one point per line with exactly the header's
-// number of values; x/y/z/normals must be numbers (or nan).
+// The points (and normals, intensities) of an ascii body: one point per line with exactly the
+// header's number of values; x/y/z/normals/intensity must be numbers (or nan).
 PointCloud readPcdAsciiBody(std::string_view body, const PcdHeader& header,
                             const std::string& path);
 
-// The points (and normals) of `header.points` point-major binary records starting at `records`:
-// the layout of a DATA binary body, and of a binary_compressed body once decompressed.
+// The points (and normals, intensities) of `header.points` point-major binary records starting
+// at `records`: the layout of a DATA binary body, and of a binary_compressed body once
+// decompressed.
 PointCloud readPcdBinaryRecords(const char* records, const PcdHeader& header);
 
 // A binary_compressed body (LZF, stored field by field) decompressed by PCL into point-major

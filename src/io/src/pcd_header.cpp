@@ -158,6 +158,16 @@ class PcdHeaderParser {
     return true;
   }
 
+  // The intensity field: one number of any type (sensors store it as float, uchar or ushort).
+  bool hasScalarNumber(std::string_view name) const {
+    const PcdField* found = header_.find(name);
+    if (!found) return false;
+    if (found->count != 1) {
+      fail(path_, "PCD field '" + std::string(name) + "' must be a single number");
+    }
+    return true;
+  }
+
   void finish() {
     if (header_.fields.empty()) fail(path_, "malformed PCD header: no FIELDS");
     for (const PcdField& f : header_.fields) {
@@ -171,6 +181,11 @@ class PcdHeaderParser {
       fail(path_,
            "malformed PCD header: " + std::to_string(header_.pointBytes) + " bytes per point");
     }
+    checkFieldsWeRead();
+    checkPointCount();
+  }
+
+  void checkFieldsWeRead() {
     for (const char* axis : {"x", "y", "z"}) {
       if (!hasScalarFloat(axis)) {
         fail(path_, std::string("the PCD file has no '") + axis + "' field");
@@ -182,7 +197,7 @@ class PcdHeaderParser {
       fail(path_, "the PCD file has only some of normal_x, normal_y, normal_z");
     }
     header_.hasNormals = normals == 3;
-    checkPointCount();
+    header_.hasIntensities = hasScalarNumber("intensity");
   }
 
   void checkPointCount() {

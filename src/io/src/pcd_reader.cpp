@@ -1,5 +1,5 @@
 // PCD reading: our checked header, then the body by its DATA kind. Only decompression needs PCL.
-#include <cstring>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -12,39 +12,72 @@ namespace binpick::io_detail {
 
 namespace {
 
-// Where one float or double field sits in a record.
-struct FloatField {
+// Where one scalar field sits in a record and how it is stored (x/y/z and normals are always
+// float or double; intensity may be any type).
+struct ScalarField {
   std::size_t offset = 0;
-  bool isDouble = false;
+  char type = 'F';
+  std::size_t size = 4;
 };
 
-FloatField floatField(const PcdHeader& header, const char* name) {
-  return {header.offsetOf(name), header.find(name)->size == 8};
+ScalarField scalarField(const PcdHeader& header, const char* name) {
+  const PcdField& field = *header.find(name);
+  return {header.offsetOf(name), field.type, field.size};
 }
 
-float floatAt(const char* record, FloatField field) {
-  if (!field.isDouble) {
-    float value;
-    std::memcpy(&value, record + field.offset, sizeof(value));
-    return value;
-  }
-  double value;
-  std::memcpy(&value, record + field.offset, sizeof(value));
+float floatFrom(double value) {
   // Out-of-range double-to-float conversion is undefined; saturate so validation reports inf.
   if (value > std::numeric_limits<float>::max()) return std::numeric_limits<float>::infinity();
   if (value < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
   return static_cast<float>(value);
 }
 
+// PCD binary values are in host byte order, as PCL reads and writes them.
+template <typename Signed, typename Unsigned>
+float integerAt(const char* bytes, bool isSigned) {
+  return isSigned ? static_cast<float>(loadScalar<Signed>(bytes, false))
+                  : static_cast<float>(loadScalar<Unsigned>(bytes, false));
+}
+
+float valueAt(const char* record, ScalarField field) {
+  const char* bytes = record + field.offset;
+  if (field.type == 'F') {
+    return field.size == 8 ? floatFrom(loadScalar<double>(bytes, false))
+                           : loadScalar<float>(bytes, false);
+  }
+  const bool isSigned = field.type == 'I';
+  switch (field.size) {
+    case 1:
+      return integerAt<std::int8_t, std::uint8_t>(bytes, isSigned);
+    case 2:
+      return integerAt<std::int16_t, std::uint16_t>(bytes, isSigned);
+    case 4:
+      return integerAt<std::int32_t, std::uint32_t>(bytes, isSigned);
+    default:
+      return integerAt<std::int64_t, std::uint64_t>(bytes, isSigned);
+  }
+}
+
 // Copies three fields of every record into `out` (already sized).
 void copyVectors(const char* records, const PcdHeader& header, const char* const (&names)[3],
                  std::vector<Eigen::Vector3f>& out) {
-  const FloatField fields[3] = {floatField(header, names[0]), floatField(header, names[1]),
-                                floatField(header, names[2])};
+  const ScalarField fields[3] = {scalarField(header, names[0]), scalarField(header, names[1]),
+                                 scalarField(header, names[2])};
   const char* record = records;
   for (Eigen::Vector3f& vector : out) {
-    vector = Eigen::Vector3f(floatAt(record, fields[0]), floatAt(record, fields[1]),
-                             floatAt(record, fields[2]));
+    vector = Eigen::Vector3f(valueAt(record, fields[0]), valueAt(record, fields[1]),
+                             valueAt(record, fields[2]));
+    record += header.pointBytes;
+  }
+}
+
+// Copies one field of every record into `out` (already sized).
+void copyScalars(const char* records, const PcdHeader& header, const char* name,
+                 std::vector<float>& out) {
+  const ScalarField field = scalarField(header, name);
+  const char* record = records;
+  for (float& value : out) {
+    value = valueAt(record, field);
     record += header.pointBytes;
   }
 }
@@ -58,6 +91,10 @@ PointCloud readPcdBinaryRecords(const char* records, const PcdHeader& header) {
   if (header.hasNormals) {
     cloud.normals.resize(header.points);
     copyVectors(records, header, {"normal_x", "normal_y", "normal_z"}, cloud.normals);
+  }
+  if (header.hasIntensities) {
+    cloud.intensities.resize(header.points);
+    copyScalars(records, header, "intensity", cloud.intensities);
   }
   return cloud;
 }

@@ -1,6 +1,6 @@
 // PLY reader: ascii and binary (both byte orders) bodies through one element walker, templated on
-// where the values come from. Vertices give points (+ normals), faces give fan-triangulated
-// triangles, every other element is skipped by its declared types.
+// where the values come from. Vertices give points (+ normals, intensities), faces give
+// fan-triangulated triangles, every other element is skipped by its declared types.
 #include <Eigen/Core>
 #include <cmath>
 #include <limits>
@@ -168,37 +168,66 @@ class AsciiSource {
   std::size_t recordLine_ = 0;
 };
 
-// Slot of each vertex property in [x y z nx ny nz], or -1 for properties we skip.
+// Values of one vertex record by slot: [x y z nx ny nz intensity].
+constexpr int kVertexSlots = 7;
+constexpr int kIntensitySlot = 6;
+using VertexValues = float[kVertexSlots];
+
+// Slot of each vertex property, or -1 for properties we skip.
 struct VertexLayout {
   std::vector<int> slotOfProperty;
   bool hasNormals = false;
+  bool hasIntensities = false;
 };
 
+// Index of the named vertex property, or -1; the values we read are never lists.
+int scalarVertexProperty(const PlyElement& vertex, const char* name, const std::string& path) {
+  const int property = vertex.find(name);
+  if (property >= 0 && vertex.properties[property].isList) {
+    fail(path, std::string("malformed PLY header: vertex property '") + name + "' is a list");
+  }
+  return property;
+}
+
 VertexLayout vertexLayoutOf(const PlyElement& vertex, const std::string& path) {
-  static constexpr const char* kNames[] = {"x", "y", "z", "nx", "ny", "nz"};
+  static constexpr const char* kNames[kVertexSlots] = {"x",  "y",  "z",        "nx",
+                                                       "ny", "nz", "intensity"};
   VertexLayout layout;
   layout.slotOfProperty.assign(vertex.properties.size(), -1);
   int normalsFound = 0;
-  for (int slot = 0; slot < 6; ++slot) {
-    const int property = vertex.find(kNames[slot]);
+  for (int slot = 0; slot < kVertexSlots; ++slot) {
+    const int property = scalarVertexProperty(vertex, kNames[slot], path);
     if (property < 0) {
       if (slot < 3) {
         fail(path, std::string("the vertex element has no '") + kNames[slot] + "' property");
       }
       continue;
     }
-    if (vertex.properties[property].isList) {
-      fail(path,
-           std::string("malformed PLY header: vertex property '") + kNames[slot] + "' is a list");
-    }
     layout.slotOfProperty[property] = slot;
-    if (slot >= 3) ++normalsFound;
+    if (slot == kIntensitySlot) {
+      layout.hasIntensities = true;
+    } else if (slot >= 3) {
+      ++normalsFound;
+    }
   }
   if (normalsFound != 0 && normalsFound != 3) {
     fail(path, "the vertex element has only some of nx, ny, nz; normals need all three");
   }
   layout.hasNormals = normalsFound == 3;
   return layout;
+}
+
+void resizeForVertices(const VertexLayout& layout, std::uint64_t count, PointCloud& cloud) {
+  cloud.points.resize(count);
+  if (layout.hasNormals) cloud.normals.resize(count);
+  if (layout.hasIntensities) cloud.intensities.resize(count);
+}
+
+void storeVertex(const VertexValues& values, const VertexLayout& layout, std::uint64_t i,
+                 PointCloud& cloud) {
+  cloud.points[i] = Eigen::Vector3f(values[0], values[1], values[2]);
+  if (layout.hasNormals) cloud.normals[i] = Eigen::Vector3f(values[3], values[4], values[5]);
+  if (layout.hasIntensities) cloud.intensities[i] = values[kIntensitySlot];
 }
 
 // The list property holding a face's vertex indices.
@@ -222,12 +251,11 @@ class BodyReader {
 
   void readVertices(const PlyElement& element, PointCloud& cloud) {
     const VertexLayout layout = vertexLayoutOf(element, path_);
-    cloud.points.resize(element.count);
-    if (layout.hasNormals) cloud.normals.resize(element.count);
+    resizeForVertices(layout, element.count, cloud);
     if constexpr (std::is_same_v<Source, BinarySource>) {
       if (!element.hasLists()) return readFixedSizeVertices(element, layout, cloud);
     }
-    float values[6] = {};
+    VertexValues values = {};
     for (std::uint64_t i = 0; i < element.count; ++i) {
       location_.index = i;
       source_.beginRecord();
@@ -240,8 +268,7 @@ class BodyReader {
         }
       }
       source_.endRecord();
-      cloud.points[i] = Eigen::Vector3f(values[0], values[1], values[2]);
-      if (layout.hasNormals) cloud.normals[i] = Eigen::Vector3f(values[3], values[4], values[5]);
+      storeVertex(values, layout, i, cloud);
     }
   }
 
@@ -264,13 +291,12 @@ class BodyReader {
       recordBytes += byteSize(type);
     }
     const char* record = source_.takeRecords(element.count, recordBytes);
-    float values[6] = {};
+    VertexValues values = {};
     for (std::uint64_t i = 0; i < element.count; ++i, record += recordBytes) {
       for (const Field& field : fields) {
         values[field.slot] = source_.floatAt(record + field.offset, field.type);
       }
-      cloud.points[i] = Eigen::Vector3f(values[0], values[1], values[2]);
-      if (layout.hasNormals) cloud.normals[i] = Eigen::Vector3f(values[3], values[4], values[5]);
+      storeVertex(values, layout, i, cloud);
     }
   }
 

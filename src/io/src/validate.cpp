@@ -11,6 +11,7 @@
 
 namespace binpick {
 
+using io_detail::appendNumber;
 using io_detail::describePoint;
 using io_detail::fail;
 
@@ -56,12 +57,30 @@ void checkNormals(const PointCloud& cloud, const std::string& what) {
   }
 }
 
+void checkIntensities(const PointCloud& cloud, const std::string& what) {
+  if (cloud.intensities.empty()) return;
+  if (cloud.intensities.size() != cloud.points.size()) {
+    fail(what, std::to_string(cloud.intensities.size()) + " intensities for " +
+                   std::to_string(cloud.points.size()) + " points");
+  }
+  for (std::size_t i = 0; i < cloud.intensities.size(); ++i) {
+    // Like normals: invalid pixels carry whatever intensity the sensor pipeline left there.
+    if (!cloud.points[i].allFinite()) continue;
+    if (!std::isfinite(cloud.intensities[i])) {
+      std::string value;
+      appendNumber(value, cloud.intensities[i]);
+      fail(what, "intensity of point " + std::to_string(i) + " is not finite (" + value + ")");
+    }
+  }
+}
+
 }  // namespace
 
 void validateCloud(const PointCloud& cloud, const std::string& what) {
   checkGrid(cloud, what);
   checkPoints(cloud, what);
   checkNormals(cloud, what);
+  checkIntensities(cloud, what);
 }
 
 void validateMesh(const TriangleMesh& mesh, const std::string& what) {

@@ -64,12 +64,6 @@ int grayCodeBits(int size) {
   return bits;
 }
 
-unsigned grayDecode(unsigned code) {
-  // Each binary bit is the xor of all Gray bits above it: fold the shifts in log2(32) steps.
-  for (unsigned shift = 1; shift < 32; shift <<= 1) code ^= code >> shift;
-  return code;
-}
-
 double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int coordinate) {
   switch (pattern.kind) {
     case PatternKind::White:

@@ -3,6 +3,7 @@
 
 #include "bin.hpp"
 #include "binpick/io/error.hpp"
+#include "binpick/reconstruction/pattern_set.hpp"
 #include "binpick/simulation/object_visibility.hpp"
 #include "pile_view.hpp"
 #include "sensor_noise.hpp"
@@ -114,6 +115,23 @@ PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& para
   PileCapture capture;
   capture.scene = generatePileWithGeometry(part, params, geometry);
   capture.images = imagesOf(geometry, capture.scene, params, patterns, photometry);
+  return capture;
+}
+
+Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
+                        const PatternSetSpec& patterns, const PhotometryParams& photometry,
+                        const std::string& source) {
+  Capture capture;
+  CaptureMetadata& m = capture.metadata;
+  m.source = source;
+  m.timestamp = utcTimestamp();
+  m.image_width = params.rig.camera.width;
+  m.image_height = params.rig.camera.height;
+  m.bit_depth = photometry.bit_depth;
+  m.exposure_us = 8000.0;  // nominal: the virtual sensor's counts do not depend on it
+  m.pattern_set = patterns;
+  m.patterns = reconstruction::patternNames(patterns);
+  capture.images = std::move(images);
   return capture;
 }
 

@@ -13,12 +13,16 @@ namespace binpick {
 struct PointCloud {
   std::vector<Eigen::Vector3f> points;
   std::vector<Eigen::Vector3f> normals;  // empty, or one unit normal per point
+  // Empty, or one brightness per point (structured light: the white image, 0 = black, 1 = the
+  // sensor's full scale).
+  std::vector<float> intensities;
   int width = 0;                         // organized: image columns; unorganized: 0
   int height = 0;                        // organized: image rows; unorganized: 0
 
   std::size_t size() const { return points.size(); }
   bool empty() const { return points.empty(); }
   bool hasNormals() const { return !normals.empty() && normals.size() == points.size(); }
+  bool hasIntensities() const { return !intensities.empty() && intensities.size() == points.size(); }
   bool isOrganized() const {
     return width > 0 && height > 0 &&
            static_cast<std::size_t>(width) * static_cast<std::size_t>(height) == points.size();
@@ -33,8 +37,9 @@ struct TriangleMesh {
   bool empty() const { return triangles.empty(); }
 };
 
-// Throws binpick::Error naming `what` when a point or normal is not finite (NaN points of an
-// organized cloud are allowed: they mark invalid pixels) or a normal count does not match.
+// Throws binpick::Error naming `what` when a point, normal or intensity is not finite (NaN points
+// of an organized cloud are allowed: they mark invalid pixels, and their normals and intensities
+// are not checked) or a normal or intensity count does not match.
 void validateCloud(const PointCloud& cloud, const std::string& what);
 // Throws binpick::Error naming `what` on non-finite vertices or out-of-range triangle indices.
 void validateMesh(const TriangleMesh& mesh, const std::string& what);

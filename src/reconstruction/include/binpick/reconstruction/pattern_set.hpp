@@ -32,7 +32,11 @@ std::vector<std::string> patternNames(const PatternSetSpec& spec);
 int grayCodeBits(int size);
 // The reflected binary Gray code of a column or row index, and its inverse.
 inline unsigned grayCode(unsigned index) { return index ^ (index >> 1); }
-unsigned grayDecode(unsigned code);
+inline unsigned grayDecode(unsigned code) {
+  // Each binary bit is the xor of all Gray bits above it: fold the shifts in log2(32) steps.
+  for (unsigned shift = 1; shift < 32; shift <<= 1) code ^= code >> shift;
+  return code;
+}
 
 // Brightness in [0, 1] of the projector pixel at `coordinate` (its column for a column pattern,
 // its row for a row pattern, ignored for white and black), as an 8-bit projector shows it.

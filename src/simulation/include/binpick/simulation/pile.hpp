@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <string>
 #include <vector>
 
 #include "binpick/io/capture.hpp"
@@ -76,5 +77,12 @@ struct PileCapture {
 // generatePile and renderPileImages in one pass: the rig's rays are cast once for both.
 PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& params,
                                 const PatternSetSpec& patterns, const PhotometryParams& photometry);
+
+// The images as the rig would have recorded them: a Capture with its metadata (image size, bit
+// depth, pattern set and names, a nominal exposure, the time now), ready for writeCapture or the
+// decoder. `source` describes the scene in the metadata.
+Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
+                        const PatternSetSpec& patterns, const PhotometryParams& photometry,
+                        const std::string& source);
 
 }  // namespace binpick::sim

@@ -1,0 +1,504 @@
+// Reconstruction benchmark on virtual-cell piles:
+// 1. speed of each stage (decode, triangulate, filter) and of the whole reconstruct, from images
+//    already in memory, for the virtual rig's 1280x1024 camera and a 2448x2048 one;
+// 2. accuracy of the reconstructed cloud against the cell's exact depth;
+// 3. end-to-end detection on the reconstructed cloud versus the ideal sensor's and the exact one.
+//
+//   bench_reconstruction [--part l_bracket] [--parts l_bracket,clamp,gear,ring_magnet]
+//                        [--scenes 3] [--repeats 15] [--threads 0] [--skip-large] [--skip-detection]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "binpick/estimation/detector.hpp"
+#include "binpick/io/error.hpp"
+#include "binpick/io/thread_count.hpp"
+#include "binpick/reconstruction/reconstruction.hpp"
+#include "binpick/simulation/parts.hpp"
+#include "binpick/simulation/pile.hpp"
+#include "binpick/simulation/virtual_rig.hpp"
+#include "evaluation.hpp"
+
+namespace {
+
+using namespace binpick;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kObjects = 20;
+constexpr double kWrongMm = 5.0;      // a point this far off in z is a wrong point, not noise
+constexpr double kEdgeStepMm = 3.0;   // adjacent truth depths this far apart: a depth edge
+constexpr int kEdgeRadius = 2;        // pixels: "near a depth edge"
+constexpr double kPi = 3.14159265358979323846;
+
+struct Options {
+  std::string part = "l_bracket";
+  std::vector<std::string> parts{"l_bracket", "clamp", "gear", "ring_magnet"};
+  int scenes = 3;
+  int repeats = 15;
+  int threads = 0;
+  bool skip_large = false;
+  bool skip_detection = false;
+};
+
+std::vector<std::string> splitCommas(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    if (!item.empty()) out.push_back(item);
+  }
+  return out;
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--skip-large") { o.skip_large = true; continue; }
+    if (flag == "--skip-detection") { o.skip_detection = true; continue; }
+    if (i + 1 >= argc) throw Error("bench_reconstruction: " + flag + " needs a value");
+    const std::string value = argv[++i];
+    if (flag == "--part") o.part = value;
+    else if (flag == "--parts") o.parts = splitCommas(value);
+    else if (flag == "--scenes") o.scenes = std::stoi(value);
+    else if (flag == "--repeats") o.repeats = std::stoi(value);
+    else if (flag == "--threads") o.threads = std::stoi(value);
+    else throw Error("bench_reconstruction: unknown option " + flag);
+  }
+  if (o.scenes < 1 || o.repeats < 1) throw Error("bench_reconstruction: --scenes and --repeats must be >= 1");
+  if (o.threads < 0) throw Error("bench_reconstruction: --threads must be >= 0");
+  return o;
+}
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering (setup, not measured).
+
+// The virtual rig with a 5 MP sensor behind a lens of the same field of view: the focal length
+// scales with the sensor width (2448 / 1280 = 1.9125) and the distortion, being in normalised
+// coordinates, stays the same.
+RigCalibration largeRig() {
+  RigCalibration rig = sim::makeVirtualRig();
+  rig.camera.width = 2448;
+  rig.camera.height = 2048;
+  rig.camera.fx = rig.camera.fy = 1600.0 * 1.9125;
+  rig.camera.cx = (2448 - 1) / 2.0;
+  rig.camera.cy = (2048 - 1) / 2.0;
+  return rig;
+}
+
+struct RenderedPile {
+  sim::PileParams params;
+  sim::PileScene scene;
+  Capture capture;
+};
+
+// The default pattern set (Gray code columns + rows, 4 phase steps) for the rig's projector.
+PatternSetSpec defaultPatterns(const RigCalibration& rig) {
+  PatternSetSpec patterns;
+  patterns.projector_width = rig.projector.width;
+  patterns.projector_height = rig.projector.height;
+  return patterns;
+}
+
+RenderedPile renderPile(const sim::Part& part, const RigCalibration& rig, uint64_t seed) {
+  RenderedPile r;
+  r.params.objects = kObjects;
+  r.params.seed = seed;
+  r.params.rig = rig;
+  const PatternSetSpec patterns = defaultPatterns(rig);
+  sim::PhotometryParams photometry;
+  photometry.seed = seed;
+  sim::PileCapture pile = sim::generatePileCapture(part.mesh, r.params, patterns, photometry);
+  r.scene = std::move(pile.scene);
+  r.capture = sim::recordedCapture(std::move(pile.images), r.params, patterns, photometry,
+                                   "bench_reconstruction " + part.name);
+  return r;
+}
+
+reconstruction::ReconstructionParams reconstructionParams(const Options& o) {
+  reconstruction::ReconstructionParams p;
+  p.setThreads(o.threads);
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// 1. Speed.
+
+struct Timing {
+  double median = std::numeric_limits<double>::quiet_NaN();
+  double min = std::numeric_limits<double>::quiet_NaN();
+};
+
+// One untimed warm-up (first-touch allocations, OpenMP pool start-up), then `repeats` timed runs;
+// `setup` runs before each and is not timed (e.g. a fresh copy for a stage that works in place).
+template <typename Setup, typename Run>
+Timing timeRuns(int repeats, Setup setup, Run run) {
+  setup();
+  run();
+  std::vector<double> ms;
+  for (int i = 0; i < repeats; ++i) {
+    setup();
+    const Clock::time_point start = Clock::now();
+    run();
+    ms.push_back(msSince(start));
+  }
+  std::sort(ms.begin(), ms.end());
+  return {ms[ms.size() / 2], ms.front()};
+}
+
+template <typename Run>
+Timing timeRuns(int repeats, Run run) {
+  return timeRuns(repeats, [] {}, run);
+}
+
+struct SpeedResult {
+  std::string name;  // "1280x1024"
+  Timing setup, decode, triangulate, filter, reconstruct;
+};
+
+// Each stage is timed on its own, from the previous stage's output computed once, so that the
+// stage numbers do not include each other; the whole reconstruct is timed separately.
+SpeedResult measureSpeed(const RigCalibration& rig, const Capture& capture, const Options& o,
+                         reconstruction::Reconstruction& result) {
+  namespace rc = reconstruction;
+  const rc::ReconstructionParams params = reconstructionParams(o);
+  SpeedResult s;
+  s.name = std::to_string(rig.camera.width) + "x" + std::to_string(rig.camera.height);
+  s.setup = timeRuns(o.repeats, [&] { const rc::Triangulator t(rig, params.triangulation); });
+  const rc::Triangulator triangulator(rig, params.triangulation);
+  rc::DecodedCapture decoded;
+  s.decode = timeRuns(o.repeats, [&] { decoded = rc::decodeCapture(capture, params.decode); });
+  rc::TriangulatedCloud triangulated;
+  s.triangulate = timeRuns(o.repeats, [&] { triangulated = triangulator.triangulate(decoded); });
+  PointCloud cloud;
+  cv::Mat status;
+  s.filter = timeRuns(
+      o.repeats, [&] { cloud = triangulated.cloud; status = triangulated.status.clone(); },
+      [&] { rc::filterCloud(cloud, status, params.filter); });
+  const rc::Reconstructor reconstructor(rig, params);
+  s.reconstruct = timeRuns(o.repeats, [&] { result = reconstructor.reconstruct(capture); });
+  return s;
+}
+
+void printTimingRow(const char* label, const std::vector<SpeedResult>& results, Timing SpeedResult::*field) {
+  std::printf("  %-28s", label);
+  for (const SpeedResult& r : results) std::printf(" %9.1f %9.1f", (r.*field).median, (r.*field).min);
+  std::printf("\n");
+}
+
+void printSpeed(const std::vector<SpeedResult>& results, const Options& o) {
+  std::printf("\n== 1. Speed (ms, from images in memory; median and min of %d runs after 1 warm-up) ==\n",
+              o.repeats);
+  std::printf("  %-28s", "capture");
+  for (const SpeedResult& r : results) std::printf(" %19s", r.name.c_str());
+  std::printf("\n  %-28s", "");
+  for (std::size_t i = 0; i < results.size(); ++i) std::printf(" %9s %9s", "median", "min");
+  std::printf("\n");
+  printTimingRow("Triangulator setup (once)", results, &SpeedResult::setup);
+  printTimingRow("decode", results, &SpeedResult::decode);
+  printTimingRow("triangulate", results, &SpeedResult::triangulate);
+  printTimingRow("filter", results, &SpeedResult::filter);
+  std::printf("  %-28s", "sum of the three (medians)");
+  for (const SpeedResult& r : results) {
+    std::printf(" %9.1f %9s", r.decode.median + r.triangulate.median + r.filter.median, "");
+  }
+  std::printf("\n");
+  printTimingRow("reconstruct (whole)", results, &SpeedResult::reconstruct);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 2. Accuracy.
+
+struct ErrorStats {
+  std::size_t count = 0;
+  double median = NAN, p90 = NAN, p99 = NAN;  // |dz|, mm
+  double bias = NAN;                          // median signed dz (reconstructed - true), mm
+  std::size_t wrong = 0;                      // |dz| > kWrongMm
+};
+
+double quantile(const std::vector<double>& sorted, double q) {
+  return sorted[static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1) + 0.5)];
+}
+
+ErrorStats errorStats(std::vector<double> signed_mm) {
+  ErrorStats s;
+  s.count = signed_mm.size();
+  if (signed_mm.empty()) return s;
+  std::vector<double> abs_mm;
+  for (const double e : signed_mm) abs_mm.push_back(std::abs(e));
+  std::sort(abs_mm.begin(), abs_mm.end());
+  std::sort(signed_mm.begin(), signed_mm.end());
+  s.median = quantile(abs_mm, 0.5);
+  s.p90 = quantile(abs_mm, 0.9);
+  s.p99 = quantile(abs_mm, 0.99);
+  s.bias = quantile(signed_mm, 0.5);
+  s.wrong = static_cast<std::size_t>(abs_mm.end() - std::upper_bound(abs_mm.begin(), abs_mm.end(), kWrongMm));
+  return s;
+}
+
+// Whether a truth depth edge (adjacent pixels more than kEdgeStepMm apart, or one of them seeing
+// nothing) lies within kEdgeRadius pixels: wrong points there are mixed or misdecoded edge pixels,
+// elsewhere they point at a decoding problem on smooth surfaces.
+bool nearDepthEdge(const sim::PileScene& scene, int x, int y) {
+  const int w = scene.cloud.width, h = scene.cloud.height;
+  const auto step = [&](int x0, int y0, int x1, int y1) {
+    if (x1 >= w || y1 >= h) return false;
+    const float a = scene.depth[static_cast<std::size_t>(y0) * w + x0];
+    const float b = scene.depth[static_cast<std::size_t>(y1) * w + x1];
+    return std::isfinite(a) != std::isfinite(b) || std::abs(a - b) * 1000.0 > kEdgeStepMm;
+  };
+  for (int v = std::max(0, y - kEdgeRadius); v <= std::min(h - 1, y + kEdgeRadius); ++v) {
+    for (int u = std::max(0, x - kEdgeRadius); u <= std::min(w - 1, x + kEdgeRadius); ++u) {
+      if (step(u, v, u + 1, v) || step(u, v, u, v + 1)) return true;
+    }
+  }
+  return false;
+}
+
+// Why the ideal sensor has no point where the reconstruction has one.
+enum class ExtraKind { Grazing, Unlit, NothingSeen };
+
+ExtraKind extraKind(const sim::PileScene& scene, const sim::PileParams& params, std::size_t i) {
+  const Eigen::Vector3f p = scene.exact_cloud.points[i];
+  if (!p.allFinite()) return ExtraKind::NothingSeen;
+  const float cos_view = -scene.exact_cloud.normals[i].dot(p.normalized());
+  const bool grazing = cos_view < static_cast<float>(std::cos(params.max_view_angle_deg * kPi / 180.0));
+  return grazing ? ExtraKind::Grazing : ExtraKind::Unlit;
+}
+
+struct Accuracy {
+  std::string name;
+  std::size_t ideal = 0;        // pixels where scene.cloud is finite
+  std::size_t valid_ideal = 0;  // of those, valid in the reconstruction
+  ErrorStats all;               // every valid pixel with a true depth
+  std::size_t wrong_near_edge = 0;
+  ErrorStats extra;             // valid pixels where scene.cloud is NaN
+  std::size_t extra_grazing = 0, extra_unlit = 0, extra_nothing = 0;
+  std::size_t extra_on_bin = 0;  // instance -2: the bin's walls and floor rather than parts
+  ErrorStats ideal_sensor;      // scene.cloud itself against the truth: the noise floor
+  reconstruction::StatusCounts missing{};  // ideal pixels the reconstruction lacks, by status
+};
+
+double zErrorMm(const Eigen::Vector3f& point, float true_z) {
+  return (static_cast<double>(point.z()) - static_cast<double>(true_z)) * 1000.0;
+}
+
+void countWrongNearEdges(const sim::PileScene& scene, const PointCloud& cloud, Accuracy& a) {
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    const Eigen::Vector3f p = cloud.points[i];
+    if (!p.allFinite() || !std::isfinite(scene.depth[i]) || std::abs(zErrorMm(p, scene.depth[i])) <= kWrongMm) {
+      continue;
+    }
+    const int x = static_cast<int>(i % static_cast<std::size_t>(cloud.width));
+    const int y = static_cast<int>(i / static_cast<std::size_t>(cloud.width));
+    a.wrong_near_edge += nearDepthEdge(scene, x, y) ? 1 : 0;
+  }
+}
+
+Accuracy measureAccuracy(const std::string& name, const RenderedPile& pile,
+                         const reconstruction::Reconstruction& r) {
+  const sim::PileScene& scene = pile.scene;
+  Accuracy a;
+  a.name = name;
+  // The status image is indexed like the cloud: make sure it is one block.
+  const cv::Mat status = r.status.isContinuous() ? r.status : r.status.clone();
+  std::vector<double> all, extra, ideal;
+  for (std::size_t i = 0; i < r.cloud.points.size(); ++i) {
+    const Eigen::Vector3f p = r.cloud.points[i];
+    const bool measurable = scene.cloud.points[i].allFinite();
+    const bool valid = p.allFinite();
+    a.ideal += measurable ? 1 : 0;
+    a.valid_ideal += measurable && valid ? 1 : 0;
+    if (measurable && !valid) ++a.missing[status.data[i]];
+    if (measurable) ideal.push_back(zErrorMm(scene.cloud.points[i], scene.depth[i]));
+    if (!valid || !std::isfinite(scene.depth[i])) continue;
+    all.push_back(zErrorMm(p, scene.depth[i]));
+    if (measurable) continue;
+    extra.push_back(all.back());
+    const ExtraKind kind = extraKind(scene, pile.params, i);
+    a.extra_grazing += kind == ExtraKind::Grazing ? 1 : 0;
+    a.extra_unlit += kind == ExtraKind::Unlit ? 1 : 0;
+    a.extra_on_bin += scene.instance[i] == -2 ? 1 : 0;
+  }
+  // Valid points where nothing was seen have no true depth, so they are counted apart.
+  for (std::size_t i = 0; i < r.cloud.points.size(); ++i) {
+    a.extra_nothing += r.cloud.points[i].allFinite() && !std::isfinite(scene.depth[i]) ? 1 : 0;
+  }
+  a.all = errorStats(std::move(all));
+  a.extra = errorStats(std::move(extra));
+  a.ideal_sensor = errorStats(std::move(ideal));
+  countWrongNearEdges(scene, r.cloud, a);
+  return a;
+}
+
+template <typename Format>
+void printAccuracyRow(const char* label, const std::vector<Accuracy>& results, Format format) {
+  std::printf("  %-44s", label);
+  for (const Accuracy& a : results) std::printf(" %16s", format(a).c_str());
+  std::printf("\n");
+}
+
+std::string fmt(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string countText(std::size_t n) { return std::to_string(n); }
+
+std::string triple(const ErrorStats& s) {
+  return fmt("%.2f", s.median) + " " + fmt("%.2f", s.p90) + " " + fmt("%.1f", s.p99);
+}
+
+void printMissing(const std::vector<Accuracy>& results) {
+  for (const Accuracy& a : results) {
+    std::printf("  %s, ideal-sensor pixels without a point, by status:", a.name.c_str());
+    for (std::size_t s = 1; s < reconstruction::kPixelStatusCount; ++s) {
+      if (a.missing[s] == 0) continue;
+      std::printf(" %s %zu", reconstruction::statusName(static_cast<reconstruction::PixelStatus>(s)), a.missing[s]);
+    }
+    std::printf("\n");
+  }
+}
+
+void printAccuracy(const std::vector<Accuracy>& r, const std::string& part) {
+  std::printf("\n== 2. Accuracy against the virtual cell's truth (%s, %d objects, seed 1; dz = z_rec - z_true) ==\n",
+              part.c_str(), kObjects);
+  printAccuracyRow("capture", r, [](const Accuracy& a) { return a.name; });
+  printAccuracyRow("ideal-sensor pixels (scene.cloud finite)", r, [](const Accuracy& a) { return countText(a.ideal); });
+  printAccuracyRow("  valid in reconstruction", r, [](const Accuracy& a) {
+    return fmt("%.2f%%", 100.0 * static_cast<double>(a.valid_ideal) / static_cast<double>(a.ideal));
+  });
+  printAccuracyRow("valid points with a true depth", r, [](const Accuracy& a) { return countText(a.all.count); });
+  printAccuracyRow("  |dz| median / p90 / p99, mm", r, [](const Accuracy& a) { return triple(a.all); });
+  printAccuracyRow("  median signed dz (bias), mm", r, [](const Accuracy& a) { return fmt("%+.3f", a.all.bias); });
+  printAccuracyRow("  wrong (|dz| > 5 mm)", r, [](const Accuracy& a) { return countText(a.all.wrong); });
+  printAccuracyRow("    of which within 2 px of a depth edge", r, [](const Accuracy& a) { return countText(a.wrong_near_edge); });
+  printAccuracyRow("valid where scene.cloud is NaN (extra)", r, [](const Accuracy& a) { return countText(a.extra.count); });
+  printAccuracyRow("  grazing (view angle > 80 deg)", r, [](const Accuracy& a) { return countText(a.extra_grazing); });
+  printAccuracyRow("  not grazing (truth: unlit)", r, [](const Accuracy& a) { return countText(a.extra_unlit); });
+  printAccuracyRow("  on the bin (not on parts)", r, [](const Accuracy& a) { return countText(a.extra_on_bin); });
+  printAccuracyRow("  |dz| median / p90 / p99, mm", r, [](const Accuracy& a) { return triple(a.extra); });
+  printAccuracyRow("  wrong (|dz| > 5 mm)", r, [](const Accuracy& a) { return countText(a.extra.wrong); });
+  printAccuracyRow("valid where nothing is seen (no truth)", r, [](const Accuracy& a) { return countText(a.extra_nothing); });
+  printAccuracyRow("ideal sensor itself: |dz| med / p90 / p99", r, [](const Accuracy& a) { return triple(a.ideal_sensor); });
+  printMissing(r);
+}
+
+// ---------------------------------------------------------------------------------------------
+// 3. End-to-end detection.
+
+struct CloudTotals {
+  int findable = 0, found = 0, wrong_first_10 = 0;
+  double ms = 0.0;
+  std::size_t points = 0;
+};
+
+std::size_t validPoints(const PointCloud& cloud) {
+  std::size_t n = 0;
+  for (const auto& p : cloud.points) n += p.allFinite() ? 1 : 0;
+  return n;
+}
+
+void detectInto(const estimation::Detector& detector, const PointCloud& cloud, const sim::PileScene& scene,
+                const sim::Part& part, CloudTotals& totals) {
+  const estimation::DetectionResult result = detector.detect(cloud);
+  const eval::Score score = eval::scoreDetections(result.detections, scene.objects, part.symmetry,
+                                                  {detector.model().diameter / 10.0, 10.0});
+  totals.findable += score.findable;
+  totals.found += score.found;
+  totals.wrong_first_10 += score.wrong_in_first_10;
+  totals.ms += result.timing_ms.total;
+  totals.points += validPoints(cloud);
+}
+
+void printDetectionRow(const char* label, const CloudTotals& t, const Options& o) {
+  const double objects = static_cast<double>(o.scenes) * kObjects;
+  std::printf("  %-26s %8.0fk %8.1f%% %3d/%-3d %10d %12.1f\n", label,
+              static_cast<double>(t.points) / 1000.0 / o.scenes,
+              t.findable ? 100.0 * t.found / t.findable : 0.0, t.found, t.findable, t.wrong_first_10,
+              t.ms / objects);
+}
+
+// The detector on the same pile seen three ways: through the whole reconstruction, through the
+// ideal sensor and as exact geometry; the gaps between them are what reconstruction costs.
+void benchDetectionPart(const std::string& part_name, const reconstruction::Reconstructor& reconstructor,
+                        const Options& o) {
+  const sim::Part part = sim::makePart(part_name);
+  const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {});
+  estimation::DetectorParams params;
+  params.selection.max_objects = kObjects;
+  params.threads = o.threads;
+  CloudTotals reconstructed, ideal, exact;
+  for (int s = 1; s <= o.scenes; ++s) {
+    const RenderedPile pile = renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s));
+    params.scene.crop = eval::binInterior(pile.scene, pile.params);
+    const estimation::Detector detector(model, params);
+    detectInto(detector, reconstructor.reconstruct(pile.capture).cloud, pile.scene, part, reconstructed);
+    detectInto(detector, pile.scene.cloud, pile.scene, part, ideal);
+    detectInto(detector, pile.scene.exact_cloud, pile.scene, part, exact);
+  }
+  std::printf("%s\n", part_name.c_str());
+  printDetectionRow("(a) reconstructed", reconstructed, o);
+  printDetectionRow("(b) ideal (scene.cloud)", ideal, o);
+  printDetectionRow("(c) exact (exact_cloud)", exact, o);
+}
+
+void benchDetection(const Options& o) {
+  std::printf("\n== 3. End-to-end detection (%d scenes x %d objects, seeds 1..%d, 1280x1024; "
+              "correct: < diam/10 and 10 deg) ==\n",
+              o.scenes, kObjects, o.scenes);
+  std::printf("  %-26s %9s %17s %10s %12s\n", "cloud", "pts/scene", "recognition", "wrong@10", "ms/object");
+  const reconstruction::Reconstructor reconstructor(sim::makeVirtualRig(), reconstructionParams(o));
+  for (const std::string& part : o.parts) benchDetectionPart(part, reconstructor, o);
+  std::printf("  (recognition: found / objects >= 50%% visible; wrong@10: wrong among the first 10 "
+              "detections, summed over scenes)\n");
+}
+
+// ---------------------------------------------------------------------------------------------
+
+void benchReconstruction(const Options& o) {
+  const sim::Part part = sim::makePart(o.part);
+  std::vector<RigCalibration> rigs{sim::makeVirtualRig()};
+  if (!o.skip_large) rigs.push_back(largeRig());
+  std::vector<SpeedResult> speed;
+  std::vector<Accuracy> accuracy;
+  for (const RigCalibration& rig : rigs) {
+    const Clock::time_point start = Clock::now();
+    const RenderedPile pile = renderPile(part, rig, 1);
+    std::printf("rendered %dx%d: %zu images of %s x %d in %.1f s\n", rig.camera.width, rig.camera.height,
+                pile.capture.images.size(), o.part.c_str(), kObjects, msSince(start) / 1000.0);
+    std::fflush(stdout);
+    reconstruction::Reconstruction result;
+    speed.push_back(measureSpeed(rig, pile.capture, o, result));
+    accuracy.push_back(measureAccuracy(speed.back().name, pile, result));
+  }
+  printSpeed(speed, o);
+  printAccuracy(accuracy, o.part);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Options options = parse(argc, argv);
+    std::printf("bench_reconstruction: %d threads (--threads %d), default pattern set (Gray columns + "
+                "rows, 4 phase steps), reconstruction defaults\n",
+                resolveThreadCount(options.threads), options.threads);
+    benchReconstruction(options);
+    if (!options.skip_detection) benchDetection(options);
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,46 @@
+// Reading a capture directory and reconstructing it.
+#include "capture_reconstruction.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+#include "binpick/io/capture.hpp"
+#include "binpick/io/rig_calibration.hpp"
+#include "binpick/reconstruction/reconstruction_config.hpp"
+
+namespace binpick::cli {
+namespace {
+
+void printSummary(const reconstruction::Reconstruction& result, double read_ms) {
+  std::cerr << result.validPoints() << " points of " << result.cloud.size() << " pixels (read "
+            << static_cast<int>(read_ms) << " ms, decode " << result.timings.decode << " ms, triangulate "
+            << result.timings.triangulate << " ms, filter " << result.timings.filter << " ms); no point:";
+  for (std::size_t status = 1; status < result.counts.size(); ++status) {
+    if (result.counts[status] == 0) continue;
+    std::cerr << " " << reconstruction::statusName(static_cast<reconstruction::PixelStatus>(status)) << " "
+              << result.counts[status];
+  }
+  std::cerr << "\n";
+}
+
+}  // namespace
+
+reconstruction::Reconstruction reconstructCaptureDirectory(const CaptureInput& input) {
+  const auto start = std::chrono::steady_clock::now();
+  reconstruction::ReconstructionParams params;
+  if (input.config) params = reconstruction::loadReconstructionParams(*input.config);
+  if (input.threads) params.setThreads(*input.threads);
+  const std::string calibration =
+      input.calibration.value_or((std::filesystem::path(input.capture_dir) / "calib.yaml").string());
+  const RigCalibration rig = readRigCalibration(calibration);
+  const Capture capture = readCapture(input.capture_dir);
+  const double read_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const reconstruction::Reconstructor reconstructor(rig, params);
+  reconstruction::Reconstruction result = reconstructor.reconstruct(capture);
+  printSummary(result, read_ms);
+  return result;
+}
+
+}  // namespace binpick::cli

@@ -1,0 +1,84 @@
+#pragma once
+// Decoding a structured-light capture: for every camera pixel, the projector column (and row)
+// whose light it sees, to sub-pixel precision when the capture has phase-shift images.
+//
+// Per pixel (whole image rows at a time, vectorised by the compiler):
+// 1. Light: contrast = white - black; with direct and global light separated after Moreno &
+//    Taubin (3DIMPVT 2012) from the high-frequency Gray-code images:
+//      L_d = (L_max - L_min) / (1 - b),   L_g = 2 (L_min - b L_max) / (1 - b^2).
+//    Too little direct light: Unlit (projector shadow, nothing there, too dark).
+// 2. Bits: each Gray bit is compared with its inverse and classified 1, 0 or uncertain by the
+//    rules of Xu & Aliaga as used by Moreno & Taubin, so that interreflections do not flip bits;
+//    near-ties (stripe edges) are uncertain too.
+// 3. Code: the columns consistent with the certain bits must form a short run (a pixel on a
+//    stripe edge sees two adjacent columns); otherwise UncertainCode. Without phase, the pixel's
+//    position is the run's centre.
+// 4. Phase: phi = atan2(sum I_k sin(2 pi k/N), sum I_k cos(2 pi k/N)), unwrapped temporally by
+//    the Gray-code run: the period instance that falls within the run (PhaseMismatch if none).
+// Stateless: thread-safe.
+#include <cstddef>
+#include <opencv2/core.hpp>
+
+#include "binpick/io/capture.hpp"
+#include "binpick/reconstruction/pixel_status.hpp"
+
+namespace binpick::reconstruction {
+
+// Intensities are in 8-bit counts (0..255); for 16-bit captures every threshold is scaled by 257.
+struct DecodeParams {
+  // A pixel needs at least this much white-minus-black contrast, and this much direct light L_d,
+  // to be decoded. Counts.
+  double min_contrast = 6.0;
+  double min_direct = 4.0;
+  // The share of white a black projector pixel still emits (Moreno & Taubin's b).
+  double projector_black_level = 0.0;
+  // Direct and global light are estimated from the Gray bits whose stripes are between these
+  // widths (projector pixels): fine enough that interreflections see half of them lit, coarse
+  // enough that projector defocus does not wash them out.
+  int separation_min_stripe = 4;
+  int separation_max_stripe = 16;
+  // A bit whose pattern and inverse differ by less than max(min_bit_difference,
+  // bit_margin * L_d) counts is uncertain.
+  double min_bit_difference = 2.0;
+  double bit_margin = 0.15;
+  // Longest run of projector columns (rows) the uncertain bits may leave open. Gray-code only:
+  // a pixel on a stripe edge sees 2 columns; with phase, the phase decides within the run, which
+  // must stay well inside one phase period.
+  int max_code_run_without_phase = 2;
+  int max_code_run_with_phase = 4;
+  // Phase-shift images: the sinusoid's amplitude must be at least this many counts, and the
+  // unwrapped position may lie at most this far (projector pixels) outside the Gray-code run.
+  double min_phase_amplitude = 3.0;
+  double max_phase_gray_disagreement = 1.0;
+  // Capture-level checks (throw): the share of pixels the white image may saturate, and how far
+  // a Gray pair's sum may drift from white + black (a missing or shuffled frame) before the
+  // capture is refused.
+  double max_saturated_fraction = 0.5;
+  double max_pair_sum_error = 0.25;
+  int threads = 0;  // 0: all cores
+  void validate() const;  // throws binpick::Error naming the field
+};
+
+struct DecodedCapture {
+  int width = 0;   // camera image size
+  int height = 0;
+  // Projector pixel coordinates seen by each camera pixel (pixel centres at integers, as in
+  // LensIntrinsics), CV_32FC1; NaN where status is not Valid. `row` is empty when the capture
+  // has no row codes.
+  cv::Mat column;
+  cv::Mat row;
+  // CV_8UC1 PixelStatus per pixel.
+  cv::Mat status;
+  // CV_32FC1: the white image scaled to [0, 1] (the sensor's full scale), for display.
+  cv::Mat intensity;
+  bool has_phase = false;  // the capture had phase-shift images (sub-pixel coordinates)
+};
+
+// Throws binpick::Error naming what is wrong when the capture cannot be decoded as a whole: the
+// images do not match the metadata's pattern set (count, order, size, type), the white image is
+// no brighter than the black one (projector off), the white image is saturated over more than
+// max_saturated_fraction of the lit pixels, or a Gray pair does not add up to white + black (a
+// missing, black or shuffled frame).
+DecodedCapture decodeCapture(const Capture& capture, const DecodeParams& params = {});
+
+}  // namespace binpick::reconstruction

@@ -1,0 +1,150 @@
+#pragma once
+// From the bits and phase read at one pixel to a projector column (or row). Internal; inline
+// because it runs once per pixel and axis inside the decoder's row loop.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "binpick/reconstruction/pattern_set.hpp"
+#include "binpick/reconstruction/pixel_status.hpp"
+#include "capture_layout.hpp"
+#include "decode_plan.hpp"
+
+namespace binpick::reconstruction::detail {
+
+struct AxisSample {
+  uint32_t code = 0;       // Gray code as read, most significant bit first
+  uint32_t uncertain = 0;  // bits that could not be classified
+  float phase_offset = 0.0f;  // projector pixels within one period, from the phase
+  float phase_amplitude = 0.0f;
+  bool phase_clipped = false;
+};
+
+struct AxisVerdict {
+  float position = 0.0f;  // projector pixels, pixel centres at integers
+  PixelStatus status = PixelStatus::Valid;
+};
+
+// Rounds to the nearest integer, halves up, for |value| < 2^20; written so that loops over it
+// vectorise (an int conversion rather than a libm call).
+inline float nearestWhole(float value) {
+  constexpr float kShift = 1048576.0f;  // makes the argument positive: conversion truncates
+  return static_cast<float>(static_cast<int>(value + 0.5f + kShift)) - kShift;
+}
+
+// More uncertain bits than this cannot leave a short run of columns: a pixel on a stripe edge
+// of a run of n columns has about log2(n) uncertain bits.
+constexpr int kMaxUncertainBits = 6;
+
+struct CodeRun {
+  unsigned first = 0;
+  unsigned last = 0;
+};
+
+// Every column whose Gray code agrees with the certain bits: one per combination of the
+// uncertain ones. Adjacent columns differ in exactly one Gray bit, so a pixel straddling a
+// stripe edge leaves a run of two.
+inline CodeRun candidateRun(uint32_t code, uint32_t uncertain) {
+  if (uncertain == 0) {
+    const unsigned column = grayDecode(code);
+    return {column, column};
+  }
+  const uint32_t certain_bits = code & ~uncertain;
+  CodeRun run{~0u, 0u};
+  for (uint32_t subset = uncertain;; subset = (subset - 1) & uncertain) {
+    const unsigned column = grayDecode(certain_bits | subset);
+    run.first = std::min(run.first, column);
+    run.last = std::max(run.last, column);
+    if (subset == 0) break;
+  }
+  return run;
+}
+
+// The period instance of the phase's position closest to the run's centre; the true position
+// lies within the run (columns first..last cover [first - 0.5, last + 0.5]).
+inline AxisVerdict unwrapPhase(const AxisSample& sample, const CodeRun& run, const AxisLayout& axis,
+                               const DecodeThresholds& t) {
+  if (sample.phase_clipped) return {0.0f, PixelStatus::Saturated};
+  if (!(sample.phase_amplitude >= t.min_phase_amplitude)) return {0.0f, PixelStatus::PhaseMismatch};
+  const float period = static_cast<float>(axis.phase_period);
+  const float centre = 0.5f * static_cast<float>(run.first + run.last);
+  const float periods = nearestWhole((centre - sample.phase_offset) * (1.0f / period));
+  const float position = sample.phase_offset + period * periods;
+  const float low = static_cast<float>(run.first) - 0.5f - t.phase_tolerance;
+  const float high = static_cast<float>(run.last) + 0.5f + t.phase_tolerance;
+  if (!(position >= low && position <= high)) return {0.0f, PixelStatus::PhaseMismatch};
+  return {position, PixelStatus::Valid};
+}
+
+inline AxisVerdict resolveAxis(const AxisSample& sample, const AxisLayout& axis, const DecodeThresholds& t) {
+  if (__builtin_popcount(sample.uncertain) > kMaxUncertainBits) return {0.0f, PixelStatus::UncertainCode};
+  CodeRun run = candidateRun(sample.code, sample.uncertain);
+  const int longest = axis.hasPhase() ? t.max_run_with_phase : t.max_run_without_phase;
+  if (run.last - run.first + 1 > static_cast<unsigned>(longest)) return {0.0f, PixelStatus::UncertainCode};
+  const unsigned size = static_cast<unsigned>(axis.size);
+  if (run.first >= size) return {0.0f, PixelStatus::CodeOutOfRange};
+  run.last = std::min(run.last, size - 1);  // codes past the edge were never projected
+  if (!axis.hasPhase()) return {0.5f * static_cast<float>(run.first + run.last), PixelStatus::Valid};
+  return unwrapPhase(sample, run, axis, t);
+}
+
+// Verdicts of resolveSimpleCodes: a PixelStatus, or this for a pixel resolveAxis must decide.
+constexpr uint8_t kNeedsFullResolution = 255;
+
+// grayDecode of a code of at most 16 bits, unrolled so that loops over it vectorise.
+inline uint32_t grayDecode16(uint32_t code) {
+  code ^= code >> 1;
+  code ^= code >> 2;
+  code ^= code >> 4;
+  code ^= code >> 8;
+  return code;
+}
+
+// resolveAxis for a whole tile at once, vectorised, for the common pixels: at most one uncertain
+// bit (a stripe edge or none), a run no longer than allowed, inside the projector. Writes the
+// run's centre, and a verdict per pixel: Valid for those pixels, kNeedsFullResolution for the
+// others. Gives the same result as resolveAxis wherever it decides.
+inline void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain, int longest,
+                              int last_index, float* __restrict centre, uint8_t* __restrict verdict, int width) {
+  for (int x = 0; x < width; ++x) {
+    const uint32_t u = uncertain[x];
+    const uint32_t low = grayDecode16(code[x] & ~u);
+    const uint32_t high = grayDecode16(code[x] | u);
+    const int first = static_cast<int>(std::min(low, high));
+    const int last = static_cast<int>(std::max(low, high));
+    const bool simple = ((u & (u - 1)) == 0) & (last - first < longest) & (first <= last_index);
+    centre[x] = 0.5f * static_cast<float>(first + std::min(last, last_index));
+    verdict[x] = simple ? static_cast<uint8_t>(PixelStatus::Valid) : kNeedsFullResolution;
+  }
+}
+
+// unwrapPhase for the pixels resolveSimpleRuns decided: the run [centre - half_run, centre +
+// half_run] becomes the unwrapped position, or a PhaseMismatch / Saturated verdict.
+inline void unwrapSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain,
+                             const float* __restrict phase_offset, const float* __restrict phase_amplitude,
+                             const uint8_t* __restrict phase_clipped, const AxisLayout& axis, const DecodeThresholds& t,
+                             float* __restrict position, uint8_t* __restrict verdict, int width) {
+  const float period = static_cast<float>(axis.phase_period);
+  const float inverse_period = 1.0f / period;
+  const float reach = 0.5f + t.phase_tolerance;
+  const float min_amplitude = t.min_phase_amplitude;
+  const int last_index = axis.size - 1;
+  for (int x = 0; x < width; ++x) {
+    const uint32_t u = uncertain[x];
+    const uint32_t low = grayDecode16(code[x] & ~u);
+    const uint32_t high = grayDecode16(code[x] | u);
+    const float first = static_cast<float>(std::min(low, high));
+    const float last = static_cast<float>(std::min(static_cast<int>(std::max(low, high)), last_index));
+    const float centre = position[x];
+    const float offset = phase_offset[x];
+    const float unwrapped = offset + period * nearestWhole((centre - offset) * inverse_period);
+    const bool inside =
+        (unwrapped >= first - reach) & (unwrapped <= last + reach) & (phase_amplitude[x] >= min_amplitude);
+    const uint8_t status = phase_clipped[x] ? static_cast<uint8_t>(PixelStatus::Saturated)
+                                            : static_cast<uint8_t>(inside ? PixelStatus::Valid : PixelStatus::PhaseMismatch);
+    position[x] = unwrapped;
+    verdict[x] = verdict[x] == kNeedsFullResolution ? kNeedsFullResolution : status;
+  }
+}
+
+}  // namespace binpick::reconstruction::detail

@@ -1,0 +1,94 @@
+// Mapping a capture's images onto its pattern set, with the checks that make the mapping safe.
+#include "capture_layout.hpp"
+
+#include <string>
+
+#include "binpick/io/error.hpp"
+#include "binpick/reconstruction/pattern_set.hpp"
+
+namespace binpick::reconstruction::detail {
+namespace {
+
+std::string describe(const PatternSetSpec& spec) {
+  std::string text = std::to_string(spec.projector_width) + "x" +
+                     std::to_string(spec.projector_height) + " projector";
+  if (spec.column_codes) text += ", column codes";
+  if (spec.row_codes) text += ", row codes";
+  return text + ", " + std::to_string(spec.phase_steps) + " phase steps";
+}
+
+void checkNames(const CaptureMetadata& metadata, const std::vector<Pattern>& sequence) {
+  const std::string set = "the pattern set (" + describe(metadata.pattern_set) + ")";
+  if (metadata.patterns.size() != sequence.size()) {
+    throw Error("capture: " + std::to_string(metadata.patterns.size()) + " patterns listed but " +
+                set + " has " + std::to_string(sequence.size()));
+  }
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    if (metadata.patterns[i] == sequence[i].name()) continue;
+    throw Error("capture: image " + std::to_string(i) + " is '" + metadata.patterns[i] + "' but " +
+                set + " expects '" + sequence[i].name() + "' there");
+  }
+}
+
+void checkImages(const Capture& capture) {
+  const CaptureMetadata& metadata = capture.metadata;
+  if (capture.images.size() != metadata.patterns.size()) {
+    throw Error("capture: " + std::to_string(capture.images.size()) + " images for " +
+                std::to_string(metadata.patterns.size()) + " patterns");
+  }
+  if (metadata.bit_depth != 8 && metadata.bit_depth != 16) {
+    throw Error("capture: bit depth must be 8 or 16 (got " + std::to_string(metadata.bit_depth) + ")");
+  }
+  const int type = metadata.bit_depth == 8 ? CV_8UC1 : CV_16UC1;
+  for (std::size_t i = 0; i < capture.images.size(); ++i) {
+    const cv::Mat& image = capture.images[i];
+    const std::string name = "capture: image " + std::to_string(i) + " (" + metadata.patterns[i] + ")";
+    if (image.cols != metadata.image_width || image.rows != metadata.image_height) {
+      throw Error(name + " is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                  ", the metadata says " + std::to_string(metadata.image_width) + "x" +
+                  std::to_string(metadata.image_height));
+    }
+    if (image.type() != type) {
+      throw Error(name + " is not a single-channel " + std::to_string(metadata.bit_depth) +
+                  "-bit image");
+    }
+  }
+  if (metadata.image_width <= 0 || metadata.image_height <= 0) {
+    throw Error("capture: empty images");
+  }
+}
+
+void addPattern(CaptureLayout& layout, const Pattern& pattern, const PatternSetSpec& spec, int image) {
+  if (pattern.kind == PatternKind::White) layout.white = image;
+  if (pattern.kind == PatternKind::Black) layout.black = image;
+  if (pattern.axis == PatternAxis::None) return;
+  AxisLayout& axis = pattern.axis == PatternAxis::Columns ? layout.columns : layout.rows;
+  axis.present = true;
+  axis.size = pattern.axis == PatternAxis::Columns ? spec.projector_width : spec.projector_height;
+  axis.phase_period = spec.phase_period;
+  if (pattern.kind == PatternKind::GrayBit) axis.bit_images.push_back(image);
+  if (pattern.kind == PatternKind::GrayBitInverse) axis.inverse_images.push_back(image);
+  if (pattern.kind == PatternKind::PhaseStep) axis.phase_images.push_back(image);
+}
+
+}  // namespace
+
+CaptureLayout captureLayout(const Capture& capture) {
+  const CaptureMetadata& metadata = capture.metadata;
+  const std::vector<Pattern> sequence = patternSequence(metadata.pattern_set);  // validates the spec
+  checkNames(metadata, sequence);
+  checkImages(capture);
+  if (!metadata.pattern_set.column_codes) {
+    throw Error("capture: the pattern set has no column codes; triangulation needs the projector column");
+  }
+  CaptureLayout layout;
+  layout.width = metadata.image_width;
+  layout.height = metadata.image_height;
+  layout.bit_depth = metadata.bit_depth;
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    addPattern(layout, sequence[i], metadata.pattern_set, static_cast<int>(i));
+  }
+  return layout;
+}
+
+}  // namespace binpick::reconstruction::detail

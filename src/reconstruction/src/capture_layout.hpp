@@ -1,0 +1,39 @@
+#pragma once
+// Where each pattern of a capture's pattern set sits among its images, checked against the
+// images themselves. Internal to the decoder.
+#include <vector>
+
+#include "binpick/io/capture.hpp"
+
+namespace binpick::reconstruction::detail {
+
+struct AxisLayout {
+  bool present = false;
+  int size = 0;                   // projector columns (or rows)
+  std::vector<int> bit_images;    // image index of Gray bit j (most significant first)
+  std::vector<int> inverse_images;
+  std::vector<int> phase_images;  // one per phase step; empty without phase shift
+  int phase_period = 0;           // projector pixels
+
+  int bits() const { return static_cast<int>(bit_images.size()); }
+  bool hasPhase() const { return !phase_images.empty(); }
+  // Width in projector pixels of the stripes of Gray bit j: 2^(bits - 1 - j).
+  int stripeWidth(int bit) const { return 1 << (bits() - 1 - bit); }
+};
+
+struct CaptureLayout {
+  int white = -1;
+  int black = -1;
+  AxisLayout columns;
+  AxisLayout rows;
+  int width = 0;   // camera image size
+  int height = 0;
+  int bit_depth = 8;
+};
+
+// Throws binpick::Error naming the first mismatch: the pattern names are not the sequence the
+// pattern set defines, the image count, size or type disagrees with the metadata, or the set has
+// no column codes (triangulation needs the projector column).
+CaptureLayout captureLayout(const Capture& capture);
+
+}  // namespace binpick::reconstruction::detail

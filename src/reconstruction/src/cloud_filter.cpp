@@ -1,0 +1,91 @@
+// filterCloud: depth range, crop box and speckle removal on an organized cloud.
+#include "binpick/reconstruction/cloud_filter.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "binpick/io/error.hpp"
+#include "binpick/reconstruction/pixel_status.hpp"
+#include "speckle.hpp"
+
+namespace binpick::reconstruction {
+namespace {
+
+void require(bool ok, const char* field, const char* rule, double value) {
+  requireField(ok, "CloudFilterParams", field, rule, value);
+}
+
+bool hasNaN(const Eigen::Vector3d& v) { return v.array().isNaN().any(); }
+
+void checkInputs(const PointCloud& cloud, const cv::Mat& status) {
+  if (!cloud.isOrganized()) {
+    throw Error("filterCloud: the cloud must be organized (got " + std::to_string(cloud.width) +
+                "x" + std::to_string(cloud.height) + " for " + std::to_string(cloud.size()) +
+                " points)");
+  }
+  if (status.type() != CV_8UC1 || status.cols != cloud.width || status.rows != cloud.height) {
+    throw Error("filterCloud: the status image must be CV_8UC1 of the cloud's size " +
+                std::to_string(cloud.width) + "x" + std::to_string(cloud.height) + " (got " +
+                std::to_string(status.cols) + "x" + std::to_string(status.rows) + " of type " +
+                std::to_string(status.type()) + ")");
+  }
+}
+
+void removePoint(PointCloud& cloud, std::size_t i, uint8_t& status, PixelStatus reason) {
+  cloud.points[i] = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+  status = static_cast<uint8_t>(reason);
+}
+
+void applyDepthAndCrop(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+  const bool crop = !params.crop.isEmpty();
+  for (int y = 0; y < cloud.height; ++y) {
+    uint8_t* row_status = status.ptr<uint8_t>(y);
+    for (int x = 0; x < cloud.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
+      const Eigen::Vector3f& p = cloud.points[i];
+      if (!p.allFinite()) continue;
+      if (p.z() < params.min_depth || p.z() > params.max_depth) {
+        removePoint(cloud, i, row_status[x], PixelStatus::OutOfDepthRange);
+      } else if (crop && !params.crop.contains(p.cast<double>())) {
+        removePoint(cloud, i, row_status[x], PixelStatus::OutsideCrop);
+      }
+    }
+  }
+}
+
+void applySpeckle(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+  const std::vector<uint8_t> speckle = detail::findSpeckles(
+      cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels);
+  for (int y = 0; y < cloud.height; ++y) {
+    uint8_t* row_status = status.ptr<uint8_t>(y);
+    for (int x = 0; x < cloud.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
+      if (speckle[i]) removePoint(cloud, i, row_status[x], PixelStatus::Speckle);
+    }
+  }
+}
+
+}  // namespace
+
+void CloudFilterParams::validate() const {
+  require(std::isfinite(min_depth) && min_depth >= 0.0, "min_depth", "finite and >= 0",
+          min_depth);
+  require(!std::isnan(max_depth) && max_depth > min_depth, "max_depth", "above min_depth",
+          max_depth);
+  // A NaN corner would make the box non-empty yet contain nothing: every point would go.
+  requireField(!hasNaN(crop.min()) && !hasNaN(crop.max()), "CloudFilterParams", "crop",
+               "free of NaN", "a NaN corner");
+  require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step",
+          "positive and finite", speckle_max_step);
+  require(speckle_min_pixels >= 0, "speckle_min_pixels", ">= 0", speckle_min_pixels);
+}
+
+void filterCloud(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+  params.validate();
+  checkInputs(cloud, status);
+  applyDepthAndCrop(cloud, status, params);
+  if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
+}
+
+}  // namespace binpick::reconstruction

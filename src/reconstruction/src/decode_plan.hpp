@@ -1,0 +1,44 @@
+#pragma once
+// Everything the per-row decoder needs that depends only on the capture's layout and the params:
+// image indices per role, thresholds in the images' own counts, phase weights. Internal.
+#include <cstdint>
+#include <vector>
+
+#include "binpick/reconstruction/decoder.hpp"
+#include "capture_layout.hpp"
+
+namespace binpick::reconstruction::detail {
+
+// DecodeParams in the capture's counts (16-bit images: 257 per 8-bit count).
+struct DecodeThresholds {
+  float min_contrast = 0.0f;
+  float min_direct = 0.0f;
+  float black_level = 0.0f;  // Moreno & Taubin's b (a ratio, not counts)
+  float min_bit_difference = 0.0f;
+  float bit_margin = 0.0f;   // a ratio of L_d
+  float min_phase_amplitude = 0.0f;
+  float phase_tolerance = 0.0f;  // projector pixels
+  float saturation = 0.0f;   // a value at or above it was clipped by the sensor
+  float full_scale = 255.0f;
+  int max_run_without_phase = 2;
+  int max_run_with_phase = 4;
+};
+
+struct PhaseWeights {
+  std::vector<float> cosine;  // cos(2 pi k / N) per step
+  std::vector<float> sine;
+};
+
+struct DecodePlan {
+  CaptureLayout layout;
+  DecodeThresholds thresholds;
+  // Images whose per-pixel max and min give L_max and L_min (Moreno & Taubin).
+  std::vector<int> separation_images;
+  PhaseWeights phase;
+};
+
+// Throws binpick::Error when a phase period is too short to be unwrapped by the Gray-code run
+// the params allow.
+DecodePlan makeDecodePlan(const CaptureLayout& layout, const DecodeParams& params);
+
+}  // namespace binpick::reconstruction::detail

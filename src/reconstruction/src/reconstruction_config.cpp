@@ -1,0 +1,85 @@
+// The `reconstruction:` section of a settings file.
+#include "binpick/reconstruction/reconstruction_config.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "binpick/io/error.hpp"
+#include "binpick/io/yaml_section.hpp"
+
+namespace binpick::reconstruction {
+namespace {
+
+void readDecode(YamlSection s, DecodeParams& p) {
+  s.read("min_contrast", p.min_contrast);
+  s.read("min_direct", p.min_direct);
+  s.read("projector_black_level", p.projector_black_level);
+  s.read("separation_min_stripe", p.separation_min_stripe);
+  s.read("separation_max_stripe", p.separation_max_stripe);
+  s.read("min_bit_difference", p.min_bit_difference);
+  s.read("bit_margin", p.bit_margin);
+  s.read("max_code_run_without_phase", p.max_code_run_without_phase);
+  s.read("max_code_run_with_phase", p.max_code_run_with_phase);
+  s.read("min_phase_amplitude", p.min_phase_amplitude);
+  s.read("max_phase_gray_disagreement", p.max_phase_gray_disagreement);
+  s.read("max_saturated_fraction", p.max_saturated_fraction);
+  s.read("max_pair_sum_error", p.max_pair_sum_error);
+  s.finish();
+}
+
+void readCrop(YamlSection s, CloudFilterParams& p) {
+  if (s.isNull()) return;
+  Eigen::Vector3d min = Eigen::Vector3d::Constant(std::nan(""));
+  Eigen::Vector3d max = min;
+  s.readVector3("min", min);
+  s.readVector3("max", max);
+  if (!min.allFinite()) s.fail("min", "needs three numbers");
+  if (!max.allFinite()) s.fail("max", "needs three numbers");
+  if ((min.array() > max.array()).any()) s.fail("min", "must not exceed max on any axis");
+  s.finish();
+  p.crop = Eigen::AlignedBox3d(min, max);
+}
+
+void readFilter(YamlSection s, CloudFilterParams& p) {
+  s.read("min_depth", p.min_depth);
+  s.read("max_depth", p.max_depth);
+  readCrop(s.child("crop"), p);
+  s.read("speckle_max_step", p.speckle_max_step);
+  s.read("speckle_min_pixels", p.speckle_min_pixels);
+  s.finish();
+}
+
+void readReconstruction(YamlSection s, ReconstructionParams& p) {
+  int threads = 0;
+  s.read("threads", threads);
+  p.setThreads(threads);
+  readDecode(s.child("decode"), p.decode);
+  YamlSection triangulation = s.child("triangulation");
+  triangulation.read("max_epipolar_error", p.triangulation.max_epipolar_error);
+  triangulation.finish();
+  readFilter(s.child("filter"), p.filter);
+  s.finish();
+}
+
+}  // namespace
+
+ReconstructionParams parseReconstructionParams(const std::string& yaml_text, const std::string& origin) {
+  YamlSection top(parseYaml(yaml_text, origin), "", origin);
+  ReconstructionParams params;
+  readReconstruction(top.child("reconstruction"), params);
+  top.skip("model");  // estimation's sections of the same file
+  top.skip("detection");
+  top.finish();
+  try {
+    params.validate();
+  } catch (const Error& e) {
+    throw Error(origin + ": " + e.what());
+  }
+  return params;
+}
+
+ReconstructionParams loadReconstructionParams(const std::string& path) {
+  return parseReconstructionParams(readConfigFile(path), path);
+}
+
+}  // namespace binpick::reconstruction

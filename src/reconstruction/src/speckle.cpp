@@ -1,0 +1,92 @@
+// Speckle detection: runs of connected pixels along each row, joined across rows by union-find.
+#include "speckle.hpp"
+
+#include <cmath>
+#include <utility>
+
+namespace binpick::reconstruction::detail {
+namespace {
+
+// Disjoint sets over runs, by size, with path halving.
+class RunSets {
+ public:
+  int32_t add(int32_t pixels) {
+    parent_.push_back(static_cast<int32_t>(parent_.size()));
+    size_.push_back(pixels);
+    return parent_.back();
+  }
+  void grow(int32_t run) { ++size_[run]; }
+  int32_t find(int32_t run) {
+    while (parent_[run] != run) {
+      parent_[run] = parent_[parent_[run]];
+      run = parent_[run];
+    }
+    return run;
+  }
+  void join(int32_t a, int32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (size_[a] < size_[b]) std::swap(a, b);
+    parent_[b] = a;
+    size_[a] += size_[b];
+  }
+  int32_t size(int32_t root) const { return size_[root]; }
+
+ private:
+  std::vector<int32_t> parent_;
+  std::vector<int32_t> size_;
+};
+
+bool connected(float z0, float z1, float max_step) { return std::abs(z0 - z1) <= max_step; }
+
+// Labels one row's runs: consecutive finite points, each within max_step of its left neighbour.
+void labelRow(const PointCloud& cloud, int y, float max_step, RunSets& sets, int32_t* labels) {
+  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * cloud.width;
+  int32_t run = -1;
+  for (int x = 0; x < cloud.width; ++x) {
+    if (!points[x].allFinite()) {
+      labels[x] = run = -1;
+      continue;
+    }
+    if (run < 0 || !connected(points[x].z(), points[x - 1].z(), max_step)) run = sets.add(0);
+    sets.grow(run);
+    labels[x] = run;
+  }
+}
+
+// Joins the runs of row y with those of row y - 1 wherever vertical neighbours connect.
+void joinRows(const PointCloud& cloud, int y, float max_step, RunSets& sets, const int32_t* above,
+              const int32_t* labels) {
+  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * cloud.width;
+  const Eigen::Vector3f* points_above = points - cloud.width;
+  int32_t last_above = -1, last = -1;  // the pair joined last: runs overlap over many pixels
+  for (int x = 0; x < cloud.width; ++x) {
+    if (labels[x] < 0 || above[x] < 0) continue;
+    if (labels[x] == last && above[x] == last_above) continue;
+    if (!connected(points[x].z(), points_above[x].z(), max_step)) continue;
+    sets.join(labels[x], above[x]);
+    last = labels[x];
+    last_above = above[x];
+  }
+}
+
+}  // namespace
+
+std::vector<uint8_t> findSpeckles(const PointCloud& cloud, float max_step, int min_pixels) {
+  const std::size_t count = cloud.points.size();
+  std::vector<int32_t> labels(count, -1);
+  RunSets sets;
+  for (int y = 0; y < cloud.height; ++y) {
+    int32_t* row_labels = labels.data() + static_cast<std::size_t>(y) * cloud.width;
+    labelRow(cloud, y, max_step, sets, row_labels);
+    if (y > 0) joinRows(cloud, y, max_step, sets, row_labels - cloud.width, row_labels);
+  }
+  std::vector<uint8_t> speckle(count, 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (labels[i] >= 0 && sets.size(sets.find(labels[i])) < min_pixels) speckle[i] = 1;
+  }
+  return speckle;
+}
+
+}  // namespace binpick::reconstruction::detail

@@ -1,0 +1,16 @@
+#pragma once
+// Speckle detection on an organized cloud: connected patches of the pixel grid, grown between
+// 4-neighbours whose camera z differs by at most a step.
+#include <cstdint>
+#include <vector>
+
+#include "binpick/io/point_cloud.hpp"
+
+namespace binpick::reconstruction::detail {
+
+// One flag per point: 1 where the point is finite and its patch has fewer than `min_pixels`
+// points. O(N): horizontal runs, then union-find over the runs (no recursion, no per-pixel
+// queue).
+std::vector<uint8_t> findSpeckles(const PointCloud& cloud, float max_step, int min_pixels);
+
+}  // namespace binpick::reconstruction::detail

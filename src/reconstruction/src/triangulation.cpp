@@ -1,0 +1,107 @@
+// Triangulator: the calibration's tables, input checks, and the parallel loop over image rows.
+#include "binpick/reconstruction/triangulation.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "binpick/io/error.hpp"
+#include "binpick/io/thread_count.hpp"
+#include "triangulation_rows.hpp"
+#include "triangulation_tables.hpp"
+
+namespace binpick::reconstruction {
+
+struct Triangulator::Tables {
+  detail::CameraRays rays;
+  detail::ProjectorTables projector;
+  detail::RigGeometry geometry;
+};
+
+namespace {
+
+void requireImage(const cv::Mat& image, int type, const DecodedCapture& decoded, const char* name) {
+  if (image.rows == decoded.height && image.cols == decoded.width && image.type() == type) return;
+  throw Error(std::string("Triangulator::triangulate: decoded.") + name + " must be " +
+              std::to_string(decoded.width) + "x" + std::to_string(decoded.height) + " of type " +
+              std::to_string(type) + " (got " + std::to_string(image.cols) + "x" +
+              std::to_string(image.rows) + " of type " + std::to_string(image.type()) + ")");
+}
+
+void checkDecoded(const DecodedCapture& decoded, const LensIntrinsics& camera) {
+  if (decoded.width != camera.width || decoded.height != camera.height) {
+    throw Error("Triangulator::triangulate: the decoded capture is " +
+                std::to_string(decoded.width) + "x" + std::to_string(decoded.height) +
+                " but the camera is " + std::to_string(camera.width) + "x" +
+                std::to_string(camera.height));
+  }
+  requireImage(decoded.column, CV_32FC1, decoded, "column");
+  requireImage(decoded.status, CV_8UC1, decoded, "status");
+  if (!decoded.row.empty()) requireImage(decoded.row, CV_32FC1, decoded, "row");
+}
+
+}  // namespace
+
+void TriangulationParams::validate() const {
+  requireField(std::isfinite(max_epipolar_error) && max_epipolar_error > 0.0,
+               "TriangulationParams", "max_epipolar_error", "positive and finite",
+               max_epipolar_error);
+  requireField(threads >= 0, "TriangulationParams", "threads", ">= 0", threads);
+}
+
+Triangulator::Triangulator(const RigCalibration& rig, const TriangulationParams& params)
+    : rig_(rig), params_(params) {
+  rig_.validate();
+  params_.validate();
+  const int threads = resolveThreadCount(params_.threads);
+  auto tables = std::make_unique<Tables>();
+  tables->rays = detail::buildCameraRays(rig_.camera, threads);
+  const Eigen::Vector3d camera_centre = rig_.T_projector_camera.translation();
+  const detail::EpipolarPencil pencil = detail::makeEpipolarPencil(camera_centre);
+  tables->projector = detail::buildProjectorTables(rig_.projector, pencil, camera_centre, threads);
+  tables->geometry = detail::makeRigGeometry(rig_, pencil, params_.max_epipolar_error);
+  tables_ = std::move(tables);
+}
+
+Triangulator::~Triangulator() = default;
+Triangulator::Triangulator(Triangulator&&) noexcept = default;
+Triangulator& Triangulator::operator=(Triangulator&&) noexcept = default;
+
+const RigCalibration& Triangulator::rig() const { return rig_; }
+
+TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const {
+  checkDecoded(decoded, rig_.camera);
+  const int width = decoded.width, height = decoded.height;
+  TriangulatedCloud result;
+  result.cloud.width = width;
+  result.cloud.height = height;
+  // Every element is written by the row loop, in parallel: the pages are first touched there.
+  result.cloud.points.resize(static_cast<std::size_t>(width) * height);
+  result.status.create(height, width, CV_8UC1);
+  const Tables& tables = *tables_;
+  const bool with_rows = !decoded.row.empty();
+#pragma omp parallel num_threads(resolveThreadCount(params_.threads))
+  {
+    detail::TriangulationScratch scratch(width);
+#pragma omp for schedule(static)
+    for (int y = 0; y < height; ++y) {
+      const std::size_t offset = static_cast<std::size_t>(y) * width;
+      detail::TriangulationRowInput in;
+      in.width = width;
+      in.ray_x = tables.rays.x.data() + offset;
+      in.ray_y = tables.rays.y.data() + offset;
+      in.column = decoded.column.ptr<float>(y);
+      in.row = with_rows ? decoded.row.ptr<float>(y) : nullptr;
+      in.status = decoded.status.ptr<uint8_t>(y);
+      const detail::TriangulationRowOutput out{result.cloud.points.data() + offset,
+                                  result.status.ptr<uint8_t>(y)};
+      if (with_rows) {
+        detail::triangulateRowWithRows(tables.geometry, tables.projector, in, scratch, out);
+      } else {
+        detail::triangulateRowColumnOnly(tables.geometry, tables.projector, in, scratch, out);
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace binpick::reconstruction

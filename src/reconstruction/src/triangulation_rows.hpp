@@ -1,0 +1,57 @@
+#pragma once
+// Triangulation of one camera image row. Each row goes through a few passes over small buffers:
+// scalar passes for the table loads, and branch-free arithmetic passes the compiler vectorises.
+// A pixel's result depends only on its own inputs (and never on its neighbours or on which
+// thread runs the row).
+#include <Eigen/Core>
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "binpick/io/rig_calibration.hpp"
+#include "triangulation_tables.hpp"
+
+namespace binpick::reconstruction::detail {
+
+// The rig in single precision, as the per-pixel arithmetic uses it.
+struct RigGeometry {
+  float r[9] = {};          // R_projector_camera, row-major
+  float c[3] = {};          // the camera centre in the projector frame
+  float aspect_sq = 1.0f;      // (fx / fy)^2 of the projector
+  float max_error_sq = 0.0f;   // (max_epipolar_error / fx)^2: normalised units
+  // The epipolar label of the camera ray (a, b, 1) is (q3 . (a, b, 1)) / (q2 . (a, b, 1)):
+  // n . e = (C x d) . e = d . (e x C), with d = R (a, b, 1).
+  float q2[3] = {}, q3[3] = {};
+  float max_depth = 0.0f;  // camera z beyond which rays count as parallel, metres
+};
+RigGeometry makeRigGeometry(const RigCalibration& rig, const EpipolarPencil& pencil,
+                            double max_epipolar_error);
+
+struct TriangulationRowInput {
+  int width = 0;
+  const float* ray_x = nullptr;  // CameraRays of this row
+  const float* ray_y = nullptr;
+  const float* column = nullptr;  // decoded projector coordinates
+  const float* row = nullptr;     // nullptr: column-only capture
+  const uint8_t* status = nullptr;
+};
+
+struct TriangulationRowOutput {
+  Eigen::Vector3f* points = nullptr;
+  uint8_t* status = nullptr;
+};
+
+// Per-thread scratch, one float (or code) per pixel of a row.
+struct TriangulationScratch {
+  explicit TriangulationScratch(int width);
+  std::vector<float> label, fx, fy, px, py, pz;
+  std::vector<float> light;  // 2 or 4 interleaved floats per pixel
+  std::vector<int32_t> code, cell;
+};
+
+void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables,
+                            const TriangulationRowInput& in, TriangulationScratch& scratch, const TriangulationRowOutput& out);
+void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables,
+                              const TriangulationRowInput& in, TriangulationScratch& scratch, const TriangulationRowOutput& out);
+
+}  // namespace binpick::reconstruction::detail

@@ -1,0 +1,197 @@
+// The decoder against the virtual cell's truth: which projector pixel each camera pixel sees.
+#include "binpick/reconstruction/decoder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "virtual_capture.hpp"
+
+namespace binpick::reconstruction {
+namespace {
+
+using testing::CaptureOptions;
+using testing::VirtualCapture;
+using testing::virtualCapture;
+
+bool isValid(const DecodedCapture& decoded, std::size_t pixel) {
+  return decoded.status.ptr<uint8_t>(0)[pixel] == static_cast<uint8_t>(PixelStatus::Valid);
+}
+
+double percentile(std::vector<double> values, double q) {
+  if (values.empty()) return std::nan("");
+  std::sort(values.begin(), values.end());
+  return values[static_cast<std::size_t>(q * static_cast<double>(values.size() - 1))];
+}
+
+struct DecodeScore {
+  double valid_fraction = 0.0;   // of the pixels an ideal sensor measures
+  double median_error = 0.0;     // projector pixels, column
+  double p99_error = 0.0;
+  double median_row_error = 0.0;
+  std::size_t wrong = 0;         // valid pixels more than 2 projector pixels off
+  std::size_t valid = 0;
+};
+
+DecodeScore score(const VirtualCapture& v, const DecodedCapture& decoded) {
+  DecodeScore s;
+  std::size_t measurable = 0, measured = 0;
+  std::vector<double> column_errors, row_errors;
+  for (std::size_t i = 0; i < v.pixelCount(); ++i) {
+    if (v.measurable(i)) {
+      ++measurable;
+      if (isValid(decoded, i)) ++measured;
+    }
+    if (!isValid(decoded, i)) continue;
+    ++s.valid;
+    const Eigen::Vector2d truth = v.trueProjectorPixel(i);
+    const double column_error = std::fabs(decoded.column.ptr<float>(0)[i] - truth.x());
+    if (!(column_error <= 2.0)) ++s.wrong;  // NaN truth (nothing there) counts as wrong
+    column_errors.push_back(column_error);
+    if (!decoded.row.empty()) row_errors.push_back(std::fabs(decoded.row.ptr<float>(0)[i] - truth.y()));
+  }
+  s.valid_fraction = static_cast<double>(measured) / static_cast<double>(measurable);
+  s.median_error = percentile(column_errors, 0.5);
+  s.p99_error = percentile(column_errors, 0.99);
+  s.median_row_error = percentile(row_errors, 0.5);
+  return s;
+}
+
+// Full resolution, Gray code and 4-step phase shift on both axes: the default pattern set.
+TEST(Decoder, FindsTheProjectorPixelOfAlmostEveryLitPixelToAFractionOfAPixel) {
+  const VirtualCapture& v = virtualCapture({});
+  const DecodedCapture decoded = decodeCapture(v.capture);
+  ASSERT_EQ(decoded.width, v.capture.metadata.image_width);
+  EXPECT_TRUE(decoded.has_phase);
+  const DecodeScore s = score(v, decoded);
+  EXPECT_GT(s.valid_fraction, 0.97);
+  EXPECT_LT(s.median_error, 0.1);
+  EXPECT_LT(s.p99_error, 0.6);
+  EXPECT_LT(s.median_row_error, 0.1);
+  EXPECT_LE(s.wrong, s.valid / 10000);
+}
+
+TEST(Decoder, LeavesPixelsInProjectorShadowInvalid) {
+  const VirtualCapture& v = virtualCapture({});
+  const DecodedCapture decoded = decodeCapture(v.capture);
+  const int width = decoded.width;
+  std::size_t shadowed = 0, decoded_in_shadow = 0;
+  for (int y = 1; y + 1 < decoded.height; ++y) {
+    for (int x = 1; x + 1 < width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      // Deep in the shadow: the neighbours too, so that no part of the pixel's footprint is lit.
+      if (!(v.inShadow(i) && v.inShadow(i - 1) && v.inShadow(i + 1) && v.inShadow(i - width) &&
+            v.inShadow(i + width))) {
+        continue;
+      }
+      ++shadowed;
+      if (isValid(decoded, i)) ++decoded_in_shadow;
+      EXPECT_TRUE(std::isnan(decoded.column.ptr<float>(0)[i]));
+    }
+  }
+  ASSERT_GT(shadowed, 1000u);  // the pile casts shadows: the test checks something
+  EXPECT_EQ(decoded_in_shadow, 0u);
+}
+
+TEST(Decoder, GrayCodeAloneIsAccurateToItsQuantisation) {
+  CaptureOptions options;
+  options.phase_steps = 0;
+  const VirtualCapture& v = virtualCapture(options);
+  const DecodedCapture decoded = decodeCapture(v.capture);
+  EXPECT_FALSE(decoded.has_phase);
+  const DecodeScore s = score(v, decoded);
+  EXPECT_GT(s.valid_fraction, 0.9);
+  EXPECT_LT(s.median_error, 0.35);  // uniform within a column: 0.25 on average
+  EXPECT_LT(s.p99_error, 1.0);
+  EXPECT_LE(s.wrong, s.valid / 10000);
+}
+
+// Strong interreflections (half of the direct light again, from elsewhere) and room light. Where
+// global light outweighs direct light twice over, Moreno & Taubin's rules give up on a bit
+// rather than guess: fewer points, none wrong.
+TEST(Decoder, StaysCorrectUnderStrongIndirectAndAmbientLight) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  options.global_light = 0.5;
+  options.ambient = 40.0;
+  const VirtualCapture& v = virtualCapture(options);
+  const DecodeScore s = score(v, decodeCapture(v.capture));
+  EXPECT_GT(s.valid_fraction, 0.85);
+  EXPECT_LT(s.median_error, 0.15);
+  EXPECT_LE(s.wrong, s.valid / 10000);
+}
+
+// Diffuse interreflection from nearby surfaces carries the pattern's coarse stripes (and averages
+// the fine ones to half): each image plus a strongly blurred copy of itself. The global share
+// then differs between a coarse pattern and its inverse, which can flip naive bits; they must
+// become invalid, not wrong.
+TEST(Decoder, MarksBitsThatPatternedInterreflectionWouldFlipInvalidInsteadOfWrong) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  const VirtualCapture& v = virtualCapture(options);
+  Capture reflected = testing::deepCopy(v.capture);
+  for (cv::Mat& image : reflected.images) {
+    cv::Mat blurred;
+    cv::GaussianBlur(image, blurred, cv::Size(), 15.0);
+    cv::addWeighted(image, 1.0, blurred, 1.0, 0.0, image);
+  }
+  const DecodeScore s = score(v, decodeCapture(reflected));
+  EXPECT_LE(s.wrong, s.valid / 1000);
+  EXPECT_GT(s.valid_fraction, 0.8);
+}
+
+TEST(Decoder, SixteenBitImagesDecodeLikeEightBitOnes) {
+  CaptureOptions eight;
+  eight.camera_scale = 0.5;
+  CaptureOptions sixteen = eight;
+  sixteen.bit_depth = 16;
+  const DecodeScore a = score(virtualCapture(eight), decodeCapture(virtualCapture(eight).capture));
+  const DecodeScore b = score(virtualCapture(sixteen), decodeCapture(virtualCapture(sixteen).capture));
+  EXPECT_NEAR(a.valid_fraction, b.valid_fraction, 0.02);
+  EXPECT_LT(b.median_error, 0.15);
+  EXPECT_LE(b.wrong, b.valid / 10000);
+}
+
+TEST(Decoder, ColumnsOnlyCapturesGiveNoRows) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  options.row_codes = false;
+  const VirtualCapture& v = virtualCapture(options);
+  const DecodedCapture decoded = decodeCapture(v.capture);
+  EXPECT_TRUE(decoded.row.empty());
+  const DecodeScore s = score(v, decoded);
+  EXPECT_GT(s.valid_fraction, 0.9);
+  EXPECT_LE(s.wrong, s.valid / 10000);
+}
+
+TEST(Decoder, GivesTheSameResultOnAnyNumberOfThreads) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  const Capture& capture = virtualCapture(options).capture;
+  DecodeParams one;
+  one.threads = 1;
+  DecodeParams two;
+  two.threads = 2;
+  const DecodedCapture a = decodeCapture(capture, one);
+  const DecodedCapture b = decodeCapture(capture, two);
+  EXPECT_EQ(cv::norm(a.status, b.status, cv::NORM_INF), 0.0);
+  EXPECT_EQ(0, std::memcmp(a.column.data, b.column.data, a.column.total() * sizeof(float)));
+  EXPECT_EQ(cv::norm(a.intensity, b.intensity, cv::NORM_INF), 0.0);
+}
+
+TEST(Decoder, IntensityIsTheWhiteImageOnTheSensorsScale) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  const Capture& capture = virtualCapture(options).capture;
+  const DecodedCapture decoded = decodeCapture(capture);
+  cv::Mat white;
+  capture.images[0].convertTo(white, CV_32F, 1.0 / 255.0);
+  EXPECT_LT(cv::norm(decoded.intensity, white, cv::NORM_INF), 1e-6);
+}
+
+}  // namespace
+}  // namespace binpick::reconstruction

@@ -1,0 +1,74 @@
+// Rendered captures, cached per options.
+#include "virtual_capture.hpp"
+
+#include <map>
+#include <mutex>
+#include <tuple>
+
+#include "binpick/simulation/parts.hpp"
+
+namespace binpick::reconstruction::testing {
+
+bool CaptureOptions::operator<(const CaptureOptions& o) const {
+  return std::tie(part, objects, seed, camera_scale, row_codes, phase_steps, bit_depth, global_light, ambient) <
+         std::tie(o.part, o.objects, o.seed, o.camera_scale, o.row_codes, o.phase_steps, o.bit_depth,
+                  o.global_light, o.ambient);
+}
+
+namespace {
+
+VirtualCapture render(const CaptureOptions& options) {
+  VirtualCapture v;
+  v.params.objects = options.objects;
+  v.params.seed = options.seed;
+  v.params.rig.camera = v.params.rig.camera.scaled(options.camera_scale);
+  PatternSetSpec patterns;
+  patterns.projector_width = v.params.rig.projector.width;
+  patterns.projector_height = v.params.rig.projector.height;
+  patterns.row_codes = options.row_codes;
+  patterns.phase_steps = options.phase_steps;
+  sim::PhotometryParams photometry;
+  photometry.seed = options.seed;
+  photometry.bit_depth = options.bit_depth;
+  photometry.global_light = options.global_light;
+  photometry.ambient = options.ambient;
+  sim::PileCapture pile = sim::generatePileCapture(sim::makePart(options.part).mesh, v.params, patterns, photometry);
+  v.scene = std::move(pile.scene);
+  v.capture = sim::recordedCapture(std::move(pile.images), v.params, patterns, photometry, "test");
+  return v;
+}
+
+}  // namespace
+
+Eigen::Vector2d VirtualCapture::trueProjectorPixel(std::size_t pixel) const {
+  const Eigen::Vector3f point = scene.exact_cloud.points[pixel];
+  if (!point.allFinite()) return Eigen::Vector2d::Constant(std::nan(""));
+  return scene.rig.projector.project(scene.rig.T_projector_camera * point.cast<double>());
+}
+
+bool VirtualCapture::measurable(std::size_t pixel) const { return scene.cloud.points[pixel].allFinite(); }
+
+bool VirtualCapture::inShadow(std::size_t pixel) const {
+  // Seen but not measured by the ideal sensor: unlit, or seen too obliquely (beyond 80 degrees).
+  const Eigen::Vector3f point = scene.exact_cloud.points[pixel];
+  const Eigen::Vector3f normal = scene.exact_cloud.normals[pixel];
+  if (!point.allFinite() || measurable(pixel)) return false;
+  return -normal.dot(point.normalized()) > 0.3f;  // not grazing: the projector's light is what is missing
+}
+
+const VirtualCapture& virtualCapture(const CaptureOptions& options) {
+  static std::mutex mutex;
+  static std::map<CaptureOptions, VirtualCapture> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto found = cache.find(options);
+  if (found == cache.end()) found = cache.emplace(options, render(options)).first;
+  return found->second;
+}
+
+Capture deepCopy(const Capture& capture) {
+  Capture copy = capture;
+  for (cv::Mat& image : copy.images) image = image.clone();
+  return copy;
+}
+
+}  // namespace binpick::reconstruction::testing

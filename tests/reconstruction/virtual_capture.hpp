@@ -1,0 +1,47 @@
+#pragma once
+// Test support: captures of a pile in the virtual cell, rendered once per set of options and
+// shared by the tests of one executable, with the truth each pixel is checked against.
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "binpick/io/capture.hpp"
+#include "binpick/simulation/pile.hpp"
+
+namespace binpick::reconstruction::testing {
+
+struct CaptureOptions {
+  std::string part = "clamp";
+  int objects = 12;
+  uint64_t seed = 7;
+  double camera_scale = 1.0;  // the virtual rig's 1280 x 1024 camera binned by this factor
+  bool row_codes = true;
+  int phase_steps = 4;
+  int bit_depth = 8;
+  double global_light = 0.03;  // PhotometryParams
+  double ambient = 6.0;
+  bool operator<(const CaptureOptions& other) const;
+};
+
+struct VirtualCapture {
+  sim::PileParams params;
+  sim::PileScene scene;
+  Capture capture;
+
+  // Where the surface point seen by `pixel` lands in the projector image (NaN: nothing seen).
+  Eigen::Vector2d trueProjectorPixel(std::size_t pixel) const;
+  // The pixel sees a surface that the projector lights (an ideal sensor measures it).
+  bool measurable(std::size_t pixel) const;
+  // The pixel sees a surface that the projector does not light.
+  bool inShadow(std::size_t pixel) const;
+  std::size_t pixelCount() const { return scene.depth.size(); }
+};
+
+const VirtualCapture& virtualCapture(const CaptureOptions& options);
+
+// A copy whose images own their pixels: cv::Mat copies share them, and the cached captures must
+// stay untouched by tests that damage theirs.
+Capture deepCopy(const Capture& capture);
+
+}  // namespace binpick::reconstruction::testing
