@@ -46,7 +46,8 @@ const Eigen::Vector3f& exactPoint(const sim::PileScene& scene, std::size_t pixel
 }
 
 // Where a camera-frame point lands in the projector image; false behind the projector.
-bool projectorPixel(const RigCalibration& rig, const Eigen::Vector3d& point, Eigen::Vector2d& pixel) {
+bool projectorPixel(const RigCalibration& rig, const Eigen::Vector3d& point,
+                    Eigen::Vector2d& pixel) {
   const Eigen::Vector3d in_projector = rig.T_projector_camera * point;
   if (!(in_projector.z() > 0.0)) return false;
   pixel = rig.projector.project(in_projector);
@@ -61,8 +62,8 @@ bool insideImage(const LensIntrinsics& lens, const Eigen::Vector2d& pixel) {
 // What an ideal decoder reports: the exact projector pixel of every surface point that projects
 // into the projector's image (lit or in shadow alike: triangulation does not care), Unlit
 // elsewhere.
-DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows) {
-  const LensIntrinsics& camera = scene.rig.camera;
+DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows, const RigCalibration& rig) {
+  const LensIntrinsics& camera = rig.camera;
   DecodedCapture decoded;
   decoded.width = camera.width;
   decoded.height = camera.height;
@@ -73,8 +74,8 @@ DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows) {
   for (std::size_t i = 0; i < scene.exact_cloud.size(); ++i) {
     const Eigen::Vector3f& point = exactPoint(scene, i);
     Eigen::Vector2d pixel;
-    if (!point.allFinite() || !projectorPixel(scene.rig, point.cast<double>(), pixel) ||
-        !insideImage(scene.rig.projector, pixel)) {
+    if (!point.allFinite() || !projectorPixel(rig, point.cast<double>(), pixel) ||
+        !insideImage(rig.projector, pixel)) {
       continue;
     }
     decoded.column.ptr<float>(0)[i] = static_cast<float>(pixel.x());
@@ -82,6 +83,10 @@ DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows) {
     decoded.status.ptr<uint8_t>(0)[i] = kValid;
   }
   return decoded;
+}
+
+DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows) {
+  return perfectDecoding(scene, rows, scene.rig);
 }
 
 uint8_t statusAt(const cv::Mat& status, std::size_t pixel) { return status.ptr<uint8_t>(0)[pixel]; }
@@ -94,9 +99,9 @@ TriangulationParams singleThreaded() {
 }
 
 struct Comparison {
-  std::size_t inputs = 0;      // Valid pixels of the decoding
-  std::size_t valid = 0;       // of those, Valid after triangulation
-  double max_error = 0.0;      // metres, over the valid ones
+  std::size_t inputs = 0;       // Valid pixels of the decoding
+  std::size_t valid = 0;        // of those, Valid after triangulation
+  double max_error = 0.0;       // metres, over the valid ones
   std::size_t others_kept = 0;  // non-Valid input pixels left NaN with their status
   std::size_t others = 0;
 };
@@ -115,8 +120,7 @@ Comparison compare(const sim::PileScene& scene, const DecodedCapture& decoded,
     ++c.inputs;
     if (statusAt(result.status, i) != kValid) continue;
     ++c.valid;
-    c.max_error = std::max(c.max_error,
-                           static_cast<double>((point - exactPoint(scene, i)).norm()));
+    c.max_error = std::max(c.max_error, static_cast<double>((point - exactPoint(scene, i)).norm()));
   }
   return c;
 }
@@ -193,6 +197,7 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
   for (float shift : {3.0f, -3.0f, 1.0f}) {
     SCOPED_TRACE("row shifted by " + std::to_string(shift));
     DecodedCapture decoded = exact;
+    decoded.row = cv::Mat();  // not into the pixels `exact` shares
     decoded.row = exact.row + shift;
     const TriangulatedCloud result = triangulator.triangulate(decoded);
     std::size_t inputs = 0, inconsistent = 0, valid = 0;
@@ -204,8 +209,8 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
       if (status == static_cast<uint8_t>(PixelStatus::Inconsistent)) ++inconsistent;
       if (status != kValid) continue;
       ++valid;
-      max_moved = std::max(max_moved,
-                           static_cast<double>((result.cloud.points[i] - truth.cloud.points[i]).norm()));
+      max_moved = std::max(
+          max_moved, static_cast<double>((result.cloud.points[i] - truth.cloud.points[i]).norm()));
     }
     if (std::abs(shift) > 1.5f) {
       EXPECT_EQ(inconsistent, inputs);
@@ -293,10 +298,11 @@ TEST(Triangulation, ColumnsBeyondTheRaysVanishingPointGiveNoIntersection) {
       if (statusAt(decoded.status, i) != kValid) continue;
       const Eigen::Vector2d pixel(static_cast<double>(i % camera.width),
                                   static_cast<double>(i / camera.width));
-      const Eigen::Vector3d far_away = scene.rig.T_projector_camera.linear() *
-                                       camera.rayThroughPixel(pixel);
+      const Eigen::Vector3d far_away =
+          scene.rig.T_projector_camera.linear() * camera.rayThroughPixel(pixel);
       const Eigen::Vector2d vanishing = scene.rig.projector.project(far_away);
-      const bool row_inside = vanishing.y() >= 0.0 && vanishing.y() <= scene.rig.projector.height - 1;
+      const bool row_inside =
+          vanishing.y() >= 0.0 && vanishing.y() <= scene.rig.projector.height - 1;
       if (vanishing.x() + 40.0 > scene.rig.projector.width - 1 || !row_inside) {
         decoded.status.ptr<uint8_t>(0)[i] = static_cast<uint8_t>(PixelStatus::Unlit);
         continue;
@@ -312,27 +318,31 @@ TEST(Triangulation, ColumnsBeyondTheRaysVanishingPointGiveNoIntersection) {
   }
 }
 
-// The camera sees farther up and down than the projector lights: there a column's light crosses
-// the ray's epipolar plane only outside the projector's image, so it cannot reach the ray.
+// Where a ray's epipolar plane crosses a column's light outside the projector's image (here: a
+// projector whose image is cut to its middle 400 rows), that light cannot reach the ray.
 TEST(Triangulation, ColumnOnlyRaysOutsideTheProjectorsRowsGiveNoIntersection) {
   const sim::PileScene& scene = pile(true);
-  DecodedCapture decoded = perfectDecoding(scene, false);
-  const LensIntrinsics& projector = scene.rig.projector;
-  std::size_t outside = 0;
+  RigCalibration band = scene.rig;
+  band.projector.height = 400;
+  band.projector.cy -= 200.0;
+  DecodedCapture decoded = perfectDecoding(scene, false, band);
+  std::size_t outside = 0, inside = 0;
   for (std::size_t i = 0; i < scene.exact_cloud.size(); ++i) {
     Eigen::Vector2d pixel;
     const Eigen::Vector3f& point = exactPoint(scene, i);
-    if (!point.allFinite() || !projectorPixel(scene.rig, point.cast<double>(), pixel)) continue;
-    const bool rows_outside = pixel.y() < -20.0 || pixel.y() > projector.height + 20.0;
-    if (!rows_outside || pixel.x() < 0.0 || pixel.x() > projector.width - 1) continue;
+    if (!point.allFinite() || !projectorPixel(band, point.cast<double>(), pixel)) continue;
+    if (statusAt(decoded.status, i) == kValid) ++inside;
+    const bool rows_outside = pixel.y() < -20.0 || pixel.y() > band.projector.height + 20.0;
+    if (!rows_outside || pixel.x() < 0.0 || pixel.x() > band.projector.width - 1) continue;
     at(decoded.column, i) = static_cast<float>(pixel.x());
     decoded.status.ptr<uint8_t>(0)[i] = kValid;
     ++outside;
   }
-  const TriangulatedCloud result = Triangulator(scene.rig).triangulate(decoded);
+  const TriangulatedCloud result = Triangulator(band).triangulate(decoded);
   const StatusCounts counts = countStatuses(result.status);
-  EXPECT_GT(outside, 1000u);
+  EXPECT_GT(outside, 10000u);
   EXPECT_EQ(counts[static_cast<std::size_t>(PixelStatus::NoIntersection)], outside);
+  EXPECT_EQ(counts[static_cast<std::size_t>(PixelStatus::Valid)], inside);
 }
 
 TEST(Triangulation, CoordinatesOutsideTheProjectorImageAreOutOfRange) {
@@ -344,11 +354,17 @@ TEST(Triangulation, CoordinatesOutsideTheProjectorImageAreOutOfRange) {
     for (std::size_t i = 0; i < scene.exact_cloud.size(); i += 3) {
       if (statusAt(decoded.status, i) != kValid) continue;
       switch (changed++ % 3) {
-        case 0: at(decoded.column, i) = scene.rig.projector.width + 20.0f; break;
-        case 1: at(decoded.column, i) = NAN; break;
+        case 0:
+          at(decoded.column, i) = scene.rig.projector.width + 20.0f;
+          break;
+        case 1:
+          at(decoded.column, i) = NAN;
+          break;
         default:
-          if (rows) at(decoded.row, i) = -30.0f;
-          else at(decoded.column, i) = -30.0f;
+          if (rows)
+            at(decoded.row, i) = -30.0f;
+          else
+            at(decoded.column, i) = -30.0f;
       }
     }
     const TriangulatedCloud result = Triangulator(scene.rig).triangulate(decoded);
@@ -412,7 +428,7 @@ TEST(Triangulation, RefusesADecodingOfAnotherSizeOrType) {
 
 TEST(Triangulation, RefusesBadParamsNamingTheField) {
   const RigCalibration rig = sim::makeVirtualRig();
-  for (double bad : {0.0, -1.0, NAN}) {
+  for (double bad : {0.0, -1.0, std::nan("")}) {
     TriangulationParams params;
     params.max_epipolar_error = bad;
     EXPECT_THROW(params.validate(), Error);

@@ -10,9 +10,10 @@
 namespace binpick::reconstruction::testing {
 
 bool CaptureOptions::operator<(const CaptureOptions& o) const {
-  return std::tie(part, objects, seed, camera_scale, row_codes, phase_steps, bit_depth, global_light, ambient) <
-         std::tie(o.part, o.objects, o.seed, o.camera_scale, o.row_codes, o.phase_steps, o.bit_depth,
-                  o.global_light, o.ambient);
+  return std::tie(part, objects, seed, camera_scale, bin_length, bin_width, row_codes, phase_steps, bit_depth,
+                  global_light, ambient) < std::tie(o.part, o.objects, o.seed, o.camera_scale, o.bin_length,
+                                                    o.bin_width, o.row_codes, o.phase_steps, o.bit_depth,
+                                                    o.global_light, o.ambient);
 }
 
 namespace {
@@ -22,6 +23,8 @@ VirtualCapture render(const CaptureOptions& options) {
   v.params.objects = options.objects;
   v.params.seed = options.seed;
   v.params.rig.camera = v.params.rig.camera.scaled(options.camera_scale);
+  v.params.bin_length = options.bin_length;
+  v.params.bin_width = options.bin_width;
   PatternSetSpec patterns;
   patterns.projector_width = v.params.rig.projector.width;
   patterns.projector_height = v.params.rig.projector.height;

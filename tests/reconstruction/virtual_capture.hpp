@@ -16,6 +16,8 @@ struct CaptureOptions {
   int objects = 12;
   uint64_t seed = 7;
   double camera_scale = 1.0;  // the virtual rig's 1280 x 1024 camera binned by this factor
+  double bin_length = 0.40;   // metres (PileParams)
+  double bin_width = 0.30;
   bool row_codes = true;
   int phase_steps = 4;
   int bit_depth = 8;

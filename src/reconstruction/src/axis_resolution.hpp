@@ -1,6 +1,6 @@
 #pragma once
-// From the bits and phase read at one pixel to a projector column (or row). Internal; inline
-// because it runs once per pixel and axis inside the decoder's row loop.
+// From the bits and phase read at one pixel to a projector column (or row). Internal; the
+// per-pixel functions are inline because they run inside the decoder's tile loop.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -91,6 +91,19 @@ inline AxisVerdict resolveAxis(const AxisSample& sample, const AxisLayout& axis,
 // Verdicts of resolveSimpleCodes: a PixelStatus, or this for a pixel resolveAxis must decide.
 constexpr uint8_t kNeedsFullResolution = 255;
 
+// resolveAxis for a whole tile at once, vectorised, for the common pixels: at most one uncertain
+// bit (a stripe edge or none), a run no longer than `longest`, inside the projector. Writes the
+// run's centre and a verdict per pixel: Valid for those pixels, kNeedsFullResolution for the
+// others. Gives the same result as resolveAxis wherever it decides.
+void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain, int longest,
+                       int last_index, float* __restrict centre, uint8_t* __restrict verdict, int width);
+// unwrapPhase for the pixels resolveSimpleRuns decided: the centre becomes the unwrapped
+// position, and their verdict Valid, PhaseMismatch or Saturated.
+void unwrapSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain,
+                      const float* __restrict phase_offset, const float* __restrict phase_amplitude,
+                      const uint8_t* __restrict phase_clipped, const AxisLayout& axis, const DecodeThresholds& t,
+                      float* __restrict position, uint8_t* __restrict verdict, int width);
+
 // grayDecode of a code of at most 16 bits, unrolled so that loops over it vectorise.
 inline uint32_t grayDecode16(uint32_t code) {
   code ^= code >> 1;
@@ -98,53 +111,6 @@ inline uint32_t grayDecode16(uint32_t code) {
   code ^= code >> 4;
   code ^= code >> 8;
   return code;
-}
-
-// resolveAxis for a whole tile at once, vectorised, for the common pixels: at most one uncertain
-// bit (a stripe edge or none), a run no longer than allowed, inside the projector. Writes the
-// run's centre, and a verdict per pixel: Valid for those pixels, kNeedsFullResolution for the
-// others. Gives the same result as resolveAxis wherever it decides.
-inline void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain, int longest,
-                              int last_index, float* __restrict centre, uint8_t* __restrict verdict, int width) {
-  for (int x = 0; x < width; ++x) {
-    const uint32_t u = uncertain[x];
-    const uint32_t low = grayDecode16(code[x] & ~u);
-    const uint32_t high = grayDecode16(code[x] | u);
-    const int first = static_cast<int>(std::min(low, high));
-    const int last = static_cast<int>(std::max(low, high));
-    const bool simple = ((u & (u - 1)) == 0) & (last - first < longest) & (first <= last_index);
-    centre[x] = 0.5f * static_cast<float>(first + std::min(last, last_index));
-    verdict[x] = simple ? static_cast<uint8_t>(PixelStatus::Valid) : kNeedsFullResolution;
-  }
-}
-
-// unwrapPhase for the pixels resolveSimpleRuns decided: the run [centre - half_run, centre +
-// half_run] becomes the unwrapped position, or a PhaseMismatch / Saturated verdict.
-inline void unwrapSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain,
-                             const float* __restrict phase_offset, const float* __restrict phase_amplitude,
-                             const uint8_t* __restrict phase_clipped, const AxisLayout& axis, const DecodeThresholds& t,
-                             float* __restrict position, uint8_t* __restrict verdict, int width) {
-  const float period = static_cast<float>(axis.phase_period);
-  const float inverse_period = 1.0f / period;
-  const float reach = 0.5f + t.phase_tolerance;
-  const float min_amplitude = t.min_phase_amplitude;
-  const int last_index = axis.size - 1;
-  for (int x = 0; x < width; ++x) {
-    const uint32_t u = uncertain[x];
-    const uint32_t low = grayDecode16(code[x] & ~u);
-    const uint32_t high = grayDecode16(code[x] | u);
-    const float first = static_cast<float>(std::min(low, high));
-    const float last = static_cast<float>(std::min(static_cast<int>(std::max(low, high)), last_index));
-    const float centre = position[x];
-    const float offset = phase_offset[x];
-    const float unwrapped = offset + period * nearestWhole((centre - offset) * inverse_period);
-    const bool inside =
-        (unwrapped >= first - reach) & (unwrapped <= last + reach) & (phase_amplitude[x] >= min_amplitude);
-    const uint8_t status = phase_clipped[x] ? static_cast<uint8_t>(PixelStatus::Saturated)
-                                            : static_cast<uint8_t>(inside ? PixelStatus::Valid : PixelStatus::PhaseMismatch);
-    position[x] = unwrapped;
-    verdict[x] = verdict[x] == kNeedsFullResolution ? kNeedsFullResolution : status;
-  }
 }
 
 }  // namespace binpick::reconstruction::detail

@@ -39,15 +39,16 @@ void removePoint(PointCloud& cloud, std::size_t i, uint8_t& status, PixelStatus 
 
 void applyDepthAndCrop(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const bool crop = !params.crop.isEmpty();
+  const double min_depth = params.min_depth, max_depth = params.max_depth;
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
       const Eigen::Vector3f& p = cloud.points[i];
-      if (!p.allFinite()) continue;
-      if (p.z() < params.min_depth || p.z() > params.max_depth) {
+      // Missing points are NaN, which fails every comparison: they keep their status.
+      if (p.z() < min_depth || p.z() > max_depth) {
         removePoint(cloud, i, row_status[x], PixelStatus::OutOfDepthRange);
-      } else if (crop && !params.crop.contains(p.cast<double>())) {
+      } else if (crop && p.allFinite() && !params.crop.contains(p.cast<double>())) {
         removePoint(cloud, i, row_status[x], PixelStatus::OutsideCrop);
       }
     }
@@ -69,8 +70,7 @@ void applySpeckle(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& p
 }  // namespace
 
 void CloudFilterParams::validate() const {
-  require(std::isfinite(min_depth) && min_depth >= 0.0, "min_depth", "finite and >= 0",
-          min_depth);
+  require(std::isfinite(min_depth) && min_depth >= 0.0, "min_depth", "finite and >= 0", min_depth);
   require(!std::isnan(max_depth) && max_depth > min_depth, "max_depth", "above min_depth",
           max_depth);
   // A NaN corner would make the box non-empty yet contain nothing: every point would go.
@@ -84,7 +84,9 @@ void CloudFilterParams::validate() const {
 void filterCloud(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   params.validate();
   checkInputs(cloud, status);
-  applyDepthAndCrop(cloud, status, params);
+  // Triangulated points lie in front of the camera: the default range and no crop remove nothing.
+  const bool limits_depth = params.min_depth > 0.0 || params.max_depth < 1e9;
+  if (limits_depth || !params.crop.isEmpty()) applyDepthAndCrop(cloud, status, params);
   if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
 }
 

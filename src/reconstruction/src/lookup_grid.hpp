@@ -44,11 +44,6 @@ class LookupGrid {
   int ny() const { return ny_; }
   double nodeX(int i) const { return x_min_d_ + i * step_x_; }
   double nodeY(int j) const { return y_min_d_ + j * step_y_; }
-  // The covered rectangle's far corner (the last node).
-  double xMax() const { return nodeX(nx_ - 1); }
-  double yMax() const { return nodeY(ny_ - 1); }
-  double xMin() const { return x_min_d_; }
-  double yMin() const { return y_min_d_; }
   float* node(int i, int j) { return &values_[(static_cast<std::size_t>(j) * nx_ + i) * Channels]; }
 
   // A copy of what lookups read, to keep in registers across a loop: the compiler must assume
@@ -105,8 +100,15 @@ class LookupGrid {
   };
 
   View view() const {
-    return {x_min_, y_min_, inv_step_x_, inv_step_y_, static_cast<float>(nx_ - 1),
-            static_cast<float>(ny_ - 1), static_cast<float>(nx_), nx_, values_.data()};
+    return {x_min_,
+            y_min_,
+            inv_step_x_,
+            inv_step_y_,
+            static_cast<float>(nx_ - 1),
+            static_cast<float>(ny_ - 1),
+            static_cast<float>(nx_),
+            nx_,
+            values_.data()};
   }
 
  private:

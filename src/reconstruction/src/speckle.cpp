@@ -1,6 +1,7 @@
 // Speckle detection: runs of connected pixels along each row, joined across rows by union-find.
 #include "speckle.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -15,7 +16,6 @@ class RunSets {
     size_.push_back(pixels);
     return parent_.back();
   }
-  void grow(int32_t run) { ++size_[run]; }
   int32_t find(int32_t run) {
     while (parent_[run] != run) {
       parent_[run] = parent_[parent_[run]];
@@ -32,6 +32,7 @@ class RunSets {
     size_[a] += size_[b];
   }
   int32_t size(int32_t root) const { return size_[root]; }
+  int32_t count() const { return static_cast<int32_t>(parent_.size()); }
 
  private:
   std::vector<int32_t> parent_;
@@ -40,28 +41,31 @@ class RunSets {
 
 bool connected(float z0, float z1, float max_step) { return std::abs(z0 - z1) <= max_step; }
 
-// Labels one row's runs: consecutive finite points, each within max_step of its left neighbour.
+// Labels one row's runs: consecutive points (organized clouds mark missing ones with NaN), each
+// within max_step of its left neighbour.
 void labelRow(const PointCloud& cloud, int y, float max_step, RunSets& sets, int32_t* labels) {
-  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * cloud.width;
-  int32_t run = -1;
-  for (int x = 0; x < cloud.width; ++x) {
-    if (!points[x].allFinite()) {
-      labels[x] = run = -1;
+  const int width = cloud.width;
+  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * width;
+  int x = 0;
+  while (x < width) {
+    if (std::isnan(points[x].z())) {
+      labels[x++] = -1;
       continue;
     }
-    if (run < 0 || !connected(points[x].z(), points[x - 1].z(), max_step)) run = sets.add(0);
-    sets.grow(run);
-    labels[x] = run;
+    const int start = x++;
+    while (x < width && connected(points[x].z(), points[x - 1].z(), max_step)) ++x;  // NaN: no
+    std::fill(labels + start, labels + x, sets.add(x - start));
   }
 }
 
 // Joins the runs of row y with those of row y - 1 wherever vertical neighbours connect.
 void joinRows(const PointCloud& cloud, int y, float max_step, RunSets& sets, const int32_t* above,
               const int32_t* labels) {
-  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * cloud.width;
-  const Eigen::Vector3f* points_above = points - cloud.width;
+  const int width = cloud.width;
+  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * width;
+  const Eigen::Vector3f* points_above = points - width;
   int32_t last_above = -1, last = -1;  // the pair joined last: runs overlap over many pixels
-  for (int x = 0; x < cloud.width; ++x) {
+  for (int x = 0; x < width; ++x) {
     if (labels[x] < 0 || above[x] < 0) continue;
     if (labels[x] == last && above[x] == last_above) continue;
     if (!connected(points[x].z(), points_above[x].z(), max_step)) continue;
@@ -82,9 +86,14 @@ std::vector<uint8_t> findSpeckles(const PointCloud& cloud, float max_step, int m
     labelRow(cloud, y, max_step, sets, row_labels);
     if (y > 0) joinRows(cloud, y, max_step, sets, row_labels - cloud.width, row_labels);
   }
+  // Decided per run, then spread to the pixels: runs are far fewer.
+  std::vector<uint8_t> small_run(sets.count());
+  for (int32_t run = 0; run < sets.count(); ++run) {
+    small_run[run] = sets.size(sets.find(run)) < min_pixels ? 1 : 0;
+  }
   std::vector<uint8_t> speckle(count, 0);
   for (std::size_t i = 0; i < count; ++i) {
-    if (labels[i] >= 0 && sets.size(sets.find(labels[i])) < min_pixels) speckle[i] = 1;
+    if (labels[i] >= 0) speckle[i] = small_run[labels[i]];
   }
   return speckle;
 }

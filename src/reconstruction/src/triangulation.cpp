@@ -42,9 +42,8 @@ void checkDecoded(const DecodedCapture& decoded, const LensIntrinsics& camera) {
 }  // namespace
 
 void TriangulationParams::validate() const {
-  requireField(std::isfinite(max_epipolar_error) && max_epipolar_error > 0.0,
-               "TriangulationParams", "max_epipolar_error", "positive and finite",
-               max_epipolar_error);
+  requireField(std::isfinite(max_epipolar_error) && max_epipolar_error > 0.0, "TriangulationParams",
+               "max_epipolar_error", "positive and finite", max_epipolar_error);
   requireField(threads >= 0, "TriangulationParams", "threads", ">= 0", threads);
 }
 
@@ -74,7 +73,7 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
   TriangulatedCloud result;
   result.cloud.width = width;
   result.cloud.height = height;
-  // Every element is written by the row loop, in parallel: the pages are first touched there.
+  // resize() leaves Eigen's vectors uninitialised: the row loop writes every element.
   result.cloud.points.resize(static_cast<std::size_t>(width) * height);
   result.status.create(height, width, CV_8UC1);
   const Tables& tables = *tables_;
@@ -93,7 +92,7 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
       in.row = with_rows ? decoded.row.ptr<float>(y) : nullptr;
       in.status = decoded.status.ptr<uint8_t>(y);
       const detail::TriangulationRowOutput out{result.cloud.points.data() + offset,
-                                  result.status.ptr<uint8_t>(y)};
+                                               result.status.ptr<uint8_t>(y)};
       if (with_rows) {
         detail::triangulateRowWithRows(tables.geometry, tables.projector, in, scratch, out);
       } else {

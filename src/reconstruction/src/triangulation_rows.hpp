@@ -15,10 +15,10 @@ namespace binpick::reconstruction::detail {
 
 // The rig in single precision, as the per-pixel arithmetic uses it.
 struct RigGeometry {
-  float r[9] = {};          // R_projector_camera, row-major
-  float c[3] = {};          // the camera centre in the projector frame
-  float aspect_sq = 1.0f;      // (fx / fy)^2 of the projector
-  float max_error_sq = 0.0f;   // (max_epipolar_error / fx)^2: normalised units
+  float r[9] = {};            // R_projector_camera, row-major
+  float c[3] = {};            // the camera centre in the projector frame
+  float aspect_sq = 1.0f;     // (fx / fy)^2 of the projector
+  float max_error_sq = 0.0f;  // (max_epipolar_error / fx)^2: normalised units
   // The epipolar label of the camera ray (a, b, 1) is (q3 . (a, b, 1)) / (q2 . (a, b, 1)):
   // n . e = (C x d) . e = d . (e x C), with d = R (a, b, 1).
   float q2[3] = {}, q3[3] = {};
@@ -50,8 +50,10 @@ struct TriangulationScratch {
 };
 
 void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables,
-                            const TriangulationRowInput& in, TriangulationScratch& scratch, const TriangulationRowOutput& out);
+                            const TriangulationRowInput& in, TriangulationScratch& scratch,
+                            const TriangulationRowOutput& out);
 void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables,
-                              const TriangulationRowInput& in, TriangulationScratch& scratch, const TriangulationRowOutput& out);
+                              const TriangulationRowInput& in, TriangulationScratch& scratch,
+                              const TriangulationRowOutput& out);
 
 }  // namespace binpick::reconstruction::detail

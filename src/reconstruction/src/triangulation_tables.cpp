@@ -92,8 +92,7 @@ LabelRange labelRange(const LensIntrinsics& lens, const EpipolarPencil& pencil,
 // Where the light of the column at distorted normalised x `target_x` crosses the plane with
 // normal n: the point of the plane's image line whose distorted x is target_x, by Newton along
 // the line. NaN where the line runs (almost) along the column or the lens model folds over.
-Eigen::Vector2d crossColumn(const LensIntrinsics& lens, const Eigen::Vector3d& n,
-                            double target_x) {
+Eigen::Vector2d crossColumn(const LensIntrinsics& lens, const Eigen::Vector3d& n, double target_x) {
   constexpr double kMinCrossing = 1e-3;  // sine of the angle between line and column
   constexpr double kH = 1e-7;
   const Eigen::Vector2d nan = Eigen::Vector2d::Constant(kNaN);
@@ -173,8 +172,7 @@ EpipolarPencil makeEpipolarPencil(const Eigen::Vector3d& camera_centre_in_projec
   return pencil;
 }
 
-ProjectorTables buildProjectorTables(const LensIntrinsics& projector,
-                                     const EpipolarPencil& pencil,
+ProjectorTables buildProjectorTables(const LensIntrinsics& projector, const EpipolarPencil& pencil,
                                      const Eigen::Vector3d& camera_centre_in_projector,
                                      int threads) {
   ProjectorTables tables;

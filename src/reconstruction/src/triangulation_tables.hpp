@@ -48,8 +48,7 @@ struct ProjectorTables {
 };
 
 CameraRays buildCameraRays(const LensIntrinsics& camera, int threads);
-ProjectorTables buildProjectorTables(const LensIntrinsics& projector,
-                                     const EpipolarPencil& pencil,
+ProjectorTables buildProjectorTables(const LensIntrinsics& projector, const EpipolarPencil& pencil,
                                      const Eigen::Vector3d& camera_centre_in_projector,
                                      int threads);
 

@@ -4,9 +4,18 @@
 //
 // Each camera pixel's ray (undistorted once per calibration) is intersected with the light of
 // the projector column it saw: the points of the ray that the projector maps onto that column.
-// When rows were decoded too, the point minimises the distance in the projector image between
-// its projection and the decoded (column, row) along the ray (ray-ray), and a row that lies
-// farther than max_epipolar_error from the epipolar curve of the pixel marks it Inconsistent.
+// Under distortion a column's light is a curved surface; it is met exactly where it crosses the
+// ray's epipolar plane (tabulated once per calibration over column and plane: no iteration per
+// pixel). When rows were decoded too, the point minimises the distance in the (undistorted)
+// projector image between its projection and the decoded (column, row) along the ray (ray-ray),
+// and a decoded pixel that lies farther than max_epipolar_error from the pixel's epipolar line
+// marks it Inconsistent.
+//
+// Statuses: only Valid input pixels are triangulated; the others keep the decoder's status and a
+// NaN point. Coordinates (or NaN) outside the projector image widened by a margin of 8 pixels
+// give CodeOutOfRange; rays that meet the light behind the camera or the projector, that are
+// within 0.06 degrees of parallel to it (points beyond 1000 baselines), or whose column's light
+// crosses their epipolar plane only outside the projector image give NoIntersection.
 //
 // Thread-safety: a Triangulator is immutable after construction; triangulate() may be called
 // from many threads at once.
@@ -20,7 +29,9 @@
 namespace binpick::reconstruction {
 
 struct TriangulationParams {
-  // Projector pixels: how far a decoded row may lie from where the column's point projects.
+  // Projector pixels: how far the decoded (column, row) may lie from the pixel's epipolar line,
+  // measured in the undistorted projector image (distortion changes lengths there by a few per
+  // cent at most for real lenses). Used only when rows were decoded.
   double max_epipolar_error = 1.5;
   int threads = 0;  // 0: all cores
   void validate() const;  // throws binpick::Error naming the field

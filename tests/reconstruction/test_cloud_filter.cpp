@@ -1,0 +1,231 @@
+// Cloud filters on organized clouds: depth range, crop box and speckle removal.
+#include "binpick/reconstruction/cloud_filter.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "binpick/io/error.hpp"
+#include "binpick/reconstruction/pixel_status.hpp"
+
+namespace binpick::reconstruction {
+namespace {
+
+constexpr auto kValid = static_cast<uint8_t>(PixelStatus::Valid);
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// A plane tilted along x seen through a pinhole (f = 100 pixels): z from 0.7 to 0.8 m.
+struct Grid {
+  PointCloud cloud;
+  cv::Mat status;
+  Eigen::Vector3f& at(int x, int y) {
+    return cloud.points[static_cast<std::size_t>(y) * cloud.width + x];
+  }
+  uint8_t statusAt(int x, int y) const { return status.at<uint8_t>(y, x); }
+};
+
+Grid tiltedPlane(int width = 100, int height = 80) {
+  Grid g;
+  g.cloud.width = width;
+  g.cloud.height = height;
+  g.status = cv::Mat(height, width, CV_8UC1, cv::Scalar(kValid));
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      // Neighbours differ by at most 1 mm in z: one connected surface for the default step.
+      const float z = 0.7f + 0.1f * static_cast<float>(x) / static_cast<float>(width);
+      g.cloud.points.emplace_back(z * (x - width / 2) / 100.0f, z * (y - height / 2) / 100.0f, z);
+    }
+  }
+  return g;
+}
+
+CloudFilterParams noSpeckle() {
+  CloudFilterParams params;
+  params.speckle_min_pixels = 0;
+  return params;
+}
+
+std::size_t count(const Grid& g, PixelStatus status) {
+  return countStatuses(g.status)[static_cast<std::size_t>(status)];
+}
+
+// Every pixel either keeps its point and status or has a NaN point and the expected status.
+void expectRemovedExactly(const Grid& before, const Grid& after, PixelStatus reason,
+                          const std::function<bool(const Eigen::Vector3f&)>& removed) {
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) {
+    const Eigen::Vector3f& p = before.cloud.points[i];
+    const uint8_t status = after.status.ptr<uint8_t>(0)[i];
+    if (p.allFinite() && removed(p)) {
+      EXPECT_TRUE(after.cloud.points[i].array().isNaN().all()) << i;
+      EXPECT_EQ(status, static_cast<uint8_t>(reason)) << i;
+    } else {
+      EXPECT_TRUE(after.cloud.points[i] == p ||
+                  (!p.allFinite() && !after.cloud.points[i].allFinite()))
+          << i;
+      EXPECT_EQ(status, before.status.ptr<uint8_t>(0)[i]) << i;
+    }
+  }
+}
+
+TEST(CloudFilter, DepthRangeRemovesPointsOutsideIt) {
+  const Grid before = tiltedPlane();
+  Grid after = before;
+  CloudFilterParams params = noSpeckle();
+  params.min_depth = 0.72;
+  params.max_depth = 0.78;
+  filterCloud(after.cloud, after.status, params);
+  expectRemovedExactly(before, after, PixelStatus::OutOfDepthRange,
+                       [](const Eigen::Vector3f& p) { return p.z() < 0.72f || p.z() > 0.78f; });
+  EXPECT_GT(count(after, PixelStatus::OutOfDepthRange), 3000u);
+}
+
+TEST(CloudFilter, CropBoxRemovesPointsOutsideIt) {
+  const Grid before = tiltedPlane();
+  Grid after = before;
+  CloudFilterParams params = noSpeckle();
+  params.crop =
+      Eigen::AlignedBox3d(Eigen::Vector3d(-0.1, -0.2, 0.0), Eigen::Vector3d(0.2, 0.1, 2.0));
+  filterCloud(after.cloud, after.status, params);
+  const Eigen::AlignedBox3d crop = params.crop;
+  expectRemovedExactly(before, after, PixelStatus::OutsideCrop,
+                       [&](const Eigen::Vector3f& p) { return !crop.contains(p.cast<double>()); });
+  EXPECT_GT(count(after, PixelStatus::OutsideCrop), 1000u);
+  EXPECT_GT(count(after, PixelStatus::Valid), 1000u);
+}
+
+TEST(CloudFilter, DefaultsKeepEveryPointOfASmoothSurface) {
+  const Grid before = tiltedPlane();
+  Grid after = before;
+  filterCloud(after.cloud, after.status, CloudFilterParams{});
+  expectRemovedExactly(before, after, PixelStatus::Valid,
+                       [](const Eigen::Vector3f&) { return false; });
+}
+
+TEST(CloudFilter, PixelsWithoutPointsKeepTheirStatus) {
+  Grid g = tiltedPlane();
+  for (int x = 0; x < 100; ++x) {
+    g.at(x, 10) = Eigen::Vector3f::Constant(kNaN);
+    g.status.at<uint8_t>(10, x) = static_cast<uint8_t>(PixelStatus::Unlit);
+  }
+  CloudFilterParams params;
+  params.max_depth = 0.75;
+  filterCloud(g.cloud, g.status, params);
+  EXPECT_GT(count(g, PixelStatus::OutOfDepthRange), 1000u);
+  for (int x = 0; x < 100; ++x)
+    EXPECT_EQ(g.statusAt(x, 10), static_cast<uint8_t>(PixelStatus::Unlit));
+}
+
+// A surface with stray patches: one floating 3 cm in front of it, one cut off by a ring of
+// missing points, and single pixels.
+TEST(CloudFilter, SpeckleRemovalRemovesSmallIsolatedPatchesAndKeepsLargeSurfaces) {
+  Grid g = tiltedPlane();
+  for (int y = 20; y < 25; ++y) {
+    for (int x = 20; x < 25; ++x) g.at(x, y).z() -= 0.03f;  // 25 points, floating
+  }
+  for (int y = 50; y < 58; ++y) {
+    for (int x = 60; x < 68; ++x) {
+      const bool ring = y == 50 || y == 57 || x == 60 || x == 67;
+      if (!ring) continue;  // 6 x 6 = 36 points inside
+      g.at(x, y) = Eigen::Vector3f::Constant(kNaN);
+      g.status.at<uint8_t>(y, x) = static_cast<uint8_t>(PixelStatus::UncertainCode);
+    }
+  }
+  g.at(90, 70).z() += 0.01f;  // a single outlier
+  // A 10 x 10 patch floating but larger than the limit, and a diagonal-only neighbour of the
+  // first patch (4-connectivity: its own patch).
+  for (int y = 60; y < 70; ++y) {
+    for (int x = 5; x < 15; ++x) g.at(x, y).z() -= 0.05f;
+  }
+  g.at(25, 25).z() -= 0.03f;
+  const Grid before = g;
+  CloudFilterParams params;
+  params.speckle_min_pixels = 50;
+  params.speckle_max_step = 0.002;
+  filterCloud(g.cloud, g.status, params);
+  auto speckle = [&](int x, int y) {
+    return g.statusAt(x, y) == static_cast<uint8_t>(PixelStatus::Speckle) &&
+           g.at(x, y).array().isNaN().all();
+  };
+  EXPECT_TRUE(speckle(22, 22));
+  EXPECT_TRUE(speckle(63, 53));
+  EXPECT_TRUE(speckle(90, 70));
+  EXPECT_TRUE(speckle(25, 25));
+  EXPECT_FALSE(speckle(10, 65));  // 100 points: kept
+  EXPECT_EQ(count(g, PixelStatus::Speckle), 25u + 36u + 1u + 1u);
+  EXPECT_EQ(count(g, PixelStatus::Valid), before.cloud.size() - 28u - 63u);  // 28: the ring
+  EXPECT_TRUE(g.at(0, 0) == before.cloud.points[0]);
+}
+
+TEST(CloudFilter, SpeckleRemovalTurnsOffWithZeroMinimum) {
+  Grid g = tiltedPlane();
+  g.at(50, 40).z() += 0.1f;
+  const Grid before = g;
+  filterCloud(g.cloud, g.status, noSpeckle());
+  expectRemovedExactly(before, g, PixelStatus::Valid, [](const Eigen::Vector3f&) { return false; });
+}
+
+// Random outliers sprinkled over a large surface: every one goes, the surface stays.
+TEST(CloudFilter, SpeckleRemovalCleansSprinkledOutliers) {
+  Grid g = tiltedPlane(400, 300);
+  std::mt19937 random(9);
+  std::uniform_int_distribution<int> column(0, 399), row(0, 299);
+  std::size_t outliers = 0;
+  for (int k = 0; k < 300; ++k) {
+    Eigen::Vector3f& p = g.at(column(random), row(random));
+    if (p.z() < 0.5f) continue;  // already moved
+    p.z() -= 0.5f;
+    ++outliers;
+  }
+  filterCloud(g.cloud, g.status, CloudFilterParams{});
+  // Outliers that happen to touch form patches of 2 or 3: still far below the limit.
+  EXPECT_EQ(count(g, PixelStatus::Speckle), outliers);
+  for (const Eigen::Vector3f& p : g.cloud.points) EXPECT_FALSE(p.z() < 0.5f);
+}
+
+TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {
+  Grid g = tiltedPlane();
+  cv::Mat small(10, 10, CV_8UC1, cv::Scalar(0));
+  EXPECT_THROW(filterCloud(g.cloud, small, CloudFilterParams{}), Error);
+  cv::Mat wide_type(80, 100, CV_16UC1, cv::Scalar(0));
+  EXPECT_THROW(filterCloud(g.cloud, wide_type, CloudFilterParams{}), Error);
+  PointCloud unorganized = g.cloud;
+  unorganized.width = unorganized.height = 0;
+  EXPECT_THROW(filterCloud(unorganized, g.status, CloudFilterParams{}), Error);
+}
+
+std::string paramsError(const CloudFilterParams& params) {
+  try {
+    params.validate();
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(CloudFilter, RefusesBadParamsNamingTheField) {
+  CloudFilterParams params;
+  params.min_depth = -0.1;
+  EXPECT_NE(paramsError(params).find("min_depth"), std::string::npos);
+  params = {};
+  params.max_depth = 0.0;
+  EXPECT_NE(paramsError(params).find("max_depth"), std::string::npos);
+  params = {};
+  params.crop = Eigen::AlignedBox3d(Eigen::Vector3d(0, 0, NAN), Eigen::Vector3d(1, 1, 1));
+  EXPECT_NE(paramsError(params).find("crop"), std::string::npos);
+  params = {};
+  params.speckle_max_step = 0.0;
+  EXPECT_NE(paramsError(params).find("speckle_max_step"), std::string::npos);
+  params = {};
+  params.speckle_min_pixels = -1;
+  EXPECT_NE(paramsError(params).find("speckle_min_pixels"), std::string::npos);
+  params = {};
+  params.max_depth = std::numeric_limits<double>::infinity();  // keeps everything: allowed
+  EXPECT_EQ(paramsError(params), "");
+}
+
+}  // namespace
+}  // namespace binpick::reconstruction

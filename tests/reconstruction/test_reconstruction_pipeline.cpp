@@ -1,0 +1,150 @@
+// The whole reconstruction (decode, triangulate, filter) against the virtual cell's exact depth,
+// and detection on what it produces.
+#include "binpick/reconstruction/reconstruction.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "binpick/estimation/detector.hpp"
+#include "binpick/estimation/model.hpp"
+#include "binpick/io/error.hpp"
+#include "evaluation.hpp"
+#include "virtual_capture.hpp"
+
+namespace binpick::reconstruction {
+namespace {
+
+using testing::CaptureOptions;
+using testing::VirtualCapture;
+using testing::virtualCapture;
+
+struct DepthScore {
+  double measured_fraction = 0.0;  // of the pixels an ideal sensor measures
+  double median_mm = 0.0;
+  double p99_mm = 0.0;
+  std::size_t wrong = 0;  // points more than 5 mm off the true surface, or where there is none
+  std::size_t points = 0;
+};
+
+DepthScore scoreDepth(const VirtualCapture& v, const PointCloud& cloud) {
+  DepthScore s;
+  std::vector<double> errors;
+  std::size_t measurable = 0, measured = 0;
+  for (std::size_t i = 0; i < v.pixelCount(); ++i) {
+    const bool has_point = cloud.points[i].allFinite();
+    if (v.measurable(i)) {
+      ++measurable;
+      if (has_point) ++measured;
+    }
+    if (!has_point) continue;
+    ++s.points;
+    const double error_mm = 1000.0 * std::fabs(cloud.points[i].z() - v.scene.depth[i]);
+    if (!(error_mm <= 5.0)) ++s.wrong;  // NaN truth: a point where nothing is
+    errors.push_back(error_mm);
+  }
+  std::sort(errors.begin(), errors.end());
+  s.measured_fraction = static_cast<double>(measured) / static_cast<double>(measurable);
+  s.median_mm = errors[errors.size() / 2];
+  s.p99_mm = errors[errors.size() * 99 / 100];
+  return s;
+}
+
+TEST(Reconstruction, MeasuresTheLitSurfacesToATenthOfAMillimetre) {
+  const VirtualCapture& v = virtualCapture({});
+  const Reconstruction r = Reconstructor(v.scene.rig).reconstruct(v.capture);
+  ASSERT_TRUE(r.cloud.isOrganized());
+  ASSERT_EQ(r.cloud.width, v.capture.metadata.image_width);
+  const DepthScore s = scoreDepth(v, r.cloud);
+  EXPECT_GT(s.measured_fraction, 0.97);
+  EXPECT_LT(s.median_mm, 0.2);  // camera 0.9 m above the floor
+  EXPECT_LT(s.p99_mm, 1.5);
+  EXPECT_EQ(s.wrong, 0u);
+}
+
+TEST(Reconstruction, ReportsEveryPixelOnceWithItsIntensity) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  const VirtualCapture& v = virtualCapture(options);
+  const Reconstruction r = Reconstructor(v.scene.rig).reconstruct(v.capture);
+  std::size_t total = 0;
+  for (std::size_t count : r.counts) total += count;
+  EXPECT_EQ(total, r.cloud.size());
+  const auto finite = static_cast<std::size_t>(
+      std::count_if(r.cloud.points.begin(), r.cloud.points.end(), [](const Eigen::Vector3f& p) { return p.allFinite(); }));
+  EXPECT_EQ(r.validPoints(), finite);
+  ASSERT_TRUE(r.cloud.hasIntensities());
+  EXPECT_FLOAT_EQ(r.cloud.intensities[1000], v.capture.images[0].ptr<uint8_t>(0)[1000] / 255.0f);
+  EXPECT_GT(r.timings.total, 0.0);
+}
+
+TEST(Reconstruction, ColumnCodesAloneGiveTheSameSurface) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  options.row_codes = false;
+  const VirtualCapture& v = virtualCapture(options);
+  const DepthScore s = scoreDepth(v, Reconstructor(v.scene.rig).reconstruct(v.capture).cloud);
+  EXPECT_GT(s.measured_fraction, 0.95);
+  EXPECT_LT(s.median_mm, 0.3);
+  EXPECT_EQ(s.wrong, 0u);
+}
+
+TEST(Reconstruction, GrayCodeAloneIsAccurateToAboutAMillimetre) {
+  CaptureOptions options;
+  options.phase_steps = 0;
+  const VirtualCapture& v = virtualCapture(options);
+  const DepthScore s = scoreDepth(v, Reconstructor(v.scene.rig).reconstruct(v.capture).cloud);
+  EXPECT_GT(s.measured_fraction, 0.9);
+  EXPECT_LT(s.median_mm, 0.8);  // a quarter of a projector column: ~0.5 mm at 0.9 m
+  EXPECT_EQ(s.wrong, 0u);
+}
+
+TEST(Reconstruction, RefusesACaptureOfAnotherCamera) {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  const VirtualCapture& v = virtualCapture(options);
+  RigCalibration other = v.scene.rig;
+  other.camera = other.camera.scaled(2.0);
+  try {
+    Reconstructor(other).reconstruct(v.capture);
+    FAIL() << "a 640x512 capture was reconstructed with a 1280x1024 calibration";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("calibration's camera is 1280x1024"), std::string::npos) << e.what();
+  }
+}
+
+// Images to poses: the detector finds as many parts in the reconstructed cloud as in the cloud an
+// ideal sensor measures (the benchmark compares them over more scenes and parts). A small bin, so
+// that the parts pile up in layers as in a cell.
+TEST(Reconstruction, DetectionOnTheReconstructedCloudMatchesTheIdealSensor) {
+  CaptureOptions options;
+  options.part = "l_bracket";
+  options.objects = 12;
+  options.seed = 12;
+  options.bin_length = 0.24;
+  options.bin_width = 0.18;
+  const VirtualCapture& v = virtualCapture(options);
+  const sim::Part part = sim::makePart(options.part);
+  const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {});
+  estimation::DetectorParams params;
+  params.selection.max_objects = options.objects;
+  params.scene.crop = eval::binInterior(v.scene, v.params);
+  const estimation::Detector detector(model, params);
+  const eval::Thresholds thresholds{model.diameter / 10.0, 10.0};
+  const eval::Score ideal = eval::scoreDetections(detector.detect(v.scene.cloud).detections, v.scene.objects,
+                                                  part.symmetry, thresholds);
+  const PointCloud reconstructed = Reconstructor(v.scene.rig).reconstruct(v.capture).cloud;
+  const eval::Score measured = eval::scoreDetections(detector.detect(reconstructed).detections, v.scene.objects,
+                                                     part.symmetry, thresholds);
+  SCOPED_TRACE("ideal sensor: found " + std::to_string(ideal.found) + " of " + std::to_string(ideal.findable) +
+               ", reconstructed: found " + std::to_string(measured.found));
+  ASSERT_GE(ideal.found, 3);
+  EXPECT_GE(measured.found, ideal.found - 1);
+  EXPECT_LE(measured.wrong_in_first_10, ideal.wrong_in_first_10);
+}
+
+}  // namespace
+}  // namespace binpick::reconstruction
