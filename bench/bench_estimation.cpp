@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "binpick/estimation/detector.hpp"
+#include "bench_support.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
@@ -31,14 +32,7 @@ struct Options {
   uint32_t max_pairs_per_feature = estimation::ModelParams{}.max_pairs_per_feature;
 };
 
-std::vector<std::string> splitCommas(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
+using bench::splitCommas;
 
 Options parse(int argc, char** argv) {
   Options o;

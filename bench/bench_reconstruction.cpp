@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "binpick/estimation/detector.hpp"
+#include "bench_support.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/io/thread_count.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
@@ -46,14 +47,7 @@ struct Options {
   bool skip_detection = false;
 };
 
-std::vector<std::string> splitCommas(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream stream(text);
-  for (std::string item; std::getline(stream, item, ',');) {
-    if (!item.empty()) out.push_back(item);
-  }
-  return out;
-}
+using bench::splitCommas;
 
 Options parse(int argc, char** argv) {
   Options o;
