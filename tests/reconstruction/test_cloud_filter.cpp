@@ -186,6 +186,32 @@ TEST(CloudFilter, SpeckleRemovalCleansSprinkledOutliers) {
   for (const Eigen::Vector3f& p : g.cloud.points) EXPECT_FALSE(p.z() < 0.5f);
 }
 
+// Bands of rows are labelled on separate threads and joined along their edges: a patch that
+// straddles an edge is one patch, and the result is the same on any number of threads.
+TEST(CloudFilter, SpecklePatchesAcrossThreadBandsAreWholeAndResultsDoNotDependOnThreads) {
+  Grid base = tiltedPlane(120, 90);
+  // A 6 x 10 patch floating 5 cm above the plane, centred on the edge between two bands (row 45
+  // for 2 threads, rows 30 and 60 for 3): 60 pixels, kept as a whole; each half alone would go.
+  for (int y = 40; y < 50; ++y) {
+    for (int x = 10; x < 16; ++x) base.at(x, y).z() -= 0.05f;
+  }
+  for (int y = 25; y < 35; ++y) {
+    for (int x = 20; x < 26; ++x) base.at(x, y).z() -= 0.05f;
+  }
+  base.at(100, 30).z() -= 0.05f;  // one stray point on a band edge: removed
+  std::vector<cv::Mat> statuses;
+  for (int threads : {1, 2, 3, 7}) {
+    Grid g = base;
+    g.status = base.status.clone();
+    CloudFilterParams params;
+    params.threads = threads;
+    filterCloud(g.cloud, g.status, params);
+    EXPECT_EQ(count(g, PixelStatus::Speckle), 1u) << threads << " threads";
+    statuses.push_back(g.status);
+  }
+  for (const cv::Mat& status : statuses) EXPECT_EQ(cv::norm(status, statuses.front(), cv::NORM_INF), 0.0);
+}
+
 TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {
   Grid g = tiltedPlane();
   cv::Mat small(10, 10, CV_8UC1, cv::Scalar(0));

@@ -58,6 +58,7 @@ TEST(ReconstructionConfig, ReadsOverridesAndLeavesEstimationSectionsAlone) {
       "cell.yaml");
   EXPECT_EQ(p.decode.threads, 2);
   EXPECT_EQ(p.triangulation.threads, 2);
+  EXPECT_EQ(p.filter.threads, 2);
   EXPECT_EQ(p.decode.bit_margin, 0.2);
   EXPECT_EQ(p.filter.max_depth, 1.2);
   EXPECT_TRUE(p.filter.crop.contains(Eigen::Vector3d(0.0, 0.0, 0.9)));

@@ -2,6 +2,7 @@
 #include "capture_reconstruction.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 
@@ -13,9 +14,11 @@ namespace binpick::cli {
 namespace {
 
 void printSummary(const reconstruction::Reconstruction& result, double read_ms) {
-  std::cerr << result.validPoints() << " points of " << result.cloud.size() << " pixels (read "
-            << static_cast<int>(read_ms) << " ms, decode " << result.timings.decode << " ms, triangulate "
-            << result.timings.triangulate << " ms, filter " << result.timings.filter << " ms); no point:";
+  char times[160];
+  std::snprintf(times, sizeof times, "read %.0f ms, decode %.1f ms, triangulate %.1f ms, filter %.1f ms", read_ms,
+                result.timings.decode, result.timings.triangulate, result.timings.filter);
+  std::cerr << result.validPoints() << " points of " << result.cloud.size() << " pixels (" << times
+            << "); no point:";
   for (std::size_t status = 1; status < result.counts.size(); ++status) {
     if (result.counts[status] == 0) continue;
     std::cerr << " " << reconstruction::statusName(static_cast<reconstruction::PixelStatus>(status)) << " "
@@ -34,7 +37,7 @@ reconstruction::Reconstruction reconstructCaptureDirectory(const CaptureInput& i
   const std::string calibration =
       input.calibration.value_or((std::filesystem::path(input.capture_dir) / "calib.yaml").string());
   const RigCalibration rig = readRigCalibration(calibration);
-  const Capture capture = readCapture(input.capture_dir);
+  const Capture capture = readCapture(input.capture_dir, input.threads.value_or(0));
   const double read_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   const reconstruction::Reconstructor reconstructor(rig, params);

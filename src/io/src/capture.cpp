@@ -9,6 +9,7 @@
 #include <set>
 
 #include "binpick/io/error.hpp"
+#include "binpick/io/thread_count.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
 
@@ -95,19 +96,39 @@ std::string encodePng(const cv::Mat& image, const std::string& path) {
   return std::string(bytes.begin(), bytes.end());
 }
 
+// Runs task(i) for i in [0, count) on `threads` threads; rethrows the error of the lowest i that
+// failed, so the message does not depend on the thread count.
+template <typename Task>
+void forEachInParallel(std::size_t count, int threads, const Task& task) {
+  std::vector<std::string> errors(count);
+#pragma omp parallel for num_threads(resolveThreadCount(threads)) schedule(dynamic, 1)
+  for (long i = 0; i < static_cast<long>(count); ++i) {
+    try {
+      task(static_cast<std::size_t>(i));
+    } catch (const std::exception& e) {
+      errors[static_cast<std::size_t>(i)] = e.what();
+    }
+  }
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw Error(error);
+  }
+}
+
 }  // namespace
 
-Capture readCapture(const std::string& directory) {
+Capture readCapture(const std::string& directory, int threads) {
   Capture capture;
   capture.metadata = readCaptureMetadata(directory);
   rejectUnlistedImages(directory, capture.metadata);
-  for (const std::string& name : capture.metadata.images) {
-    capture.images.push_back(readImage((fs::path(directory) / name).string(), capture.metadata));
-  }
+  capture.images.resize(capture.metadata.images.size());
+  // PNG decoding dominates reading a capture: one image per thread.
+  forEachInParallel(capture.images.size(), threads, [&](std::size_t i) {
+    capture.images[i] = readImage((fs::path(directory) / capture.metadata.images[i]).string(), capture.metadata);
+  });
   return capture;
 }
 
-void writeCapture(const std::string& directory, Capture capture) {
+void writeCapture(const std::string& directory, Capture capture, int threads) {
   CaptureMetadata& m = capture.metadata;
   if (capture.images.size() != m.patterns.size()) {
     fail(directory, "writeCapture: " + std::to_string(capture.images.size()) + " images for " +
@@ -127,15 +148,18 @@ void writeCapture(const std::string& directory, Capture capture) {
   fs::create_directories(capture_detail::imagesDirectory(directory), error);
   if (error) fail(directory, "cannot create the capture directory: " + error.message());
   for (std::size_t i = 0; i < capture.images.size(); ++i) {
-    const std::string path = (fs::path(directory) / m.images[i]).string();
     const cv::Mat& image = capture.images[i];
     if (image.cols != m.image_width || image.rows != m.image_height ||
         image.type() != expectedType(m.bit_depth)) {
-      fail(path, "writeCapture: image " + std::to_string(i) +
-                     " does not match the metadata's size and bit depth");
+      fail((fs::path(directory) / m.images[i]).string(),
+           "writeCapture: image " + std::to_string(i) + " does not match the metadata's size and bit depth");
     }
-    io_detail::replaceFileAtomically(path, encodePng(image, path));
   }
+  // PNG encoding dominates writing: one image per thread; capture.json only after all of them.
+  forEachInParallel(capture.images.size(), threads, [&](std::size_t i) {
+    const std::string path = (fs::path(directory) / m.images[i]).string();
+    io_detail::replaceFileAtomically(path, encodePng(capture.images[i], path));
+  });
   capture_detail::writeCaptureMetadata(directory, m);
 }
 

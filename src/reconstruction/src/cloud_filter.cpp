@@ -6,6 +6,7 @@
 #include <string>
 
 #include "binpick/io/error.hpp"
+#include "binpick/io/thread_count.hpp"
 #include "binpick/reconstruction/pixel_status.hpp"
 #include "speckle.hpp"
 
@@ -57,7 +58,7 @@ void applyDepthAndCrop(PointCloud& cloud, cv::Mat& status, const CloudFilterPara
 
 void applySpeckle(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const std::vector<uint8_t> speckle = detail::findSpeckles(
-      cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels);
+      cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels, resolveThreadCount(params.threads));
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
@@ -79,6 +80,7 @@ void CloudFilterParams::validate() const {
   require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step",
           "positive and finite", speckle_max_step);
   require(speckle_min_pixels >= 0, "speckle_min_pixels", ">= 0", speckle_min_pixels);
+  require(threads >= 0, "threads", ">= 0", threads);
 }
 
 void filterCloud(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {

@@ -40,6 +40,7 @@ const ReconstructionParams& validated(const ReconstructionParams& params) {
 void ReconstructionParams::setThreads(int threads) {
   decode.threads = threads;
   triangulation.threads = threads;
+  filter.threads = threads;
 }
 
 void ReconstructionParams::validate() const {

@@ -11,6 +11,17 @@ namespace {
 // Disjoint sets over runs, by size, with path halving.
 class RunSets {
  public:
+  RunSets() = default;
+  // The sets of several bands in one, their runs numbered one band after the other.
+  explicit RunSets(std::vector<RunSets>& bands) {
+    for (RunSets& band : bands) {
+      const auto offset = static_cast<int32_t>(parent_.size());
+      for (int32_t run = 0; run < band.count(); ++run) {
+        parent_.push_back(offset + band.find(run));
+        size_.push_back(band.size_[run]);
+      }
+    }
+  }
   int32_t add(int32_t pixels) {
     parent_.push_back(static_cast<int32_t>(parent_.size()));
     size_.push_back(pixels);
@@ -77,14 +88,38 @@ void joinRows(const PointCloud& cloud, int y, float max_step, RunSets& sets, con
 
 }  // namespace
 
-std::vector<uint8_t> findSpeckles(const PointCloud& cloud, float max_step, int min_pixels) {
+std::vector<uint8_t> findSpeckles(const PointCloud& cloud, float max_step, int min_pixels, int threads) {
   const std::size_t count = cloud.points.size();
+  const int width = cloud.width;
   std::vector<int32_t> labels(count, -1);
-  RunSets sets;
-  for (int y = 0; y < cloud.height; ++y) {
-    int32_t* row_labels = labels.data() + static_cast<std::size_t>(y) * cloud.width;
-    labelRow(cloud, y, max_step, sets, row_labels);
-    if (y > 0) joinRows(cloud, y, max_step, sets, row_labels - cloud.width, row_labels);
+  // Bands of rows are labelled in parallel, each with its own sets; then the sets are merged and
+  // the bands joined along their first rows.
+  const int bands = std::max(1, std::min(threads, cloud.height));
+  std::vector<RunSets> band_sets(bands);
+  std::vector<int> first_row(bands + 1);
+  for (int b = 0; b <= bands; ++b) first_row[b] = static_cast<int>(static_cast<long>(cloud.height) * b / bands);
+#pragma omp parallel for num_threads(bands) schedule(static, 1)
+  for (int b = 0; b < bands; ++b) {
+    for (int y = first_row[b]; y < first_row[b + 1]; ++y) {
+      int32_t* row_labels = labels.data() + static_cast<std::size_t>(y) * width;
+      labelRow(cloud, y, max_step, band_sets[b], row_labels);
+      if (y > first_row[b]) joinRows(cloud, y, max_step, band_sets[b], row_labels - width, row_labels);
+    }
+  }
+  std::vector<int32_t> offset(bands, 0);
+  for (int b = 1; b < bands; ++b) offset[b] = offset[b - 1] + band_sets[b - 1].count();
+#pragma omp parallel for num_threads(bands) schedule(static, 1)
+  for (int b = 1; b < bands; ++b) {
+    const auto begin = labels.begin() + static_cast<std::ptrdiff_t>(first_row[b]) * width;
+    const auto end = labels.begin() + static_cast<std::ptrdiff_t>(first_row[b + 1]) * width;
+    for (auto label = begin; label != end; ++label) {
+      if (*label >= 0) *label += offset[b];
+    }
+  }
+  RunSets sets(band_sets);
+  for (int b = 1; b < bands; ++b) {
+    const int32_t* row_labels = labels.data() + static_cast<std::size_t>(first_row[b]) * width;
+    joinRows(cloud, first_row[b], max_step, sets, row_labels - width, row_labels);
   }
   // Decided per run, then spread to the pixels: runs are far fewer.
   std::vector<uint8_t> small_run(sets.count());
@@ -92,7 +127,8 @@ std::vector<uint8_t> findSpeckles(const PointCloud& cloud, float max_step, int m
     small_run[run] = sets.size(sets.find(run)) < min_pixels ? 1 : 0;
   }
   std::vector<uint8_t> speckle(count, 0);
-  for (std::size_t i = 0; i < count; ++i) {
+#pragma omp parallel for num_threads(bands) schedule(static)
+  for (long i = 0; i < static_cast<long>(count); ++i) {
     if (labels[i] >= 0) speckle[i] = small_run[labels[i]];
   }
   return speckle;

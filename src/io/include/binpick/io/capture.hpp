@@ -5,7 +5,7 @@
 //   DIR/capture.json        CaptureMetadata
 //   DIR/calib.yaml          the rig (rig_calibration.hpp), optional for calibration sequences
 //   DIR/images/NNN_<pattern>.png   one image per pattern, 8- or 16-bit grey
-// Functions are stateless: thread-safe for different directories.
+// Functions are stateless: thread-safe for different directories. They use OpenMP threads.
 #include <opencv2/core.hpp>
 #include <string>
 #include <vector>
@@ -45,15 +45,18 @@ struct Capture {
 // Reads DIR/capture.json. Throws binpick::Error "PATH: ..." on a missing file, malformed JSON, a
 // missing or mistyped key, an unsupported version, or lists of different lengths.
 CaptureMetadata readCaptureMetadata(const std::string& directory);
-// Reads the metadata and every image. Throws on a missing, unreadable, extra (an image file in
-// DIR/images that the metadata does not list) or wrongly sized image, or one of another bit depth.
-Capture readCapture(const std::string& directory);
+// Reads the metadata and every image, decoding the images on `threads` threads (0: all cores).
+// Throws on a missing, unreadable, extra (an image file in DIR/images that the metadata does not
+// list) or wrongly sized image, or one of another bit depth; with several bad images, the error
+// names the first in capture order.
+Capture readCapture(const std::string& directory, int threads = 0);
 // Creates DIR (and DIR/images) and writes the images and then the metadata, each through a
 // temporary file and a rename: a directory with a capture.json holds a complete capture. Throws,
 // writing nothing, on inconsistent metadata or when DIR already holds a capture (recordings are
 // never overwritten).
-// `capture.metadata.images` is filled in here from the pattern names.
-void writeCapture(const std::string& directory, Capture capture);
+// `capture.metadata.images` is filled in here from the pattern names. Images are encoded on
+// `threads` threads (0: all cores).
+void writeCapture(const std::string& directory, Capture capture, int threads = 0);
 
 // The current time as ISO 8601 UTC, e.g. "2026-01-31T12:00:00.123Z".
 std::string utcTimestamp();
