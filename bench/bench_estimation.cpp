@@ -7,12 +7,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "binpick/estimation/detector.hpp"
 #include "bench_support.hpp"
+#include "binpick/estimation/detector.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"

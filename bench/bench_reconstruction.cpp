@@ -12,12 +12,11 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
-#include <sstream>
 #include <string>
 #include <vector>
 
-#include "binpick/estimation/detector.hpp"
 #include "bench_support.hpp"
+#include "binpick/estimation/detector.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/io/thread_count.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"

@@ -59,6 +59,7 @@ struct DecodeParams {
   void validate() const;  // throws binpick::Error naming the field
 };
 
+// Copies share the cv::Mat pixels (as cv::Mat does): clone() a member before changing it.
 struct DecodedCapture {
   int width = 0;   // camera image size
   int height = 0;
