@@ -96,12 +96,10 @@ EstimationConfig parseEstimationConfig(const std::string& yaml_text, const std::
   readDetector(top.child("detection"), config.detector);
   top.skip("reconstruction");  // the same cell file configures reconstruction
   top.finish();
-  try {
+  validateSettings(origin, [&] {
     config.model.validate();
     config.detector.validate();
-  } catch (const Error& e) {
-    throw Error(origin + ": " + e.what());
-  }
+  });
   return config;
 }
 

@@ -70,11 +70,7 @@ ReconstructionParams parseReconstructionParams(const std::string& yaml_text, con
   top.skip("model");  // estimation's sections of the same file
   top.skip("detection");
   top.finish();
-  try {
-    params.validate();
-  } catch (const Error& e) {
-    throw Error(origin + ": " + e.what());
-  }
+  validateSettings(origin, [&] { params.validate(); });
   return params;
 }
 

@@ -48,6 +48,17 @@ class YamlSection {
   std::set<std::string> used_;
 };
 
+// Runs `check` (validate() of the params a file set), prefixing its error with "ORIGIN: " so
+// that the message names the file as well as the field.
+template <typename Check>
+void validateSettings(const std::string& origin, const Check& check) {
+  try {
+    check();
+  } catch (const Error& e) {
+    throw Error(origin + ": " + e.what());
+  }
+}
+
 // Parses YAML text; throws "ORIGIN: not valid YAML (line N): ..." on a syntax error.
 YAML::Node parseYaml(const std::string& text, const std::string& origin);
 // The text of a settings file; throws "PATH: cannot open the configuration file".
