@@ -98,4 +98,16 @@ sed 's/camera_width: 1280/camera_width: 640/' "$work/capture/calib.yaml" > "$wor
 expect_error "calibration's camera is 640x1024" "$binpick" reconstruct --capture "$work/capture" --calib "$work/small_camera.yaml" --out "$work/x.ply"
 [ -e "$work/x.ply" ] && fail "a failed reconstruct wrote a cloud"
 
+# The live path without hardware: a fake GigE Vision camera on loopback serves the capture's
+# images behind a virtual projector; the recording equals them byte for byte and reconstructs.
+"$binpick" capture --fake-camera "$work/capture" --out "$work/recorded" 2>/dev/null || fail "capture --fake-camera exited $?"
+for image in "$work/capture/images/"*.png; do
+  cmp -s "$image" "$work/recorded/images/$(basename "$image")" || fail "recorded $(basename "$image") differs"
+done
+[ -s "$work/recorded/calib.yaml" ] || fail "capture --fake-camera copied no calib.yaml"
+"$binpick" reconstruct --capture "$work/recorded" --out "$work/recorded.ply" 2>/dev/null || fail "reconstruct of a recording exited $?"
+expect_error "GPIO chip 'gpiochip9'" "$binpick" capture --camera 127.0.0.9 --trigger gpio:gpiochip9:3 --out "$work/live"
+expect_error "either --camera or --fake-camera" "$binpick" capture --out "$work/live"
+[ -e "$work/live" ] && fail "a failed capture wrote a directory"
+
 if [ "$failures" -eq 0 ]; then echo "cli: all checks passed"; else exit 1; fi

@@ -53,10 +53,14 @@ T parseWhole(const std::string& name, const std::string& text, const char* kind,
 
 }  // namespace
 
+int parseInteger(const std::string& name, const std::string& text) {
+  return parseWhole<int>(name, text, "a whole number", [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
+}
+
 std::optional<int> Arguments::integer(const std::string& name) const {
   const auto v = value(name);
   if (!v) return std::nullopt;
-  return parseWhole<int>(name, *v, "a whole number", [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
+  return parseInteger(name, *v);
 }
 
 std::optional<double> Arguments::number(const std::string& name) const {

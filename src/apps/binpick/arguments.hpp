@@ -26,4 +26,8 @@ class Arguments {
   std::set<std::string> flags_;
 };
 
+// The whole of `text` as an integer; throws binpick::Error naming `name` (an option, or a part
+// of one such as "--projector width") otherwise.
+int parseInteger(const std::string& name, const std::string& text);
+
 }  // namespace binpick::cli

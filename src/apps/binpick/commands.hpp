@@ -10,5 +10,6 @@ int runDetect(const std::vector<std::string>& args);
 int runSimulate(const std::vector<std::string>& args);
 int runEvaluate(const std::vector<std::string>& args);
 int runReconstruct(const std::vector<std::string>& args);
+int runCapture(const std::vector<std::string>& args);
 
 }  // namespace binpick::cli

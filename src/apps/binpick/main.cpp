@@ -10,6 +10,10 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: binpick <command> [options]\n"
+    "  capture  (--camera ID | --fake-camera CAPTURE_DIR) --out DIR [--pixel-format Mono8]\n"
+    "           [--exposure-us E] [--gain-db G] [--trigger none|gpio:CHIP:LINE] [--pulse-us P]\n"
+    "           [--settle-us S] [--timeout-ms T] [--retries R] [--projector WxH] [--phase-steps N]\n"
+    "           [--no-rows] [--calib FILE]\n"
     "  reconstruct --capture DIR [--calib FILE] [--config FILE] [--threads N] [--out cloud.ply]\n"
     "              [--status status.png]\n"
     "  detect   --model MODEL (--scene CLOUD | --capture DIR [--calib FILE]) [--max-objects N]\n"
@@ -34,6 +38,7 @@ int main(int argc, char** argv) {
     if (command == "simulate") return binpick::cli::runSimulate(args);
     if (command == "evaluate") return binpick::cli::runEvaluate(args);
     if (command == "reconstruct") return binpick::cli::runReconstruct(args);
+    if (command == "capture") return binpick::cli::runCapture(args);
     std::cerr << "binpick: unknown command '" << command << "'\n" << kUsage;
     return 2;
   } catch (const std::exception& e) {

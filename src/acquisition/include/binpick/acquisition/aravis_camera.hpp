@@ -1,0 +1,12 @@
+#pragma once
+// The Camera interface on Aravis 0.8 (GigE Vision and USB3 Vision cameras).
+#include <memory>
+
+#include "binpick/acquisition/camera.hpp"
+
+namespace binpick::acquisition {
+
+// Does not connect yet: open() does. Throws binpick::Error on invalid params.
+std::unique_ptr<Camera> makeAravisCamera(const CameraParams& params);
+
+}  // namespace binpick::acquisition

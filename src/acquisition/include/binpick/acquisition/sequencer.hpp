@@ -1,0 +1,63 @@
+#pragma once
+// The capture sequencer: for each pattern of a set, show it, let the light settle, trigger the
+// camera and take exactly one whole frame, re-triggering a bounded number of times when a frame
+// is lost or incomplete. The result is a Capture (binpick/io/capture.hpp) ready for the decoder
+// or for writeCapture (record mode).
+//
+// Thread-safety: a sequencer drives one camera and one projector from the calling thread.
+#include <string>
+#include <vector>
+
+#include "binpick/acquisition/camera.hpp"
+#include "binpick/acquisition/projector.hpp"
+#include "binpick/io/capture.hpp"
+#include "binpick/io/error.hpp"
+
+namespace binpick::acquisition {
+
+enum class TriggerOrder {
+  ProjectorThenCamera,  // pulse the projector, wait settle_us, trigger the camera
+  CameraOnly,           // the projector triggers the camera (hardware line): only pulse it
+};
+
+struct SequencerParams {
+  int settle_us = 2000;          // after a new pattern, before the camera exposes
+  int frame_timeout_ms = 1000;   // per frame
+  int max_retries = 2;           // extra triggers for one pattern's lost frame
+  TriggerOrder order = TriggerOrder::ProjectorThenCamera;
+  void validate() const;         // throws binpick::Error naming the field
+};
+
+struct SequencerReport {
+  int retries = 0;                       // extra triggers over the whole capture
+  std::vector<std::string> retry_reasons;  // "pattern 12 (gray_col_05): timeout", ...
+  double milliseconds = 0.0;             // whole capture
+};
+
+// Thrown when a capture cannot be completed: names the pattern and what the camera said.
+class CaptureError : public Error {
+ public:
+  CaptureError(const std::string& message, bool connection_lost)
+      : Error(message), connection_lost_(connection_lost) {}
+  bool connectionLost() const { return connection_lost_; }
+
+ private:
+  bool connection_lost_;
+};
+
+class CaptureSequencer {
+ public:
+  // Throws binpick::Error on invalid params.
+  CaptureSequencer(Camera& camera, ProjectorTrigger& projector, const SequencerParams& params);
+  // Captures every pattern of `patterns` (the camera must be open and started). Throws
+  // CaptureError naming the pattern when a frame stays lost after the retries, or the camera is
+  // gone; the images have the camera's size and depth, the metadata says what was projected.
+  Capture capture(const PatternSetSpec& patterns, SequencerReport* report = nullptr);
+
+ private:
+  Camera& camera_;
+  ProjectorTrigger& projector_;
+  SequencerParams params_;
+};
+
+}  // namespace binpick::acquisition

@@ -1,0 +1,87 @@
+// The replay source: recorded capture directories, in name order, read as they were written.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "binpick/acquisition/capture_source.hpp"
+#include "binpick/io/error.hpp"
+#include "component_logger.hpp"
+
+namespace binpick::acquisition {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool isCapture(const fs::path& directory) {
+  std::error_code error;
+  return fs::is_regular_file(directory / "capture.json", error);
+}
+
+// PATH itself when it is a capture, else its subdirectories in name order. A subdirectory without
+// capture.json is refused rather than skipped: writeCapture writes capture.json last, so it is a
+// recording that never finished (or something else that does not belong there) and a silently
+// shorter replay would hide that.
+std::vector<std::string> listCaptures(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_directory(path, error)) throw Error("replay: " + path + " is not a directory");
+  if (isCapture(path)) return {path};
+  std::vector<fs::path> directories;
+  for (fs::directory_iterator it(path, error), end; !error && it != end; it.increment(error)) {
+    std::error_code type_error;
+    if (it->is_directory(type_error)) directories.push_back(it->path());  // files (notes, calib) ignored
+  }
+  if (error) throw Error("replay: cannot list " + path + ": " + error.message());
+  std::sort(directories.begin(), directories.end());
+  std::vector<std::string> captures;
+  for (const fs::path& directory : directories) {
+    if (!isCapture(directory)) {
+      throw Error("replay: " + directory.string() +
+                  " has no capture.json (a recording that did not finish?); remove it or replay another directory");
+    }
+    captures.push_back(directory.string());
+  }
+  if (captures.empty()) {
+    throw Error("replay: " + path + " holds no capture (no capture.json in it or its subdirectories)");
+  }
+  return captures;
+}
+
+class ReplaySource : public CaptureSource {
+ public:
+  explicit ReplaySource(const ReplayParams& params) : params_(params), captures_(listCaptures(params.path)) {
+    detail::componentLogger("replay")->info("{}: {} capture(s){}", params_.path, captures_.size(),
+                                            params_.loop ? ", looping" : "");
+  }
+
+  Capture next() override {
+    if (next_ == captures_.size()) {
+      if (!params_.loop) throw Error("replay: no more captures in " + params_.path);
+      next_ = 0;
+    }
+    // Move on before reading: a damaged capture is reported once and the replay goes on after it.
+    const std::string& directory = captures_[next_++];
+    detail::componentLogger("replay")->debug("reading {}", directory);
+    return readCapture(directory, params_.threads);
+  }
+
+  std::string description() const override {
+    return "replay of " + params_.path + " (" + std::to_string(captures_.size()) + " capture(s))";
+  }
+
+ private:
+  ReplayParams params_;
+  std::vector<std::string> captures_;
+  std::size_t next_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<CaptureSource> makeReplaySource(const ReplayParams& params) {
+  const std::string owner = "replay params";
+  requireField(!params.path.empty(), owner, "path", "a capture directory or a directory of them", "\"\"");
+  requireField(params.threads >= 0, owner, "threads", ">= 0 (0: all cores)", params.threads);
+  return std::make_unique<ReplaySource>(params);
+}
+
+}  // namespace binpick::acquisition

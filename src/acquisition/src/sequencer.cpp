@@ -1,0 +1,156 @@
+// CaptureSequencer::capture: one whole camera frame per projected pattern, with bounded retries.
+#include <chrono>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include "binpick/acquisition/sequencer.hpp"
+#include "binpick/reconstruction/pattern_set.hpp"
+#include "component_logger.hpp"
+
+namespace binpick::acquisition {
+namespace {
+
+std::string patternLabel(std::size_t index, const std::string& name) {
+  return "pattern " + std::to_string(index) + " (" + name + ")";
+}
+
+std::string statusText(const Frame& frame) {
+  std::string text = frameStatusName(frame.status);
+  if (!frame.detail.empty()) text += " (" + frame.detail + ")";
+  return text;
+}
+
+int bitDepth(const cv::Mat& image) {
+  if (image.type() == CV_8UC1) return 8;
+  if (image.type() == CV_16UC1) return 16;
+  return 0;
+}
+
+std::string formatText(const cv::Mat& image) {
+  const int depth = bitDepth(image);
+  const std::string kind =
+      depth == 0 ? "OpenCV type " + std::to_string(image.type()) : std::to_string(depth) + "-bit grey";
+  return std::to_string(image.cols) + "x" + std::to_string(image.rows) + " " + kind;
+}
+
+// The projector holds a pattern until the next pulse, so a failed pulse means the images would no
+// longer match their pattern names: the capture cannot go on.
+void showPattern(ProjectorTrigger& projector, int index, const std::string& label) {
+  try {
+    projector.showPattern(index);
+  } catch (const std::exception& e) {
+    throw CaptureError(label + ": projector '" + projector.description() + "' failed: " + e.what(), false);
+  }
+}
+
+// With CameraOnly the projector's pulse triggers the camera; a retry still calls trigger(), which
+// a hardware- or free-running camera ignores while it waits for its next frame.
+void triggerCamera(Camera& camera, const SequencerParams& params, int attempt, const std::string& label) {
+  if (params.order == TriggerOrder::CameraOnly && attempt == 0) return;
+  try {
+    camera.trigger();
+  } catch (const std::exception& e) {
+    throw CaptureError(label + ": camera trigger failed: " + e.what(), camera.connectionLost());
+  }
+}
+
+// A frame that timed out may still arrive later, and would then be taken for the answer to the
+// next trigger (or the next pattern): before re-triggering, drop whatever is already waiting.
+void dropLateFrames(Camera& camera) {
+  constexpr int kMostFramesWaiting = 256;  // CameraParams::buffers is at most that
+  for (int i = 0; i < kMostFramesWaiting; ++i) {
+    if (camera.grab(0).status == FrameStatus::Timeout) return;
+  }
+}
+
+// One whole frame of the pattern on show, re-triggering up to max_retries times. A lost
+// connection ends the capture at once: retrying cannot help until the camera is reopened.
+cv::Mat takeFrame(Camera& camera, const SequencerParams& params, const std::string& label,
+                  SequencerReport& report) {
+  Frame frame;
+  for (int attempt = 0; attempt <= params.max_retries; ++attempt) {
+    if (attempt > 0) {
+      std::string reason = label + ": " + statusText(frame);
+      detail::componentLogger("sequencer")->warn("retry {} of {}: {}", attempt, params.max_retries, reason);
+      ++report.retries;
+      report.retry_reasons.push_back(std::move(reason));
+      if (frame.status == FrameStatus::Timeout) dropLateFrames(camera);
+    }
+    triggerCamera(camera, params, attempt, label);
+    frame = camera.grab(params.frame_timeout_ms);
+    if (frame.status == FrameStatus::Ok && frame.image.empty()) {
+      frame.status = FrameStatus::Failed;  // a camera bug, but the next frame may be fine
+      frame.detail = "an ok frame without pixels";
+    }
+    if (frame.status == FrameStatus::Ok) return std::move(frame.image);
+    if (frame.status == FrameStatus::ConnectionLost || camera.connectionLost()) {
+      const bool said_so = frame.status == FrameStatus::ConnectionLost;
+      const std::string why = said_so ? frame.detail : "last frame: " + statusText(frame);
+      throw CaptureError(label + ": camera connection lost" + (why.empty() ? "" : " (" + why + ")"), true);
+    }
+  }
+  throw CaptureError(label + ": no whole frame after " + std::to_string(params.max_retries + 1) +
+                         " triggers; last: " + statusText(frame),
+                     false);
+}
+
+// Every image of a capture must share the first one's size and depth: the decoder compares them
+// pixel by pixel.
+void checkFormat(const cv::Mat& image, const cv::Mat& first, const std::string& label) {
+  if (bitDepth(image) == 0) {
+    throw CaptureError(label + ": the camera delivered a " + formatText(image) +
+                           " image; captures take 8- or 16-bit grey",
+                       false);
+  }
+  if (image.size() != first.size() || image.type() != first.type()) {
+    throw CaptureError(label + ": the camera delivered a " + formatText(image) + " image after a " +
+                           formatText(first) + " one",
+                       false);
+  }
+}
+
+}  // namespace
+
+CaptureSequencer::CaptureSequencer(Camera& camera, ProjectorTrigger& projector, const SequencerParams& params)
+    : camera_(camera), projector_(projector), params_(params) {
+  params_.validate();
+}
+
+Capture CaptureSequencer::capture(const PatternSetSpec& patterns, SequencerReport* report) {
+  patterns.validate();
+  const auto start = std::chrono::steady_clock::now();
+  SequencerReport local;
+  SequencerReport& out = report != nullptr ? *report : local;
+  out = SequencerReport{};
+
+  Capture capture;
+  capture.metadata.timestamp = utcTimestamp();  // when the first pattern was shown
+  capture.metadata.patterns = reconstruction::patternNames(patterns);
+  const std::vector<std::string>& names = capture.metadata.patterns;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string label = patternLabel(k, names[k]);
+    showPattern(projector_, static_cast<int>(k), label);
+    if (params_.order == TriggerOrder::ProjectorThenCamera && params_.settle_us > 0) {
+      std::this_thread::sleep_for(std::chrono::microseconds(params_.settle_us));
+    }
+    cv::Mat image = takeFrame(camera_, params_, label, out);
+    checkFormat(image, capture.images.empty() ? image : capture.images.front(), label);
+    capture.images.push_back(std::move(image));
+  }
+
+  CaptureMetadata& m = capture.metadata;
+  m.source = camera_.description();
+  m.image_width = capture.images.front().cols;
+  m.image_height = capture.images.front().rows;
+  m.bit_depth = bitDepth(capture.images.front());
+  m.pattern_set = patterns;
+  out.milliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  detail::componentLogger("sequencer")
+      ->info("captured {} images ({}x{}, {}-bit) from {} in {:.0f} ms, {} retries", capture.images.size(),
+             m.image_width, m.image_height, m.bit_depth, m.source, out.milliseconds, out.retries);
+  return capture;
+}
+
+}  // namespace binpick::acquisition
