@@ -1,35 +1,9 @@
 #pragma once
-// A fresh temporary directory per test, removed afterwards, so the tests may run in parallel.
-#include <gtest/gtest.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <atomic>
-#include <filesystem>
-#include <string>
+// The acquisition tests' temporary directory per test (tests/common).
+#include "temp_directory_test.hpp"
 
 namespace binpick::acquisition::testing {
 
-class TempDirTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "binpick_acq_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
-                       std::to_string(::getpid()) + "_" + std::to_string(counter++);
-    std::replace(name.begin(), name.end(), '/', '_');
-    directory_ = std::filesystem::path(::testing::TempDir()) / name;
-    std::filesystem::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    std::filesystem::remove_all(directory_, ignored);
-  }
-  std::string pathOf(const std::string& name) const { return (directory_ / name).string(); }
-  std::string root() const { return directory_.string(); }
-
- private:
-  std::filesystem::path directory_;
-};
+using TempDirTest = binpick::test::TempDirectoryTest;
 
 }  // namespace binpick::acquisition::testing

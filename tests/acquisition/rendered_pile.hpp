@@ -1,6 +1,7 @@
 #pragma once
 // Test data for the acquisition tests: the pattern images of a small rendered pile (quarter-size
 // camera, 320 x 256; column codes only), computed once per test binary.
+#include <utility>
 #include <vector>
 
 #include "binpick/io/capture.hpp"
@@ -12,6 +13,7 @@ namespace binpick::acquisition::testing {
 struct RenderedPile {
   PatternSetSpec patterns;
   std::vector<cv::Mat> images;  // patternSequence order, CV_8UC1
+  RigCalibration rig;           // the rig that saw them, to reconstruct recordings
 };
 
 inline const RenderedPile& renderedPile() {
@@ -26,7 +28,9 @@ inline const RenderedPile& renderedPile() {
     out.patterns.row_codes = false;
     sim::PhotometryParams photometry;
     photometry.seed = 3;
-    out.images = sim::generatePileCapture(sim::makePart("clamp").mesh, params, out.patterns, photometry).images;
+    sim::PileCapture capture = sim::generatePileCapture(sim::makePart("clamp").mesh, params, out.patterns, photometry);
+    out.images = std::move(capture.images);
+    out.rig = capture.scene.rig;
     return out;
   }();
   return pile;

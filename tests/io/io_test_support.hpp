@@ -19,6 +19,7 @@
 #include "binpick/io/error.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/point_cloud.hpp"
+#include "temp_directory_test.hpp"
 
 namespace binpick {
 // Readable parameter names in test output instead of "4-byte object <01-00 00-00>".
@@ -29,25 +30,9 @@ inline void PrintTo(Encoding encoding, std::ostream* out) {
 
 namespace binpick::test {
 
-// Each test gets its own directory, removed afterwards, so tests may run in parallel.
-class IoTest : public ::testing::Test {
+// Each test gets its own directory (TempDirectoryTest), plus ways to fill it.
+class IoTest : public TempDirectoryTest {
  protected:
-  void SetUp() override {
-    static std::atomic<int> counter{0};
-    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "binpick_io_" + std::string(info->test_suite_name()) + "_" + info->name() +
-                       "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-    std::replace(name.begin(), name.end(), '/', '_');  // parameterised test names contain '/'
-    directory_ = std::filesystem::path(::testing::TempDir()) / name;
-    std::filesystem::create_directories(directory_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    std::filesystem::remove_all(directory_, ignored);
-  }
-
-  std::string pathOf(const std::string& name) const { return (directory_ / name).string(); }
-
   std::string writeFile(const std::string& name, const std::string& bytes) const {
     const std::string path = pathOf(name);
     std::ofstream(path, std::ios::binary)
@@ -59,9 +44,6 @@ class IoTest : public ::testing::Test {
     std::ifstream stream(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(stream), {});
   }
-
- private:
-  std::filesystem::path directory_;
 };
 
 // Appends `value` with the given byte order, for hand-made binary files.
