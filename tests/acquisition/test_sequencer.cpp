@@ -2,6 +2,8 @@
 // bounded retries for lost frames and an error that names the pattern when they do not suffice.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <string>
 
 #include "binpick/acquisition/sequencer.hpp"
@@ -101,6 +103,8 @@ TEST(CaptureSequencer, CapturesEveryPatternAsRendered) {
   EXPECT_EQ(m.source, "Fake Vision FV-1 FAKE-0001");
   EXPECT_FALSE(m.timestamp.empty());
   EXPECT_EQ(m.patterns, reconstruction::patternNames(rendered.patterns));
+  ASSERT_EQ(m.frame_times_ms.size(), m.patterns.size());  // every image time-stamped, in order
+  EXPECT_TRUE(std::is_sorted(m.frame_times_ms.begin(), m.frame_times_ms.end()));
   EXPECT_EQ(m.pattern_set.projector_width, rendered.patterns.projector_width);
   EXPECT_EQ(m.pattern_set.projector_height, rendered.patterns.projector_height);
   EXPECT_EQ(m.pattern_set.row_codes, rendered.patterns.row_codes);

@@ -125,6 +125,21 @@ TEST_F(CaptureTest, MetadataRoundTrips) {
   }
 }
 
+TEST_F(CaptureTest, FrameTimesAreOptionalAndRoundTrip) {
+  writeCapture(directory_, smallCapture(8));
+  EXPECT_TRUE(readCaptureMetadata(directory_).frame_times_ms.empty());  // none recorded, none read
+  Capture written = smallCapture(8);
+  written.metadata.frame_times_ms = {0.5, 41.25, 83.0};
+  const std::string timed = pathOf("timed");
+  writeCapture(timed, written);
+  EXPECT_EQ(readCaptureMetadata(timed).frame_times_ms, written.metadata.frame_times_ms);
+  writeSampleWithMetadata([](json& d) { d["frame_times_ms"] = {1.0, 2.0}; });
+  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+                        "'frame_times_ms' has 2 entries for 3 patterns"));
+  writeSampleWithMetadata([](json& d) { d["frame_times_ms"] = {1.0, "late", 3.0}; });
+  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "frame_times_ms"));
+}
+
 TEST_F(CaptureTest, WriterLeavesNoTemporaryFiles) {
   writeCapture(directory_, smallCapture(8));
   std::vector<std::string> names;

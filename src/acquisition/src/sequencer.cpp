@@ -137,6 +137,8 @@ Capture CaptureSequencer::capture(const PatternSetSpec& patterns, SequencerRepor
     cv::Mat image = takeFrame(camera_, params_, label, out);
     checkFormat(image, capture.images.empty() ? image : capture.images.front(), label);
     capture.images.push_back(std::move(image));
+    capture.metadata.frame_times_ms.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
 
   CaptureMetadata& m = capture.metadata;

@@ -1,5 +1,7 @@
 // capture.json: CaptureMetadata as JSON, every key required and type-checked on reading.
 
+#include <cmath>
+
 #include "binpick/io/capture.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/io/json_fields.hpp"
@@ -52,6 +54,13 @@ void checkConsistent(const CaptureMetadata& m, const std::string& path) {
     fail(path, "'patterns' and 'images' differ in length (" + std::to_string(m.patterns.size()) +
                    " vs " + std::to_string(m.images.size()) + ")");
   }
+  if (!m.frame_times_ms.empty() && m.frame_times_ms.size() != m.patterns.size()) {
+    fail(path, "'frame_times_ms' has " + std::to_string(m.frame_times_ms.size()) + " entries for " +
+                   std::to_string(m.patterns.size()) + " patterns");
+  }
+  for (double time : m.frame_times_ms) {
+    if (!std::isfinite(time)) fail(path, "'frame_times_ms' holds a value that is not finite");
+  }
   for (const std::string& image : m.images) {
     if (!capture_detail::isPlainImageName(image)) {
       fail(path, "image name '" + image + "' must be images/<name>.png");
@@ -93,6 +102,9 @@ CaptureMetadata readCaptureMetadata(const std::string& directory) {
   m.pattern_set = patternSetFrom(jsonField<json>(document, "pattern_set", path), path);
   m.patterns = jsonField<std::vector<std::string>>(document, "patterns", path);
   m.images = jsonField<std::vector<std::string>>(document, "images", path);
+  if (document.contains("frame_times_ms")) {  // optional: recordings only
+    m.frame_times_ms = jsonField<std::vector<double>>(document, "frame_times_ms", path);
+  }
   checkConsistent(m, path);
   return m;
 }
@@ -111,7 +123,7 @@ void checkMetadata(const CaptureMetadata& m, const std::string& path) {
 void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& m) {
   const std::string path = capture_detail::metadataPath(directory);
   checkMetadata(m, path);
-  const json document = {{"format_version", m.format_version},
+  json document = {{"format_version", m.format_version},
                          {"source", m.source},
                          {"timestamp", m.timestamp},
                          {"image_width", m.image_width},
@@ -122,6 +134,7 @@ void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& m
                          {"pattern_set", toJson(m.pattern_set)},
                          {"patterns", m.patterns},
                          {"images", m.images}};
+  if (!m.frame_times_ms.empty()) document["frame_times_ms"] = m.frame_times_ms;
   io_detail::replaceFileAtomically(path, document.dump(2) + "\n");
 }
 

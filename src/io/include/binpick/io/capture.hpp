@@ -35,6 +35,9 @@ struct CaptureMetadata {
   PatternSetSpec pattern_set;
   std::vector<std::string> patterns;  // pattern names in capture order
   std::vector<std::string> images;    // image file per pattern, relative to the directory
+  // When each image arrived, milliseconds after `timestamp` (host clock), one per image; empty
+  // when not recorded (the virtual cell). Shows retries and stalls in a recording.
+  std::vector<double> frame_times_ms;
 };
 
 struct Capture {
