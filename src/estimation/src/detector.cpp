@@ -57,6 +57,14 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   while (static_cast<int>(result.detections.size()) < p.selection.max_objects) {
     const auto pick = selection.next();
     if (!pick || pick->score < std::max(min_score, 1u)) break;
+    // A candidate already sitting on an accepted part is a repeat whatever ICP makes of it (no two
+    // parts have centres that close): skip it before paying for ICP. Repeats do not remove scene
+    // points, so a cloud that yields many of them (e.g. many candidates on one flat face) would
+    // otherwise spend most of its time refining them.
+    if (repeatsAccepted(result.detections, verified[pick->candidate].T_camera_model * model.centre, model,
+                        min_distance)) {
+      continue;
+    }
     Stopwatch icp_clock;
     Detection d = refined(refiner, model, verified[pick->candidate].T_camera_model);
     icp_ms += icp_clock.lapMs();
