@@ -11,6 +11,6 @@ out=demo-output
 rm -rf "$out/capture"
 ./build/src/apps/binpick simulate --part "$part" --objects 20 --seed 3 --out "$out/capture"
 ./build/src/apps/binpick reconstruct --capture "$out/capture" --out "$out/cloud.ply"
-./build/src/apps/binpick detect --model "$out/capture/truth/part.ply" --capture "$out/capture" \
+./build/src/apps/binpick detect --model "$out/capture/truth/part.ply" --scene "$out/cloud.ply" \
   --config config/virtual-cell.yaml --model-cache "$out/model.cache" --out "$out/result.json"
 ./build/src/apps/binpick evaluate --result "$out/result.json" --truth "$out/capture" --part "$part"

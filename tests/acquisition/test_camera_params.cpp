@@ -5,17 +5,13 @@
 
 #include "binpick/acquisition/camera.hpp"
 #include "binpick/io/error.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::acquisition {
 namespace {
 
 std::string validationError(const CameraParams& params) {
-  try {
-    params.validate();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { params.validate(); });
 }
 
 TEST(CameraParams, DefaultsAreValid) { EXPECT_EQ(validationError(CameraParams{}), ""); }

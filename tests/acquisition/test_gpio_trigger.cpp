@@ -7,6 +7,7 @@
 
 #include "binpick/acquisition/projector.hpp"
 #include "binpick/io/error.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::acquisition {
 namespace {
@@ -14,21 +15,11 @@ namespace {
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 std::string validationError(const GpioTriggerParams& params) {
-  try {
-    params.validate();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { params.validate(); });
 }
 
 std::string gpioError(const GpioTriggerParams& params) {
-  try {
-    makeGpioTrigger(params);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { makeGpioTrigger(params); });
 }
 
 TEST(GpioTriggerParams, DefaultsAreValid) { EXPECT_EQ(validationError(GpioTriggerParams{}), ""); }

@@ -12,6 +12,7 @@
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "fake_camera.hpp"
 #include "rendered_pile.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::acquisition {
 namespace {
@@ -45,21 +46,11 @@ Capture tinyCapture(const std::string& name, int value) {
 }
 
 std::string nextError(CaptureSource& source) {
-  try {
-    source.next();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { source.next(); });
 }
 
 std::string makeError(const ReplayParams& params) {
-  try {
-    makeReplaySource(params);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { makeReplaySource(params); });
 }
 
 TEST_F(ReplaySource, RecordedCaptureReplaysBitIdentical) {

@@ -10,6 +10,7 @@
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "fake_camera.hpp"
 #include "rendered_pile.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::acquisition {
 namespace {
@@ -51,12 +52,7 @@ std::string captureError(Rig& rig, bool* connection_lost = nullptr) {
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 std::string validationError(const SequencerParams& params) {
-  try {
-    params.validate();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { params.validate(); });
 }
 
 TEST(SequencerParams, DefaultsAreValid) { EXPECT_EQ(validationError(SequencerParams{}), ""); }

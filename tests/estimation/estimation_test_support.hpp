@@ -14,6 +14,7 @@
 #include "binpick/estimation/model.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/parts.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::estimation::testing {
 
@@ -84,16 +85,15 @@ inline const PreparedModel& smallModel() { return cachedModel("clamp", 0.08f); }
 // something else was thrown).
 template <class F>
 std::string errorMessage(F&& f) {
+  std::string message;
   try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
+    message = binpick::test::thrownMessage(f);
   } catch (const std::exception& e) {
     ADD_FAILURE() << "threw a non-binpick exception: " << e.what();
     return "";
   }
-  ADD_FAILURE() << "did not throw";
-  return "";
+  if (message.empty()) ADD_FAILURE() << "did not throw";
+  return message;
 }
 
 }  // namespace binpick::estimation::testing

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "binpick/io/error.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::test {
 namespace {
@@ -53,16 +54,7 @@ std::vector<double> distortionVector(const LensIntrinsics& lens) {
 }
 
 ::testing::AssertionResult failsNaming(const LensIntrinsics& lens, const std::string& fragment) {
-  try {
-    lens.validate("camera");
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    if (message.find(fragment) == std::string::npos) {
-      return ::testing::AssertionFailure() << "message lacks '" << fragment << "': " << message;
-    }
-    return ::testing::AssertionSuccess();
-  }
-  return ::testing::AssertionFailure() << "validate accepted the lens";
+  return binpick::test::throwsNaming([&] { lens.validate("camera"); }, fragment);
 }
 
 TEST(Lens, ProjectOfRayThroughPixelReturnsThePixel) {

@@ -11,6 +11,7 @@
 
 #include "binpick/io/error.hpp"
 #include "binpick/reconstruction/pixel_status.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -224,12 +225,7 @@ TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {
 }
 
 std::string paramsError(const CloudFilterParams& params) {
-  try {
-    params.validate();
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { params.validate(); });
 }
 
 TEST(CloudFilter, RefusesBadParamsNamingTheField) {

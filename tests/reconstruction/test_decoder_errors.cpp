@@ -9,6 +9,7 @@
 #include "binpick/io/error.hpp"
 #include "binpick/reconstruction/decoder.hpp"
 #include "virtual_capture.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -21,12 +22,7 @@ Capture smallCapture() {
 
 // Runs the decoder and returns its error message ("" when it did not throw).
 std::string decodeError(const Capture& capture, const DecodeParams& params = {}) {
-  try {
-    decodeCapture(capture, params);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { decodeCapture(capture, params); });
 }
 
 constexpr int kGrayCol05 = 12;  // white, black, then gray_col_00 ... (pattern, inverse) pairs

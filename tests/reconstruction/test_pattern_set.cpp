@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "binpick/io/error.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -45,16 +46,7 @@ unsigned decodeFromPatterns(PatternAxis axis, const PatternSetSpec& spec, int co
 }
 
 ::testing::AssertionResult rejectedNaming(const PatternSetSpec& spec, const std::string& field) {
-  try {
-    patternSequence(spec);
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    if (message.find(field) == std::string::npos) {
-      return ::testing::AssertionFailure() << "message lacks '" << field << "': " << message;
-    }
-    return ::testing::AssertionSuccess();
-  }
-  return ::testing::AssertionFailure() << "the spec was accepted";
+  return binpick::test::throwsNaming([&] { patternSequence(spec); }, field);
 }
 
 TEST(PatternSet, DefaultSequenceHas52ImagesInTheDocumentedOrder) {

@@ -6,17 +6,13 @@
 #include <string>
 
 #include "binpick/io/error.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::reconstruction {
 namespace {
 
 std::string parseError(const std::string& text) {
-  try {
-    parseReconstructionParams(text, "cell.yaml");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { parseReconstructionParams(text, "cell.yaml"); });
 }
 
 TEST(ReconstructionConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {

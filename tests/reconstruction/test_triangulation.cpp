@@ -14,6 +14,7 @@
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -400,12 +401,7 @@ TEST(Triangulation, ResultsDoNotDependOnTheThreadCount) {
 }
 
 std::string triangulateError(const Triangulator& triangulator, const DecodedCapture& decoded) {
-  try {
-    triangulator.triangulate(decoded);
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
+  return binpick::test::thrownMessage([&] { triangulator.triangulate(decoded); });
 }
 
 TEST(Triangulation, RefusesADecodingOfAnotherSizeOrType) {

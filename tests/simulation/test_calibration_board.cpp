@@ -15,6 +15,7 @@
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
 #include "mesh_test_utils.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -27,19 +28,7 @@ BoardSpec chessboardSpec() {
   return spec;
 }
 
-::testing::AssertionResult throwsNaming(const std::function<void()>& action,
-                                        const std::string& text) {
-  try {
-    action();
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    if (message.find(text) == std::string::npos) {
-      return ::testing::AssertionFailure() << "message lacks '" << text << "': " << message;
-    }
-    return ::testing::AssertionSuccess();
-  }
-  return ::testing::AssertionFailure() << "did not throw";
-}
+using binpick::test::throwsNaming;
 
 TEST(CalibrationBoard, CharucoCornersAreOpenCvsInOpenCvsOrder) {
   const BoardSpec spec;  // 9 x 7 ChArUco

@@ -13,6 +13,7 @@
 
 #include "binpick/io/error.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::sim {
 namespace {
@@ -88,16 +89,7 @@ bool identical(const std::vector<cv::Mat>& a, const std::vector<cv::Mat>& b) {
 ::testing::AssertionResult throwsNaming(const std::vector<PixelLighting>& pixels, int width,
                                         int height, const PatternSetSpec& spec,
                                         const PhotometryParams& params, const std::string& text) {
-  try {
-    renderPatternImages(pixels, width, height, spec, params);
-  } catch (const Error& error) {
-    const std::string message = error.what();
-    if (message.find(text) == std::string::npos) {
-      return ::testing::AssertionFailure() << "message lacks '" << text << "': " << message;
-    }
-    return ::testing::AssertionSuccess();
-  }
-  return ::testing::AssertionFailure() << "did not throw";
+  return binpick::test::throwsNaming([&] { renderPatternImages(pixels, width, height, spec, params); }, text);
 }
 
 TEST(PatternRenderer, OneImagePerPatternOfTheRequestedSizeAndDepth) {

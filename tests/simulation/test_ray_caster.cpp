@@ -247,8 +247,8 @@ TEST(RayCaster, MovedCasterKeepsItsSceneAndTheMovedFromOneHitsNothing) {
   EXPECT_EQ(third.closestHit(ray).object_id, 3);
 }
 
-TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
-  const TriangleMesh box = boxMesh(kHalf);
+// Six boxes at different depths and tilts in front of the camera; `box` must outlive them.
+std::vector<RenderObject> sixTiltedBoxes(const TriangleMesh& box) {
   std::vector<RenderObject> objects;
   for (int i = 0; i < 6; ++i) {
     objects.push_back({&box,
@@ -256,7 +256,12 @@ TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
                             Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitX())),
                        i});
   }
-  const RayCaster caster(objects);
+  return objects;
+}
+
+TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
+  const TriangleMesh box = boxMesh(kHalf);
+  const RayCaster caster(sixTiltedBoxes(box));
   std::vector<Ray> rays;
   for (int i = 0; i < 4000; ++i) {
     Ray ray;
@@ -287,14 +292,7 @@ TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
 
 TEST(RayCaster, BatchQueriesAgreeWithSingleOnes) {
   const TriangleMesh box = boxMesh(kHalf);
-  std::vector<RenderObject> objects;
-  for (int i = 0; i < 6; ++i) {
-    objects.push_back({&box,
-                       pose(Eigen::Vector3d(0.05 * (i - 3), 0.02 * i, 0.8 + 0.03 * i),
-                            Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d::UnitX())),
-                       i});
-  }
-  const RayCaster caster(objects);
+  const RayCaster caster(sixTiltedBoxes(box));
   std::vector<Ray> rays;
   for (int v = 0; v < 40; ++v) {
     for (int u = 0; u < 50; ++u) {

@@ -132,8 +132,10 @@ int runCapture(const std::vector<std::string>& raw) {
     capture = captureOnce(*camera, *projector, args, patternSet(args));
   }
   writeCapture(out.string(), std::move(capture));
-  copyCalibration(fake ? std::optional<std::string>((fs::path(*fake) / "calib.yaml").string()) : args.value("--calib"),
-                  out);
+  // A recording from the fake camera keeps the calibration of the capture it replayed.
+  const auto calibration = fake ? std::optional<std::string>((fs::path(*fake) / "calib.yaml").string())
+                                : args.value("--calib");
+  copyCalibration(calibration, out);
   return 0;
 }
 

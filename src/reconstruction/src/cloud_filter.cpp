@@ -87,7 +87,8 @@ void filterCloud(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& pa
   params.validate();
   checkInputs(cloud, status);
   // Triangulated points lie in front of the camera: the default range and no crop remove nothing.
-  const bool limits_depth = params.min_depth > 0.0 || params.max_depth < 1e9;
+  const CloudFilterParams defaults;
+  const bool limits_depth = params.min_depth > defaults.min_depth || params.max_depth < defaults.max_depth;
   if (limits_depth || !params.crop.isEmpty()) applyDepthAndCrop(cloud, status, params);
   if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
 }
