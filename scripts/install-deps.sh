@@ -14,6 +14,8 @@ packages=(
   libspdlog-dev libfmt-dev
   nlohmann-json3-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev
+  systemd                        # systemd-analyze checks the service unit in the tests
+  clang libclang-rt-14-dev       # libFuzzer for the robot protocol's fuzz test
 )
 
 missing=()

@@ -11,5 +11,6 @@ int runSimulate(const std::vector<std::string>& args);
 int runEvaluate(const std::vector<std::string>& args);
 int runReconstruct(const std::vector<std::string>& args);
 int runCapture(const std::vector<std::string>& args);
+int runRobotClient(const std::vector<std::string>& args);
 
 }  // namespace binpick::cli

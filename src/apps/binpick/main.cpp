@@ -22,7 +22,10 @@ constexpr const char* kUsage =
     "  simulate (--part NAME | --mesh FILE) [--objects N] [--seed S] [--cloud-only] --out DIR\n"
     "           | --calibration-board charuco|chessboard --poses K --out DIR\n"
     "           | --list-parts | --export-part NAME FILE\n"
-    "  evaluate --result result.json --truth CAPTURE_DIR [--part NAME] [--min-visible 0.5]\n";
+    "  evaluate --result result.json --truth CAPTURE_DIR [--part NAME] [--min-visible 0.5]\n"
+    "  robot-client [--host H] [--port P] [--framing ascii|binary] [--orientation NAME]\n"
+    "               [--byte-order big|little] [--timeout-ms T] [--connect-timeout-ms T] [--cycles N]\n"
+    "               [--model NAME] [--send \"CMD[,ARG];...\"]\n";
 
 }  // namespace
 
@@ -39,6 +42,7 @@ int main(int argc, char** argv) {
     if (command == "evaluate") return binpick::cli::runEvaluate(args);
     if (command == "reconstruct") return binpick::cli::runReconstruct(args);
     if (command == "capture") return binpick::cli::runCapture(args);
+    if (command == "robot-client") return binpick::cli::runRobotClient(args);
     std::cerr << "binpick: unknown command '" << command << "'\n" << kUsage;
     return 2;
   } catch (const std::exception& e) {

@@ -1,5 +1,8 @@
 #include "binpick/estimation/model_cache.hpp"
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -148,8 +151,10 @@ void saveModelCache(const PreparedModel& model, uint64_t source_fingerprint, con
   w.putArray(model.table.entries());
   const uint64_t checksum = fnv1a(w.bytes.data(), w.bytes.size());
 
-  // Write to a temporary name and rename: a crash never leaves a half-written cache behind.
-  const std::string temporary = path + ".partial";
+  // Write to a temporary name and rename: a crash never leaves a half-written cache behind. The
+  // name is unique to this writer, so that services sharing a cache never write into one file.
+  static std::atomic<unsigned> writers{0};
+  const std::string temporary = path + ".partial-" + std::to_string(getpid()) + "-" + std::to_string(writers++);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw Error(path + ": cannot write the model cache");

@@ -74,6 +74,13 @@ ReconstructionParams parseReconstructionParams(const std::string& yaml_text, con
   return params;
 }
 
+ReconstructionParams readReconstructionSection(YamlSection section, const std::string& origin) {
+  ReconstructionParams params;
+  readReconstruction(std::move(section), params);
+  validateSettings(origin, [&] { params.validate(); });
+  return params;
+}
+
 ReconstructionParams loadReconstructionParams(const std::string& path) {
   return parseReconstructionParams(readConfigFile(path), path);
 }

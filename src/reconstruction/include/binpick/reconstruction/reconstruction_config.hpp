@@ -6,6 +6,7 @@
 // here. Thread-safe (no shared state).
 #include <string>
 
+#include "binpick/io/yaml_section.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
 
 namespace binpick::reconstruction {
@@ -13,5 +14,7 @@ namespace binpick::reconstruction {
 ReconstructionParams loadReconstructionParams(const std::string& path);
 // The same from YAML text; `origin` names it in error messages.
 ReconstructionParams parseReconstructionParams(const std::string& yaml_text, const std::string& origin);
+// The `reconstruction:` section of a larger settings file (e.g. the daemon's), validated.
+ReconstructionParams readReconstructionSection(YamlSection section, const std::string& origin);
 
 }  // namespace binpick::reconstruction

@@ -1,0 +1,125 @@
+// binpick robot-client [--host H] [--port P] [--framing ascii|binary] [--orientation NAME]
+//                      [--byte-order big|little] [--timeout-ms T] [--connect-timeout-ms T]
+//                      [--cycles N] [--model NAME] [--send "CMD[,ARG];CMD..."]
+// Plays the robot: per cycle TRIGGER (answered once the capture is done), then NEXT until no pick
+// is left, printing every pick in millimetres and the robot's orientation convention with the
+// time each reply took. --send sends the given requests instead and prints their replies.
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "arguments.hpp"
+#include "binpick/io/error.hpp"
+#include "commands.hpp"
+#include "robot_connection.hpp"
+
+namespace binpick::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using robot::Command;
+
+robot::CodecParams codecFrom(const Arguments& args) {
+  robot::CodecParams codec;
+  const std::string framing = args.value("--framing").value_or("ascii");
+  if (framing != "ascii" && framing != "binary") throw Error("--framing must be ascii or binary");
+  codec.framing = framing == "ascii" ? robot::Framing::Ascii : robot::Framing::Binary;
+  const std::string order = args.value("--byte-order").value_or("big");
+  if (order != "big" && order != "little") throw Error("--byte-order must be big or little");
+  codec.byte_order = order == "big" ? robot::ByteOrder::Big : robot::ByteOrder::Little;
+  if (const auto name = args.value("--orientation")) codec.orientation = robot::orientationFromName(*name);
+  codec.validate();
+  return codec;
+}
+
+// "CMD" or "CMD,ARG" -> a request.
+robot::Request parseRequest(const std::string& text) {
+  const auto comma = text.find(',');
+  std::string keyword = text.substr(0, comma);
+  for (char& c : keyword) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  for (int id = 1; id <= 6; ++id) {
+    const auto command = static_cast<Command>(id);
+    if (keyword != robot::commandKeyword(command)) continue;
+    robot::Request request;
+    request.command = command;
+    if (comma != std::string::npos) request.argument = text.substr(comma + 1);
+    return request;
+  }
+  throw Error("--send: unknown command '" + keyword + "'");
+}
+
+std::string describe(const robot::Reply& reply, robot::Orientation orientation) {
+  std::ostringstream text;
+  text << robot::commandKeyword(reply.command) << " " << robot::statusName(reply.status);
+  for (const int32_t value : reply.integers) text << " " << value;
+  if (reply.T_base_tool) {
+    const Eigen::Vector3d mm = reply.T_base_tool->translation() * 1000.0;
+    char position[96];
+    std::snprintf(position, sizeof(position), " at x %.2f y %.2f z %.2f mm, %s", mm.x(), mm.y(), mm.z(),
+                  robot::orientationName(orientation).c_str());
+    text << position;
+    for (const double v : robot::orientationValues(reply.T_base_tool->linear(), orientation)) text << " " << v;
+  }
+  return text.str();
+}
+
+struct Session {
+  RobotConnection& connection;
+  robot::Orientation orientation;
+  std::chrono::milliseconds timeout;
+
+  robot::Reply send(const robot::Request& request, const std::string& prefix) {
+    const auto start = Clock::now();
+    const robot::Reply reply = connection.request(request, timeout);
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    std::printf("%s%s (%.0f ms)\n", prefix.c_str(), describe(reply, orientation).c_str(), ms);
+    std::fflush(stdout);
+    return reply;
+  }
+
+  // TRIGGER, then NEXT while picks remain. Returns the number of picks received.
+  int cycle(int number, const std::optional<std::string>& model) {
+    robot::Request trigger{Command::Trigger, model};
+    const auto start = Clock::now();
+    const robot::Reply triggered = send(trigger, "cycle " + std::to_string(number) + ": ");
+    if (triggered.status != robot::Status::Ok) return 0;
+    int picks = 0;
+    for (;;) {
+      const robot::Reply next = send(robot::Request{Command::NextPick, std::nullopt}, "  ");
+      if (next.status != robot::Status::Ok) break;
+      ++picks;
+      if (!next.integers.empty() && next.integers[0] == 0) break;  // that was the last one
+    }
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    std::printf("cycle %d: %d picks in %.0f ms\n", number, picks, ms);
+    return picks;
+  }
+};
+
+}  // namespace
+
+int runRobotClient(const std::vector<std::string>& raw) {
+  const Arguments args(raw,
+                       {"--host", "--port", "--framing", "--orientation", "--byte-order", "--timeout-ms",
+                        "--connect-timeout-ms", "--cycles", "--model", "--send"},
+                       {});
+  const robot::CodecParams codec = codecFrom(args);
+  const int port = args.integer("--port").value_or(50100);
+  const int cycles = args.integer("--cycles").value_or(1);
+  if (cycles < 1) throw Error("--cycles must be at least 1");
+  RobotConnection connection(args.value("--host").value_or("127.0.0.1"), port, codec,
+                             std::chrono::milliseconds(args.integer("--connect-timeout-ms").value_or(10000)));
+  Session session{connection, codec.orientation, std::chrono::milliseconds(args.integer("--timeout-ms").value_or(60000))};
+  if (const auto script = args.value("--send")) {
+    std::istringstream requests(*script);
+    std::string request;
+    while (std::getline(requests, request, ';')) {
+      if (!request.empty()) session.send(parseRequest(request), "");
+    }
+    return 0;
+  }
+  for (int i = 1; i <= cycles; ++i) session.cycle(i, args.value("--model"));
+  return 0;
+}
+
+}  // namespace binpick::cli

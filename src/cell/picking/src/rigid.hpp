@@ -1,0 +1,23 @@
+#pragma once
+// Checks that a matrix or transform is what the planner can trust as a rotation or rigid pose:
+// a pose that only looks rigid (NaN, a scale, a mirror) would hand the robot nonsense.
+#include <Eigen/Geometry>
+
+namespace binpick::cell {
+
+// Orthonormal within `tolerance` (Frobenius norm of R^T R - I) and not a mirror.
+inline bool isRotation(const Eigen::Matrix3d& R, double tolerance) {
+  if (!R.allFinite()) return false;
+  const double orthonormality = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
+  return orthonormality <= tolerance && R.determinant() > 0.0;
+}
+
+// Finite, with a rotation part and an affine bottom row.
+inline bool isRigidPose(const Eigen::Isometry3d& T, double tolerance) {
+  if (!T.matrix().allFinite()) return false;
+  const Eigen::RowVector4d bottom_row_error = T.matrix().row(3) - Eigen::RowVector4d(0, 0, 0, 1);
+  const bool affine = bottom_row_error.cwiseAbs().maxCoeff() <= tolerance;
+  return affine && isRotation(T.linear(), tolerance);
+}
+
+}  // namespace binpick::cell

@@ -1,0 +1,112 @@
+// binpickd's settings file: the documented example parses, every mistake names its key.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "binpick/cell/cell_config.hpp"
+#include "cell_scene.hpp"
+#include "temp_directory_test.hpp"
+#include "thrown_message.hpp"
+
+namespace binpick::cell {
+namespace {
+
+using testing::cellConfigYaml;
+using testing::cellScene;
+using test::throwsNaming;
+
+CellConfig parse(const std::string& yaml) { return parseCellConfig(yaml, "cell.yaml", "/base"); }
+
+const std::string kMinimal =
+    "source: {replay: {path: captures}}\n"
+    "recipes: [{name: part, model: part.ply, grasps: [{translation: [0, 0, 0.01]}]}]\n";
+
+TEST(CellConfig, TheDocumentedExampleParsesWithItsDefaults) {
+  const CellConfig config = loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml");
+  EXPECT_EQ(config.source.mode, SourceConfig::Mode::Replay);
+  ASSERT_EQ(config.recipes.size(), 1u);
+  EXPECT_EQ(config.recipes[0].grasps.size(), 2u);
+  EXPECT_EQ(config.robot.port, 50100);
+  EXPECT_EQ(config.robot.codec.max_line_length, 80u);
+  EXPECT_FALSE(config.artefacts.has_value());  // directory "" saves nothing
+  ASSERT_TRUE(config.T_base_camera.has_value());
+  // Looking straight down: the camera's z axis is the base's -z.
+  EXPECT_NEAR((config.T_base_camera->linear() * Eigen::Vector3d::UnitZ()).z(), -1.0, 1e-12);
+  EXPECT_NEAR(config.T_base_camera->translation().z(), 0.9, 1e-12);
+}
+
+TEST(CellConfig, RelativePathsAreRelativeToTheFile) {
+  const CellConfig config = parse(kMinimal);
+  EXPECT_EQ(config.source.replay.path, "/base/captures");
+  EXPECT_EQ(config.recipes[0].model_file, "/base/part.ply");
+  EXPECT_TRUE(config.source.replay.loop);  // the daemon replays forever by default
+  EXPECT_FALSE(config.T_base_camera.has_value());
+}
+
+TEST(CellConfig, GraspRotationsFollowTheNamedConvention) {
+  const CellConfig config = parse(
+      "source: {replay: {path: c}}\n"
+      "recipes: [{name: p, model: m.ply, grasps: [{translation: [0.01, 0, 0], rotation: [0, 90, 0], "
+      "convention: euler_xyz}]}]\n");
+  const Eigen::Isometry3d& grasp = config.recipes[0].grasps[0].T_model_grasp;
+  // Ry(90): the approach (z) along the model's +x.
+  EXPECT_NEAR((grasp.linear() * Eigen::Vector3d::UnitZ() - Eigen::Vector3d::UnitX()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(grasp.translation().x(), 0.01, 1e-12);
+}
+
+TEST(CellConfig, SymmetryOrderGivesTheRotations) {
+  const CellConfig config = parse(
+      "source: {replay: {path: c}}\n"
+      "recipes: [{name: p, model: m.ply, symmetry: {order: 4, axis: [0, 0, 2]}, grasps: [{translation: [0, 0, 0]}]},\n"
+      "          {name: q, model: m.ply, symmetry: {continuous: true, axis: [1, 0, 0]}, grasps: [{translation: [0, 0, 0]}]}]\n");
+  ASSERT_EQ(config.recipes[0].symmetry.discrete.size(), 4u);
+  const Eigen::Vector3d turned = config.recipes[0].symmetry.discrete[1] * Eigen::Vector3d::UnitX();
+  EXPECT_NEAR((turned - Eigen::Vector3d::UnitY()).norm(), 0.0, 1e-12);
+  ASSERT_TRUE(config.recipes[1].symmetry.continuous_axis.has_value());
+  EXPECT_NEAR(config.recipes[1].symmetry.continuous_axis->x(), 1.0, 1e-12);
+}
+
+TEST(CellConfig, MistakesNameTheKey) {
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {prot: 1}\n"); }, "robot.prot"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {port: many}\n"); }, "robot.port"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {port: 70000}\n"); }, "port"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {orientation: euler}\n"); }, "robot.orientation"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {framing: json}\n"); }, "robot.framing"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "limits: {capture_timeout_ms: 0}\n"); }, "capture_timeout_ms"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {order: random}\n"); }, "picking.order"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {tool_radius: -1}\n"); }, "tool_radius"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "reconstruction: {decode: {min_contrast: -1}}\n"); },
+                           "min_contrast"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "hand_eye: {T_base_camera: {rotation: [0, 0, 0, 0]}}\n"); },
+                           "hand_eye.T_base_camera.rotation"));
+  EXPECT_TRUE(throwsNaming([] { parse("source: {mode: camera}\nrecipes: []\n"); }, "source.mode"));
+  EXPECT_TRUE(throwsNaming([] { parse("source: {replay: {path: c}}\n"); }, "recipes"));
+  EXPECT_TRUE(throwsNaming([] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply}]\n"); },
+                           "recipes[0].grasps"));
+  EXPECT_TRUE(throwsNaming(
+      [] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: [{translaton: [0, 0, 0]}]}]\n"); },
+      "recipes[0].grasps[0].translaton"));
+  EXPECT_TRUE(throwsNaming(
+      [] {
+        parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: [{}]}, "
+              "{name: p, model: n.ply, grasps: [{}]}]\n");
+      },
+      "used twice"));
+  EXPECT_TRUE(throwsNaming([] { parse("source: {mode: replay}\nrecipes: []\n"); }, "replay.path"));
+  EXPECT_TRUE(throwsNaming([] { parse("robot: [1, 2\n"); }, "not valid YAML"));
+  EXPECT_TRUE(throwsNaming([] { parse(""); }, "empty"));
+}
+
+class CellConfigFile : public test::TempDirectoryTest {};
+
+TEST_F(CellConfigFile, TheTestSceneSettingsParse) {
+  const std::string path = pathOf("cell.yaml");
+  std::ofstream(path) << cellConfigYaml(cellScene());
+  const CellConfig config = loadCellConfig(path);
+  EXPECT_EQ(config.recipes.size(), 2u);
+  EXPECT_EQ(config.robot.port, 0);
+  EXPECT_TRUE(throwsNaming([&] { loadCellConfig(pathOf("missing.yaml")); }, "missing.yaml"));
+}
+
+}  // namespace
+}  // namespace binpick::cell

@@ -1,0 +1,222 @@
+// The cell service on a replayed bin of the virtual cell: requests in, replies out, checked
+// against the truth of the pile.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "binpick/cell/cell_service.hpp"
+#include "cell_scene.hpp"
+#include "service_harness.hpp"
+#include "temp_directory_test.hpp"
+
+namespace binpick::cell {
+namespace {
+
+namespace fs = std::filesystem;
+using robot::Command;
+using robot::Status;
+using testing::cellConfigYaml;
+using testing::cellScene;
+using testing::ReplyCollector;
+using testing::request;
+
+constexpr ClientId kRobot = 1;
+
+std::shared_ptr<const CellSetup> setupFor(const std::string& yaml) {
+  return prepareCell(parseCellConfig(yaml, "cell.yaml", cellScene().directory));
+}
+
+struct Cell {
+  explicit Cell(const std::string& yaml) : setup(setupFor(yaml)),
+        service(setup, makeCaptureSource(setup->config.source), collector.sink()) {}
+  Cell(const std::string& yaml, std::unique_ptr<acquisition::CaptureSource> source)
+      : setup(setupFor(yaml)), service(setup, std::move(source), collector.sink()) {}
+
+  robot::Reply ask(const robot::Request& r, ClientId client = kRobot) {
+    service.handle(client, r);
+    const auto reply = collector.next(client);
+    if (!reply) throw std::runtime_error("no reply");
+    return *reply;
+  }
+  std::vector<robot::Reply> allPicks() {
+    std::vector<robot::Reply> picks;
+    for (robot::Reply r = ask(request(Command::NextPick)); r.status == Status::Ok; r = ask(request(Command::NextPick))) {
+      picks.push_back(r);
+    }
+    return picks;
+  }
+
+  ReplyCollector collector;
+  std::shared_ptr<const CellSetup> setup;
+  CellService service;
+};
+
+// Whether `T_base_grasp` is one of the recipe's grasps on one of the true parts, within what a
+// suction gripper forgives (8 mm, 8 degrees; the paper counts a pose correct within diam/10,
+// here 9.6 mm, and 10 degrees).
+bool onSomeTruePart(const Eigen::Isometry3d& T_base_grasp, const Recipe& recipe) {
+  for (const Eigen::Isometry3d& T_base_object : cellScene().T_base_objects) {
+    for (const Grasp& grasp : recipe.picking.grasps) {
+      const Eigen::Isometry3d expected = T_base_object * grasp.T_model_grasp;
+      const double mm = (expected.translation() - T_base_grasp.translation()).norm() * 1000;
+      const double deg = Eigen::AngleAxisd(expected.linear().transpose() * T_base_grasp.linear()).angle() * 180 / M_PI;
+      if (mm < 8.0 && deg < 8.0) return true;
+    }
+  }
+  return false;
+}
+
+TEST(CellService, ACycleHandsOutPicksOnTheTrueParts) {
+  Cell cell(cellConfigYaml(cellScene()));
+  const robot::Reply triggered = cell.ask(request(Command::Trigger));
+  EXPECT_EQ(triggered.status, Status::Ok);
+  ASSERT_EQ(triggered.integers.size(), 1u);
+  EXPECT_EQ(triggered.integers[0], 1);  // cycle number
+
+  const std::vector<robot::Reply> picks = cell.allPicks();
+  ASSERT_GE(picks.size(), 4u) << "12 parts in the bin";
+  double previous_height = 1e9;
+  for (std::size_t i = 0; i < picks.size(); ++i) {
+    ASSERT_TRUE(picks[i].T_base_tool.has_value());
+    EXPECT_EQ(picks[i].integers.at(0), static_cast<int32_t>(picks.size() - i - 1)) << "picks remaining";
+    EXPECT_TRUE(onSomeTruePart(*picks[i].T_base_tool, cell.setup->recipes[0])) << "pick " << i;
+    const double height = picks[i].T_base_tool->translation().z();
+    EXPECT_LE(height, previous_height + 1e-9) << "highest first";
+    previous_height = height;
+  }
+  EXPECT_EQ(cell.ask(request(Command::NextPick)).status, Status::NoMorePicks);
+  const robot::Reply status = cell.ask(request(Command::Status));
+  EXPECT_EQ(status.integers, (std::vector<int32_t>{0, 0, 1}));  // idle, recipe 0, one cycle done
+}
+
+TEST(CellService, NextWaitsForTheRunningCycle) {
+  Cell cell(cellConfigYaml(cellScene()));
+  cell.service.handle(kRobot, request(Command::Trigger));
+  cell.service.handle(2, request(Command::NextPick));  // a second client asks before the capture is done
+  const auto next = cell.collector.next(2);
+  ASSERT_TRUE(next.has_value());
+  EXPECT_EQ(next->status, Status::Ok);
+  EXPECT_EQ(cell.collector.next(kRobot)->status, Status::Ok);  // the TRIGGER's own reply came too
+}
+
+TEST(CellService, BusyWhileACycleRunsAndNoCycleBeforeTheFirst) {
+  Cell cell(cellConfigYaml(cellScene()));
+  EXPECT_EQ(cell.ask(request(Command::NextPick)).status, Status::NoCycle);
+  EXPECT_EQ(cell.ask(request(Command::PickFailed)).status, Status::NoCycle);
+  cell.service.handle(kRobot, request(Command::Trigger));
+  EXPECT_EQ(cell.ask(request(Command::Trigger), 2).status, Status::Busy);
+  EXPECT_EQ(cell.collector.next(kRobot)->status, Status::Ok);
+}
+
+TEST(CellService, AFailedPickIsAvoidedInTheNextCycle) {
+  Cell cell(cellConfigYaml(cellScene()));
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
+  const robot::Reply first = cell.ask(request(Command::NextPick));
+  ASSERT_EQ(first.status, Status::Ok);
+  const robot::Reply failed = cell.ask(request(Command::PickFailed));
+  EXPECT_EQ(failed.status, Status::Ok);
+  EXPECT_EQ(failed.integers.at(0), first.integers.at(1));  // the object of the last pick
+  EXPECT_EQ(cell.ask(request(Command::PickFailed, "999")).status, Status::BadMessage);
+
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);  // the same bin again (replay loops)
+  for (const robot::Reply& pick : cell.allPicks()) {
+    EXPECT_GT((pick.T_base_tool->translation() - first.T_base_tool->translation()).norm(), 0.01);
+  }
+}
+
+TEST(CellService, AnEmptyBinIsToldFromPartsNotFound) {
+  Cell cell(cellConfigYaml(cellScene(), "", cellScene().empty_capture));
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
+  EXPECT_EQ(cell.ask(request(Command::NextPick)).status, Status::BinEmpty);
+}
+
+TEST(CellService, WithoutCalibrationTriggerSaysSo) {
+  std::string no_hand_eye = cellConfigYaml(cellScene());
+  no_hand_eye.erase(no_hand_eye.find("hand_eye:"), no_hand_eye.find("recipes:") - no_hand_eye.find("hand_eye:"));
+  Cell cell(no_hand_eye);
+  EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::CalibrationMissing);
+
+  std::string no_rig = cellConfigYaml(cellScene());
+  no_rig.replace(no_rig.find("calibration: "), 13, "calibration: /nonexistent/");
+  Cell other(no_rig);
+  EXPECT_FALSE(other.setup->calibration_problem.empty());
+  EXPECT_EQ(other.ask(request(Command::Trigger)).status, Status::CalibrationMissing);
+  EXPECT_EQ(other.ask(request(Command::Ping)).status, Status::Ok);  // the service still serves
+}
+
+class CellServiceFiles : public test::TempDirectoryTest {};
+
+TEST_F(CellServiceFiles, ACorruptRecordingIsNoImageAndTheNextCycleWorks) {
+  const fs::path bad = pathOf("bad");
+  fs::copy(cellScene().capture, bad, fs::copy_options::recursive);
+  fs::path image;
+  for (const auto& entry : fs::directory_iterator(bad / "images")) image = entry.path();
+  std::ofstream(image, std::ios::trunc) << "not a png";
+  Cell cell(cellConfigYaml(cellScene(), "", root()));  // replays bad/ then ... only bad/
+  const robot::Reply triggered = cell.ask(request(Command::Trigger));
+  EXPECT_EQ(triggered.status, Status::NoImage);
+  EXPECT_EQ(cell.ask(request(Command::NextPick)).status, Status::NoImage);
+  EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::NoImage);  // still serving
+}
+
+// A camera that takes its time.
+class SlowSource : public acquisition::CaptureSource {
+ public:
+  explicit SlowSource(std::chrono::milliseconds delay) : delay_(delay) {}
+  Capture next() override {
+    std::this_thread::sleep_for(delay_);
+    return readCapture(cellScene().capture);
+  }
+  std::string description() const override { return "slow"; }
+ private:
+  std::chrono::milliseconds delay_;
+};
+
+TEST(CellService, ACaptureThatMissesItsDeadlineIsATimeout) {
+  Cell cell(cellConfigYaml(cellScene(), "limits: {capture_timeout_ms: 100}\n"),
+            std::make_unique<SlowSource>(std::chrono::milliseconds(1500)));
+  cell.service.handle(kRobot, request(Command::Trigger));
+  cell.service.handle(kRobot, request(Command::NextPick));
+  const auto triggered = cell.collector.next(kRobot, std::chrono::milliseconds(1200));
+  ASSERT_TRUE(triggered.has_value()) << "answered at the deadline, not when the capture came";
+  EXPECT_EQ(triggered->status, Status::Timeout);
+  EXPECT_EQ(cell.collector.next(kRobot)->status, Status::Timeout);  // the waiting NEXT too
+  EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::Busy);  // the late capture still runs
+}
+
+TEST(CellService, RecipesAreSelectedByNameOrIndex) {
+  Cell cell(cellConfigYaml(cellScene()));
+  const robot::Reply selected = cell.ask(request(Command::SelectModel, "second"));
+  EXPECT_EQ(selected.status, Status::Ok);
+  EXPECT_EQ(selected.integers, std::vector<int32_t>{1});
+  EXPECT_EQ(cell.ask(request(Command::SelectModel, "0")).integers, std::vector<int32_t>{0});
+  EXPECT_EQ(cell.ask(request(Command::SelectModel, "nut")).status, Status::UnknownModel);
+  EXPECT_EQ(cell.ask(request(Command::Trigger, "nut")).status, Status::UnknownModel);
+  EXPECT_EQ(cell.ask(request(Command::Status)).integers.at(1), 0);
+}
+
+TEST(CellService, StoppingDuringACycleAnswersTheRobot) {
+  Cell cell(cellConfigYaml(cellScene()), std::make_unique<SlowSource>(std::chrono::milliseconds(300)));
+  cell.service.handle(kRobot, request(Command::Trigger));
+  cell.service.stop();
+  const auto reply = cell.collector.next(kRobot, std::chrono::milliseconds(0));
+  ASSERT_TRUE(reply.has_value());
+  EXPECT_EQ(reply->status, Status::InternalError);
+  EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::Busy);  // stopped: refuses new cycles
+}
+
+TEST(CellService, AReloadDuringACycleTakesEffectAfterIt) {
+  Cell cell(cellConfigYaml(cellScene()));
+  cell.service.handle(kRobot, request(Command::Trigger));
+  auto reloaded = setupFor(cellConfigYaml(cellScene(), "limits: {max_picks: 1}\n"));
+  cell.service.reconfigure(reloaded, nullptr);
+  EXPECT_EQ(cell.collector.next(kRobot)->status, Status::Ok);
+  cell.allPicks();
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
+  EXPECT_EQ(cell.allPicks().size(), 1u);
+}
+
+}  // namespace
+}  // namespace binpick::cell
