@@ -1,11 +1,9 @@
 #pragma once
-// The service's spdlog logger, "cell" (created on first use; the daemon sets the format).
-#include <spdlog/spdlog.h>
-
-#include <memory>
+// The service's spdlog logger, "cell".
+#include "binpick/io/component_logger.hpp"
 
 namespace binpick::cell {
 
-std::shared_ptr<spdlog::logger> logger();
+inline std::shared_ptr<spdlog::logger> logger() { return componentLogger("cell"); }
 
 }  // namespace binpick::cell

@@ -1,6 +1,5 @@
 #include "notify_socket.hpp"
 
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <sys/un.h>
@@ -9,8 +8,8 @@
 #include <cerrno>
 #include <cstddef>
 #include <cstring>
-#include <mutex>
 
+#include "binpick/io/component_logger.hpp"
 #include "binpick/io/error.hpp"
 
 namespace binpick::cell::systemd_detail {
@@ -88,16 +87,6 @@ std::string sendDatagram(const std::string& address, const std::string& payload)
   return "";
 }
 
-std::shared_ptr<spdlog::logger> systemdLogger() {
-  static std::mutex mutex;
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (auto existing = spdlog::get("systemd")) return existing;
-  try {
-    return spdlog::stdout_color_mt("systemd");
-  } catch (const spdlog::spdlog_ex&) {
-    // Another library registered the name between our look-up and our creation: use theirs.
-    return spdlog::get("systemd");
-  }
-}
+std::shared_ptr<spdlog::logger> systemdLogger() { return componentLogger("systemd"); }
 
 }  // namespace binpick::cell::systemd_detail
