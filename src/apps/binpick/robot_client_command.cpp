@@ -21,31 +21,23 @@ using robot::Command;
 
 robot::CodecParams codecFrom(const Arguments& args) {
   robot::CodecParams codec;
-  const std::string framing = args.value("--framing").value_or("ascii");
-  if (framing != "ascii" && framing != "binary") throw Error("--framing must be ascii or binary");
-  codec.framing = framing == "ascii" ? robot::Framing::Ascii : robot::Framing::Binary;
-  const std::string order = args.value("--byte-order").value_or("big");
-  if (order != "big" && order != "little") throw Error("--byte-order must be big or little");
-  codec.byte_order = order == "big" ? robot::ByteOrder::Big : robot::ByteOrder::Little;
+  codec.framing = robot::framingFromName(args.value("--framing").value_or("ascii"));
+  codec.byte_order = robot::byteOrderFromName(args.value("--byte-order").value_or("big"));
   if (const auto name = args.value("--orientation")) codec.orientation = robot::orientationFromName(*name);
   codec.validate();
   return codec;
 }
 
-// "CMD" or "CMD,ARG" -> a request.
+// "CMD" or "CMD,ARG" -> a request, read as binpickd reads the line.
 robot::Request parseRequest(const std::string& text) {
-  const auto comma = text.find(',');
-  std::string keyword = text.substr(0, comma);
-  for (char& c : keyword) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  for (int id = 1; id <= 6; ++id) {
-    const auto command = static_cast<Command>(id);
-    if (keyword != robot::commandKeyword(command)) continue;
-    robot::Request request;
-    request.command = command;
-    if (comma != std::string::npos) request.argument = text.substr(comma + 1);
-    return request;
+  robot::RequestDecoder decoder(robot::CodecParams{});
+  const std::string line = text + "\n";
+  decoder.feed(line.data(), line.size());
+  const std::optional<robot::Decoded> decoded = decoder.next();
+  if (!decoded || !decoded->request) {
+    throw Error("--send: '" + text + "' is no request" + (decoded ? ": " + decoded->detail : ""));
   }
-  throw Error("--send: unknown command '" + keyword + "'");
+  return *decoded->request;
 }
 
 std::string describe(const robot::Reply& reply, robot::Orientation orientation) {

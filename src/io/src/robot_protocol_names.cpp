@@ -68,6 +68,18 @@ const char* statusName(Status status) {
   return "unknown";
 }
 
+Framing framingFromName(const std::string& name) {
+  if (name == "ascii") return Framing::Ascii;
+  if (name == "binary") return Framing::Binary;
+  throw Error("unknown framing \"" + name + "\" (use ascii or binary)");
+}
+
+ByteOrder byteOrderFromName(const std::string& name) {
+  if (name == "big") return ByteOrder::Big;
+  if (name == "little") return ByteOrder::Little;
+  throw Error("unknown byte order \"" + name + "\" (use big or little)");
+}
+
 void CodecParams::validate() const {
   const std::string owner = "robot_protocol";
   requireField(max_line_length >= 16 && max_line_length <= 4096, owner, "max_line_length",

@@ -55,7 +55,7 @@ robot::Reply triggerReply(Status status, uint64_t cycle) {
   robot::Reply reply;
   reply.command = Command::Trigger;
   reply.status = status;
-  reply.integers = {static_cast<int32_t>(std::min<uint64_t>(cycle, INT32_MAX))};
+  reply.integers = {clampToInt32(cycle)};
   return reply;
 }
 

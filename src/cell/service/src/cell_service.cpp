@@ -23,10 +23,6 @@ Reply reply(Command command, Status status, std::vector<int32_t> integers = {}) 
   return r;
 }
 
-int32_t clampToInt32(uint64_t value) {
-  return static_cast<int32_t>(std::min<uint64_t>(value, INT32_MAX));
-}
-
 std::optional<int> parseIndex(const std::string& text) {
   if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos) {
     return std::nullopt;
@@ -87,17 +83,18 @@ void CellService::handle(ClientId client, const robot::Request& request) {
                                       : reply(Command::SelectModel, Status::UnknownModel));
         break;
       }
-      case Command::Trigger:
+      case Command::Trigger: {
+        const int requested = request.argument ? s.setup->recipeIndex(argument) : s.recipe;
         if (s.stopping || s.cell_state != CellState::Idle || s.trigger_requested) {
           outbox.add(client, reply(Command::Trigger, Status::Busy));
         } else if (!s.setup->reconstructor || !s.setup->config.T_base_camera) {
           logger()->warn("TRIGGER refused: {}", s.setup->reconstructor ? "no hand-eye T_base_camera is configured"
                                                                          : s.setup->calibration_problem);
           outbox.add(client, reply(Command::Trigger, Status::CalibrationMissing));
-        } else if (request.argument && s.setup->recipeIndex(argument) < 0) {
+        } else if (requested < 0) {
           outbox.add(client, reply(Command::Trigger, Status::UnknownModel));
         } else {
-          if (request.argument) s.recipe = s.setup->recipeIndex(argument);
+          s.recipe = requested;
           s.trigger_requested = true;
           s.trigger_client = client;
           s.cell_state = CellState::Capturing;
@@ -108,6 +105,7 @@ void CellService::handle(ClientId client, const robot::Request& request) {
           s.deadline_wakeup.notify_one();
         }
         break;
+      }
       case Command::NextPick:
         if (s.latest) outbox.add(client, s.nextPick());
         else if (s.cell_state != CellState::Idle) s.next_waiters.push_back(client);

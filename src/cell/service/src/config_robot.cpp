@@ -4,6 +4,19 @@
 #include "binpick/io/robot_orientation.hpp"
 
 namespace binpick::cell {
+namespace {
+
+// A setting naming one of a few choices: the parser's complaint, prefixed with the key.
+template <typename Parse>
+auto choice(const YamlSection& section, const char* key, const std::string& text, Parse parse) {
+  try {
+    return parse(text);
+  } catch (const Error& e) {
+    section.fail(key, e.what());
+  }
+}
+
+}  // namespace
 
 PickParams readPicking(YamlSection s) {
   PickParams params;
@@ -23,11 +36,7 @@ PickParams readPicking(YamlSection s) {
   std::string order = "highest_first";
   s.read("order", order);
   s.finish();
-  try {
-    params.order = pickOrderFromName(order);
-  } catch (const Error& e) {
-    s.fail("order", e.what());
-  }
+  params.order = choice(s, "order", order, pickOrderFromName);
   return params;
 }
 
@@ -48,15 +57,9 @@ RobotServerParams readRobot(YamlSection s) {
   s.read("position_scale", codec.position_scale);
   s.read("orientation_scale", codec.orientation_scale);
   s.finish();
-  if (framing != "ascii" && framing != "binary") s.fail("framing", "must be ascii or binary");
-  codec.framing = framing == "ascii" ? robot::Framing::Ascii : robot::Framing::Binary;
-  if (byte_order != "big" && byte_order != "little") s.fail("byte_order", "must be big or little");
-  codec.byte_order = byte_order == "big" ? robot::ByteOrder::Big : robot::ByteOrder::Little;
-  try {
-    codec.orientation = robot::orientationFromName(orientation);
-  } catch (const Error& e) {
-    s.fail("orientation", e.what());
-  }
+  codec.framing = choice(s, "framing", framing, robot::framingFromName);
+  codec.byte_order = choice(s, "byte_order", byte_order, robot::byteOrderFromName);
+  codec.orientation = choice(s, "orientation", orientation, robot::orientationFromName);
   return params;
 }
 

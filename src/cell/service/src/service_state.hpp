@@ -2,7 +2,9 @@
 // CellService's shared state, guarded by one mutex. Replies are collected while the lock is held
 // (Outbox) and sent after it is released, so the server thread never waits on a cycle.
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <condition_variable>
 #include <mutex>
 #include <optional>
@@ -16,6 +18,9 @@
 namespace binpick::cell {
 
 using Clock = std::chrono::steady_clock;
+
+// Counters on the wire are int32.
+inline int32_t clampToInt32(uint64_t value) { return static_cast<int32_t>(std::min<uint64_t>(value, INT32_MAX)); }
 
 class Outbox {
  public:

@@ -80,6 +80,9 @@ constexpr std::size_t kMaxReplyIntegers = 3;
 
 enum class Framing { Ascii, Binary };
 enum class ByteOrder { Little, Big };
+// "ascii" | "binary" and "big" | "little"; throw binpick::Error listing the names otherwise.
+Framing framingFromName(const std::string& name);
+ByteOrder byteOrderFromName(const std::string& name);
 
 // validate(): max_line_length in [16, 4096], decimals in [0, 9], scales finite and > 0.
 // With the ASCII defaults a pose reads back within 0.01 mm and 0.001 degrees; with the binary
