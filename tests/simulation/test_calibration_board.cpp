@@ -160,19 +160,19 @@ TEST(CalibrationBoard, BadSpecsThrowNamingTheField) {
       CalibrationBoard board(spec);
     };
   };
-  EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) { s.squares_x = 2; }), "BoardSpec.squares_x"));
-  EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) { s.squares_y = 0; }), "BoardSpec.squares_y"));
+  EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) { s.squares_x = 2; }), "BoardLayout.squares_x"));
+  EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) { s.squares_y = 0; }), "BoardLayout.squares_y"));
   EXPECT_TRUE(
-      throwsNaming(build([](BoardSpec& s) { s.square_size = -0.01; }), "BoardSpec.square_size"));
+      throwsNaming(build([](BoardSpec& s) { s.square_size = -0.01; }), "BoardLayout.square_size"));
   EXPECT_TRUE(
-      throwsNaming(build([](BoardSpec& s) { s.marker_size = 0.03; }), "BoardSpec.marker_size"));
+      throwsNaming(build([](BoardSpec& s) { s.marker_size = 0.03; }), "BoardLayout.marker_size"));
   EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) { s.dictionary = "DICT_9X9_1"; }),
-                           "BoardSpec.dictionary"));
+                           "BoardLayout.dictionary"));
   EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) {
                              s.dictionary = "DICT_4X4_50";
                              s.squares_x = s.squares_y = 12;  // 72 markers
                            }),
-                           "BoardSpec.dictionary DICT_4X4_50 holds 50 markers"));
+                           "BoardLayout.dictionary DICT_4X4_50 holds 50 markers"));
   EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) { s.margin = NAN; }), "BoardSpec.margin"));
   EXPECT_TRUE(throwsNaming(build([](BoardSpec& s) { s.thickness = 0.0; }), "BoardSpec.thickness"));
   EXPECT_TRUE(

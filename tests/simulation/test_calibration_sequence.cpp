@@ -275,7 +275,7 @@ TEST(CalibrationSequence, BadParamsThrowNamingTheField) {
   };
   using P = CalibrationSequenceParams;
   EXPECT_TRUE(fails([](P& p) { p.board.squares_x = 1; },
-                    "CalibrationSequenceParams.board: BoardSpec.squares_x"));
+                    "CalibrationSequenceParams.board: BoardLayout.squares_x"));
   EXPECT_TRUE(fails([](P& p) { p.poses.count = -2; },
                     "CalibrationSequenceParams.poses: BoardPoseParams.count"));
   EXPECT_TRUE(fails([](P& p) { p.photometry.bit_depth = 12; },

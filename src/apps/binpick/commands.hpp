@@ -12,5 +12,9 @@ int runEvaluate(const std::vector<std::string>& args);
 int runReconstruct(const std::vector<std::string>& args);
 int runCapture(const std::vector<std::string>& args);
 int runRobotClient(const std::vector<std::string>& args);
+int runCalibrate(const std::vector<std::string>& args);  // rig | hand-eye
+int runCalibrateRig(const std::vector<std::string>& args);
+int runCalibrateHandEye(const std::vector<std::string>& args);        // robot poses from a file
+int runCalibrateHandEyeGuided(const std::vector<std::string>& args);  // over the robot protocol
 
 }  // namespace binpick::cli

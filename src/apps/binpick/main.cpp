@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     if (command == "reconstruct") return binpick::cli::runReconstruct(args);
     if (command == "capture") return binpick::cli::runCapture(args);
     if (command == "robot-client") return binpick::cli::runRobotClient(args);
+    if (command == "calibrate") return binpick::cli::runCalibrate(args);
     std::cerr << "binpick: unknown command '" << command << "'\n" << kUsage;
     return 2;
   } catch (const std::exception& e) {

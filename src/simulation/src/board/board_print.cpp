@@ -4,7 +4,6 @@
 #include <cmath>
 #include <opencv2/aruco/charuco.hpp>
 
-#include "aruco_dictionary.hpp"
 
 namespace binpick::sim::detail {
 namespace {
@@ -13,7 +12,7 @@ cv::Ptr<cv::aruco::CharucoBoard> charucoBoard(const BoardSpec& spec) {
   return cv::aruco::CharucoBoard::create(
       spec.squares_x, spec.squares_y, static_cast<float>(spec.square_size),
       static_cast<float>(spec.marker_size),
-      cv::aruco::getPredefinedDictionary(arucoDictionaryId(spec.dictionary)));
+      cv::aruco::getPredefinedDictionary(calibration::arucoDictionaryId(spec.dictionary)));
 }
 
 cv::Mat drawChessboard(const BoardSpec& spec, int texels_per_square) {

@@ -25,16 +25,16 @@
 #include <string>
 #include <vector>
 
+#include "binpick/calibration/board_layout.hpp"
 #include "binpick/io/point_cloud.hpp"
 #include "binpick/io/rig_calibration.hpp"
 
 namespace binpick::sim {
 
-enum class BoardType { Chessboard, Charuco };
-
-// "chessboard" or "charuco"; boardTypeFromName throws binpick::Error on another name.
-std::string boardTypeName(BoardType type);
-BoardType boardTypeFromName(const std::string& name);
+// The board types and their names are the calibration tools' own.
+using calibration::BoardType;
+using calibration::boardTypeFromName;
+using calibration::boardTypeName;
 
 // Defaults suit a 1280x1024 camera at about 0.9 m: 30 mm squares span some 50 pixels, a
 // marker bit about 5.
@@ -49,7 +49,10 @@ struct BoardSpec {
   double thickness = 0.005;                 // metres
   double white_albedo = 0.85;  // diffuse reflectance of the paper and the white squares
   double black_albedo = 0.05;  // of the black squares and marker bits
-  // Throws binpick::Error naming the field (e.g. "BoardSpec.marker_size ...").
+  // The geometry the calibration tools detect (type, squares, markers, dictionary).
+  calibration::BoardLayout layout() const;
+  // Throws binpick::Error naming the field: "BoardLayout.marker_size ..." for the geometry,
+  // "BoardSpec.thickness ..." for the rest.
   void validate() const;
 };
 

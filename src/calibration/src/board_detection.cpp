@@ -1,0 +1,126 @@
+// Board corners in a camera image (ChArUco or chessboard), refined to sub-pixel, and the pose.
+#include "binpick/calibration/board_detection.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <opencv2/aruco/charuco.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "binpick/io/error.hpp"
+
+namespace binpick::calibration {
+namespace {
+
+struct Corners {
+  std::vector<int> ids;
+  std::vector<cv::Point2f> pixels;
+};
+
+// The detectors want 8 bits; 16-bit captures hold the sensor value in the high bits.
+cv::Mat eightBit(const cv::Mat& image) {
+  if (image.depth() == CV_8U) return image;
+  cv::Mat converted;
+  image.convertTo(converted, CV_8U, 1.0 / 257.0);
+  return converted;
+}
+
+cv::Ptr<cv::aruco::CharucoBoard> charucoBoard(const BoardLayout& layout) {
+  return cv::aruco::CharucoBoard::create(
+      layout.squares_x, layout.squares_y, static_cast<float>(layout.square_size),
+      static_cast<float>(layout.marker_size),
+      cv::aruco::getPredefinedDictionary(arucoDictionaryId(layout.dictionary)));
+}
+
+std::string findCharuco(const cv::Mat& image8, const BoardLayout& layout, Corners& found) {
+  const auto board = charucoBoard(layout);
+  std::vector<std::vector<cv::Point2f>> markers;
+  std::vector<int> marker_ids;
+  cv::aruco::detectMarkers(image8, board->dictionary, markers, marker_ids);
+  if (marker_ids.empty()) return "no ArUco marker of " + layout.dictionary + " in the image";
+  cv::aruco::interpolateCornersCharuco(markers, marker_ids, image8, board, found.pixels,
+                                       found.ids);
+  if (found.ids.empty()) return "ArUco markers found but no ChArUco corner between them";
+  return {};
+}
+
+// cv::findChessboardCorners lists the corners from either end of a board turned half a turn:
+// start from the end nearest the image's top-left so that views agree.
+std::string findChessboard(const cv::Mat& image8, const BoardLayout& layout, Corners& found) {
+  const cv::Size pattern(layout.squares_x - 1, layout.squares_y - 1);
+  const int flags = cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE;
+  if (!cv::findChessboardCorners(image8, pattern, found.pixels, flags)) {
+    return "no complete " + std::to_string(pattern.width) + "x" + std::to_string(pattern.height) +
+           " chessboard in the image (every inner corner must be visible)";
+  }
+  const cv::Point2f first = found.pixels.front(), last = found.pixels.back();
+  if (first.x + first.y > last.x + last.y) std::reverse(found.pixels.begin(), found.pixels.end());
+  found.ids.resize(found.pixels.size());
+  std::iota(found.ids.begin(), found.ids.end(), 0);
+  return {};
+}
+
+// OpenCV 4.6's ChArUco interpolation leaves corners half a pixel off (opencv/opencv#25539);
+// cornerSubPix converges to the saddle point from there whatever the detector's convention.
+void refine(const cv::Mat& image, std::vector<cv::Point2f>& pixels, int half_window) {
+  cv::Mat grey = image;
+  if (image.depth() != CV_8U) image.convertTo(grey, CV_32F);
+  cv::cornerSubPix(grey, pixels, cv::Size(half_window, half_window), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+}
+
+// Corners by ascending id, without those too near the border for the refinement window.
+void keepInside(const cv::Mat& image, double margin, const Corners& corners,
+                BoardDetection& detection) {
+  std::vector<std::size_t> order(corners.ids.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return corners.ids[a] < corners.ids[b]; });
+  for (const std::size_t i : order) {
+    const cv::Point2f& p = corners.pixels[i];
+    if (p.x < margin || p.y < margin || p.x > image.cols - 1 - margin ||
+        p.y > image.rows - 1 - margin) {
+      continue;
+    }
+    detection.ids.push_back(corners.ids[i]);
+    detection.pixels.emplace_back(p.x, p.y);
+  }
+}
+
+}  // namespace
+
+void BoardDetectionParams::validate() const {
+  requireField(subpixel_half_window >= 2, "BoardDetectionParams", "subpixel_half_window", ">= 2",
+               subpixel_half_window);
+  requireField(min_corners >= 4, "BoardDetectionParams", "min_corners", ">= 4", min_corners);
+  requireField(std::isfinite(border_margin) && border_margin >= 0.0, "BoardDetectionParams",
+               "border_margin", ">= 0", border_margin);
+}
+
+BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout,
+                           const BoardDetectionParams& params) {
+  params.validate();
+  layout.validate();
+  if (image.empty() || image.channels() != 1 ||
+      (image.depth() != CV_8U && image.depth() != CV_16U)) {
+    throw Error("board detection needs a non-empty 8- or 16-bit single-channel image");
+  }
+  BoardDetection detection;
+  detection.expected = layout.cornerCount();
+  const cv::Mat image8 = eightBit(image);
+  Corners corners;
+  detection.problem = layout.type == BoardType::Charuco ? findCharuco(image8, layout, corners)
+                                                        : findChessboard(image8, layout, corners);
+  if (!detection.found()) return detection;
+  refine(image, corners.pixels, params.subpixel_half_window);
+  keepInside(image, params.border_margin, corners, detection);
+  if (static_cast<int>(detection.ids.size()) < params.min_corners) {
+    detection.problem = "only " + std::to_string(detection.ids.size()) + " of " +
+                        std::to_string(detection.expected) + " board corners found (at least " +
+                        std::to_string(params.min_corners) + " needed)";
+  }
+  return detection;
+}
+
+}  // namespace binpick::calibration
