@@ -35,7 +35,18 @@ const std::vector<std::string>& validPieces() {
       "PING,0\r\n",
       "STATUS,0,1,2,3\r\n",
       "UNKNOWN,7\r\n",
-      "NEXT,10\r\n"};
+      "NEXT,10\r\n",
+      "POSE,600.00,0.00,400.00,1.00000,0.00000,0.00000,0.00000\r\n",
+      "POSE,600,-12.5,400,180,0,-90\r\n",
+      "pose , 1e3 , 0 , 0 , 0.5 , 0.5 , 0.5 , 0.5\r\n",
+      "POSE,1,2,3\r\n",
+      "POSE,nan,0,0,0,0,0\r\n",
+      "POSE,0,3,12\r\n",
+      "POSE,14,3,12\r\n",
+      std::string("\0\0\0\7\0\0\x27\x10\xff\xff\xb1\xe0\0\0\x75\x62\0\0\x27\x10", 20) +
+          std::string(12, '\0'),
+      std::string("\7\0\0\0\x60\xea\0\0\0\0\0\0\x40\x9c\0\0\x20\xbf\x02\0", 20) +
+          std::string(12, '\0')};
   return pieces;
 }
 

@@ -69,7 +69,7 @@ std::vector<Decoded> decodeRequests(const std::string& stream, const CodecParams
     cut = std::max(start, std::min(cut, stream.size()));
     decoder.feed(stream.data() + start, cut - start);
     start = cut;
-    require(decoder.buffered() <= std::max(params.max_line_length, kBinaryRequestSize),
+    require(decoder.buffered() <= std::max(params.max_line_length, kMaxBinaryRequestSize - 1),
             "a request decoder holds at most one incomplete message");
     while (std::optional<Decoded> decoded = decoder.next()) all.push_back(std::move(*decoded));
   }
@@ -81,14 +81,17 @@ bool sameDecoded(const Decoded& a, const Decoded& b) {
       a.request.has_value() != b.request.has_value()) {
     return false;
   }
-  return !a.request ||
-         (a.request->command == b.request->command && a.request->argument == b.request->argument);
+  if (!a.request) return true;
+  const std::optional<Eigen::Isometry3d>& pa = a.request->T_base_flange;
+  const std::optional<Eigen::Isometry3d>& pb = b.request->T_base_flange;
+  return a.request->command == b.request->command && a.request->argument == b.request->argument &&
+         pa.has_value() == pb.has_value() && (!pa || pa->matrix() == pb->matrix());
 }
 
 // A deterministic stand-in for the service's answer to `decoded`, drawn from `seed`.
 Reply replyFor(const Decoded& decoded, uint64_t seed) {
   if (!decoded.request) return Reply{decoded.command, decoded.error};
-  Reply reply{decoded.command, static_cast<Status>(seed % 14)};
+  Reply reply{decoded.command, static_cast<Status>(seed % 15)};
   for (std::size_t i = 0; i < (seed >> 4) % 4; ++i) {  // small and large, of either sign
     const auto bits = static_cast<int32_t>(static_cast<uint32_t>(seed >> (8 * i)));
     reply.integers.push_back(bits / (int32_t{1} << (seed % 24)));
@@ -153,26 +156,49 @@ void checkReplyReadsBack(const Reply& sent, const std::string& bytes, const Code
   }
 }
 
+// A POSE read back from its encoding is the pose sent, at the codec's resolution: positions
+// within half a unit per axis (relative double precision for huge ones), rotations within
+// 0.02 degrees (binary quaternions at 1e-4 reach 0.01).
+void checkPoseReadsBack(const Eigen::Isometry3d& sent, const Eigen::Isometry3d& read,
+                        const std::string& bytes) {
+  const double millimetres = (read.translation() - sent.translation()).norm() * 1e3;
+  require(millimetres <= 0.0087 + 1e-12 * sent.translation().norm() * 1e3,
+          "a POSE's position survives encoding", bytes);
+  const std::vector<double> turn =
+      orientationValues(read.linear().transpose() * sent.linear(), Orientation::RotationVector);
+  require(Eigen::Vector3d(turn[0], turn[1], turn[2]).norm() <= 3.5e-4,
+          "a POSE's orientation survives encoding", bytes);
+}
+
 void checkRequestRoundTrip(const Request& request, const CodecParams& params) {
   std::string bytes;
   try {
     bytes = encodeRequest(request, params);
   } catch (const binpick::Error& error) {
-    // A line that arrived with a bare "\n" may be one too long to send back with "\r\n".
-    const bool tooLong = std::string(error.what()).find("max_line_length") != std::string::npos;
+    // A line that arrived with a bare "\n" may be one too long to send back with "\r\n"; a POSE
+    // typed with fewer digits than the codec writes may be longer at its precision.
+    const std::string message = error.what();
+    const bool tooLong = message.find("max_line_length") != std::string::npos ||
+                         message.find("too far out") != std::string::npos;
     const std::size_t longestRequest = std::string("TRIGGER,\r\n").size() + 32;
-    require(tooLong && params.framing == Framing::Ascii && params.max_line_length < longestRequest,
+    require(tooLong && params.framing == Framing::Ascii &&
+                (request.command == Command::Pose || params.max_line_length < longestRequest),
             "a decoded request encodes");
     return;
   }
   const std::vector<Decoded> back = decodeRequests(bytes, params, {bytes.size()});
   require(back.size() == 1 && back[0].request && back[0].request->command == request.command &&
-              back[0].request->argument == request.argument,
-          "a decoded request round-trips through encodeRequest");
+              back[0].request->argument == request.argument &&
+              back[0].request->T_base_flange.has_value() == request.T_base_flange.has_value(),
+          "a decoded request round-trips through encodeRequest", bytes);
+  if (request.T_base_flange) {
+    checkPoseReadsBack(*request.T_base_flange, *back[0].request->T_base_flange, bytes);
+  }
 }
 
 // Round trips and replies for the first messages of an input only: a binary stream holds a
-// request every 8 bytes, and checking them all would slow the fuzzer down more than it finds.
+// request every 8 bytes (POSE: 32), and checking them all would slow the fuzzer down more than it
+// finds.
 constexpr std::size_t kMessagesCheckedInDepth = 8;
 
 void fuzzRequests(const std::string& stream, const CodecParams& params, uint64_t seed) {

@@ -34,6 +34,9 @@ printf '\000PING\r\nTRIGGER,bolt\r\nNEXT\r\n' > "$work/seeds/ascii"
 printf '\005FAILED,12\r\nMODEL\r\nFOO\r\n' > "$work/seeds/ascii-errors"
 printf '\000\000\000\000\003\000\000\000\005\000\000\000\004\377\377\377\377' > "$work/seeds/binary"
 printf '\001NEXT,0,2,17,1,100.00,-200.00,300.50,0.00000,0.00000,90.00000\r\n' > "$work/seeds/reply"
+printf '\001POSE,600,0,400,180,0,0\r\nPOSE,1,2\r\nPOSE,0,3,12\r\n' > "$work/seeds/pose"
+printf '\000\000\000\000\007\000\000\047\020\377\377\261\340\000\000\165\142\000\000\047\020'\
+'\000\000\000\000\000\000\000\000\000\000\000\000' > "$work/seeds/binary-pose"
 
 # One fuzzer per core, each with its own seed and corpus so that a run can be repeated exactly
 # (libFuzzer's own -jobs would give every job the same seed). Short malloc stacks and a small

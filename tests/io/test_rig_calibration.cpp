@@ -6,8 +6,10 @@
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <functional>
+#include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/core/eigen.hpp>
@@ -126,6 +128,94 @@ TEST_F(RigCalibrationTest, WriteThenReadGivesTheSameRig) {
   EXPECT_LT((back.T_projector_camera.matrix() - rig.T_projector_camera.matrix()).cwiseAbs().maxCoeff(),
             1e-12);
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+}
+
+// A calibration's quality as `binpick calibrate rig` writes it: one used view, one dropped
+// outlier, and one never calibrated (its RMS unknown), with names and problems that need quoting.
+RigCalibrationQuality sampleQuality() {
+  RigCalibrationQuality quality;
+  quality.date = "2026-01-31T12:00:00.123Z";
+  quality.camera_rms_px = 0.0891234567890123;
+  quality.projector_rms_px = 0.165;
+  quality.stereo_rms_px = 0.134;
+  RigViewQuality used;
+  used.name = "views/pose 000";
+  used.camera_corners = 48;
+  used.projector_corners = 47;
+  used.camera_rms_px = 0.12;
+  used.projector_rms_px = 0.21;
+  used.used = true;
+  RigViewQuality dropped = used;
+  dropped.name = "views/pose_001";
+  dropped.camera_rms_px = 2.5;
+  dropped.outlier = true;
+  dropped.used = false;
+  dropped.problem = "outlier, dropped";
+  RigViewQuality missing;
+  missing.name = "views/no_board";
+  missing.problem = "board not found: no ArUco marker of DICT_5X5_100 in the image";
+  quality.views = {used, dropped, missing};
+  return quality;
+}
+
+void expectSameView(const RigViewQuality& a, const RigViewQuality& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.camera_corners, b.camera_corners);
+  EXPECT_EQ(a.projector_corners, b.projector_corners);
+  // NaN (never calibrated) must come back as NaN.
+  const auto same = [](double x, double y) { return std::isnan(x) ? std::isnan(y) : x == y; };
+  EXPECT_PRED2(same, a.camera_rms_px, b.camera_rms_px);
+  EXPECT_PRED2(same, a.projector_rms_px, b.projector_rms_px);
+  EXPECT_EQ(a.outlier, b.outlier);
+  EXPECT_EQ(a.used, b.used);
+  EXPECT_EQ(a.problem, b.problem);
+}
+
+TEST_F(RigCalibrationTest, QualityIsWrittenBesideTheRigAndReadsBack) {
+  const std::string path = pathOf("calib.yaml");
+  writeRigCalibration(path, sampleRig(), sampleQuality());
+  // The rig reads as from any other file.
+  const RigCalibration rig = readRigCalibration(path);
+  expectSameLens(rig.camera, sampleRig().camera);
+  EXPECT_LT((rig.T_projector_camera.matrix() - sampleRig().T_projector_camera.matrix())
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-12);
+  const std::optional<RigCalibrationQuality> quality = readRigCalibrationQuality(path);
+  ASSERT_TRUE(quality.has_value());
+  const RigCalibrationQuality expected = sampleQuality();
+  EXPECT_EQ(quality->date, expected.date);
+  EXPECT_DOUBLE_EQ(quality->camera_rms_px, expected.camera_rms_px);
+  EXPECT_DOUBLE_EQ(quality->projector_rms_px, expected.projector_rms_px);
+  EXPECT_DOUBLE_EQ(quality->stereo_rms_px, expected.stereo_rms_px);
+  ASSERT_EQ(quality->views.size(), expected.views.size());
+  for (std::size_t i = 0; i < expected.views.size(); ++i) {
+    SCOPED_TRACE(expected.views[i].name);
+    expectSameView(quality->views[i], expected.views[i]);
+  }
+  EXPECT_EQ(quality->viewsUsed(), 1);
+  // The counts a reader of the file sees without summing the list.
+  cv::FileStorage fs(path, cv::FileStorage::READ);
+  EXPECT_EQ(static_cast<int>(fs["quality"]["views_used"]), 1);
+  EXPECT_EQ(static_cast<int>(fs["quality"]["views_dropped"]), 2);
+}
+
+TEST_F(RigCalibrationTest, FilesWithoutQualityHaveNone) {
+  const std::string path = pathOf("calib.yaml");
+  writeRigCalibration(path, sampleRig());
+  EXPECT_FALSE(readRigCalibrationQuality(path).has_value());
+  writeWithOpenCv(path);
+  EXPECT_FALSE(readRigCalibrationQuality(path).has_value());
+}
+
+TEST_F(RigCalibrationTest, MalformedQualityIsNamedAndDoesNotStopTheRig) {
+  const std::string path = pathOf("calib.yaml");
+  writeWithOpenCv(path);
+  std::ofstream(path, std::ios::app) << "quality:\n   date: \"2026-01-31T12:00:00Z\"\n"
+                                     << "   views:\n      - { name: a, camera_corners: many }\n";
+  EXPECT_TRUE(failsWith([&] { readRigCalibrationQuality(path); }, path,
+                        "quality.views[0].camera_corners must be an integer"));
+  EXPECT_EQ(readRigCalibration(path).camera.width, 1280);
 }
 
 TEST_F(RigCalibrationTest, WriteReplacesAnExistingFile) {

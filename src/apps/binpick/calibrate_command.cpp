@@ -1,6 +1,5 @@
 // binpick calibrate rig | hand-eye: which calibration, then its own command.
 #include <algorithm>
-#include <iostream>
 
 #include "binpick/io/error.hpp"
 #include "commands.hpp"
@@ -11,17 +10,11 @@ int runCalibrate(const std::vector<std::string>& args) {
   if (args.empty()) throw Error("calibrate needs 'rig' or 'hand-eye'");
   const std::string what = args.front();
   const std::vector<std::string> rest(args.begin() + 1, args.end());
-#ifdef BINPICK_HAS_CALIBRATE_RIG
   if (what == "rig") return runCalibrateRig(rest);
-#endif
   // A guided session listens for the robot; otherwise the poses come from a file.
-  [[maybe_unused]] const bool guided = std::find(rest.begin(), rest.end(), "--listen") != rest.end();
-#ifdef BINPICK_HAS_CALIBRATE_GUIDED
+  const bool guided = std::find(rest.begin(), rest.end(), "--listen") != rest.end();
   if (what == "hand-eye" && guided) return runCalibrateHandEyeGuided(rest);
-#endif
-#ifdef BINPICK_HAS_CALIBRATE_HAND_EYE
   if (what == "hand-eye" && !guided) return runCalibrateHandEye(rest);
-#endif
   throw Error("calibrate: unknown calibration '" + what + "' (rig or hand-eye)");
 }
 

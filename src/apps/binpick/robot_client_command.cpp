@@ -28,9 +28,12 @@ robot::CodecParams codecFrom(const Arguments& args) {
   return codec;
 }
 
-// "CMD" or "CMD,ARG" -> a request, read as binpickd reads the line.
-robot::Request parseRequest(const std::string& text) {
-  robot::RequestDecoder decoder(robot::CodecParams{});
+// "CMD" or "CMD,ARG" -> a request, read as binpickd reads the line; a POSE's values are in the
+// --orientation convention, whatever the framing that sends them.
+robot::Request parseRequest(const std::string& text, robot::Orientation orientation) {
+  robot::CodecParams ascii;
+  ascii.orientation = orientation;
+  robot::RequestDecoder decoder(ascii);
   const std::string line = text + "\n";
   decoder.feed(line.data(), line.size());
   const std::optional<robot::Decoded> decoded = decoder.next();
@@ -106,7 +109,7 @@ int runRobotClient(const std::vector<std::string>& raw) {
     std::istringstream requests(*script);
     std::string request;
     while (std::getline(requests, request, ';')) {
-      if (!request.empty()) session.send(parseRequest(request), "");
+      if (!request.empty()) session.send(parseRequest(request, codec.orientation), "");
     }
     return 0;
   }

@@ -2,11 +2,13 @@
 //                  [--bin-length L --bin-width W --bin-wall-height H] [--camera-height Z]
 //                  [--bit-depth 8|16] [--cloud-only] [--threads T] --out DIR
 // binpick simulate --calibration-board charuco|chessboard [--poses K] [--seed S] --out DIR
+// binpick simulate --hand-eye eye-to-hand|eye-in-hand [--views K] ... --out DIR (simulate_hand_eye.hpp)
 // binpick simulate --list-parts
 // binpick simulate --export-part NAME FILE
 // A pile writes one capture directory (docs/capture-format.md): capture.json, calib.yaml,
 // images/ and truth/; with --cloud-only, cloud.ply (the ideal structured-light cloud) instead of
 // the images.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -19,6 +21,7 @@
 #include "binpick/simulation/pile.hpp"
 #include "binpick/simulation/pile_truth.hpp"
 #include "commands.hpp"
+#include "simulate_hand_eye.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -126,6 +129,7 @@ int simulateCalibration(const Arguments& args) {
 
 int runSimulate(const std::vector<std::string>& raw) {
   if (!raw.empty() && raw[0] == "--list-parts") return listParts();
+  if (std::find(raw.begin(), raw.end(), "--hand-eye") != raw.end()) return runSimulateHandEye(raw);
   if (raw.size() == 3 && raw[0] == "--export-part") {
     writeMesh(raw[2], sim::makePart(raw[1]).mesh);
     return 0;

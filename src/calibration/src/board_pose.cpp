@@ -3,6 +3,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "binpick/calibration/board_detection.hpp"
+#include "cv_eigen.hpp"
 
 namespace binpick::calibration {
 namespace {
@@ -14,12 +15,7 @@ cv::Mat cameraMatrix(const LensIntrinsics& lens) {
 Eigen::Isometry3d isometry(const cv::Mat& rvec, const cv::Mat& tvec) {
   cv::Mat rotation;
   cv::Rodrigues(rvec, rotation);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) T.matrix()(r, c) = rotation.at<double>(r, c);
-    T.matrix()(r, 3) = tvec.at<double>(r);
-  }
-  return T;
+  return detail::isometryFromCv(rotation, tvec);
 }
 
 }  // namespace

@@ -1,14 +1,17 @@
-// calib.yaml: the rig in OpenCV FileStorage YAML, read with every key, size and value checked.
+// calib.yaml: the rig in OpenCV FileStorage YAML, read with every key, size and value checked,
+// and the calibration's quality beside it.
 #include "binpick/io/rig_calibration.hpp"
 
 #include <Eigen/LU>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <opencv2/core.hpp>
 #include <sstream>
 
 #include "binpick/io/error.hpp"
+#include "rig_calibration_quality.hpp"
 
 namespace binpick {
 namespace {
@@ -91,7 +94,49 @@ void writeLens(cv::FileStorage& fs, const std::string& device, const LensIntrins
   fs << device + "_distortion" << cv::Mat(1, 5, CV_64F, const_cast<double*>(lens.distortion.data()));
 }
 
+
+void writeRig(const std::string& path, const RigCalibration& rig,
+              const RigCalibrationQuality* quality) {
+  rig.validate();
+  const std::string temporary = path + ".tmp";
+  {
+    cv::FileStorage fs(temporary, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
+    if (!fs.isOpened()) fail(temporary, "cannot write the calibration file");
+    writeLens(fs, "camera", rig.camera);
+    writeLens(fs, "projector", rig.projector);
+    cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F);
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) r.at<double>(i, j) = rig.T_projector_camera.linear()(i, j);
+      t.at<double>(i) = rig.T_projector_camera.translation()(i);
+    }
+    fs << "R" << r << "T" << t;
+    if (quality) detail::writeQuality(fs, *quality);
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    fail(path, "cannot replace the calibration file");
+  }
+}
+
 }  // namespace
+
+namespace detail {
+
+cv::FileStorage openForReading(const std::string& path) {
+  if (!std::ifstream(path)) fail(path, "cannot open the calibration file");
+  cv::FileStorage fs;
+  try {
+    fs.open(path, cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
+  } catch (const cv::Exception&) {
+    fail(path, "not an OpenCV FileStorage YAML file");
+  }
+  if (!fs.isOpened()) fail(path, "not an OpenCV FileStorage YAML file");
+  // Looking a key up in a document that is a list or a scalar throws a cv::Exception.
+  if (!fs.root().isMap()) fail(path, "not an OpenCV FileStorage YAML file (no map of keys)");
+  return fs;
+}
+
+}  // namespace detail
 
 void RigCalibration::validate() const {
   camera.validate("camera");
@@ -107,16 +152,7 @@ void RigCalibration::validate() const {
 }
 
 RigCalibration readRigCalibration(const std::string& path) {
-  if (!std::ifstream(path)) fail(path, "cannot open the calibration file");
-  cv::FileStorage fs;
-  try {
-    fs.open(path, cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
-  } catch (const cv::Exception&) {
-    fail(path, "not an OpenCV FileStorage YAML file");
-  }
-  if (!fs.isOpened()) fail(path, "not an OpenCV FileStorage YAML file");
-  // Looking a key up in a document that is a list or a scalar throws a cv::Exception.
-  if (!fs.root().isMap()) fail(path, "not an OpenCV FileStorage YAML file (no map of keys)");
+  cv::FileStorage fs = detail::openForReading(path);
   RigCalibration rig;
   cv::Mat r, t;
   try {
@@ -141,24 +177,12 @@ RigCalibration readRigCalibration(const std::string& path) {
 }
 
 void writeRigCalibration(const std::string& path, const RigCalibration& rig) {
-  rig.validate();
-  const std::string temporary = path + ".tmp";
-  {
-    cv::FileStorage fs(temporary, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
-    if (!fs.isOpened()) fail(temporary, "cannot write the calibration file");
-    writeLens(fs, "camera", rig.camera);
-    writeLens(fs, "projector", rig.projector);
-    cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) r.at<double>(i, j) = rig.T_projector_camera.linear()(i, j);
-      t.at<double>(i) = rig.T_projector_camera.translation()(i);
-    }
-    fs << "R" << r << "T" << t;
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    fail(path, "cannot replace the calibration file");
-  }
+  writeRig(path, rig, nullptr);
+}
+
+void writeRigCalibration(const std::string& path, const RigCalibration& rig,
+                         const RigCalibrationQuality& quality) {
+  writeRig(path, rig, &quality);
 }
 
 }  // namespace binpick

@@ -34,6 +34,26 @@ bool isVisibleArgumentCharacter(char c);
 void checkRequest(const Request& request);
 void checkReply(const Reply& reply);
 
+// --- poses in either framing (robot_protocol_pose.cpp)
+// x, y, z in millimetres, then the orientation values of `orientation`: the pose, or nothing with
+// `problem` saying why (a wrong count, a zero quaternion). Positions are taken as they are.
+std::optional<Eigen::Isometry3d> poseFromWireValues(const std::vector<double>& values,
+                                                    Orientation orientation, std::string& problem);
+// A whole field as a finite number (from_chars syntax), or nothing.
+std::optional<double> parseFiniteNumber(std::string_view text);
+// ",x,y,z,o1,o2,o3[,o4]" at the given decimals; nothing when a value is too large to print.
+std::optional<std::string> asciiPoseText(const Eigen::Isometry3d& T, Orientation orientation,
+                                         int positionDecimals, int orientationDecimals);
+// The binary pose fields {x, y, z, o1..o4} (unused orientation fields 0), nothing on overflow.
+constexpr std::size_t kBinaryPoseFields = 7;
+using BinaryPoseFields = std::array<int32_t, kBinaryPoseFields>;
+std::optional<BinaryPoseFields> binaryPoseFields(const Eigen::Isometry3d& T,
+                                                 const CodecParams& params);
+// The inverse; nothing with `problem` saying why (an unused field not 0, a zero quaternion).
+std::optional<Eigen::Isometry3d> poseFromBinaryFields(const BinaryPoseFields& fields,
+                                                      const CodecParams& params,
+                                                      std::string& problem);
+
 // --- quaternion rounding (robot_protocol_rounding.cpp)
 // The quaternion w, x, y, z (unit, w >= 0) in whole units of 1 / unitsPerValue: of the 16 ways
 // to round each value down or up, the one whose rotation is closest to q's. Rounding each to the
@@ -44,17 +64,27 @@ std::array<double, 4> roundQuaternion(const std::vector<double>& q, double units
 // --- ASCII framing (robot_protocol_ascii_request.cpp, robot_protocol_ascii_reply.cpp)
 std::vector<std::string_view> splitAtCommas(std::string_view line);  // fields as they are
 // `line` is one line without its '\n' (a trailing '\r' is allowed); nothing for a blank line.
-std::optional<Decoded> decodeAsciiRequestLine(std::string_view line);
+std::optional<Decoded> decodeAsciiRequestLine(std::string_view line, const CodecParams& params);
 // The BadMessage for a line longer than the limit; `start` is its first max_line_length bytes.
 Decoded oversizedAsciiRequest(std::string_view start);
-std::string encodeAsciiRequest(const Request& request);
+std::string encodeAsciiRequest(const Request& request, const CodecParams& params);
 std::string encodeAsciiReply(const Reply& reply, const CodecParams& params);
 // `line` without its '\n'; throws binpick::Error naming what was malformed.
 Reply decodeAsciiReplyLine(std::string_view line, const CodecParams& params);
 
-// --- binary framing (robot_protocol_binary.cpp); `bytes` holds exactly one message
-Decoded decodeBinaryRequest(const char* bytes, ByteOrder order);
-std::string encodeBinaryRequest(const Request& request, ByteOrder order);
+// --- binary framing (robot_protocol_binary.cpp, robot_protocol_binary_pose.cpp)
+// Byte by byte through uint32_t: the same on any host byte order.
+void appendInt32(std::string& out, int32_t value, ByteOrder order);
+int32_t readInt32(const char* bytes, ByteOrder order);
+// round(value * scale), nothing when that does not fit an int32.
+std::optional<int32_t> fixedPoint(double value, double scale);
+// The size of a request whose first int32 is `id`.
+std::size_t binaryRequestSize(int32_t id);
+// `bytes` holds exactly one message, binaryRequestSize of its id long.
+Decoded decodeBinaryRequest(const char* bytes, const CodecParams& params);
+Decoded decodeBinaryPoseRequest(const char* bytes, const CodecParams& params);
+std::string encodeBinaryRequest(const Request& request, const CodecParams& params);
+std::string encodeBinaryPoseRequest(const Request& request, const CodecParams& params);
 std::string encodeBinaryReply(const Reply& reply, const CodecParams& params);
 Reply decodeBinaryReply(const char* bytes, const CodecParams& params);
 

@@ -65,6 +65,14 @@ void checkRequest(const Request& request) {
   }
   const std::string problem = argumentProblem(request.command, request.argument);
   if (!problem.empty()) throw Error("Request.argument: " + problem);
+  const bool pose = request.command == Command::Pose;
+  if (pose != request.T_base_flange.has_value()) {
+    throw Error(pose ? "Request.T_base_flange is missing: POSE carries the flange pose"
+                     : "Request.T_base_flange must be empty unless POSE");
+  }
+  if (request.T_base_flange && !request.T_base_flange->matrix().allFinite()) {
+    throw Error("Request.T_base_flange must be finite");
+  }
 }
 
 void checkReply(const Reply& reply) {

@@ -19,48 +19,11 @@ struct PrecisionDrop {
 };
 constexpr std::array<PrecisionDrop, 4> kPrecisionDrops = {{{0, 0}, {0, 1}, {1, 1}, {1, 2}}};
 
-// Fixed-point text of `value`, nothing if it could not fit any line. to_chars: no locale.
-std::optional<std::string> fixedText(double value, int decimals) {
-  if (!(std::abs(value) < 1e15)) return std::nullopt;
-  std::array<char, 64> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                                    std::chars_format::fixed, decimals);
-  if (result.ec != std::errc()) return std::nullopt;
-  std::string text(buffer.data(), result.ptr);
-  // "-0.00" (a tiny negative rounded to zero) would read as a sign the value does not have.
-  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string::npos) text.erase(0, 1);
-  return text;
-}
-
-// The orientation values to print; a quaternion already on the decimal grid (see roundQuaternion).
-std::vector<double> orientationText(const Eigen::Matrix3d& R, Orientation orientation,
-                                    int decimals) {
-  std::vector<double> values = orientationValues(R, orientation);
-  if (orientation != Orientation::Quaternion) return values;
-  const double unitsPerValue = std::pow(10.0, decimals);
-  const std::array<double, 4> units = roundQuaternion(values, unitsPerValue);
-  for (std::size_t k = 0; k < 4; ++k) values[k] = units[k] / unitsPerValue;
-  return values;
-}
-
 std::optional<std::string> poseText(const Eigen::Isometry3d& T_base_tool, const CodecParams& params,
                                     PrecisionDrop drop) {
-  const int positionDecimals = std::max(0, params.position_decimals - drop.position);
-  const int orientationDecimals = std::max(0, params.orientation_decimals - drop.orientation);
-  std::string text;
-  const Eigen::Vector3d millimetres = T_base_tool.translation() * kMillimetresPerMetre;
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::optional<std::string> number = fixedText(millimetres[axis], positionDecimals);
-    if (!number) return std::nullopt;
-    text += "," + *number;
-  }
-  for (double value :
-       orientationText(T_base_tool.linear(), params.orientation, orientationDecimals)) {
-    const std::optional<std::string> number = fixedText(value, orientationDecimals);
-    if (!number) return std::nullopt;
-    text += "," + *number;
-  }
-  return text;
+  return asciiPoseText(T_base_tool, params.orientation,
+                       std::max(0, params.position_decimals - drop.position),
+                       std::max(0, params.orientation_decimals - drop.orientation));
 }
 
 std::string badMessageLine(Command command) {
@@ -98,19 +61,15 @@ Eigen::Isometry3d parsePose(std::string_view line, const std::vector<std::string
                             Orientation orientation) {
   std::vector<double> values;
   for (std::string_view field : fields) {
-    const std::optional<double> value = parseNumber<double>(field);
-    if (!value || !std::isfinite(*value)) malformed(line, "a pose value is no finite number");
+    const std::optional<double> value = parseFiniteNumber(field);
+    if (!value) malformed(line, "a pose value is no finite number");
     values.push_back(*value);
   }
-  Eigen::Isometry3d T_base_tool = Eigen::Isometry3d::Identity();
-  T_base_tool.translation() =
-      Eigen::Vector3d(values[0], values[1], values[2]) / kMillimetresPerMetre;
-  try {
-    T_base_tool.linear() = rotationFromValues({values.begin() + 3, values.end()}, orientation);
-  } catch (const Error& error) {
-    malformed(line, error.what());
-  }
-  return T_base_tool;
+  std::string problem;
+  const std::optional<Eigen::Isometry3d> T_base_tool =
+      poseFromWireValues(values, orientation, problem);
+  if (!T_base_tool) malformed(line, problem);
+  return *T_base_tool;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
-// ASCII requests: "KEYWORD[,argument]" lines.
+// ASCII requests: "KEYWORD[,argument]" lines, and "POSE,x,y,z,v1,v2,v3[,v4]".
 #include <vector>
 
+#include "binpick/io/error.hpp"
 #include "robot_codec.hpp"
 
 namespace binpick::robot::detail {
@@ -35,8 +36,32 @@ Decoded failure(Status error, Command command, std::string detail) {
   return decoded;
 }
 
+// POSE's fields after the keyword: the pose, every value a finite number.
+Decoded decodePoseFields(const std::vector<std::string_view>& fields, Orientation orientation) {
+  std::vector<double> values;
+  for (std::size_t i = 1; i < fields.size(); ++i) {
+    const std::optional<double> value = parseFiniteNumber(fields[i]);
+    if (!value) {
+      return failure(Status::BadMessage, Command::Pose,
+                     "POSE value " + std::to_string(i) + " '" + std::string(fields[i]) +
+                         "' is no finite number");
+    }
+    values.push_back(*value);
+  }
+  std::string problem;
+  std::optional<Eigen::Isometry3d> T_base_flange =
+      poseFromWireValues(values, orientation, problem);
+  if (!T_base_flange) return failure(Status::BadMessage, Command::Pose, "POSE: " + problem);
+  Decoded decoded;
+  decoded.command = Command::Pose;
+  decoded.request = Request{Command::Pose, std::nullopt, T_base_flange};
+  return decoded;
+}
+
 // The request of a line whose keyword is known and whose bytes are all allowed.
-Decoded decodeFields(Command command, const std::vector<std::string_view>& fields) {
+Decoded decodeFields(Command command, const std::vector<std::string_view>& fields,
+                     const CodecParams& params) {
+  if (command == Command::Pose) return decodePoseFields(fields, params.orientation);
   const std::string keyword = commandKeyword(command);
   if (fields.size() > 2) {
     return failure(Status::BadMessage, command, keyword + " takes at most one argument");
@@ -65,7 +90,7 @@ std::vector<std::string_view> splitAtCommas(std::string_view line) {
   return fields;
 }
 
-std::optional<Decoded> decodeAsciiRequestLine(std::string_view line) {
+std::optional<Decoded> decodeAsciiRequestLine(std::string_view line, const CodecParams& params) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   if (trimSpaces(line).empty()) return std::nullopt;
   std::vector<std::string_view> fields = splitAtCommas(line);
@@ -85,7 +110,7 @@ std::optional<Decoded> decodeAsciiRequestLine(std::string_view line) {
     return failure(Status::BadMessage, *command,
                    "a control character or non-ASCII byte in the line");
   }
-  return decodeFields(*command, fields);
+  return decodeFields(*command, fields, params);
 }
 
 Decoded oversizedAsciiRequest(std::string_view start) {
@@ -99,9 +124,16 @@ Decoded oversizedAsciiRequest(std::string_view start) {
   return failure(Status::BadMessage, command, "a line longer than max_line_length");
 }
 
-std::string encodeAsciiRequest(const Request& request) {
+std::string encodeAsciiRequest(const Request& request, const CodecParams& params) {
   std::string line = commandKeyword(request.command);
   if (request.argument) line += "," + *request.argument;
+  if (request.T_base_flange) {
+    const std::optional<std::string> pose =
+        asciiPoseText(*request.T_base_flange, params.orientation, params.position_decimals,
+                      params.orientation_decimals);
+    if (!pose) throw Error("Request.T_base_flange is too far out to be written as a POSE line");
+    line += *pose;
+  }
   return line + "\r\n";
 }
 

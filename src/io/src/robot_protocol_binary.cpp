@@ -1,4 +1,6 @@
-// Binary framing: fixed-size messages of int32 fields in the configured byte order.
+// Binary framing: fixed-size messages of int32 fields in the configured byte order (POSE
+// requests: robot_protocol_binary_pose.cpp).
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -7,12 +9,7 @@
 
 namespace binpick::robot::detail {
 
-namespace {
-
-constexpr std::size_t kReplyFields = kBinaryReplySize / 4;
-constexpr std::size_t kFirstInteger = 2, kFirstPosition = 5, kFirstOrientation = 8;
-
-// Byte by byte through uint32_t: the same on any host byte order, no aliasing tricks.
+// Byte by byte through uint32_t: no aliasing tricks.
 void appendInt32(std::string& out, int32_t value, ByteOrder order) {
   const auto bits = static_cast<uint32_t>(value);
   for (int i = 0; i < 4; ++i) {
@@ -30,35 +27,16 @@ int32_t readInt32(const char* bytes, ByteOrder order) {
   return static_cast<int32_t>(bits);  // two's complement (guaranteed since C++20, universal)
 }
 
-// round(value * scale), nothing when that does not fit an int32.
 std::optional<int32_t> fixedPoint(double value, double scale) {
   const double scaled = std::round(value * scale);
   if (!(scaled >= -2147483648.0 && scaled <= 2147483647.0)) return std::nullopt;
   return static_cast<int32_t>(scaled);
 }
 
-// The pose fields of a reply, nothing when one of them overflows.
-std::optional<std::array<int32_t, 7>> poseFields(const Eigen::Isometry3d& T_base_tool,
-                                                 const CodecParams& params) {
-  std::array<int32_t, 7> fields{};  // x, y, z, then up to 4 orientation values, unused 0
-  const Eigen::Vector3d millimetres = T_base_tool.translation() * kMillimetresPerMetre;
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::optional<int32_t> field = fixedPoint(millimetres[axis], params.position_scale);
-    if (!field) return std::nullopt;
-    fields[static_cast<std::size_t>(axis)] = *field;
-  }
-  std::vector<double> values = orientationValues(T_base_tool.linear(), params.orientation);
-  if (params.orientation == Orientation::Quaternion) {  // on the int32 grid, pointing closest
-    const std::array<double, 4> units = roundQuaternion(values, params.orientation_scale);
-    for (std::size_t k = 0; k < 4; ++k) values[k] = units[k] / params.orientation_scale;
-  }
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    const std::optional<int32_t> field = fixedPoint(values[i], params.orientation_scale);
-    if (!field) return std::nullopt;
-    fields[3 + i] = *field;
-  }
-  return fields;
-}
+namespace {
+
+constexpr std::size_t kReplyFields = kBinaryReplySize / 4;
+constexpr std::size_t kFirstInteger = 2, kFirstPosition = 5;
 
 Decoded failure(Status error, Command command, int32_t rawCommand, std::string detail) {
   Decoded decoded;
@@ -73,38 +51,16 @@ Decoded failure(Status error, Command command, int32_t rawCommand, std::string d
   throw Error("malformed binary reply: " + problem);
 }
 
-Eigen::Isometry3d poseFromFields(const std::array<int32_t, kReplyFields>& fields,
-                                 const CodecParams& params) {
-  const std::size_t count = static_cast<std::size_t>(orientationValueCount(params.orientation));
-  for (std::size_t i = kFirstOrientation + count; i < kReplyFields; ++i) {
-    if (fields[i] != 0) malformed("an unused orientation field is not 0");
-  }
-  Eigen::Isometry3d T_base_tool = Eigen::Isometry3d::Identity();
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    T_base_tool.translation()[static_cast<Eigen::Index>(axis)] =
-        fields[kFirstPosition + axis] / params.position_scale / kMillimetresPerMetre;
-  }
-  std::vector<double> values;
-  for (std::size_t i = 0; i < count; ++i) {
-    values.push_back(fields[kFirstOrientation + i] / params.orientation_scale);
-  }
-  try {
-    T_base_tool.linear() = rotationFromValues(values, params.orientation);
-  } catch (const Error& error) {
-    malformed(error.what());
-  }
-  return T_base_tool;
-}
-
 }  // namespace
 
-Decoded decodeBinaryRequest(const char* bytes, ByteOrder order) {
-  const int32_t id = readInt32(bytes, order);
-  const int32_t rawArgument = readInt32(bytes + 4, order);
+Decoded decodeBinaryRequest(const char* bytes, const CodecParams& params) {
+  const int32_t id = readInt32(bytes, params.byte_order);
   const auto command = static_cast<Command>(id);
   if (!isKnownCommand(command)) {
     return failure(Status::UnknownCommand, command, id, "unknown command id " + std::to_string(id));
   }
+  if (command == Command::Pose) return decodeBinaryPoseRequest(bytes, params);
+  const int32_t rawArgument = readInt32(bytes + 4, params.byte_order);
   // Robots write both fields whatever the command: an argument to one taking none is dropped.
   std::optional<std::string> argument;
   if (rawArgument >= 0 && takesArgument(command)) argument = std::to_string(rawArgument);
@@ -117,7 +73,8 @@ Decoded decodeBinaryRequest(const char* bytes, ByteOrder order) {
   return decoded;
 }
 
-std::string encodeBinaryRequest(const Request& request, ByteOrder order) {
+std::string encodeBinaryRequest(const Request& request, const CodecParams& params) {
+  if (request.command == Command::Pose) return encodeBinaryPoseRequest(request, params);
   int32_t argument = -1;  // none
   if (request.argument) {
     const std::optional<int32_t> number = parseNonNegativeInt32(*request.argument);
@@ -128,8 +85,8 @@ std::string encodeBinaryRequest(const Request& request, ByteOrder order) {
     argument = *number;
   }
   std::string message;
-  appendInt32(message, static_cast<int32_t>(request.command), order);
-  appendInt32(message, argument, order);
+  appendInt32(message, static_cast<int32_t>(request.command), params.byte_order);
+  appendInt32(message, argument, params.byte_order);
   return message;
 }
 
@@ -140,7 +97,7 @@ std::string encodeBinaryReply(const Reply& reply, const CodecParams& params) {
   for (std::size_t i = 0; i < reply.integers.size(); ++i)
     fields[kFirstInteger + i] = reply.integers[i];
   if (reply.T_base_tool) {
-    const std::optional<std::array<int32_t, 7>> pose = poseFields(*reply.T_base_tool, params);
+    const std::optional<BinaryPoseFields> pose = binaryPoseFields(*reply.T_base_tool, params);
     if (pose) {
       std::copy(pose->begin(), pose->end(), fields.begin() + kFirstPosition);
     } else {
@@ -165,7 +122,11 @@ Reply decodeBinaryReply(const char* bytes, const CodecParams& params) {
   reply.status = *status;
   reply.integers.assign(fields.begin() + kFirstInteger, fields.begin() + kFirstPosition);
   if (reply.command == Command::NextPick && reply.status == Status::Ok) {
-    reply.T_base_tool = poseFromFields(fields, params);
+    BinaryPoseFields pose{};
+    std::copy(fields.begin() + kFirstPosition, fields.end(), pose.begin());
+    std::string problem;
+    reply.T_base_tool = poseFromBinaryFields(pose, params, problem);
+    if (!reply.T_base_tool) malformed(problem);
   } else {
     for (std::size_t i = kFirstPosition; i < kReplyFields; ++i) {
       if (fields[i] != 0) malformed("pose fields are set in a reply without a pose");

@@ -10,11 +10,11 @@ namespace binpick::robot {
 
 namespace {
 
-constexpr std::array<Command, 6> kCommands = {Command::Ping,       Command::Status,
-                                              Command::Trigger,    Command::NextPick,
-                                              Command::PickFailed, Command::SelectModel};
+constexpr std::array<Command, 7> kCommands = {
+    Command::Ping,       Command::Status,      Command::Trigger, Command::NextPick,
+    Command::PickFailed, Command::SelectModel, Command::Pose};
 
-constexpr int32_t kLastStatusCode = static_cast<int32_t>(Status::InternalError);
+constexpr int32_t kLastStatusCode = static_cast<int32_t>(Status::BoardNotFound);
 
 bool equalsIgnoringCase(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
@@ -37,6 +37,7 @@ const char* commandKeyword(Command command) {
     case Command::NextPick: return "NEXT";
     case Command::PickFailed: return "FAILED";
     case Command::SelectModel: return "MODEL";
+    case Command::Pose: return "POSE";
   }
   return detail::kUnknownKeyword;
 }
@@ -64,6 +65,7 @@ const char* statusName(Status status) {
     case Status::UnknownModel: return "unknown_model";
     case Status::Unreachable: return "unreachable";
     case Status::InternalError: return "internal_error";
+    case Status::BoardNotFound: return "board_not_found";
   }
   return "unknown";
 }

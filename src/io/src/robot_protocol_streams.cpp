@@ -29,8 +29,14 @@ void RequestDecoder::feed(const char* data, std::size_t size) {
 void RequestDecoder::feedBinary(const char* data, std::size_t size) {
   buffer_.append(data, size);
   std::size_t start = 0;
-  for (; buffer_.size() - start >= kBinaryRequestSize; start += kBinaryRequestSize) {
-    ready_.push_back(detail::decodeBinaryRequest(buffer_.data() + start, params_.byte_order));
+  // The command id tells how long its request is; until it has arrived, nothing is decided.
+  constexpr std::size_t kIdSize = 4;
+  while (buffer_.size() - start >= kIdSize) {
+    const std::size_t length =
+        detail::binaryRequestSize(detail::readInt32(buffer_.data() + start, params_.byte_order));
+    if (buffer_.size() - start < length) break;
+    ready_.push_back(detail::decodeBinaryRequest(buffer_.data() + start, params_));
+    start += length;
   }
   buffer_.erase(0, start);
 }
@@ -46,7 +52,7 @@ void RequestDecoder::feedAscii(const char* data, std::size_t size) {
       discarding_ = false;
     } else if (newline && buffer_.size() + *newline < limit) {
       buffer_.append(data, *newline);
-      if (auto decoded = detail::decodeAsciiRequestLine(buffer_)) {
+      if (auto decoded = detail::decodeAsciiRequestLine(buffer_, params_)) {
         ready_.push_back(std::move(*decoded));
       }
       buffer_.clear();
@@ -87,10 +93,8 @@ std::string encodeReply(const Reply& reply, const CodecParams& params) {
 std::string encodeRequest(const Request& request, const CodecParams& params) {
   params.validate();
   detail::checkRequest(request);
-  if (params.framing == Framing::Binary) {
-    return detail::encodeBinaryRequest(request, params.byte_order);
-  }
-  std::string line = detail::encodeAsciiRequest(request);
+  if (params.framing == Framing::Binary) return detail::encodeBinaryRequest(request, params);
+  std::string line = detail::encodeAsciiRequest(request, params);
   if (line.size() > params.max_line_length) {
     throw Error("Request: '" + line.substr(0, line.size() - 2) + "' is longer than " +
                 std::to_string(params.max_line_length) + " characters (max_line_length)");

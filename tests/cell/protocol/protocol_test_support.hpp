@@ -4,7 +4,13 @@
 #include <cmath>
 #include <random>
 
+#include "binpick/io/robot_orientation.hpp"
+
 namespace binpick::test {
+
+constexpr robot::Orientation kAllOrientations[] = {
+    robot::Orientation::Quaternion, robot::Orientation::EulerZYX, robot::Orientation::FixedXYZ,
+    robot::Orientation::RotationVector, robot::Orientation::EulerXYZ};
 
 constexpr double kPi = 3.14159265358979323846;
 inline double degrees(double radians) { return radians * 180.0 / kPi; }

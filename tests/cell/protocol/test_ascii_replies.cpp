@@ -141,7 +141,7 @@ TEST(ProtocolAsciiReply, MalformedRepliesThrowNamingTheProblem) {
   const auto decode = [&](const std::string& text) { return [=] { decodeReply(text, params); }; };
   EXPECT_TRUE(test::throwsNaming(decode("PONG,0\r\n"), "unknown keyword"));
   EXPECT_TRUE(test::throwsNaming(decode("PING\r\n"), "no status"));
-  EXPECT_TRUE(test::throwsNaming(decode("PING,14\r\n"), "no status code"));
+  EXPECT_TRUE(test::throwsNaming(decode("PING,15\r\n"), "no status code"));
   EXPECT_TRUE(test::throwsNaming(decode("PING,0,1,2,3,4\r\n"), "neither up to 3 integers"));
   EXPECT_TRUE(test::throwsNaming(decode("STATUS,0,1.5\r\n"), "no int32"));
   EXPECT_TRUE(

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "binpick/io/robot_protocol.hpp"
+#include "binary_test_support.hpp"
 #include "protocol_test_support.hpp"
 #include "thrown_message.hpp"
 
@@ -14,18 +15,6 @@ namespace {
 constexpr Orientation kAll[] = {Orientation::Quaternion, Orientation::EulerZYX,
                                 Orientation::FixedXYZ, Orientation::RotationVector,
                                 Orientation::EulerXYZ};
-
-CodecParams binary(ByteOrder order, Orientation orientation = Orientation::Quaternion) {
-  CodecParams params;
-  params.framing = Framing::Binary;
-  params.byte_order = order;
-  params.orientation = orientation;
-  return params;
-}
-
-std::string bytes(std::initializer_list<unsigned char> values) {
-  return std::string(values.begin(), values.end());
-}
 
 Decoded decodeOne(const std::string& message, const CodecParams& params) {
   RequestDecoder decoder(params);
@@ -151,9 +140,9 @@ TEST(ProtocolBinary, MalformedRepliesThrowNamingTheProblem) {
   const CodecParams params = binary(ByteOrder::Big);
   std::string ping = encodeReply(Reply{Command::Ping, Status::Ok, {}, std::nullopt}, params);
   std::string badStatus = ping;
-  badStatus[7] = 14;
+  badStatus[7] = 15;
   EXPECT_TRUE(
-      test::throwsNaming([&] { decodeReply(badStatus, params); }, "status 14 is no status code"));
+      test::throwsNaming([&] { decodeReply(badStatus, params); }, "status 15 is no status code"));
   std::string stray = ping;
   stray[kBinaryReplySize - 1] = 1;
   EXPECT_TRUE(test::throwsNaming([&] { decodeReply(stray, params); }, "pose fields are set"));

@@ -18,16 +18,22 @@ struct Summary {
   Command command;
   Command requested;
   std::optional<std::string> argument;
+  std::optional<Eigen::Vector3d> position;  // POSE's
   bool operator==(const Summary& other) const {
     return ok == other.ok && error == other.error && command == other.command &&
-           requested == other.requested && argument == other.argument;
+           requested == other.requested && argument == other.argument &&
+           position == other.position;
   }
 };
 
 Summary summarise(const Decoded& decoded) {
+  std::optional<Eigen::Vector3d> position;
+  if (decoded.request && decoded.request->T_base_flange) {
+    position = decoded.request->T_base_flange->translation();
+  }
   return {decoded.request.has_value(), decoded.error, decoded.command,
           decoded.request ? decoded.request->command : Command::Ping,
-          decoded.request ? decoded.request->argument : std::nullopt};
+          decoded.request ? decoded.request->argument : std::nullopt, position};
 }
 
 // Feeds `bytes` in pieces of the given sizes (the rest in one), collecting every message.
@@ -43,8 +49,8 @@ std::vector<Summary> decodeInPieces(const std::string& bytes, const CodecParams&
     piece = std::min(piece, bytes.size() - start);
     decoder.feed(bytes.data() + start, piece);
     start += piece;
-    EXPECT_LE(decoder.buffered(),
-              params.framing == Framing::Ascii ? params.max_line_length : kBinaryRequestSize);
+    EXPECT_LE(decoder.buffered(), params.framing == Framing::Ascii ? params.max_line_length
+                                                                   : kMaxBinaryRequestSize - 1);
     drain();
   }
   decoder.feed(bytes.data() + start, bytes.size() - start);
@@ -59,10 +65,13 @@ std::vector<Summary> decodeByteByByte(const std::string& bytes, const CodecParam
 TEST(ProtocolStreams, AsciiSplitByteByByteDecodesAsInOnePiece) {
   const std::string stream = "PING\r\nstatus\n\r\nTRIGGER,bolt\r\nFOO\r\nMODEL\r\n" +
                              std::string(300, 'x') + "\r\nNEXT\r\nFAILED,0012\r\nPI" +
-                             std::string(1, '\0') + "NG\r\n" + std::string(80, ' ') + "\nNEXT";
+                             std::string(1, '\0') + "NG\r\n" + std::string(80, ' ') +
+                             "\nPOSE,1,2,3,1,0,0,0\r\n" + "POSE,1,2\r\nNEXT";
   const CodecParams params;
   const std::vector<Summary> whole = decodeInPieces(stream, params, {});
-  ASSERT_EQ(whole.size(), 10u);  // the last NEXT has no end yet
+  ASSERT_EQ(whole.size(), 12u);  // the last NEXT has no end yet
+  EXPECT_TRUE(whole[10].position);
+  EXPECT_EQ(whole[11].error, Status::BadMessage);
   EXPECT_EQ(decodeByteByByte(stream, params), whole);
   std::mt19937 random(51);
   for (int i = 0; i < 200; ++i) {
@@ -75,16 +84,22 @@ TEST(ProtocolStreams, AsciiSplitByteByByteDecodesAsInOnePiece) {
 TEST(ProtocolStreams, BinarySplitByteByByteDecodesAsInOnePiece) {
   CodecParams params;
   params.framing = Framing::Binary;
+  Eigen::Isometry3d flange = Eigen::Isometry3d::Identity();
+  flange.translation() = Eigen::Vector3d(0.6, 0.0, 0.4);
   const std::vector<Request> requests = {{Command::Ping, std::nullopt},
                                          {Command::Trigger, "7"},
+                                         {Command::Pose, std::nullopt, flange},
                                          {Command::SelectModel, "7"},
+                                         {Command::Pose, std::nullopt, flange.inverse()},
                                          {Command::PickFailed, "7"}};
   std::string stream;
   for (const Request& request : requests) stream += encodeRequest(request, params);
   stream += std::string("\0\0\0\x63\0\0\0\0", 8) + "abc";
   const std::vector<Summary> whole = decodeInPieces(stream, params, {});
-  ASSERT_EQ(whole.size(), 5u);
-  EXPECT_EQ(whole[4].error, Status::UnknownCommand);
+  ASSERT_EQ(whole.size(), 7u);
+  EXPECT_EQ(whole[2].requested, Command::Pose);
+  EXPECT_EQ(whole[5].requested, Command::PickFailed);
+  EXPECT_EQ(whole[6].error, Status::UnknownCommand);
   EXPECT_EQ(decodeByteByByte(stream, params), whole);
   RequestDecoder decoder(params);
   decoder.feed(stream.data(), stream.size());

@@ -197,6 +197,19 @@ TEST(CellService, RecipesAreSelectedByNameOrIndex) {
   EXPECT_EQ(cell.ask(request(Command::Status)).integers.at(1), 0);
 }
 
+TEST(CellService, APoseIsNotServedAndChangesNothing) {
+  Cell cell(cellConfigYaml(cellScene()));
+  robot::Request pose = request(Command::Pose);
+  pose.T_base_flange = Eigen::Isometry3d::Identity();
+  const robot::Reply refused = cell.ask(pose);
+  EXPECT_EQ(refused.command, Command::Pose);
+  EXPECT_EQ(refused.status, Status::UnknownCommand);
+  EXPECT_TRUE(refused.integers.empty());
+  const robot::Reply status = cell.ask(request(Command::Status));
+  EXPECT_EQ(status.status, Status::Ok);
+  EXPECT_EQ(status.integers, (std::vector<int32_t>{0, 0, 0}));  // idle, first recipe, no cycle
+}
+
 TEST(CellService, StoppingDuringACycleAnswersTheRobot) {
   Cell cell(cellConfigYaml(cellScene()), std::make_unique<SlowSource>(std::chrono::milliseconds(300)));
   cell.service.handle(kRobot, request(Command::Trigger));

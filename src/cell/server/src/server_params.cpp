@@ -19,8 +19,8 @@ void RobotServerParams::validate() const {
                max_queued_requests);
   // A request the codec accepts must fit, or every long request would cost the connection.
   requireField(max_buffered_input >= codec.max_line_length &&
-                   max_buffered_input >= robot::kBinaryRequestSize,
-               owner, "max_buffered_input", ">= codec.max_line_length and the binary request size",
+                   max_buffered_input >= robot::kMaxBinaryRequestSize,
+               owner, "max_buffered_input", ">= codec.max_line_length and the longest binary request",
                max_buffered_input);
   // One reply must fit, or the first reply to a client that is slow to read would cost it.
   requireField(max_buffered_output >= robot::kBinaryReplySize &&

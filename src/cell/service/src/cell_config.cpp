@@ -28,6 +28,47 @@ void validateAll(const CellConfig& config) {
   });
 }
 
+// The result file of `binpick calibrate hand-eye` (binpick/calibration/hand_eye_file.hpp): its
+// hand_eye.T_base_camera; `details` is the calibration's record. An eye-in-hand result holds
+// T_flange_camera instead, which a fixed-camera cell cannot use.
+Eigen::Isometry3d readHandEyeFile(const std::string& path) {
+  YamlSection top(parseYaml(readConfigFile(path), path), "", path);
+  YamlSection section = top.child("hand_eye");
+  top.finish();
+  if (!section.has("T_base_camera")) {
+    section.fail("T_base_camera", section.has("T_flange_camera")
+                                      ? "is missing: the file is an eye-in-hand calibration "
+                                        "(T_flange_camera); binpickd needs the fixed camera's pose"
+                                      : "is missing");
+  }
+  const Eigen::Isometry3d pose = readPose(section.child("T_base_camera"));
+  section.skip("details");
+  section.finish();
+  return pose;
+}
+
+// hand_eye: {T_base_camera: POSE} written in place, or {file: PATH} naming a result file.
+std::optional<Eigen::Isometry3d> readHandEye(YamlSection section, const PathResolver& resolve,
+                                             const std::string& origin) {
+  std::string file;
+  section.read("file", file);
+  section.skip("details");  // a result file's section pasted in keeps its record
+  const bool in_place = section.has("T_base_camera");
+  if (in_place && !file.empty()) {
+    section.fail("file", "and hand_eye.T_base_camera are both given: keep one");
+  }
+  std::optional<Eigen::Isometry3d> pose;
+  if (in_place) pose = readPose(section.child("T_base_camera"));
+  else section.skip("T_base_camera");
+  section.finish();
+  if (file.empty()) return pose;
+  try {
+    return readHandEyeFile(resolve(file));
+  } catch (const Error& e) {
+    throw Error(origin + ": hand_eye.file: " + e.what());
+  }
+}
+
 }  // namespace
 
 void CycleLimits::validate() const {
@@ -52,10 +93,7 @@ CellConfig parseCellConfig(const std::string& yaml_text, const std::string& orig
   config.source = readSource(top.child("source"), resolve);
   top.read("calibration", config.calibration);
   config.calibration = resolve(config.calibration);
-  YamlSection hand_eye = top.child("hand_eye");
-  if (hand_eye.has("T_base_camera")) config.T_base_camera = readPose(hand_eye.child("T_base_camera"));
-  else hand_eye.skip("T_base_camera");
-  hand_eye.finish();
+  config.T_base_camera = readHandEye(top.child("hand_eye"), resolve, config.origin);
   top.skip("recipes");
   config.recipes = readRecipes(top.node()["recipes"], config.origin, resolve);
   config.picking = readPicking(top.child("picking"));

@@ -128,6 +128,12 @@ void CellService::handle(ClientId client, const robot::Request& request) {
         outbox.add(client, reply(Command::PickFailed, Status::Ok, {*object}));
         break;
       }
+      case Command::Pose:
+        // Hand-eye views are recorded by the calibration tool; a robot sending them here is
+        // talking to the wrong program, and the log says which one it wants.
+        logger()->warn("POSE is not served here: hand-eye views are recorded by 'binpick calibrate hand-eye --listen'");
+        outbox.add(client, reply(Command::Pose, Status::UnknownCommand));
+        break;
       default:
         outbox.add(client, reply(request.command, Status::UnknownCommand));
     }

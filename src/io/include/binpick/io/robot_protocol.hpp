@@ -5,7 +5,8 @@
 // "CMD[,arg]\r\n" in, "CMD,status[,integers...][,x,y,z,orientation...]\r\n" out, every reply at
 // most 80 characters (ABB's string limit) and at most 30 numbers (UR's socket_read_ascii_float).
 // Binary framing: fixed-size messages of int32 fields in a selectable byte order (big-endian for
-// FANUC), positions and orientation values in fixed point.
+// FANUC), positions and orientation values in fixed point; a request's size follows from its
+// command id (POSE carries a pose, every other request an argument).
 //
 // Poses cross the wire in millimetres with the orientation in one of the robot brands'
 // conventions (robot_orientation.hpp); inside they are Eigen::Isometry3d in metres.
@@ -31,6 +32,7 @@ enum class Command : int32_t {
   NextPick = 4,     // NEXT: the next pick of the latest cycle (waits for the cycle's result)
   PickFailed = 5,   // FAILED[,object]: that object (default: the last one handed out) is avoided
   SelectModel = 6,  // MODEL,name|index: the recipe for the next cycles
+  Pose = 7,         // POSE,x,y,z,v1,v2,v3[,v4]: the robot's flange pose, for a hand-eye view
 };
 
 // Wire values are fixed: never renumber.
@@ -49,6 +51,7 @@ enum class Status : int32_t {
   UnknownModel = 11,       // MODEL / TRIGGER named no configured model
   Unreachable = 12,        // parts detected, but every grasp collides or is avoided
   InternalError = 13,      // the cycle failed for another reason (logged)
+  BoardNotFound = 14,      // POSE: the image holds no usable calibration board
 };
 
 // A Command outside the enumerators stands for an unknown command (see Decoded): "UNKNOWN".
@@ -57,18 +60,24 @@ const char* statusName(Status status);        // "ok", "no_objects", ...; "unkno
 bool isKnownCommand(Command command);         // one of the enumerators above
 
 // Arguments: TRIGGER and MODEL take a model name or index, FAILED an object id (decimal, at most
-// 2147483647, stored without leading zeros), PING, STATUS and NEXT none; MODEL requires one.
-// An argument is 1..32 visible ASCII characters (0x21..0x7e) other than ','. The binary framing
-// carries a non-negative int32 (its decimal text here) and ignores it for commands taking none.
+// 2147483647, stored without leading zeros), PING, STATUS, NEXT and POSE none; MODEL requires
+// one. An argument is 1..32 visible ASCII characters (0x21..0x7e) other than ','. The binary
+// framing carries a non-negative int32 (its decimal text here) and ignores it for commands taking
+// none. POSE, and only POSE, carries a pose: where the robot's flange is in its base frame, as
+// the pendant shows it (x, y, z in millimetres on the wire, then the orientation values of the
+// codec's convention: 3, or 4 for quaternions).
 struct Request {
   Command command = Command::Ping;
-  std::optional<std::string> argument;  // binary framing: the int32 argument in decimal
+  // The {} initialisers let Request{command, argument} compile clean under -Wextra.
+  std::optional<std::string> argument{};              // binary framing: the int32 in decimal
+  std::optional<Eigen::Isometry3d> T_base_flange{};   // POSE: the flange pose, metres
 };
 
 // Up to three integers follow the status; their meaning depends on the command:
 //   STATUS: state (0 idle, 1 capturing, 2 computing), selected model index, cycles done
 //   TRIGGER: cycle number;  MODEL: selected model index
 //   NEXT: picks remaining after this one, object id, grasp id
+//   POSE: views accepted so far, views wanted
 struct Reply {
   Command command = Command::Ping;
   Status status = Status::Ok;
@@ -101,9 +110,12 @@ struct CodecParams {
   void validate() const;  // throws binpick::Error naming the field
 };
 
-// Binary sizes: a request is {command, argument}, a reply is {command, status, 3 integers,
-// x, y, z, 4 orientation values (unused ones 0)}, all int32.
+// Binary sizes: a request is {command, argument}, except POSE's {command, x, y, z, 4 orientation
+// values (unused ones 0)}; a reply is {command, status, 3 integers, x, y, z, 4 orientation
+// values (unused ones 0)}, all int32.
 constexpr std::size_t kBinaryRequestSize = 2 * 4;
+constexpr std::size_t kBinaryPoseRequestSize = 8 * 4;
+constexpr std::size_t kMaxBinaryRequestSize = kBinaryPoseRequestSize;
 constexpr std::size_t kBinaryReplySize = 12 * 4;
 
 // A decoded request, or why the bytes were not one. `command` is known for an error reply
@@ -125,9 +137,14 @@ struct Decoded {
 // end; a line holding a byte below 0x20 (other than the terminator) or above 0x7e is BadMessage;
 // keywords are case-insensitive, spaces around keyword and argument are trimmed, a blank line
 // is ignored, an unknown keyword is UnknownCommand, a second argument or a bad one BadMessage.
-// Binary: every kBinaryRequestSize bytes are one request; an unknown id is UnknownCommand.
-// However the stream is split into feed() calls, the same messages come out. Holds at most
-// max_line_length bytes (ASCII) of an incomplete message. Not thread-safe: one per connection.
+// POSE needs exactly x, y, z and the convention's orientation values, each a finite decimal
+// number (from_chars syntax: no '+', no "nan" or "inf"), else BadMessage; a zero quaternion is
+// BadMessage too. Binary: the first int32 is the command id; POSE's id makes the request
+// kBinaryPoseRequestSize bytes, any other id kBinaryRequestSize; an unknown id is
+// UnknownCommand, a POSE whose unused orientation fields are not 0 (or whose quaternion is zero)
+// BadMessage. However the stream is split into feed() calls, the same messages come out. Holds
+// at most max_line_length bytes (ASCII) or kMaxBinaryRequestSize - 1 bytes (binary) of an
+// incomplete message. Not thread-safe: one per connection.
 class RequestDecoder {
  public:
   explicit RequestDecoder(const CodecParams& params);
@@ -161,9 +178,12 @@ class RequestDecoder {
 std::string encodeReply(const Reply& reply, const CodecParams& params);
 
 // The robot's side (binpick robot-client, tests): requests out, replies in. ASCII requests end
-// with "\r\n". Throws binpick::Error on an argument the request's command does not take (see
-// Request), one the binary framing cannot carry (anything but a non-negative int32), or an ASCII
-// line longer than max_line_length. Stateless: thread-safe.
+// with "\r\n"; a POSE is written at the codec's precision (position_decimals, orientation_decimals
+// or the scales; with the defaults a pose within +-10 m fits 80 characters in every convention).
+// Throws binpick::Error on an argument the request's command does not take (see Request), one the
+// binary framing cannot carry (anything but a non-negative int32), a POSE without a finite pose
+// or a pose on another command, a pose value that overflows int32 (binary), or an ASCII line
+// longer than max_line_length. Stateless: thread-safe.
 std::string encodeRequest(const Request& request, const CodecParams& params);
 
 // The inverse of encodeReply: pose rebuilt with rotationFromValues; "UNKNOWN" and unknown binary

@@ -1,0 +1,138 @@
+// Camera, projector and stereo solves with OpenCV's calibration functions.
+#include "rig_solver.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+
+#include "binpick/io/error.hpp"
+#include "cv_eigen.hpp"
+
+namespace binpick::calibration::detail {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+cv::Point3f objectPoint(const BoardLayout& layout, int id) {
+  const Eigen::Vector3d p = layout.cornerPoint(id);
+  return {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
+}
+
+cv::Point2f imagePoint(const Eigen::Vector2d& pixel) {
+  return {static_cast<float>(pixel.x()), static_cast<float>(pixel.y())};
+}
+
+struct LensFit {
+  cv::Mat matrix;
+  cv::Mat distortion;
+  double rms = 0.0;
+};
+
+LensFit calibrateLens(const std::vector<std::vector<cv::Point3f>>& objects,
+                      const std::vector<std::vector<cv::Point2f>>& images, cv::Size size,
+                      const RigCalibrationParams& params, const char* device) {
+  LensFit fit;
+  const int flags = params.fix_k3 ? cv::CALIB_FIX_K3 : 0;
+  try {
+    std::vector<cv::Mat> rvecs, tvecs;
+    fit.rms = cv::calibrateCamera(objects, images, size, fit.matrix, fit.distortion, rvecs, tvecs,
+                                  flags);
+  } catch (const cv::Exception& e) {
+    throw Error(std::string("calibrate rig: OpenCV could not calibrate the ") + device + ": " +
+                e.err);
+  }
+  return fit;
+}
+
+LensIntrinsics lensFrom(const LensFit& fit, cv::Size size) {
+  LensIntrinsics lens;
+  lens.width = size.width;
+  lens.height = size.height;
+  lens.fx = fit.matrix.at<double>(0, 0);
+  lens.fy = fit.matrix.at<double>(1, 1);
+  lens.cx = fit.matrix.at<double>(0, 2);
+  lens.cy = fit.matrix.at<double>(1, 2);
+  for (int i = 0; i < 5; ++i) lens.distortion[i] = fit.distortion.at<double>(i);
+  return lens;
+}
+
+}  // namespace
+
+ViewPoints viewPoints(const RigView& view, const BoardLayout& layout) {
+  ViewPoints points;
+  for (std::size_t i = 0; i < view.board.ids.size(); ++i) {
+    points.camera_object.push_back(objectPoint(layout, view.board.ids[i]));
+    points.camera_image.push_back(imagePoint(view.board.pixels[i]));
+  }
+  for (const ProjectorCorner& corner : view.projector.corners) {
+    points.shared_object.push_back(objectPoint(layout, corner.id));
+    points.shared_camera.push_back(imagePoint(corner.camera));
+    points.shared_projector.push_back(imagePoint(corner.projector));
+  }
+  return points;
+}
+
+RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
+                     cv::Size projector_size, const RigCalibrationParams& params) {
+  std::vector<std::vector<cv::Point3f>> camera_object, shared_object;
+  std::vector<std::vector<cv::Point2f>> camera_image, shared_camera, shared_projector;
+  for (const ViewPoints& view : views) {
+    camera_object.push_back(view.camera_object);
+    camera_image.push_back(view.camera_image);
+    shared_object.push_back(view.shared_object);
+    shared_camera.push_back(view.shared_camera);
+    shared_projector.push_back(view.shared_projector);
+  }
+  RigSolution solution;
+  Clock::time_point start = Clock::now();
+  LensFit camera = calibrateLens(camera_object, camera_image, camera_size, params, "camera");
+  solution.timings.camera = msSince(start);
+  start = Clock::now();
+  LensFit projector =
+      calibrateLens(shared_object, shared_projector, projector_size, params, "projector");
+  solution.timings.projector = msSince(start);
+
+  start = Clock::now();
+  int flags = cv::CALIB_FIX_INTRINSIC;
+  if (params.refine_intrinsics_in_stereo) {
+    flags = cv::CALIB_USE_INTRINSIC_GUESS | (params.fix_k3 ? cv::CALIB_FIX_K3 : 0);
+  }
+  cv::Mat r, t, essential, fundamental, per_view;
+  const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-10);
+  try {
+    solution.stereo_rms_px = cv::stereoCalibrate(
+        shared_object, shared_camera, shared_projector, camera.matrix, camera.distortion,
+        projector.matrix, projector.distortion, camera_size, r, t, essential, fundamental,
+        per_view, flags, criteria);
+  } catch (const cv::Exception& e) {
+    throw Error("calibrate rig: OpenCV could not solve the camera-projector pose: " + e.err);
+  }
+  solution.timings.stereo = msSince(start);
+
+  solution.camera_rms_px = camera.rms;
+  solution.projector_rms_px = projector.rms;
+  solution.rig.camera = lensFrom(camera, camera_size);
+  solution.rig.projector = lensFrom(projector, projector_size);
+  solution.rig.T_projector_camera = detail::isometryFromCv(r, t);
+  if (per_view.rows != static_cast<int>(views.size()) || per_view.cols != 2 ||
+      !std::isfinite(solution.stereo_rms_px) || !std::isfinite(camera.rms) ||
+      !std::isfinite(projector.rms)) {
+    throw Error("calibrate rig: the solve did not converge (no finite reprojection errors)");
+  }
+  for (int v = 0; v < per_view.rows; ++v) {
+    solution.view_camera_rms_px.push_back(per_view.at<double>(v, 0));
+    solution.view_projector_rms_px.push_back(per_view.at<double>(v, 1));
+  }
+  try {
+    solution.rig.validate();
+  } catch (const Error& e) {
+    throw Error(std::string("calibrate rig: the solved rig is not valid: ") + e.what());
+  }
+  return solution;
+}
+
+}  // namespace binpick::calibration::detail

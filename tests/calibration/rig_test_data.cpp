@@ -1,0 +1,142 @@
+#include "rig_test_data.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include "binpick/io/capture.hpp"
+
+namespace binpick::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The version suffix changes whenever the rendering below does: old data is then never reused.
+constexpr const char* kDataName = "rig_calibration_v1";
+
+// A board pose of the sequence moved sideways by `offset_x` (camera metres).
+Eigen::Isometry3d shifted(const Eigen::Isometry3d& pose, double offset_x) {
+  Eigen::Isometry3d moved = pose;
+  moved.translation().x() += offset_x;
+  return moved;
+}
+
+void writeExtraView(const sim::CalibrationSequenceParams& params, const Eigen::Isometry3d& pose,
+                    const std::string& directory) {
+  const sim::CalibrationBoard board(params.board, params.texel_size);
+  writeCapture(directory, sim::renderCalibrationCapture(board, pose, params, 99));
+}
+
+Eigen::Vector3d boardCentre(const sim::CalibrationSequenceParams& params,
+                            const Eigen::Isometry3d& pose) {
+  const sim::CalibrationBoard board(params.board, params.texel_size);
+  const Eigen::Vector2d centre = board.printedFace().center();
+  return pose * Eigen::Vector3d(centre.x(), centre.y(), 0.0);
+}
+
+// The sequence, then the views a calibration must not use as they are.
+void renderData(const std::string& directory) {
+  const sim::CalibrationSequenceParams params = rigTestParams();
+  const std::vector<Eigen::Isometry3d> poses =
+      sim::writeCalibrationSequence(directory + "/sequence", params);
+  const Eigen::Isometry3d& pose = poses.front();
+  // 2 m sideways at under 1.1 m: far outside the camera's 0.8-wide field of view.
+  writeExtraView(params, shifted(pose, 2.0), directory + "/no_board");
+  // The camera's left image edge lies at x = -0.40 z; the board, 0.30 m wide, is moved so that
+  // its centre sits there, where the projector (whose field reaches x = -0.41 z) still lights it.
+  const Eigen::Vector3d centre = boardCentre(params, pose);
+  writeExtraView(params, shifted(pose, -0.40 * centre.z() - centre.x()), directory + "/half_out");
+  sim::CalibrationSequenceParams columns_only = params;
+  columns_only.pattern_set.row_codes = false;
+  writeExtraView(columns_only, pose, directory + "/no_rows");
+}
+
+// Rendered aside, then renamed into place: a process never sees half the data, and when two
+// processes render at once, the first rename wins and the other's copy is removed.
+std::string dataDirectory() {
+  const fs::path directory = fs::path(BINPICK_TEST_DATA_DIR) / kDataName;
+  if (fs::exists(directory / "no_rows" / "capture.json")) return directory.string();
+  const fs::path aside = directory.string() + ".partial-" + std::to_string(::getpid());
+  fs::remove_all(aside);
+  renderData(aside.string());
+  std::error_code taken;
+  fs::rename(aside, directory, taken);
+  if (taken) fs::remove_all(aside);
+  return directory.string();
+}
+
+RigTestData loadData() {
+  RigTestData data;
+  data.params = rigTestParams();
+  data.layout = data.params.board.layout();
+  data.directory = dataDirectory();
+  data.sequence = data.directory + "/sequence";
+  for (int i = 0; i < data.params.poses.count; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/pose_%03d", i);
+    data.views.push_back(data.sequence + name);
+  }
+  data.no_board = data.directory + "/no_board";
+  data.half_out = data.directory + "/half_out";
+  data.no_rows = data.directory + "/no_rows";
+  return data;
+}
+
+}  // namespace
+
+sim::CalibrationSequenceParams rigTestParams() {
+  sim::CalibrationSequenceParams params;
+  params.rig.camera = params.rig.camera.scaled(0.5);
+  params.pattern_set.projector_width = params.rig.projector.width;
+  params.pattern_set.projector_height = params.rig.projector.height;
+  params.pattern_set.phase_steps = 0;
+  params.poses.count = 10;
+  params.poses.seed = 1;
+  return params;
+}
+
+calibration::BoardDetectionParams rigDetectionParams() {
+  calibration::BoardDetectionParams params;
+  params.subpixel_half_window = 2;
+  return params;
+}
+
+calibration::RigViewParams rigViewParams() {
+  calibration::RigViewParams params;
+  params.detection = rigDetectionParams();
+  return params;
+}
+
+std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& directories) {
+  std::vector<calibration::RigView> views;
+  for (const std::string& directory : directories) {
+    views.push_back(calibration::readRigView(directory, rigTestData().layout, rigViewParams()));
+  }
+  return views;
+}
+
+bool anyWarningNames(const calibration::RigCalibrationResult& result, const std::string& view,
+                     const std::string& text) {
+  return std::any_of(result.warnings.begin(), result.warnings.end(), [&](const std::string& w) {
+    return w.find(view) != std::string::npos && w.find(text) != std::string::npos;
+  });
+}
+
+const RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
+                                const std::string& view) {
+  const auto& views = result.quality.views;
+  const auto it = std::find_if(views.begin(), views.end(),
+                               [&](const RigViewQuality& q) { return q.name == view; });
+  if (it == views.end()) throw std::runtime_error("no quality entry for " + view);
+  return *it;
+}
+
+const RigTestData& rigTestData() {
+  static const RigTestData data = loadData();
+  return data;
+}
+
+}  // namespace binpick::test

@@ -1,0 +1,50 @@
+#pragma once
+// Test support: a camera + projector calibration sequence of the virtual cell, rendered once per
+// build tree and shared by every test process, with the views a calibration must refuse or
+// skip beside it. The camera is the virtual rig's at half resolution (the same lens and field of
+// view; a ChArUco square still spans some 25 pixels), and the patterns are Gray codes without
+// phase shifts: what Moreno & Taubin calibrated with, and 44 images per view instead of 52.
+#include <string>
+#include <vector>
+
+#include "binpick/calibration/board_layout.hpp"
+#include "binpick/calibration/rig_calibrator.hpp"
+#include "binpick/calibration/rig_views.hpp"
+#include "binpick/simulation/calibration_sequence.hpp"
+
+namespace binpick::test {
+
+struct RigTestData {
+  std::string directory;
+  std::string sequence;             // DIR/sequence: pose_000 ... and truth/
+  std::vector<std::string> views;   // the pose_NNN capture directories, in order
+  std::string no_board;             // the board outside the camera's view
+  std::string half_out;             // the board half out of the camera image, on its left
+  std::string no_rows;              // a good pose captured without row codes
+  sim::CalibrationSequenceParams params;  // what rendered the sequence (rig = the truth)
+  calibration::BoardLayout layout;
+};
+
+// The sequence's parameters: 10 ChArUco poses, seed 1.
+sim::CalibrationSequenceParams rigTestParams();
+
+// Rendered on first use (some 20 s), then read from disk.
+const RigTestData& rigTestData();
+
+// Board detection for this camera: a ChArUco marker starts 3.6 pixels from each corner at half
+// resolution, and the sub-pixel refinement's window must stay clear of it.
+calibration::BoardDetectionParams rigDetectionParams();
+// The view params the tests calibrate with: rigDetectionParams, the rest at their defaults.
+calibration::RigViewParams rigViewParams();
+
+// Capture directories read and measured with rigViewParams.
+std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& directories);
+
+// Whether a warning names `view` and contains `text`.
+bool anyWarningNames(const calibration::RigCalibrationResult& result, const std::string& view,
+                     const std::string& text);
+// The quality entry of `view`; throws std::runtime_error when there is none.
+const RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
+                                const std::string& view);
+
+}  // namespace binpick::test
