@@ -98,22 +98,10 @@ sim::CalibrationSequenceParams rigTestParams() {
   return params;
 }
 
-calibration::BoardDetectionParams rigDetectionParams() {
-  calibration::BoardDetectionParams params;
-  params.subpixel_half_window = 2;
-  return params;
-}
-
-calibration::RigViewParams rigViewParams() {
-  calibration::RigViewParams params;
-  params.detection = rigDetectionParams();
-  return params;
-}
-
 std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& directories) {
   std::vector<calibration::RigView> views;
   for (const std::string& directory : directories) {
-    views.push_back(calibration::readRigView(directory, rigTestData().layout, rigViewParams()));
+    views.push_back(calibration::readRigView(directory, rigTestData().layout));
   }
   return views;
 }

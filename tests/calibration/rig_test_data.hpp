@@ -31,13 +31,8 @@ sim::CalibrationSequenceParams rigTestParams();
 // Rendered on first use (some 20 s), then read from disk.
 const RigTestData& rigTestData();
 
-// Board detection for this camera: a ChArUco marker starts 3.6 pixels from each corner at half
-// resolution, and the sub-pixel refinement's window must stay clear of it.
-calibration::BoardDetectionParams rigDetectionParams();
-// The view params the tests calibrate with: rigDetectionParams, the rest at their defaults.
-calibration::RigViewParams rigViewParams();
 
-// Capture directories read and measured with rigViewParams.
+// Capture directories read and measured with the default view params.
 std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& directories);
 
 // Whether a warning names `view` and contains `text`.

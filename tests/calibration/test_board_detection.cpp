@@ -156,6 +156,27 @@ TEST(BoardDetection, PartlyHiddenCharucoKeepsTheCornersSeen) {
   expectCornersOnTruth(detection, view);
 }
 
+TEST(BoardDetection, SmallSquaresStayOnTheTruth) {
+  // The view at half the resolution: squares of about 25 pixels, markers 2 pixels from the
+  // corners' white ring, where the largest refinement window would reach them.
+  const RenderedView& view = renderedView(BoardType::Charuco);
+  cv::Mat half;
+  cv::resize(view.white, half, cv::Size(), 0.5, 0.5, cv::INTER_AREA);
+  const BoardDetection detection = detectBoard(half, view.spec.layout());
+  ASSERT_TRUE(detection.found()) << detection.problem;
+  std::vector<double> errors;
+  for (std::size_t i = 0; i < detection.ids.size(); ++i) {
+    // Pixel centres at integers: a full-resolution pixel p lies at (p + 0.5) / 2 - 0.5.
+    const Eigen::Vector2d truth =
+        (view.truth.at(detection.ids[i]).camera_pixel + Eigen::Vector2d(0.5, 0.5)) / 2.0 -
+        Eigen::Vector2d(0.5, 0.5);
+    errors.push_back((detection.pixels[i] - truth).norm());
+  }
+  RecordProperty("max_corner_error_px", std::to_string(*std::max_element(errors.begin(), errors.end())));
+  EXPECT_LT(median(errors), 0.1);
+  EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 0.3);
+}
+
 TEST(BoardDetection, NoBoardSaysWhy) {
   const cv::Mat grey(1024, 1280, CV_8UC1, cv::Scalar(90));
   BoardLayout layout;

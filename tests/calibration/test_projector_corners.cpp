@@ -50,7 +50,7 @@ struct Corners {
 
 Corners cornersOf(const Capture& capture, const sim::CalibrationTruthPose& pose) {
   Corners corners;
-  corners.detected = detectBoard(capture.images[0], rigTestData().layout, test::rigDetectionParams());
+  corners.detected = detectBoard(capture.images[0], rigTestData().layout);
   corners.exact = corners.detected;
   std::map<int, Eigen::Vector2d> truth;
   for (const sim::CornerObservation& corner : pose.corners) truth[corner.id] = corner.camera_pixel;
@@ -103,7 +103,7 @@ TEST(ProjectorCorners, EveryCornerOfEveryViewLandsOnTheTruth) {
 TEST(ProjectorCorners, CornersAtTheEdgeOfTheDecodedAreaAreDroppedNotExtrapolated) {
   const test::RigTestData& data = rigTestData();
   const Capture capture = readCapture(data.views[0]);
-  const BoardDetection board = detectBoard(capture.images[0], data.layout, test::rigDetectionParams());
+  const BoardDetection board = detectBoard(capture.images[0], data.layout);
   ASSERT_TRUE(board.complete()) << board.problem;
   reconstruction::DecodedCapture decoded = reconstruction::decodeCapture(capture);
   // Cut through the middle column of corners.

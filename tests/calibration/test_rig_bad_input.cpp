@@ -31,7 +31,7 @@ TEST(RigCalibrationBadInput, TooFewUsableViewsIsAnErrorNamingTheUnusableOnes) {
 TEST(RigCalibrationBadInput, ACaptureWithoutRowCodesIsRefusedNamingIt) {
   const test::RigTestData& data = rigTestData();
   const std::string message =
-      test::thrownMessage([&] { readRigView(data.no_rows, data.layout, test::rigViewParams()); });
+      test::thrownMessage([&] { readRigView(data.no_rows, data.layout); });
   EXPECT_EQ(message.rfind(data.no_rows + ": the capture has no row codes", 0), 0u) << message;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/calib3d.hpp>
@@ -61,6 +62,38 @@ std::string findChessboard(const cv::Mat& image8, const BoardLayout& layout, Cor
   return {};
 }
 
+// The side of the smallest squares in the image, pixels: a low percentile of the distances between
+// neighbouring corners (the board is foreshortened unevenly). 0 when no two neighbours were found.
+double smallSquareSide(const BoardLayout& layout, const Corners& corners) {
+  const int columns = layout.squares_x - 1;
+  std::map<int, cv::Point2f> by_id;
+  for (std::size_t i = 0; i < corners.ids.size(); ++i) by_id[corners.ids[i]] = corners.pixels[i];
+  std::vector<double> sides;
+  for (const auto& [id, pixel] : by_id) {
+    const auto right = by_id.find(id + 1), below = by_id.find(id + columns);
+    if (id % columns != columns - 1 && right != by_id.end()) {
+      sides.push_back(cv::norm(right->second - pixel));
+    }
+    if (below != by_id.end()) sides.push_back(cv::norm(below->second - pixel));
+  }
+  if (sides.empty()) return 0.0;
+  const auto low = sides.begin() + static_cast<std::ptrdiff_t>(sides.size() / 10);
+  std::nth_element(sides.begin(), low, sides.end());
+  return *low;
+}
+
+// The refinement window must stay in the white ring between a corner and the nearest ChArUco
+// marker (or, on a chessboard, inside the squares): a marker edge in the window pulls the
+// saddle point towards it (0.6 px with 25-pixel squares and a 5-pixel half window).
+int refinementHalfWindow(const BoardLayout& layout, const Corners& corners, int largest) {
+  const double side = smallSquareSide(layout, corners);
+  if (side <= 0.0) return largest;
+  const double ring = (layout.square_size - layout.marker_size) / (2.0 * layout.square_size);
+  const double clear_share = layout.type == BoardType::Charuco ? ring : 0.5;
+  const int limit = static_cast<int>(std::floor(clear_share * side)) - 1;
+  return std::clamp(limit, 2, largest);
+}
+
 // OpenCV 4.6's ChArUco interpolation leaves corners half a pixel off (opencv/opencv#25539);
 // cornerSubPix converges to the saddle point from there whatever the detector's convention.
 void refine(const cv::Mat& image, std::vector<cv::Point2f>& pixels, int half_window) {
@@ -113,7 +146,7 @@ BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout,
   detection.problem = layout.type == BoardType::Charuco ? findCharuco(image8, layout, corners)
                                                         : findChessboard(image8, layout, corners);
   if (!detection.found()) return detection;
-  refine(image, corners.pixels, params.subpixel_half_window);
+  refine(image, corners.pixels, refinementHalfWindow(layout, corners, params.subpixel_half_window));
   keepInside(image, params.border_margin, corners, detection);
   if (static_cast<int>(detection.ids.size()) < params.min_corners) {
     detection.problem = "only " + std::to_string(detection.ids.size()) + " of " +

@@ -21,7 +21,8 @@
 namespace binpick::calibration {
 
 struct BoardDetectionParams {
-  // cornerSubPix search window half-size, pixels; about a fifth of a square's side in pixels.
+  // Largest cornerSubPix search window half-size, pixels. Smaller squares get a smaller window,
+  // one that stays clear of the ChArUco markers (chessboard: inside the squares), at least 2.
   int subpixel_half_window = 5;
   // A view with fewer corners is "not found". ChArUco pose and homographies need 4; a
   // calibration wants many more per view.
