@@ -206,6 +206,19 @@ TEST(CalibrationSequence, SameSeedSameImagesAnotherSeedDiffers) {
   EXPECT_LE(first.metadata.exposure_us, params.exposure_us);
 }
 
+TEST(CalibrationSequence, TheWhiteImageAloneIsTheCapturesFirst) {
+  for (const int bit_depth : {8, 16}) {
+    CalibrationSequenceParams params = quarterResolution(fastParams(BoardType::Charuco));
+    params.photometry.bit_depth = bit_depth;
+    const CalibrationBoard board(params.board, params.texel_size);
+    const Eigen::Isometry3d T = randomBoardPoses(board, params.rig, params.poses)[1];
+    const cv::Mat white = renderCalibrationWhiteImage(board, T, params, 11);
+    const cv::Mat first = whiteImage(renderCalibrationCapture(board, T, params, 11));
+    ASSERT_EQ(white.type(), first.type());
+    EXPECT_EQ(cv::norm(white, first, cv::NORM_INF), 0.0);
+  }
+}
+
 class CalibrationSequenceFiles : public ::testing::Test {
  protected:
   void SetUp() override {

@@ -1,4 +1,4 @@
-// renderCalibrationCapture: one board pose under every pattern of the set.
+// renderCalibrationCapture: one board pose under every pattern of the set (or its white image).
 #include <algorithm>
 
 #include "binpick/reconstruction/pattern_set.hpp"
@@ -48,11 +48,16 @@ void scaleExposure(std::vector<PixelLighting>& lighting, double share) {
   }
 }
 
-}  // namespace
+// The board's pixels, lit for the pose, at the exposure that keeps the board unsaturated.
+struct LitBoard {
+  int width = 0;
+  int height = 0;
+  std::vector<PixelLighting> lighting;
+  double exposure_share = 1.0;
+};
 
-Capture renderCalibrationCapture(const CalibrationBoard& board,
-                                 const Eigen::Isometry3d& T_camera_board,
-                                 const CalibrationSequenceParams& params, uint64_t noise_seed) {
+LitBoard lightBoard(const CalibrationBoard& board, const Eigen::Isometry3d& T_camera_board,
+                    const CalibrationSequenceParams& params) {
   params.validate();
   std::vector<RenderObject> objects{{&board.mesh(), T_camera_board, kBoardId}};
   const TriangleMesh wall = wallMesh(params.background_distance);
@@ -67,26 +72,46 @@ Capture renderCalibrationCapture(const CalibrationBoard& board,
   const AlbedoFunction albedo =
       detail::boardPixelAlbedo(board, rig.camera, T_camera_board, kBoardId, params.pixel_samples,
                                static_cast<float>(params.background_albedo));
-  std::vector<PixelLighting> lighting =
-      computePixelLighting(geometry, rig, params.photometry, albedo);
-  const double share = exposureShare(lighting, geometry, params.max_white_counts);
-  scaleExposure(lighting, share);
+  LitBoard lit{geometry.width, geometry.height,
+               computePixelLighting(geometry, rig, params.photometry, albedo), 1.0};
+  lit.exposure_share = exposureShare(lit.lighting, geometry, params.max_white_counts);
+  scaleExposure(lit.lighting, lit.exposure_share);
+  return lit;
+}
 
-  PhotometryParams photometry = params.photometry;
+PhotometryParams seeded(PhotometryParams photometry, uint64_t noise_seed) {
   photometry.seed = noise_seed;
+  return photometry;
+}
+
+}  // namespace
+
+Capture renderCalibrationCapture(const CalibrationBoard& board,
+                                 const Eigen::Isometry3d& T_camera_board,
+                                 const CalibrationSequenceParams& params, uint64_t noise_seed) {
+  const LitBoard lit = lightBoard(board, T_camera_board, params);
+  const PhotometryParams photometry = seeded(params.photometry, noise_seed);
   Capture capture;
-  capture.images = renderPatternImages(lighting, geometry.width, geometry.height,
-                                       params.pattern_set, photometry);
+  capture.images =
+      renderPatternImages(lit.lighting, lit.width, lit.height, params.pattern_set, photometry);
   CaptureMetadata& m = capture.metadata;
   m.source = params.source;
   m.timestamp = utcTimestamp();
-  m.image_width = geometry.width;
-  m.image_height = geometry.height;
+  m.image_width = lit.width;
+  m.image_height = lit.height;
   m.bit_depth = photometry.bit_depth;
-  m.exposure_us = params.exposure_us * share;
+  m.exposure_us = params.exposure_us * lit.exposure_share;
   m.pattern_set = params.pattern_set;
   m.patterns = reconstruction::patternNames(params.pattern_set);
   return capture;
+}
+
+cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board,
+                                    const Eigen::Isometry3d& T_camera_board,
+                                    const CalibrationSequenceParams& params, uint64_t noise_seed) {
+  const LitBoard lit = lightBoard(board, T_camera_board, params);
+  return renderWhiteImage(lit.lighting, lit.width, lit.height, params.pattern_set,
+                          seeded(params.photometry, noise_seed));
 }
 
 }  // namespace binpick::sim

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "binpick/io/error.hpp"
 #include "binpick/io/thread_count.hpp"
@@ -104,9 +105,13 @@ void renderRows(const std::vector<PixelLighting>& pixels, int width, int height,
 
 }  // namespace
 
-std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width,
+namespace {
+
+// The first `count` images of the pattern sequence (all of them when count exceeds it). Noise is
+// keyed by pattern index, so a prefix renders exactly as it does within the whole set.
+std::vector<cv::Mat> renderFirstPatterns(const std::vector<PixelLighting>& pixels, int width,
                                          int height, const PatternSetSpec& spec,
-                                         const PhotometryParams& params) {
+                                         const PhotometryParams& params, std::size_t count) {
   params.validate();
   spec.validate();
   if (width <= 0 || height <= 0 ||
@@ -114,7 +119,8 @@ std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixel
     throw Error("renderPatternImages: " + std::to_string(pixels.size()) + " pixels for a " +
                 std::to_string(width) + "x" + std::to_string(height) + " image");
   }
-  const std::vector<EmittedPattern> patterns = emittedPatterns(spec, params.projector_black_level);
+  std::vector<EmittedPattern> patterns = emittedPatterns(spec, params.projector_black_level);
+  if (patterns.size() > count) patterns.resize(count);
   const int type = params.bit_depth == 16 ? CV_16UC1 : CV_8UC1;
   std::vector<cv::Mat> images;
   for (std::size_t p = 0; p < patterns.size(); ++p) images.emplace_back(height, width, type);
@@ -124,6 +130,20 @@ std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixel
     renderRows<uint8_t>(pixels, width, height, spec, params, patterns, images);
   }
   return images;
+}
+
+}  // namespace
+
+std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width,
+                                         int height, const PatternSetSpec& spec,
+                                         const PhotometryParams& params) {
+  return renderFirstPatterns(pixels, width, height, spec, params, SIZE_MAX);
+}
+
+cv::Mat renderWhiteImage(const std::vector<PixelLighting>& pixels, int width, int height,
+                         const PatternSetSpec& spec, const PhotometryParams& params) {
+  // Every pattern sequence starts with the white image (reconstruction::patternSequence).
+  return renderFirstPatterns(pixels, width, height, spec, params, 1).front();
 }
 
 }  // namespace binpick::sim

@@ -53,6 +53,11 @@ struct CalibrationSequenceParams {
 Capture renderCalibrationCapture(const CalibrationBoard& board,
                                  const Eigen::Isometry3d& T_camera_board,
                                  const CalibrationSequenceParams& params, uint64_t noise_seed);
+// The capture's first image, the white one, alone (the same pixels): for views that need no
+// patterns.
+cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board,
+                                    const Eigen::Isometry3d& T_camera_board,
+                                    const CalibrationSequenceParams& params, uint64_t noise_seed);
 
 // Draws params.poses.count poses, renders and writes each as DIR/pose_NNN/, then writes
 // DIR/truth/rig.yaml and DIR/truth/board.json last (a directory with truth/board.json holds a

@@ -55,4 +55,9 @@ std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixel
                                          int height, const PatternSetSpec& spec,
                                          const PhotometryParams& params);
 
+// renderPatternImages(...).front(), the white image, alone: the same pixels for a fraction of
+// the cost, for views that need no patterns (hand-eye sessions).
+cv::Mat renderWhiteImage(const std::vector<PixelLighting>& pixels, int width, int height,
+                         const PatternSetSpec& spec, const PhotometryParams& params);
+
 }  // namespace binpick::sim
