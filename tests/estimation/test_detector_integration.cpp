@@ -185,5 +185,24 @@ TEST(DetectorDeterminism, ConcurrentCallsOnOneDetectorGiveTheSequentialResult) {
   expectIdentical(sequential, b);
 }
 
+TEST(DetectorCrop, ACropGivenPerCallReplacesTheParamsCrop) {
+  const PreparedModel& model = cachedModel("clamp");
+  const Pile& pile = cachedPile("clamp", 10, 11);
+  const DetectorParams with_crop = paramsFor(pile);
+  DetectorParams without_crop = with_crop;
+  without_crop.scene.crop.reset();
+  const DetectionResult reference = Detector(model, with_crop).detect(pile.scene.cloud);
+  ASSERT_FALSE(reference.detections.empty());
+  const Detector uncropped(model, without_crop);
+  expectIdentical(reference, uncropped.detect(pile.scene.cloud, with_crop.scene.crop));
+
+  // A box beside the bin holds no point: nothing to find, and no error.
+  CropBox beside = *with_crop.scene.crop;
+  beside.T_camera_box.translation().x() += 1.0f;
+  const DetectionResult none = uncropped.detect(pile.scene.cloud, beside);
+  EXPECT_TRUE(none.detections.empty());
+  EXPECT_EQ(none.scene_points, 0u);
+}
+
 }  // namespace
 }  // namespace binpick::estimation

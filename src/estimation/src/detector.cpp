@@ -137,10 +137,16 @@ Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::mov
 }
 
 DetectionResult Detector::detect(const PointCloud& scene_cloud) const {
+  return detect(scene_cloud, params_.scene.crop);
+}
+
+DetectionResult Detector::detect(const PointCloud& scene_cloud, const std::optional<CropBox>& crop) const {
   Stopwatch total;
   Stopwatch clock;
   DetectionResult result;
-  const PreparedScene scene = prepareScene(scene_cloud, model_, params_.scene);
+  SceneParams scene_params = params_.scene;
+  scene_params.crop = crop;
+  const PreparedScene scene = prepareScene(scene_cloud, model_, scene_params);
   result.scene_points = scene.size();
   result.timing_ms.prepare_scene = clock.lapMs();
 

@@ -6,6 +6,7 @@
 // threads at once (each call uses its own working memory).
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,9 @@ class Detector {
  public:
   Detector(PreparedModel model, DetectorParams params);
   DetectionResult detect(const PointCloud& scene_cloud) const;
+  // The same with another crop box than the params' (a bin that moves between captures, or one
+  // detector shared by several cells): no copy of the model.
+  DetectionResult detect(const PointCloud& scene_cloud, const std::optional<CropBox>& crop) const;
   const PreparedModel& model() const { return model_; }
   const DetectorParams& params() const { return params_; }
 

@@ -1,0 +1,78 @@
+#include "bench_paper_options.hpp"
+
+#include <algorithm>
+
+#include "bench_support.hpp"
+#include "binpick/io/error.hpp"
+#include "binpick/simulation/parts.hpp"
+
+namespace binpick::bench {
+namespace {
+
+const std::vector<std::string> kMethods{"binpick", "ppf5", "ppf1", "opencv_ppf", "pcl_ppf"};
+const std::vector<std::string> kSections{"paper", "selection", "scaling"};
+
+bool contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+std::vector<std::string> checkedList(const std::string& option, const std::string& value,
+                                     const std::vector<std::string>& allowed) {
+  const std::vector<std::string> items = splitCommas(value);
+  if (items.empty()) throw Error(option + " needs at least one item");
+  for (const std::string& item : items) {
+    if (allowed.empty() || contains(allowed, item)) continue;
+    std::string known;
+    for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
+    throw Error(option + ": '" + item + "' is unknown (" + known + ")");
+  }
+  return items;
+}
+
+std::vector<CloudInput> inputsFrom(const std::string& value) {
+  std::vector<CloudInput> inputs;
+  for (const std::string& name : checkedList("--inputs", value, {"exact", "reconstructed"})) {
+    inputs.push_back(name == "exact" ? CloudInput::Exact : CloudInput::Reconstructed);
+  }
+  return inputs;
+}
+
+int positive(const std::string& option, const std::string& value) {
+  const int n = std::stoi(value);
+  if (n < 1) throw Error(option + " must be >= 1");
+  return n;
+}
+
+}  // namespace
+
+bool PaperBenchOptions::has(const std::string& section) const { return contains(sections, section); }
+
+PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
+  PaperBenchOptions o;
+  const std::vector<std::string> parts = sim::partNames();
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (i + 1 >= argc) throw Error(flag + " needs a value");
+    const std::string value = argv[++i];
+    try {
+      if (flag == "--scenes") o.scenes = positive(flag, value);
+      else if (flag == "--peer-scenes") o.peer_scenes = positive(flag, value);
+      else if (flag == "--objects") o.objects = positive(flag, value);
+      else if (flag == "--seed") o.seed = std::stoull(value);
+      else if (flag == "--threads") o.threads = std::max(0, std::stoi(value));
+      else if (flag == "--parts") o.parts = checkedList(flag, value, parts);
+      else if (flag == "--methods") o.methods = checkedList(flag, value, kMethods);
+      else if (flag == "--inputs") o.inputs = inputsFrom(value);
+      else if (flag == "--sections") o.sections = checkedList(flag, value, kSections);
+      else if (flag == "--scaling-part") o.scaling_part = checkedList(flag, value, parts).front();
+      else if (flag == "--scaling-scenes") o.scaling_scenes = positive(flag, value);
+      else if (flag == "--out") o.out = value;
+      else throw Error("unknown option " + flag);
+    } catch (const std::logic_error&) {  // std::stoi and friends
+      throw Error(flag + ": '" + value + "' is not a number");
+    }
+  }
+  return o;
+}
+
+}  // namespace binpick::bench

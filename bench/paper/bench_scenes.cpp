@@ -1,0 +1,68 @@
+#include "bench_scenes.hpp"
+
+#include <chrono>
+
+#include "binpick/io/error.hpp"
+#include "binpick/reconstruction/reconstruction.hpp"
+#include "evaluation.hpp"
+
+namespace binpick::bench {
+namespace {
+
+void setPileParams(const SceneRequest& request, sim::PileParams& p) {
+  p.objects = request.objects;
+  p.seed = request.seed;
+  p.rig = request.rig;
+  p.threads = request.threads;
+  p.depth_noise = 0.0;  // the exact input; the reconstructed one gets its noise from the images
+}
+
+// The default pattern set (Gray code columns + rows, phase shift) at the projector's size.
+PatternSetSpec patternsFor(const RigCalibration& rig) {
+  PatternSetSpec patterns;
+  patterns.projector_width = rig.projector.width;
+  patterns.projector_height = rig.projector.height;
+  return patterns;
+}
+
+}  // namespace
+
+std::string inputName(CloudInput input) { return input == CloudInput::Exact ? "exact" : "reconstructed"; }
+
+const PointCloud& BenchScene::cloud(CloudInput input) const {
+  if (input == CloudInput::Exact) return truth.cloud;
+  if (reconstructed.empty()) throw Error("bench: the scene was made without its reconstructed cloud");
+  return reconstructed;
+}
+
+BenchScene makeBenchScene(const sim::Part& part, const SceneRequest& request) {
+  BenchScene s;
+  setPileParams(request, s.params);
+  if (!request.reconstruct) {
+    s.truth = sim::generatePile(part.mesh, s.params);
+  } else {
+    const PatternSetSpec patterns = patternsFor(request.rig);
+    sim::PhotometryParams photometry;
+    photometry.seed = request.seed;
+    sim::PileCapture pile = sim::generatePileCapture(part.mesh, s.params, patterns, photometry);
+    s.truth = std::move(pile.scene);
+    const Capture capture = sim::recordedCapture(std::move(pile.images), s.params, patterns, photometry,
+                                                 "bench_paper " + part.name);
+    reconstruction::ReconstructionParams params;
+    params.setThreads(request.threads);
+    const reconstruction::Reconstructor reconstructor(request.rig, params);
+    const auto start = std::chrono::steady_clock::now();
+    s.reconstructed = reconstructor.reconstruct(capture).cloud;
+    s.reconstruct_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  s.crop = eval::binInterior(s.truth, s.params);
+  return s;
+}
+
+std::size_t finitePoints(const PointCloud& cloud) {
+  std::size_t n = 0;
+  for (const Eigen::Vector3f& p : cloud.points) n += p.allFinite() ? 1 : 0;
+  return n;
+}
+
+}  // namespace binpick::bench

@@ -1,0 +1,40 @@
+#pragma once
+// The benchmark's scenes: a virtual-cell pile with its ground truth, seen two ways, and the same
+// for every method. "exact" is the structured-light cloud without noise (the pixels the camera
+// sees lit by the projector, exact depth); "reconstructed" is the cloud decoded and triangulated
+// from the rendered pattern images (the whole pipeline).
+#include <cstdint>
+#include <string>
+
+#include "binpick/estimation/scene.hpp"
+#include "binpick/io/point_cloud.hpp"
+#include "binpick/simulation/parts.hpp"
+#include "binpick/simulation/pile.hpp"
+
+namespace binpick::bench {
+
+enum class CloudInput { Exact, Reconstructed };
+std::string inputName(CloudInput input);  // "exact" | "reconstructed"
+
+struct SceneRequest {
+  int objects = 20;
+  uint64_t seed = 1;
+  bool reconstruct = true;             // also render the patterns and reconstruct
+  RigCalibration rig = sim::makeVirtualRig();
+  int threads = 0;                     // rendering and reconstruction; 0: all
+};
+
+struct BenchScene {
+  sim::PileParams params;
+  sim::PileScene truth;                // truth.cloud is the exact input
+  PointCloud reconstructed;            // empty unless requested
+  estimation::CropBox crop;            // the bin's inside
+  double reconstruct_ms = 0.0;         // decode + triangulate + filter, from images in memory
+  const PointCloud& cloud(CloudInput input) const;
+};
+
+BenchScene makeBenchScene(const sim::Part& part, const SceneRequest& request);
+
+std::size_t finitePoints(const PointCloud& cloud);
+
+}  // namespace binpick::bench

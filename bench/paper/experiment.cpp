@@ -1,0 +1,88 @@
+#include "experiment.hpp"
+
+#include <chrono>
+
+#include "binpick_method.hpp"
+#include "evaluation.hpp"
+
+namespace binpick::bench {
+namespace {
+
+double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
+
+std::vector<estimation::Detection> asDetections(const std::vector<Eigen::Isometry3f>& poses) {
+  std::vector<estimation::Detection> detections(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) detections[i].T_camera_model = poses[i];
+  return detections;
+}
+
+void addStages(estimation::StageTimings& sum, const estimation::StageTimings& t) {
+  sum.prepare_scene += t.prepare_scene;
+  sum.voting += t.voting;
+  sum.verification += t.verification;
+  sum.selection += t.selection;
+  sum.icp += t.icp;
+  sum.total += t.total;
+}
+
+}  // namespace
+
+void Tally::add(const SceneOutcome& o) {
+  ++scenes;
+  objects += o.objects;
+  findable += o.findable;
+  found += o.found;
+  detections += o.detections;
+  correct += o.correct;
+  ms += o.ms;
+  if (o.stages) addStages(stages, *o.stages);
+}
+
+double Tally::recognitionRate() const { return ratio(correct, objects); }
+double Tally::precision() const { return ratio(correct, detections); }
+double Tally::recall() const { return ratio(found, findable); }
+double Tally::msPerObject() const { return ratio(ms, objects); }
+
+SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudInput input,
+                       const sim::Part& part, double diameter) {
+  const MethodInput method_input{&scene.cloud(input), scene.crop};
+  SceneOutcome o;
+  o.part = part.name;
+  o.method = method.name();
+  o.input = input;
+  o.seed = scene.params.seed;
+  o.objects = static_cast<int>(scene.truth.objects.size());
+  o.input_points = croppedPoints(method_input).size();
+
+  std::vector<Eigen::Isometry3f> poses;
+  const auto start = std::chrono::steady_clock::now();
+  if (const auto* own = dynamic_cast<const BinpickMethod*>(&method)) {
+    const estimation::DetectionResult result = own->detectWithDetails(method_input);
+    o.stages = result.timing_ms;
+    for (const estimation::Detection& d : result.detections) poses.push_back(d.T_camera_model);
+  } else {
+    poses = method.detect(method_input);
+  }
+  o.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  // The paper's criterion: diam(M)/10 and 10 degrees, the minimum over the part's symmetries.
+  const eval::Score score =
+      eval::scoreDetections(asDetections(poses), scene.truth.objects, part.symmetry, {diameter / 10.0, 10.0});
+  o.findable = score.findable;
+  o.found = score.found;
+  o.detections = static_cast<int>(poses.size());
+  o.correct = score.correct;
+  return o;
+}
+
+void writeOutcomeHeader(std::ostream& out) {
+  out << "part,method,input,seed,objects,findable,found,detections,correct,ms,input_points\n";
+}
+
+void writeOutcome(std::ostream& out, const SceneOutcome& o) {
+  out << o.part << ',' << o.method << ',' << inputName(o.input) << ',' << o.seed << ',' << o.objects << ','
+      << o.findable << ',' << o.found << ',' << o.detections << ',' << o.correct << ',' << o.ms << ','
+      << o.input_points << '\n';
+}
+
+}  // namespace binpick::bench

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds binpick and regenerates the benchmark (docs/BENCHMARK.md's figures) in docs/benchmark/:
+# results.md (the paper's Tables II and III for every method, on the exact and the reconstructed
+# cloud; Figure 5; scaling), outcomes.csv (one row per method, scene and input) and the PNG plots.
+#   bash scripts/benchmark.sh            quick: 2 scenes per part (about 30 minutes on 2 cores)
+#   bash scripts/benchmark.sh --full     the paper's 50 scenes per part (many hours)
+#   bash scripts/benchmark.sh ARGS...    any bench_paper options, e.g. --methods binpick,ppf5
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+args=("$@")
+if [ "${1:-}" = "--full" ]; then
+  args=(--scenes 50 --scaling-scenes 5 "${@:2}")
+fi
+./build/bench/bench_paper --out docs/benchmark "${args[@]}"
