@@ -2,10 +2,7 @@
 // binpick, its Drost baselines and the peers' PPF implementations on the same scenes; the paper's
 // Figure 5; and how binpick's time scales. Writes results.md, outcomes.csv and PNG plots.
 //
-//   bench_paper [--scenes 2] [--parts gear,l_bracket,...] [--methods binpick,ppf5,...]
-//               [--inputs exact,reconstructed] [--sections paper,selection,scaling]
-//               [--objects 20] [--seed 1] [--threads 0] [--scaling-part l_bracket]
-//               [--scaling-scenes 2] [--out docs/benchmark]
+//   bench_paper --help lists the options; scripts/benchmark.sh runs it for docs/BENCHMARK.md.
 #include <iostream>
 
 #include "paper/bench_paper_options.hpp"
@@ -14,6 +11,10 @@
 int main(int argc, char** argv) {
   try {
     const binpick::bench::PaperBenchOptions options = binpick::bench::parsePaperBenchOptions(argc, argv);
+    if (options.help) {
+      std::cout << binpick::bench::paperBenchUsage();
+      return 0;
+    }
     binpick::bench::runPaperBench(options, argc, argv);
     return 0;
   } catch (const std::exception& e) {

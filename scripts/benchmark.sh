@@ -2,14 +2,17 @@
 # Builds binpick and regenerates the benchmark (docs/BENCHMARK.md's figures) in docs/benchmark/:
 # results.md (the paper's Tables II and III for every method, on the exact and the reconstructed
 # cloud; Figure 5; scaling), outcomes.csv (one row per method, scene and input) and the PNG plots.
-#   bash scripts/benchmark.sh            quick: 2 scenes per part (about 30 minutes on 2 cores)
-#   bash scripts/benchmark.sh --full     the paper's 50 scenes per part (many hours)
+#   bash scripts/benchmark.sh            quick: 2 scenes per part; OpenCV's and PCL's matchers, which
+#                                        take minutes per scene, on one l_bracket scene (about 50
+#                                        minutes on 2 cores)
+#   bash scripts/benchmark.sh --full     the paper's 50 scenes per part, the peers on 5 of every
+#                                        part (days on 2 cores: mostly PCL)
 #   bash scripts/benchmark.sh ARGS...    any bench_paper options, e.g. --methods binpick,ppf5
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
-args=("$@")
+args=(--peer-parts l_bracket "$@")
 if [ "${1:-}" = "--full" ]; then
-  args=(--scenes 50 --scaling-scenes 5 "${@:2}")
+  args=(--scenes 50 --scaling-scenes 5 --peer-scenes 5 "${@:2}")
 fi
 ./build/bench/bench_paper --out docs/benchmark "${args[@]}"

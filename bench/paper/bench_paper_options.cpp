@@ -45,18 +45,45 @@ int positive(const std::string& option, const std::string& value) {
 
 }  // namespace
 
+const char* paperBenchUsage() {
+  return "bench_paper [options]: the paper's synthetic experiment, Figure 5 and scaling on the virtual cell\n"
+         "  --scenes N            scenes per part (default 2; the paper: 50)\n"
+         "  --parts A,B           parts (default the paper's six: gear, l_bracket, l_bracket_long,\n"
+         "                        ring_magnet, switch, bulge)\n"
+         "  --methods A,B         binpick, ppf5, ppf1, opencv_ppf, pcl_ppf (default all)\n"
+         "  --inputs A,B          exact, reconstructed (default both)\n"
+         "  --sections A,B        paper, selection, scaling (default all)\n"
+         "  --peer-scenes K       OpenCV and PCL on the first K scenes of a part only (default 1)\n"
+         "  --peer-parts A,B      and on these parts only (default every part)\n"
+         "  --objects N           objects per scene (default 20)\n"
+         "  --seed S              scene s of every part has seed S + s (default 1)\n"
+         "  --threads N           0: all hardware threads (default)\n"
+         "  --scaling-part NAME   the part of the scaling runs (default l_bracket)\n"
+         "  --scaling-scenes N    scenes per scaling setting (default 2)\n"
+         "  --out DIR             results.md, outcomes.csv and the PNG plots (default docs/benchmark)\n";
+}
+
 bool PaperBenchOptions::has(const std::string& section) const { return contains(sections, section); }
+
+bool PaperBenchOptions::runsPeersOn(const std::string& part) const {
+  return peer_parts.empty() || contains(peer_parts, part);
+}
 
 PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
   PaperBenchOptions o;
   const std::vector<std::string> parts = sim::partNames();
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
+    if (flag == "--help" || flag == "-h") {
+      o.help = true;
+      continue;
+    }
     if (i + 1 >= argc) throw Error(flag + " needs a value");
     const std::string value = argv[++i];
     try {
       if (flag == "--scenes") o.scenes = positive(flag, value);
       else if (flag == "--peer-scenes") o.peer_scenes = positive(flag, value);
+      else if (flag == "--peer-parts") o.peer_parts = checkedList(flag, value, parts);
       else if (flag == "--objects") o.objects = positive(flag, value);
       else if (flag == "--seed") o.seed = std::stoull(value);
       else if (flag == "--threads") o.threads = std::max(0, std::stoi(value));

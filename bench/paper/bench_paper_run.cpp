@@ -32,6 +32,12 @@ std::unique_ptr<PoseMethod> makeMethod(const std::string& name, const MethodSetu
 
 bool isPeer(const std::string& method) { return !isBinpickMethod(method); }
 
+std::string joined(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
 std::string utcNow() {
   const std::time_t now = std::time(nullptr);
   char text[32];
@@ -53,7 +59,7 @@ std::string preamble(const PaperBenchOptions& o, int argc, char** argv) {
       << resolveThreadCount(o.threads) << " threads on " << cpuName() << ".\n\n"
       << "Scenes: " << o.scenes << " per part, " << o.objects << " objects each, seeds " << o.seed << ".."
       << o.seed + o.scenes - 1 << " (OpenCV's and PCL's matchers: the first " << o.peer_scenes
-      << "), virtual rig 1280x1024; the same scenes for every method. "
+      << (o.peer_parts.empty() ? "" : ", on " + joined(o.peer_parts) + " only") << "), virtual rig 1280x1024; the same scenes for every method. "
       << "Correct: translation < diam/10 and rotation < 10 degrees (minimum over the part's symmetries); "
       << "a second detection of an object is wrong. Times: the whole process (normals, matching, "
       << "refinement), wall clock, per object in the bin.\n\n";
@@ -73,7 +79,10 @@ void runPart(const PaperBenchOptions& o, const std::string& part_name, std::ofst
   const MethodSetup setup{&model, o.objects, o.threads};
   std::vector<std::unique_ptr<PoseMethod>> methods;
   if (o.has("paper")) {
-    for (const std::string& name : o.methods) methods.push_back(makeMethod(name, setup));
+    for (const std::string& name : o.methods) {
+      if (isPeer(name) && !o.runsPeersOn(part_name)) continue;
+      methods.push_back(makeMethod(name, setup));
+    }
   }
   const bool reconstruct = o.has("paper") && std::find(o.inputs.begin(), o.inputs.end(),
                                                        CloudInput::Reconstructed) != o.inputs.end();

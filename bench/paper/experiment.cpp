@@ -3,18 +3,11 @@
 #include <chrono>
 
 #include "binpick_method.hpp"
-#include "evaluation.hpp"
 
 namespace binpick::bench {
 namespace {
 
 double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
-
-std::vector<estimation::Detection> asDetections(const std::vector<Eigen::Isometry3f>& poses) {
-  std::vector<estimation::Detection> detections(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) detections[i].T_camera_model = poses[i];
-  return detections;
-}
 
 void addStages(estimation::StageTimings& sum, const estimation::StageTimings& t) {
   sum.prepare_scene += t.prepare_scene;
@@ -26,6 +19,20 @@ void addStages(estimation::StageTimings& sum, const estimation::StageTimings& t)
 }
 
 }  // namespace
+
+eval::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<sim::ObjectTruth>& truth,
+                       const sim::Part& part, double diameter) {
+  std::vector<estimation::Detection> detections(poses.size());
+  for (std::size_t i = 0; i < poses.size(); ++i) detections[i].T_camera_model = poses[i];
+  return eval::scoreDetections(detections, truth, part.symmetry, {diameter / 10.0, 10.0});
+}
+
+std::string describeScore(const eval::Score& s, std::size_t poses) {
+  std::string text = "found " + std::to_string(s.found) + " of " + std::to_string(s.findable) + " findable, " +
+                     std::to_string(poses) + " poses, matched objects:";
+  for (int m : s.matched_object) text += " " + std::to_string(m);
+  return text;
+}
 
 void Tally::add(const SceneOutcome& o) {
   ++scenes;
@@ -65,9 +72,7 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   }
   o.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-  // The paper's criterion: diam(M)/10 and 10 degrees, the minimum over the part's symmetries.
-  const eval::Score score =
-      eval::scoreDetections(asDetections(poses), scene.truth.objects, part.symmetry, {diameter / 10.0, 10.0});
+  const eval::Score score = scorePoses(poses, scene.truth.objects, part, diameter);
   o.findable = score.findable;
   o.found = score.found;
   o.detections = static_cast<int>(poses.size());

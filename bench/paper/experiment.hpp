@@ -9,6 +9,7 @@
 
 #include "bench_scenes.hpp"
 #include "binpick/estimation/detector.hpp"
+#include "evaluation.hpp"
 #include "pose_method.hpp"
 
 namespace binpick::bench {
@@ -40,6 +41,13 @@ struct Tally {
   double recall() const;           // found / findable
   double msPerObject() const;      // Table III
 };
+
+// The paper's criterion on poses in order: correct within diam/10 and 10 degrees of an object not
+// claimed before (the minimum over the part's symmetries); repeats are wrong.
+eval::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<sim::ObjectTruth>& truth,
+                       const sim::Part& part, double diameter);
+// "found F of N findable, D poses, matched objects: ..." for messages.
+std::string describeScore(const eval::Score& score, std::size_t poses);
 
 // Runs `method` on the scene's `input` cloud and scores it (symmetry-aware; repeats are wrong).
 SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudInput input,

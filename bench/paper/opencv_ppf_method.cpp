@@ -36,7 +36,7 @@
 // to the end on each insert, and matching walks the whole bucket of each scene pair. A part with
 // big flat faces puts most of its pairs into a few buckets (binpick caps them, OpenCV does not),
 // so both go quadratic: for the l_bracket at binpick's resolution (878 model points) training
-// took 7-28 s and match() 130-225 s on a 20-part scene (shared 2-core machine).
+// took 7-28 s and match() 130-225 s on a 20-part scene (2 cores).
 //
 // Scene normals: computeNormalsPC3d on all ~130k cropped points of a 20-part scene took ~1.3 s;
 // on the half-step voxel centroids (~20k points) 0.1-0.16 s. OpenCV's own quantisation averages

@@ -41,7 +41,7 @@ struct PclPpfParams {
   // Drost baseline clusters within diam/10 and 12 degrees (ClusteringParams), so do we.
   float cluster_translation_ratio = 0.10f;  // in diam(M)
   float cluster_rotation_deg = 12.0f;
-  // Refinement: the paper refined every method with ICP. Point-to-plane (PCL's
+  // Refinement: the paper refined every method with ICP. Symmetric point-to-plane (PCL's
   // IterativeClosestPointWithNormals) from the model points facing the camera to the remaining
   // scene points, a handful of iterations, correspondences within 2 steps (what the coarse pose
   // of a 12-degree, one-step quantisation can be off by).

@@ -50,18 +50,24 @@ double averageOverParts(const Tallies& tallies, const TableLayout& layout, const
   return parts_counted ? sum / parts_counted : 0.0;
 }
 
-std::string partsTable(const Tallies& tallies, const TableLayout& layout, const Figure& figure,
-                       const Format& format, bool relative_row) {
-  std::ostringstream out;
+// The header and one row per part, each cell `cell` of the part's tally ("–" without one).
+void partRows(std::ostringstream& out, const Tallies& tallies, const TableLayout& layout,
+              const std::function<std::string(const Tally&)>& cell) {
   headerRow(out, "part", layout.methods);
   for (const std::string& part : layout.parts) {
     out << "| " << part << " |";
     for (const std::string& method : layout.methods) {
       const Tally* t = find(tallies, layout, part, method);
-      out << ' ' << (t ? format(figure(*t)) : "–") << " |";
+      out << ' ' << (t ? cell(*t) : "–") << " |";
     }
     out << '\n';
   }
+}
+
+std::string partsTable(const Tallies& tallies, const TableLayout& layout, const Figure& figure,
+                       const Format& format, bool relative_row) {
+  std::ostringstream out;
+  partRows(out, tallies, layout, [&](const Tally& t) { return format(figure(t)); });
   std::vector<double> averages;
   out << "| **average** |";
   for (const std::string& method : layout.methods) {
@@ -105,15 +111,7 @@ std::string speedTable(const Tallies& tallies, const TableLayout& layout) {
 
 std::string precisionRecallTable(const Tallies& tallies, const TableLayout& layout) {
   std::ostringstream out;
-  headerRow(out, "part", layout.methods);
-  for (const std::string& part : layout.parts) {
-    out << "| " << part << " |";
-    for (const std::string& method : layout.methods) {
-      const Tally* t = find(tallies, layout, part, method);
-      out << ' ' << (t ? percent(t->precision()) + " / " + percent(t->recall()) : "–") << " |";
-    }
-    out << '\n';
-  }
+  partRows(out, tallies, layout, [](const Tally& t) { return percent(t.precision()) + " / " + percent(t.recall()); });
   return out.str();
 }
 

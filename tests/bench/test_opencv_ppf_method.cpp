@@ -12,6 +12,7 @@
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "evaluation.hpp"
+#include "experiment.hpp"
 #include "opencv_ppf_method.hpp"
 
 namespace binpick::bench {
@@ -59,17 +60,7 @@ MethodSetup setupFor(const Fixture& f) {
 }
 
 eval::Score score(const Fixture& f, const std::vector<Eigen::Isometry3f>& poses) {
-  std::vector<estimation::Detection> detections(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) detections[i].T_camera_model = poses[i];
-  return eval::scoreDetections(detections, f.scene.objects, f.part.symmetry,
-                               {f.model.diameter / 10.0, 10.0});
-}
-
-std::string describe(const eval::Score& s, std::size_t detections) {
-  std::string text = "found " + std::to_string(s.found) + " of " + std::to_string(s.findable) +
-                     " findable, " + std::to_string(detections) + " detections, matched objects:";
-  for (int m : s.matched_object) text += " " + std::to_string(m);
-  return text;
+  return scorePoses(poses, f.scene.objects, f.part, f.model.diameter);
 }
 
 TEST(OpenCvPpfMethod, FindsThePartsOfASmallPile) {
@@ -82,7 +73,7 @@ TEST(OpenCvPpfMethod, FindsThePartsOfASmallPile) {
   ASSERT_LE(poses.size(), static_cast<std::size_t>(f.pile.objects));
 
   const eval::Score s = score(f, poses);
-  const std::string what = describe(s, poses.size());
+  const std::string what = describeScore(s, poses.size());
   ASSERT_GE(s.findable, 2) << what;  // the pile itself: enough visible parts to test anything
   // Measured: 2 of 5 findable, the first two detections correct (OpenCV's PPF is weak on this
   // planar part: 6 of 20 on the 20-part pile at binpick's resolution). Wrong conventions or units

@@ -78,5 +78,17 @@ TEST(PaperBenchOptions, BadValuesAreNamed) {
   EXPECT_EQ(optionError({"--scenes", "3", "--inputs", "exact"}), "");
 }
 
+TEST(PaperBenchOptions, PeerLimitsAndHelp) {
+  std::vector<std::string> args{"bench_paper", "--peer-parts", "gear", "--peer-scenes", "3", "--help"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  const PaperBenchOptions o = parsePaperBenchOptions(static_cast<int>(argv.size()), argv.data());
+  EXPECT_TRUE(o.help);
+  EXPECT_EQ(o.peer_scenes, 3);
+  EXPECT_TRUE(o.runsPeersOn("gear"));
+  EXPECT_FALSE(o.runsPeersOn("bulge"));
+  EXPECT_TRUE(PaperBenchOptions{}.runsPeersOn("bulge"));
+}
+
 }  // namespace
 }  // namespace binpick::bench

@@ -14,6 +14,7 @@
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "evaluation.hpp"
+#include "experiment.hpp"
 #include "pcl_ppf_method.hpp"
 #include "thrown_message.hpp"
 
@@ -53,22 +54,8 @@ const Pile& smallPile() {
   return pile;
 }
 
-std::vector<estimation::Detection> asDetections(const std::vector<Eigen::Isometry3f>& poses) {
-  std::vector<estimation::Detection> detections(poses.size());
-  for (std::size_t i = 0; i < poses.size(); ++i) detections[i].T_camera_model = poses[i];
-  return detections;
-}
-
 eval::Score score(const Pile& pile, const std::vector<Eigen::Isometry3f>& poses) {
-  return eval::scoreDetections(asDetections(poses), pile.scene.objects, pile.part.symmetry,
-                               {pile.model.diameter / 10.0, 10.0});
-}
-
-std::string describe(const eval::Score& s, std::size_t poses) {
-  std::string text = "found " + std::to_string(s.found) + " of " + std::to_string(s.findable) +
-                     " findable, " + std::to_string(poses) + " poses, matched objects:";
-  for (int m : s.matched_object) text += " " + std::to_string(m);
-  return text;
+  return scorePoses(poses, pile.scene.objects, pile.part, pile.model.diameter);
 }
 
 MethodSetup setupFor(const Pile& pile) {
@@ -108,11 +95,11 @@ TEST(PclPpfMethod, FindsAPartOfASmallPileAndEveryPoseLiesOnAPart) {
   const MethodInput input{&pile.scene.cloud, eval::binInterior(pile.scene, pile.params)};
   const std::vector<Eigen::Isometry3f> poses = smallPileMethod().detect(input);
   const eval::Score s = score(pile, poses);
-  ASSERT_EQ(s.findable, 4) << describe(s, poses.size());
+  ASSERT_EQ(s.findable, 4) << describeScore(s, poses.size());
   ASSERT_FALSE(poses.empty());
   EXPECT_LE(poses.size(), static_cast<std::size_t>(pile.params.objects));
-  EXPECT_GE(s.found, 1) << describe(s, poses.size());
-  EXPECT_GE(s.matched_object.front(), 0) << "the best pose is wrong: " << describe(s, poses.size());
+  EXPECT_GE(s.found, 1) << describeScore(s, poses.size());
+  EXPECT_GE(s.matched_object.front(), 0) << "the best pose is wrong: " << describeScore(s, poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) {
     EXPECT_LT(distanceToNearestPart(pile, poses[i]), pile.model.diameter / 2.0) << "pose " << i;
   }
