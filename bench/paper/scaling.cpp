@@ -131,7 +131,8 @@ void threadScaling(const sim::Part& part, const estimation::PreparedModel& model
     const estimation::Detector detector = detectorWith(model, p.objects, resolved);
     Accumulator acc;
     for (const BenchScene& scene : scenes) detectInto(detector, part, scene, false, acc);
-    const std::string label = std::to_string(resolved) + (threads == 0 ? " threads (all)" : " threads");
+    const std::string label =
+        std::to_string(resolved) + (resolved == 1 ? " thread" : " threads") + (threads == 0 ? " (all)" : "");
     out.threads.push_back(acc.point(label, resolved));
   }
 }

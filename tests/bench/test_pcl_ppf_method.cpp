@@ -71,10 +71,6 @@ const PclPpfMethod& smallPileMethod() {
   return method;
 }
 
-TEST(PclPpfMethod, IsNamedPclPpf) {
-  EXPECT_EQ(smallPileMethod().name(), "pcl_ppf");
-}
-
 // The origin of the nearest true part, and its distance from the pose's origin.
 double distanceToNearestPart(const Pile& pile, const Eigen::Isometry3f& pose) {
   double nearest = std::numeric_limits<double>::infinity();
@@ -93,6 +89,7 @@ double distanceToNearestPart(const Pile& pile, const Eigen::Isometry3f& pose) {
 TEST(PclPpfMethod, FindsAPartOfASmallPileAndEveryPoseLiesOnAPart) {
   const Pile& pile = smallPile();
   const MethodInput input{&pile.scene.cloud, eval::binInterior(pile.scene, pile.params)};
+  EXPECT_EQ(smallPileMethod().name(), "pcl_ppf");
   const std::vector<Eigen::Isometry3f> poses = smallPileMethod().detect(input);
   const eval::Score s = score(pile, poses);
   ASSERT_EQ(s.findable, 4) << describeScore(s, poses.size());
