@@ -59,7 +59,8 @@ std::string preamble(const PaperBenchOptions& o, int argc, char** argv) {
       << resolveThreadCount(o.threads) << " threads on " << cpuName() << ".\n\n"
       << "Scenes: " << o.scenes << " per part, " << o.objects << " objects each, seeds " << o.seed << ".."
       << o.seed + o.scenes - 1 << " (OpenCV's and PCL's matchers: the first " << o.peer_scenes
-      << (o.peer_parts.empty() ? "" : ", on " + joined(o.peer_parts) + " only") << "), virtual rig 1280x1024; the same scenes for every method. "
+      << (o.peer_parts.empty() ? "" : ", on " + joined(o.peer_parts) + " only")
+      << "), virtual rig 1280x1024; the same scenes for every method. "
       << "Correct: translation < diam/10 and rotation < 10 degrees (minimum over the part's symmetries); "
       << "a second detection of an object is wrong. Times: the whole process (normals, matching, "
       << "refinement), wall clock, per object in the bin.\n\n";
@@ -72,6 +73,30 @@ struct ExperimentData {
   double reconstruct_ms = 0.0;  // summed over the scenes
   int reconstructed_scenes = 0;
 };
+
+// Every method on one scene and input. A method that fails is reported and skipped: one peer's
+// exception must not lose the hours of results around it.
+void runScene(const std::vector<std::unique_ptr<PoseMethod>>& methods, const BenchScene& scene, int scene_index,
+              const sim::Part& part, double diameter, const PaperBenchOptions& o, std::ofstream& csv,
+              ExperimentData& data) {
+  for (CloudInput input : o.inputs) {
+    for (const auto& method : methods) {
+      if (isPeer(method->name()) && scene_index >= o.peer_scenes) continue;
+      const std::string what = part.name + " seed " + std::to_string(scene.params.seed) + " " + inputName(input) +
+                               " " + method->name();
+      try {
+        const SceneOutcome outcome = runMethod(*method, scene, input, part, diameter);
+        writeOutcome(csv, outcome);
+        csv.flush();
+        data.tallies[{input, part.name, method->name()}].add(outcome);
+        std::fprintf(stderr, "%s: %d/%d correct, %d detections, %.0f ms\n", what.c_str(), outcome.correct,
+                     outcome.objects, outcome.detections, outcome.ms);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: FAILED, left out of the tables: %s\n", what.c_str(), e.what());
+      }
+    }
+  }
+}
 
 void runPart(const PaperBenchOptions& o, const std::string& part_name, std::ofstream& csv, ExperimentData& data) {
   const sim::Part part = sim::makePart(part_name);
@@ -98,20 +123,10 @@ void runPart(const PaperBenchOptions& o, const std::string& part_name, std::ofst
       ++data.reconstructed_scenes;
     }
     if (s == 0 && o.has("selection")) {
-      data.selection.emplace_back(part_name, measureSelection(model, scene.truth.cloud, scene.crop, o.objects, o.threads));
+      data.selection.emplace_back(part_name,
+                                  measureSelection(model, scene.truth.cloud, scene.crop, o.objects, o.threads));
     }
-    for (CloudInput input : o.inputs) {
-      for (const auto& method : methods) {
-        if (isPeer(method->name()) && s >= o.peer_scenes) continue;
-        const SceneOutcome outcome = runMethod(*method, scene, input, part, model.diameter);
-        writeOutcome(csv, outcome);
-        csv.flush();
-        data.tallies[{input, part_name, method->name()}].add(outcome);
-        std::fprintf(stderr, "%s seed %llu %s %s: %d/%d correct, %d detections, %.0f ms\n", part_name.c_str(),
-                     static_cast<unsigned long long>(request.seed), inputName(input).c_str(),
-                     method->name().c_str(), outcome.correct, outcome.objects, outcome.detections, outcome.ms);
-      }
-    }
+    runScene(methods, scene, s, part, model.diameter, o, csv, data);
   }
 }
 

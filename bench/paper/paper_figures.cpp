@@ -128,8 +128,8 @@ std::string scalingSection(const std::string& part, const ScalingResults& r, con
       << image("scaling_points.png", "time against scene points") << kScalingHeader << scalingRows(r.points_full)
       << scalingRows(r.points_decimated)
       << "\n### Objects in the bin\n\n" << image("scaling_objects.png", "time against objects")
-      << kScalingHeader << scalingRows(r.objects) << "\n### Threads\n\n" << image("scaling_threads.png", "time against threads")
-      << kScalingHeader << scalingRows(r.threads) << '\n';
+      << kScalingHeader << scalingRows(r.objects) << "\n### Threads\n\n"
+      << image("scaling_threads.png", "time against threads") << kScalingHeader << scalingRows(r.threads) << '\n';
   return out.str();
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// Line charts as PNG for the benchmark's plots, drawn with OpenCV alone (the machines that run the
-// benchmark have no Python or plotting library). One call draws a whole chart: nice 1-2-5 ticks
+// Line charts as PNG for the benchmark's plots, drawn with OpenCV alone (no plotting library among
+// binpick's dependencies). One call draws a whole chart: nice 1-2-5 ticks
 // (decades on log axes), light grid, title and axis labels, one colour-blind-friendly colour and
 // marker per series, and a legend in the corner that hides the fewest points.
 #include <opencv2/core.hpp>

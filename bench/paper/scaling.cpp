@@ -125,7 +125,9 @@ void objectScaling(const sim::Part& part, const estimation::PreparedModel& model
 void threadScaling(const sim::Part& part, const estimation::PreparedModel& model, const ScalingParams& p,
                    ScalingResults& out) {
   std::vector<BenchScene> scenes;
-  for (int s = 0; s < p.scenes; ++s) scenes.push_back(makeBenchScene(part, request(p, p.objects, s, sim::makeVirtualRig())));
+  for (int s = 0; s < p.scenes; ++s) {
+    scenes.push_back(makeBenchScene(part, request(p, p.objects, s, sim::makeVirtualRig())));
+  }
   for (int threads : p.thread_counts) {
     const int resolved = resolveThreadCount(threads);
     const estimation::Detector detector = detectorWith(model, p.objects, resolved);
