@@ -12,6 +12,7 @@
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "evaluation.hpp"
+#include "bench_test_support.hpp"
 #include "experiment.hpp"
 #include "opencv_ppf_method.hpp"
 
@@ -129,18 +130,8 @@ TEST(OpenCvPpfMethod, NaNOnlyAndEmptyCloudsGiveNoPoses) {
   const OpenCvPpfMethod method(setupFor(f));
   const estimation::CropBox crop = eval::binInterior(f.scene, f.pile);
 
-  PointCloud nan_cloud;
-  nan_cloud.width = 64;
-  nan_cloud.height = 48;
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  nan_cloud.points.assign(64 * 48, Eigen::Vector3f::Constant(nan));
+  testing::expectNoPosesWithoutPoints(method, crop);
   std::vector<Eigen::Isometry3f> poses;
-  EXPECT_NO_THROW(poses = method.detect(MethodInput{&nan_cloud, crop}));
-  EXPECT_TRUE(poses.empty());
-
-  const PointCloud empty_cloud;
-  EXPECT_NO_THROW(poses = method.detect(MethodInput{&empty_cloud, crop}));
-  EXPECT_TRUE(poses.empty());
 
   // A few points, all in one plane inside the bin: too few and too flat for OpenCV's quantisation.
   PointCloud few;

@@ -14,6 +14,7 @@
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "evaluation.hpp"
+#include "bench_test_support.hpp"
 #include "experiment.hpp"
 #include "pcl_ppf_method.hpp"
 #include "thrown_message.hpp"
@@ -107,17 +108,8 @@ TEST(PclPpfMethod, NanOnlyAndEmptyCloudsGiveNoPoses) {
   const PclPpfMethod& method = smallPileMethod();
   const estimation::CropBox crop = eval::binInterior(pile.scene, pile.params);
 
-  PointCloud nan_cloud;
-  nan_cloud.width = 64;
-  nan_cloud.height = 48;
-  nan_cloud.points.assign(64 * 48, Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN()));
+  testing::expectNoPosesWithoutPoints(method, crop);
   std::vector<Eigen::Isometry3f> poses;
-  EXPECT_NO_THROW(poses = method.detect(MethodInput{&nan_cloud, crop}));
-  EXPECT_TRUE(poses.empty());
-
-  const PointCloud empty_cloud;
-  EXPECT_NO_THROW(poses = method.detect(MethodInput{&empty_cloud, crop}));
-  EXPECT_TRUE(poses.empty());
 
   // Real points, all outside the crop box.
   estimation::CropBox nowhere = crop;
