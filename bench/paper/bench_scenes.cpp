@@ -5,6 +5,7 @@
 #include "binpick/io/error.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
 #include "evaluation.hpp"
+#include "pose_method.hpp"
 
 namespace binpick::bench {
 namespace {
@@ -35,6 +36,10 @@ const PointCloud& BenchScene::cloud(CloudInput input) const {
   return reconstructed;
 }
 
+std::size_t BenchScene::pointsInBin(CloudInput input) const {
+  return input == CloudInput::Exact ? exact_in_bin : reconstructed_in_bin;
+}
+
 BenchScene makeBenchScene(const sim::Part& part, const SceneRequest& request) {
   BenchScene s;
   setPileParams(request, s.params);
@@ -56,13 +61,9 @@ BenchScene makeBenchScene(const sim::Part& part, const SceneRequest& request) {
     s.reconstruct_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
   s.crop = eval::binInterior(s.truth, s.params);
+  s.exact_in_bin = croppedPoints({&s.truth.cloud, s.crop}).size();
+  s.reconstructed_in_bin = croppedPoints({&s.reconstructed, s.crop}).size();
   return s;
-}
-
-std::size_t finitePoints(const PointCloud& cloud) {
-  std::size_t n = 0;
-  for (const Eigen::Vector3f& p : cloud.points) n += p.allFinite() ? 1 : 0;
-  return n;
 }
 
 }  // namespace binpick::bench

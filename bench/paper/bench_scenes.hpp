@@ -30,11 +30,11 @@ struct BenchScene {
   PointCloud reconstructed;            // empty unless requested
   estimation::CropBox crop;            // the bin's inside
   double reconstruct_ms = 0.0;         // decode + triangulate + filter, from images in memory
+  std::size_t exact_in_bin = 0, reconstructed_in_bin = 0;  // finite points inside the crop
   const PointCloud& cloud(CloudInput input) const;
+  std::size_t pointsInBin(CloudInput input) const;
 };
 
 BenchScene makeBenchScene(const sim::Part& part, const SceneRequest& request);
-
-std::size_t finitePoints(const PointCloud& cloud);
 
 }  // namespace binpick::bench

@@ -59,7 +59,7 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   o.input = input;
   o.seed = scene.params.seed;
   o.objects = static_cast<int>(scene.truth.objects.size());
-  o.input_points = croppedPoints(method_input).size();
+  o.input_points = scene.pointsInBin(input);
 
   std::vector<Eigen::Isometry3f> poses;
   const auto start = std::chrono::steady_clock::now();
