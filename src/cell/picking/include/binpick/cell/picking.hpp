@@ -8,7 +8,7 @@
 // tool reaches the grasp point by moving along +z from the pre-grasp point, approach_distance
 // back along -z.
 //
-// The approach corridor is the cylinder of radius tool_radius + wall_clearance around the segment
+// The approach corridor is the cylinder of radius gripper.tool_radius + wall_clearance around the segment
 // from the pre-grasp to the grasp point. It hits a wall when a slice of it reaching below the wall
 // top has its axis outside the bin's inner box shrunk by that radius (checked analytically: exact
 // for a vertical approach, on the safe side for a tilted one). It hits the floor when its axis
@@ -19,11 +19,17 @@
 #include <string>
 #include <vector>
 
+#include "binpick/cell/gripper.hpp"
+#include "binpick/io/point_cloud.hpp"
+
 namespace binpick::cell {
 
 struct Grasp {
   std::string name;
   Eigen::Isometry3d T_model_grasp = Eigen::Isometry3d::Identity();  // metres
+  // How good the grasp is on the part alone, in [0, 1] (grasp_generation.hpp: seal margin, distance
+  // from the centre of mass); hand-written grasps count as 1.
+  double quality = 1.0;
 };
 
 // Rotations mapping the part onto itself about its model origin: a grasp S * T_model_grasp is as
@@ -49,8 +55,8 @@ struct PickParams {
   std::vector<Grasp> grasps;               // at least one; rigid, finite poses
   PartSymmetry symmetry;
   BinBox bin;
+  GripperParams gripper;                   // the tool: its radius is the approach corridor's
   double approach_distance = 0.10;         // metres from pre-grasp to grasp point
-  double tool_radius = 0.025;              // metres: the approach corridor's radius
   double wall_clearance = 0.005;           // metres kept between the corridor and the walls
   double max_tilt_deg = 60.0;              // approach vs straight down (base -z); steeper: rejected
   int continuous_symmetry_steps = 36;      // grasps tried around a continuous axis, in [1, 3600]
@@ -63,29 +69,44 @@ struct PickParams {
 
 struct DetectedPart {
   Eigen::Isometry3d T_base_model = Eigen::Isometry3d::Identity();
-  double score = 0.0;  // detection score, higher is better
+  double score = 0.0;     // detection score, higher is better
+  double coverage = 1.0;  // share of the model points the camera should see that the fit covers
 };
 
 struct Pick {
   int object = 0;   // index into the detections
   int grasp = 0;    // index into PickParams::grasps
   Eigen::Isometry3d T_base_grasp = Eigen::Isometry3d::Identity();
-  double tilt_deg = 0.0;  // approach vs straight down
+  double tilt_deg = 0.0;   // approach vs straight down
+  double clearance = 0.0;  // metres between the tool and the nearest measured point (capped)
+  double rank = 0.0;       // the ranking value the picks were ordered by, higher first
+};
+
+// Why parts were not picked, one count per part: the last test its best grasp failed.
+struct PickRejections {
+  int invalid = 0;    // a non-finite or non-rigid pose, or a non-finite score
+  int avoided = 0;    // near a failed pick
+  int tilt = 0;       // every grasp tilted beyond max_tilt_deg
+  int bin = 0;        // every grasp within the tilt limit: the tool hits the bin's walls or floor
+  int cloud = 0;      // every grasp left: the tool hits the measured cloud (a neighbour, the part)
+  int total() const { return invalid + avoided + tilt + bin + cloud; }
 };
 
 struct PickPlan {
   std::vector<Pick> picks;  // in pick order, at most one per object
-  int rejected_collision = 0;  // objects whose every grasp hits the bin (or exceeds max_tilt)
-  int rejected_avoided = 0;    // objects near a failed pick
-  int rejected_invalid = 0;    // objects with a non-finite or non-rigid pose, or non-finite score
+  PickRejections rejected;
 };
 
+// The measured cloud in the robot base frame, indexed for the tool's collision test. Built once
+// per cycle; immutable afterwards, so thread-safe to query. (Defined in tool_collision.cpp.)
+class MeasuredScene;
+
 // `avoid` holds the base-frame centres (T_base_model translations) of objects the robot failed
-// to pick; non-finite entries avoid nothing. Of a part's surviving candidates the least tilted is
-// picked; within 1e-6 degrees of it, the lowest grasp index, then the one whose tool x axis lies
-// closest to base +x (projected normal to the approach): symmetric parts get a canonical wrist
-// angle. Throws binpick::Error when params.validate() does.
-PickPlan planPicks(const std::vector<DetectedPart>& parts,
-                   const std::vector<Eigen::Vector3d>& avoid, const PickParams& params);
+// to pick; non-finite entries avoid nothing. `scene` (may be null: no cloud test) is the measured
+// cloud the tool must not run into. Every grasp of every symmetric copy is tested (tilt, bin,
+// cloud) and the surviving ones ranked (see PickParams); a part's best survivor is its pick.
+// Throws binpick::Error when params.validate() does.
+PickPlan planPicks(const std::vector<DetectedPart>& parts, const std::vector<Eigen::Vector3d>& avoid,
+                   const PickParams& params, const MeasuredScene* scene = nullptr);
 
 }  // namespace binpick::cell
