@@ -66,7 +66,7 @@ bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& pa
   const Eigen::Vector3d grasp_point = T_bin_grasp.translation();
   const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
   const Segment axis{grasp_point - params.approach_distance * approach, grasp_point};
-  const double radius = params.tool_radius + params.wall_clearance;
+  const double radius = params.gripper.tool_radius + params.wall_clearance;
   return corridorHitsFloor(axis) || corridorHitsWalls(axis, approach, radius, params.bin);
 }
 

@@ -62,7 +62,7 @@ void PickParams::validate() const {
   validateBin(bin);
   requireField(isNonNegative(approach_distance), kOwner, "approach_distance", ">= 0",
                approach_distance);
-  requireField(isNonNegative(tool_radius), kOwner, "tool_radius", ">= 0", tool_radius);
+  gripper.validate();
   requireField(isNonNegative(wall_clearance), kOwner, "wall_clearance", ">= 0", wall_clearance);
   requireField(max_tilt_deg >= 0 && max_tilt_deg <= 180, kOwner, "max_tilt_deg", "in [0, 180]",
                max_tilt_deg);

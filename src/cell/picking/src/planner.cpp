@@ -78,26 +78,26 @@ std::optional<Pick> bestPick(const std::vector<Pick>& reachable) {
 
 }  // namespace
 
-PickPlan planPicks(const std::vector<DetectedPart>& parts,
-                   const std::vector<Eigen::Vector3d>& avoid, const PickParams& params) {
+PickPlan planPicks(const std::vector<DetectedPart>& parts, const std::vector<Eigen::Vector3d>& avoid,
+                   const PickParams& params, const MeasuredScene* /*scene*/) {
   params.validate();
   const std::vector<GraspCandidate> candidates = symmetricGraspCandidates(params);
   PickPlan plan;
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const DetectedPart& part = parts[i];
     if (!isValidPart(part)) {
-      ++plan.rejected_invalid;
+      ++plan.rejected.invalid;
       continue;
     }
     if (isNearAvoided(part.T_base_model.translation(), avoid, params.avoid_radius)) {
-      ++plan.rejected_avoided;
+      ++plan.rejected.avoided;
       continue;
     }
     const auto object = static_cast<int>(i);
     if (auto pick = bestPick(reachablePicks(part, object, candidates, params))) {
       plan.picks.push_back(*pick);
     } else {
-      ++plan.rejected_collision;
+      ++plan.rejected.bin;
     }
   }
   sortPicks(plan.picks, parts, params.order);

@@ -28,7 +28,7 @@ PickParams readPicking(YamlSection s) {
   else bin.skip("T_base_bin");
   bin.finish();
   s.read("approach_distance", params.approach_distance);
-  s.read("tool_radius", params.tool_radius);
+  s.read("tool_radius", params.gripper.tool_radius);
   s.read("wall_clearance", params.wall_clearance);
   s.read("max_tilt_deg", params.max_tilt_deg);
   s.read("continuous_symmetry_steps", params.continuous_symmetry_steps);

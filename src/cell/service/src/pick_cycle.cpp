@@ -90,8 +90,8 @@ CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const 
     outcome.status = robot::Status::Unreachable;
     outcome.detail = std::to_string(outcome.T_base_objects.size()) + " parts detected: " +
                      std::to_string(outcome.T_base_objects.size() - candidates.parts.size()) + " not sure enough, " +
-                     std::to_string(plan.rejected_collision) + " without a collision-free grasp, " +
-                     std::to_string(plan.rejected_avoided) + " avoided, " + std::to_string(plan.rejected_invalid) +
+                     std::to_string(plan.rejected.bin) + " without a collision-free grasp, " +
+                     std::to_string(plan.rejected.avoided) + " avoided, " + std::to_string(plan.rejected.invalid) +
                      " invalid";
   }
   return outcome;

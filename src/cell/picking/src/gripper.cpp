@@ -1,0 +1,37 @@
+#include "binpick/cell/gripper.hpp"
+
+#include <cmath>
+
+#include "binpick/io/error.hpp"
+
+namespace binpick::cell {
+namespace {
+
+const std::string kOwner = "picking.gripper";
+
+bool isPositive(double value) { return std::isfinite(value) && value > 0.0; }
+bool isNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
+
+}  // namespace
+
+GripperType gripperTypeFromName(const std::string& name) {
+  if (name == "suction") return GripperType::Suction;
+  if (name == "parallel") return GripperType::Parallel;
+  throw Error("unknown gripper \"" + name + "\" (use suction or parallel)");
+}
+
+std::string gripperTypeName(GripperType type) { return type == GripperType::Suction ? "suction" : "parallel"; }
+
+void GripperParams::validate() const {
+  requireField(isPositive(cup_diameter), kOwner, "cup_diameter", "> 0", cup_diameter);
+  requireField(isNonNegative(cup_length), kOwner, "cup_length", ">= 0", cup_length);
+  requireField(isPositive(seal_tolerance), kOwner, "seal_tolerance", "> 0", seal_tolerance);
+  requireField(isPositive(stroke), kOwner, "stroke", "> 0", stroke);
+  requireField(isPositive(finger_width), kOwner, "finger_width", "> 0", finger_width);
+  requireField(isPositive(finger_depth), kOwner, "finger_depth", "> 0", finger_depth);
+  requireField(isPositive(finger_thickness), kOwner, "finger_thickness", "> 0", finger_thickness);
+  requireField(isNonNegative(tool_radius), kOwner, "tool_radius", ">= 0", tool_radius);
+  requireField(isNonNegative(tool_length), kOwner, "tool_length", ">= 0", tool_length);
+}
+
+}  // namespace binpick::cell
