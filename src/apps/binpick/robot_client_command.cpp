@@ -11,10 +11,12 @@
 #include "arguments.hpp"
 #include "binpick/io/error.hpp"
 #include "commands.hpp"
-#include "robot_connection.hpp"
+#include "binpick/cell/robot_connection.hpp"
 
 namespace binpick::cli {
 namespace {
+
+using cell::RobotConnection;
 
 using Clock = std::chrono::steady_clock;
 using robot::Command;

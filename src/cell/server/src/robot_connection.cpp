@@ -1,4 +1,4 @@
-#include "robot_connection.hpp"
+#include "binpick/cell/robot_connection.hpp"
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -13,7 +13,7 @@
 
 #include "binpick/io/error.hpp"
 
-namespace binpick::cli {
+namespace binpick::cell {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -85,4 +85,4 @@ robot::Reply RobotConnection::request(const robot::Request& request, std::chrono
   }
 }
 
-}  // namespace binpick::cli
+}  // namespace binpick::cell

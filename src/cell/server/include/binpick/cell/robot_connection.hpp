@@ -1,12 +1,12 @@
 #pragma once
-// The robot's end of a binpickd connection, for `binpick robot-client`: one request, one reply,
-// each with a deadline. Used by one thread.
+// The robot's end of a binpickd connection (`binpick robot-client`, the virtual cell's robot): one
+// request, one reply, each with a deadline. Used by one thread.
 #include <chrono>
 #include <string>
 
 #include "binpick/io/robot_protocol.hpp"
 
-namespace binpick::cli {
+namespace binpick::cell {
 
 class RobotConnection {
  public:
@@ -29,4 +29,4 @@ class RobotConnection {
   robot::ReplyDecoder decoder_;
 };
 
-}  // namespace binpick::cli
+}  // namespace binpick::cell
