@@ -8,9 +8,15 @@
 #   bash scripts/benchmark.sh --full     the paper's 50 scenes per part, the peers on 5 of every
 #                                        part (days on 2 cores: mostly PCL)
 #   bash scripts/benchmark.sh ARGS...    any bench_paper options, e.g. --methods binpick,ppf5
+#   bash scripts/benchmark.sh --emptying [ARGS...]
+#                                        bin emptying instead (docs/benchmark/emptying.md): every
+#                                        part, 5 bins of 20, suction; any bench_emptying options
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
+if [ "${1:-}" = "--emptying" ]; then
+  exec ./build/bench/bench_emptying --out docs/benchmark "${@:2}"
+fi
 args=(--peer-parts l_bracket "$@")
 if [ "${1:-}" = "--full" ]; then
   args=(--scenes 50 --scaling-scenes 5 --peer-scenes 5 "${@:2}")

@@ -20,6 +20,8 @@ constexpr const char* kUsage =
     "           [--config FILE] [--out result.json] [--model-cache FILE] [--threads N]\n"
     "           [--method li_hashimoto|drost]\n"
     "  simulate (--part NAME | --mesh FILE) [--objects N] [--seed S] [--cloud-only] --out DIR\n"
+    "           | (--part NAME | --mesh FILE) [--objects N] [--seed S] --empty-bin\n"
+    "             [--gripper suction|parallel] [--max-cycles K] --out DIR\n"
     "           | --calibration-board charuco|chessboard --poses K --out DIR\n"
     "           | --hand-eye eye-to-hand|eye-in-hand [--views K] [--seed S] [--robot-noise-mm M]\n"
     "             [--robot-noise-deg D] [--orientation NAME] --out DIR\n"

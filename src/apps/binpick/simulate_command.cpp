@@ -1,6 +1,8 @@
 // binpick simulate (--part NAME | --mesh FILE [--mesh-scale S]) [--objects N] [--seed S]
 //                  [--bin-length L --bin-width W --bin-wall-height H] [--camera-height Z]
 //                  [--bit-depth 8|16] [--cloud-only] [--threads T] --out DIR
+// binpick simulate (--part NAME | --mesh FILE [--mesh-scale S]) [--objects N] [--seed S] --empty-bin
+//                  [--gripper suction|parallel] [--max-cycles K] [bin options] --out DIR (emptying.hpp)
 // binpick simulate --calibration-board charuco|chessboard [--poses K] [--seed S] --out DIR
 // binpick simulate --hand-eye eye-to-hand|eye-in-hand [--views K] ... --out DIR (simulate_hand_eye.hpp)
 // binpick simulate --list-parts
@@ -9,11 +11,13 @@
 // images/ and truth/; with --cloud-only, cloud.ply (the ideal structured-light cloud) instead of
 // the images.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
 
 #include "arguments.hpp"
+#include "binpick/emptying/emptying.hpp"
 #include "binpick/io/error.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
@@ -62,9 +66,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-int simulatePile(const Arguments& args) {
-  const auto start = std::chrono::steady_clock::now();
-  const sim::Part part = partFrom(args);
+sim::PileParams pileParams(const Arguments& args) {
   sim::PileParams params;
   params.objects = args.integer("--objects").value_or(params.objects);
   params.seed = static_cast<uint64_t>(args.integer("--seed").value_or(1));
@@ -74,6 +76,36 @@ int simulatePile(const Arguments& args) {
   params.bin_wall_height = args.number("--bin-wall-height").value_or(params.bin_wall_height);
   params.camera_height = args.number("--camera-height").value_or(params.camera_height);
   params.validate();
+  return params;
+}
+
+// The closed pick loop: one line per cycle, emptying.json and the cell's files under --out.
+int emptyBin(const Arguments& args) {
+  const sim::Part part = partFrom(args);
+  emptying::EmptyingParams params;
+  params.pile = pileParams(args);
+  params.photometry.seed = params.pile.seed;
+  params.photometry.threads = params.pile.threads;
+  params.gripper.type = cell::gripperTypeFromName(args.value("--gripper").value_or("suction"));
+  params.max_cycles = args.integer("--max-cycles").value_or(0);
+  params.out_directory = args.required("--out");
+  requireFreshDirectory(params.out_directory);
+  const emptying::EmptyingReport report = emptying::emptyBin(
+      part, params, [](const emptying::CycleRecord& cycle) { std::cout << emptying::cycleLine(cycle) << std::endl; });
+  std::cout << emptying::summaryLine(report) << "\n";
+  for (const emptying::PartLeft& left : report.left) {
+    const Eigen::Vector3d t = left.T_base_part.translation() * 1000.0;
+    std::cout << "  left: part " << left.index << " at (" << std::lround(t.x()) << ", " << std::lround(t.y()) << ", "
+              << std::lround(t.z()) << ") mm in the robot base, " << std::lround(100 * left.visible_fraction)
+              << "% visible\n";
+  }
+  return 0;
+}
+
+int simulatePile(const Arguments& args) {
+  const auto start = std::chrono::steady_clock::now();
+  const sim::Part part = partFrom(args);
+  const sim::PileParams params = pileParams(args);
   sim::PhotometryParams photometry;
   photometry.bit_depth = args.integer("--bit-depth").value_or(8);
   photometry.seed = params.seed;
@@ -137,9 +169,10 @@ int runSimulate(const std::vector<std::string>& raw) {
   const Arguments args(raw,
                        {"--part", "--mesh", "--mesh-scale", "--objects", "--seed", "--out",
                         "--bit-depth", "--threads", "--calibration-board", "--poses", "--bin-length",
-                        "--bin-width", "--bin-wall-height", "--camera-height"},
-                       {"--cloud-only"});
+                        "--bin-width", "--bin-wall-height", "--camera-height", "--gripper", "--max-cycles"},
+                       {"--cloud-only", "--empty-bin"});
   if (args.value("--calibration-board")) return simulateCalibration(args);
+  if (args.flag("--empty-bin")) return emptyBin(args);
   return simulatePile(args);
 }
 

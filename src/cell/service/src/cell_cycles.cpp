@@ -145,6 +145,7 @@ void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> s
     s.last.last_status = outcome.status;
     s.last.last_detail = outcome.detail;
     s.last.last_picks = outcome.picks.size();
+    s.last.last_parts_detected = outcome.T_base_objects.size();
     s.last.last_timing_ms = outcome.timing_ms;
     s.deadline_wakeup.notify_one();
   }

@@ -32,6 +32,7 @@ struct CellSnapshot {
   robot::Status last_status = robot::Status::Ok;
   std::string last_detail;
   std::size_t last_picks = 0;
+  std::size_t last_parts_detected = 0;
   CycleTimings last_timing_ms;
 };
 

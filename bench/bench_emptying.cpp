@@ -1,0 +1,255 @@
+// bench_emptying: does the cell empty its bins? For every part and gripper, several bins of parts
+// emptied by the closed pick loop of the virtual cell (binpick/emptying/emptying.hpp): the share
+// cleared, failed picks, cycles, the cell's cycle time (reconstruct + detect + plan; the rendering
+// apart), and a plot of the parts left against the cycle.
+//   bench_emptying [--parts a,b,...] [--meshes FILE[:SCALE],...] [--grippers suction,parallel]
+//                  [--bins 5] [--objects 20] [--first-seed 1] [--threads 0] --out DIR
+// Writes DIR/emptying.md (tables), DIR/emptying.csv (one row per bin, flushed as it goes),
+// DIR/emptying-parts-left.png; each bin's run (emptying.json, overlays) under DIR/emptying-runs/.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <thread>
+
+#include "bench_support.hpp"
+#include "binpick/emptying/emptying.hpp"
+#include "binpick/io/error.hpp"
+#include "binpick/io/geometry_io.hpp"
+#include "plot.hpp"
+
+namespace binpick::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Options {
+  std::vector<std::string> parts = sim::partNames();
+  std::vector<std::string> meshes;  // FILE[:SCALE]: parts the cell has never seen, without grasps
+  std::vector<std::string> grippers = {"suction"};
+  int bins = 5, objects = 20, first_seed = 1, threads = 0;
+  std::string out;
+};
+
+constexpr const char* kUsage =
+    "usage: bench_emptying [--parts a,b,...] [--meshes FILE[:SCALE],...] [--grippers suction,parallel]\n"
+    "                      [--bins 5] [--objects 20] [--first-seed 1] [--threads 0] --out DIR\n";
+
+Options parseOptions(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string key = argv[i];
+    if (key == "--help") {
+      std::cout << kUsage;
+      std::exit(0);
+    }
+    if (i + 1 >= argc) throw Error("option " + key + " needs a value\n" + kUsage);
+    const std::string value = argv[++i];
+    if (key == "--parts") options.parts = splitCommas(value);
+    else if (key == "--meshes") options.meshes = splitCommas(value);
+    else if (key == "--grippers") options.grippers = splitCommas(value);
+    else if (key == "--bins") options.bins = std::stoi(value);
+    else if (key == "--objects") options.objects = std::stoi(value);
+    else if (key == "--first-seed") options.first_seed = std::stoi(value);
+    else if (key == "--threads") options.threads = std::stoi(value);
+    else if (key == "--out") options.out = value;
+    else throw Error("unknown option " + key + "\n" + kUsage);
+  }
+  if (options.out.empty()) throw Error(std::string("--out is needed\n") + kUsage);
+  if (options.bins < 1 || options.objects < 1) throw Error("--bins and --objects must be >= 1");
+  return options;
+}
+
+// A user's mesh as a part: FILE or FILE:SCALE (an STL in millimetres: FILE:0.001); no symmetry.
+sim::Part meshPart(const std::string& spec) {
+  const auto colon = spec.rfind(':');
+  const bool scaled = colon != std::string::npos && colon > 0;
+  sim::Part part;
+  part.name = fs::path(scaled ? spec.substr(0, colon) : spec).stem().string();
+  part.mesh = readMesh(scaled ? spec.substr(0, colon) : spec);
+  const float scale = scaled ? std::stof(spec.substr(colon + 1)) : 1.0f;
+  for (auto& v : part.mesh.vertices) v *= scale;
+  return part;
+}
+
+struct Row {
+  std::string part, gripper;
+  int seed = 0;
+  emptying::EmptyingReport report;
+};
+
+std::string csvLine(const Row& row) {
+  const emptying::EmptyingReport& r = row.report;
+  char text[256];
+  std::snprintf(text, sizeof(text), "%s,%s,%d,%d,%d,%d,%zu,%s,%.1f,%.1f,%d\n", row.part.c_str(), row.gripper.c_str(),
+                row.seed, r.objects, r.picked, r.failed_picks, r.cycles.size(), emptyingEndName(r.end).c_str(),
+                r.median_cycle_ms, r.max_cycle_ms, r.grasps);
+  return text;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// One table row per part and gripper: the means over its bins.
+std::string summaryTable(const std::vector<Row>& rows) {
+  std::map<std::pair<std::string, std::string>, std::vector<const Row*>> groups;
+  std::vector<std::pair<std::string, std::string>> order;
+  for (const Row& row : rows) {
+    const auto key = std::make_pair(row.part, row.gripper);
+    if (!groups.count(key)) order.push_back(key);
+    groups[key].push_back(&row);
+  }
+  std::string table =
+      "| part | gripper | bins | cleared | bins with 0 failed picks | failed picks | cycles | median cycle | "
+      "max cycle | grasps |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const auto& key : order) {
+    const auto& group = groups[key];
+    int picked = 0, objects = 0, failed = 0, clean_bins = 0, cycles = 0, grasps = 0;
+    std::vector<double> cycle_ms;
+    double max_ms = 0.0;
+    for (const Row* row : group) {
+      picked += row->report.picked;
+      objects += row->report.objects;
+      failed += row->report.failed_picks;
+      clean_bins += row->report.failed_picks == 0 ? 1 : 0;
+      cycles += static_cast<int>(row->report.cycles.size());
+      grasps = row->report.grasps;
+      for (const auto& c : row->report.cycles) {
+        if (c.cycle_ms > 0) cycle_ms.push_back(c.cycle_ms);
+      }
+      max_ms = std::max(max_ms, row->report.max_cycle_ms);
+    }
+    char line[320];
+    std::snprintf(line, sizeof(line), "| %s | %s | %zu | %.1f%% (%d/%d) | %d/%zu | %d | %.1f | %.2f s | %.2f s | %d |\n",
+                  key.first.c_str(), key.second.c_str(), group.size(), 100.0 * picked / std::max(objects, 1), picked,
+                  objects, clean_bins, group.size(), failed, static_cast<double>(cycles) / group.size(),
+                  median(cycle_ms) / 1000.0, max_ms / 1000.0, grasps);
+    table += line;
+  }
+  return table;
+}
+
+// Parts left in the bin after each cycle, one line per part and gripper (the mean over its bins;
+// a bin that has ended counts with what it left).
+void writePartsLeftPlot(const std::string& path, const std::vector<Row>& rows) {
+  std::map<std::pair<std::string, std::string>, std::vector<std::vector<double>>> curves;
+  std::vector<std::pair<std::string, std::string>> order;
+  for (const Row& row : rows) {
+    std::vector<double> left{static_cast<double>(row.report.objects)};
+    for (const auto& cycle : row.report.cycles) left.push_back(cycle.parts_after);
+    const auto key = std::make_pair(row.part, row.gripper);
+    if (!curves.count(key)) order.push_back(key);
+    curves[key].push_back(left);
+  }
+  LinePlot plot;
+  plot.title = "Parts left in the bin (mean over the bins)";
+  plot.x_label = "cycle";
+  plot.y_label = "parts left";
+  for (const auto& key : order) {
+    const auto& bins = curves[key];
+    std::size_t longest = 0;
+    for (const auto& c : bins) longest = std::max(longest, c.size());
+    PlotSeries series;
+    series.label = key.first + (key.second == "suction" ? "" : " (" + key.second + ")");
+    for (std::size_t k = 0; k < longest; ++k) {
+      double sum = 0.0;
+      for (const auto& c : bins) sum += k < c.size() ? c[k] : c.back();
+      series.x.push_back(static_cast<double>(k));
+      series.y.push_back(sum / bins.size());
+    }
+    plot.series.push_back(series);
+  }
+  writeLinePlot(path, plot);
+}
+
+std::string cpuName() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown CPU";
+}
+
+void writeReport(const Options& options, const std::vector<Row>& rows, const std::string& command, double minutes) {
+  std::ofstream md(fs::path(options.out) / "emptying.md");
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof(date), "%Y-%m-%d", std::gmtime(&now));
+  md << "# Bin emptying in the virtual cell\n\n"
+     << "`" << command << "`, " << date << ", " << std::thread::hardware_concurrency() << " threads, " << cpuName()
+     << "; " << static_cast<int>(minutes + 0.5) << " minutes.\n\n"
+     << summaryTable(rows) << "\n"
+     << "cleared: parts the simulated robot took out of the bin / parts in the bin after the drop; a failed pick\n"
+     << "is a pick the judge refused (the cell avoided that part afterwards). Cycle times: reconstruct + detect +\n"
+     << "plan as binpickd timed them. Per bin: emptying.csv; plot: emptying-parts-left.png.\n";
+}
+
+int run(int argc, char** argv) {
+  const Options options = parseOptions(argc, argv);
+  fs::create_directories(options.out);
+  std::string command = "bench_emptying";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  const auto start = std::chrono::steady_clock::now();
+
+  std::vector<sim::Part> parts;
+  for (const std::string& name : options.parts) parts.push_back(sim::makePart(name));
+  for (const std::string& spec : options.meshes) parts.push_back(meshPart(spec));
+
+  std::ofstream csv(fs::path(options.out) / "emptying.csv");
+  csv << "part,gripper,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,grasps\n";
+  std::vector<Row> rows;
+  for (const sim::Part& part : parts) {
+    for (const std::string& gripper : options.grippers) {
+      for (int b = 0; b < options.bins; ++b) {
+        Row row{part.name, gripper, options.first_seed + b, {}};
+        emptying::EmptyingParams params;
+        params.pile.objects = options.objects;
+        params.pile.seed = static_cast<uint64_t>(row.seed);
+        params.pile.threads = options.threads;
+        params.photometry.seed = params.pile.seed;
+        params.photometry.threads = options.threads;
+        params.gripper.type = cell::gripperTypeFromName(gripper);
+        const fs::path run_dir =
+            fs::path(options.out) / "emptying-runs" / (part.name + "-" + gripper + "-" + std::to_string(row.seed));
+        fs::remove_all(run_dir);
+        params.out_directory = run_dir.string();
+        try {
+          row.report = emptying::emptyBin(part, params);
+        } catch (const std::exception& e) {  // one bin that cannot run is reported; the rest go on
+          std::cerr << part.name << " " << gripper << " seed " << row.seed << ": " << e.what() << "\n";
+          continue;
+        }
+        std::cout << part.name << " " << gripper << " seed " << row.seed << ": " << emptying::summaryLine(row.report)
+                  << std::endl;
+        csv << csvLine(row) << std::flush;
+        rows.push_back(std::move(row));
+      }
+    }
+  }
+  if (rows.empty()) throw Error("no bin could be run");
+  writePartsLeftPlot((fs::path(options.out) / "emptying-parts-left.png").string(), rows);
+  const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60.0;
+  writeReport(options, rows, command, minutes);
+  std::cout << summaryTable(rows);
+  return 0;
+}
+
+}  // namespace
+}  // namespace binpick::bench
+
+int main(int argc, char** argv) {
+  try {
+    return binpick::bench::run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_emptying: " << e.what() << "\n";
+    return 1;
+  }
+}
