@@ -34,14 +34,19 @@ TEST_F(EmptyingTest, FiveBracketsLeaveTheBinWithoutAFailedPick) {
   EXPECT_EQ(report.failed_picks, 0) << summaryLine(report);
   EXPECT_GT(report.grasps, 0);
   ASSERT_EQ(seen.size(), report.cycles.size());
-  // Every pick the judge accepted took a part out: the pile shrinks by one per good pick.
+  // Every pick the judge accepted took a part out (a part the re-settling throws out goes too); a
+  // cycle without one leaves the pile as it was.
   for (const CycleRecord& cycle : report.cycles) {
     const bool picked = cycle.pick && cycle.pick->ok;
-    EXPECT_EQ(cycle.parts_after, cycle.parts_before - (picked ? 1 : 0)) << cycleLine(cycle);
-    if (picked) EXPECT_TRUE(cycle.pick->T_base_part_true.has_value());
+    if (picked) {
+      EXPECT_LE(cycle.parts_after, cycle.parts_before - 1) << cycleLine(cycle);
+      EXPECT_TRUE(cycle.pick->T_base_part_true.has_value());
+    } else {
+      EXPECT_EQ(cycle.parts_after, cycle.parts_before) << cycleLine(cycle);
+    }
   }
-  if (report.picked == report.objects) EXPECT_EQ(report.end, EmptyingEnd::Empty);
-  EXPECT_EQ(report.left.size(), static_cast<std::size_t>(report.objects - report.picked));
+  if (report.picked + report.escaped == report.objects) EXPECT_EQ(report.end, EmptyingEnd::Empty);
+  EXPECT_EQ(report.left.size(), static_cast<std::size_t>(report.objects - report.picked - report.escaped));
 }
 
 TEST_F(EmptyingTest, WritesTheReportAndTheCellsFiles) {

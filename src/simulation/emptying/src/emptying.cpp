@@ -124,7 +124,7 @@ class EmptyingRun {
     pick.reason = judgement.reason;
     if (judgement.object >= 0) pick.T_base_part_true = cell_->T_base_bin() * poses[judgement.object];
     if (judgement.ok) {
-      physics_.remove(judgement.object);
+      report_.escaped += static_cast<int>(physics_.remove(judgement.object).escaped.size());
       ++report_.picked;
     } else {
       ++report_.failed_picks;

@@ -79,6 +79,7 @@ void writeEmptyingJson(const std::string& path, const EmptyingReport& report) {
       {"objects", report.objects},
       {"picked", report.picked},
       {"failed_picks", report.failed_picks},
+      {"escaped", report.escaped},
       {"cycles", static_cast<int>(report.cycles.size())},
       {"end", emptyingEndName(report.end)},
       {"cycle_ms", {{"median", report.median_cycle_ms}, {"max", report.max_cycle_ms}}},
@@ -97,6 +98,7 @@ std::string summaryLine(const EmptyingReport& report) {
                      " failed picks, median cycle " + seconds(report.median_cycle_ms) + " (" +
                      emptyingEndName(report.end) + ")";
   if (!report.left.empty()) line += "; " + std::to_string(report.left.size()) + " left";
+  if (report.escaped > 0) line += "; " + std::to_string(report.escaped) + " thrown out of the bin";
   return line;
 }
 

@@ -78,6 +78,7 @@ struct EmptyingReport {
   int objects = 0;                 // parts in the bin after the drop
   int picked = 0;
   int failed_picks = 0;
+  int escaped = 0;                 // parts the re-settling pile threw out of the bin (not picked)
   EmptyingEnd end = EmptyingEnd::MaxCycles;
   std::vector<CycleRecord> cycles;
   std::vector<PartLeft> left;      // parts still in the bin at the end
