@@ -12,6 +12,7 @@ int runEvaluate(const std::vector<std::string>& args);
 int runReconstruct(const std::vector<std::string>& args);
 int runCapture(const std::vector<std::string>& args);
 int runRobotClient(const std::vector<std::string>& args);
+int runGrasps(const std::vector<std::string>& args);     // grasps generated from a part model
 int runCalibrate(const std::vector<std::string>& args);  // rig | hand-eye
 int runCalibrateRig(const std::vector<std::string>& args);
 int runCalibrateHandEye(const std::vector<std::string>& args);        // robot poses from a file

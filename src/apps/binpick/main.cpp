@@ -41,6 +41,11 @@ constexpr const char* kUsage =
     "           [--port-file F] [--framing ascii|binary] [--orientation NAME] [--byte-order big|little]\n"
     "           --calib calib.yaml --setup eye-to-hand|eye-in-hand [board options] [--method NAME]\n"
     "           [--min-views N] [--refine] --out hand_eye.yaml\n"
+    "  grasps   (--model MODEL [--model-scale S] | --part NAME) --gripper suction|parallel\n"
+    "           [--cup-diameter M] [--seal-tolerance M] [--tool-radius M] [--tool-length M] [--stroke M]\n"
+    "           [--finger-width M] [--finger-depth M] [--symmetry-order N --symmetry-axis x,y,z]\n"
+    "           [--continuous-axis x,y,z] [--seed S] [--max-grasps N] [--spacing M] --out grasps.yaml\n"
+    "           [--image grasps.png]\n"
     "  robot-client [--host H] [--port P] [--framing ascii|binary] [--orientation NAME]\n"
     "               [--byte-order big|little] [--timeout-ms T] [--connect-timeout-ms T] [--cycles N]\n"
     "               [--model NAME] [--send \"CMD[,ARG];...\"]\n";
@@ -61,6 +66,7 @@ int main(int argc, char** argv) {
     if (command == "reconstruct") return binpick::cli::runReconstruct(args);
     if (command == "capture") return binpick::cli::runCapture(args);
     if (command == "robot-client") return binpick::cli::runRobotClient(args);
+    if (command == "grasps") return binpick::cli::runGrasps(args);
     if (command == "calibrate") return binpick::cli::runCalibrate(args);
     std::cerr << "binpick: unknown command '" << command << "'\n" << kUsage;
     return 2;

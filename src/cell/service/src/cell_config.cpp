@@ -18,8 +18,11 @@ void validateAll(const CellConfig& config) {
       if (config.source.live.trigger == "gpio") config.source.live.gpio.validate();
     }
     PickParams picking = config.picking;
+    // A recipe without grasps gets them generated from its model (cell_setup.cpp): the rest of
+    // the picking settings are checked with a stand-in grasp.
     for (const RecipeConfig& recipe : config.recipes) {
-      picking.grasps = recipe.grasps;
+      picking.grasps = recipe.grasps.empty() ? std::vector<Grasp>{Grasp{}} : recipe.grasps;
+      picking.symmetry = recipe.symmetry;
       picking.validate();
     }
     config.robot.validate();

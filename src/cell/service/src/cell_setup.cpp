@@ -3,12 +3,39 @@
 #include <chrono>
 
 #include "binpick/acquisition/aravis_camera.hpp"
+#include "binpick/cell/grasp_generation.hpp"
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/model_cache.hpp"
+#include "binpick/io/geometry_io.hpp"
 #include "binpick/io/rig_calibration.hpp"
+#include "service_logger.hpp"
 
 namespace binpick::cell {
 namespace {
+
+// A recipe without grasps: generated from its model (mesh or cloud with normals) for the cell's
+// gripper, one per symmetry class.
+std::vector<Grasp> generatedGrasps(const RecipeConfig& config, const PickParams& cell_picking) {
+  const auto start = std::chrono::steady_clock::now();
+  const ModelGeometry geometry = readModelGeometry(config.model_file);
+  const GraspGenerationParams params;
+  std::vector<Grasp> grasps;
+  try {
+    grasps = geometry.hasMesh() ? generateGrasps(geometry.mesh, cell_picking.gripper, config.symmetry, params)
+                                : generateGrasps(geometry.cloud, cell_picking.gripper, config.symmetry, params);
+  } catch (const Error& e) {
+    throw Error(config.model_file + ": recipe " + config.name + ": cannot generate grasps: " + e.what());
+  }
+  if (grasps.empty()) {
+    throw Error(config.model_file + ": recipe " + config.name + ": the " + gripperTypeName(cell_picking.gripper.type) +
+                " gripper fits nowhere on the model; write the recipe's grasps by hand");
+  }
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  logger()->info("recipe {}: {} {} grasps generated from the model in {:.0f} ms (best: {}, quality {:.2f})",
+                 config.name, grasps.size(), gripperTypeName(cell_picking.gripper.type), ms, grasps.front().name,
+                 grasps.front().quality);
+  return grasps;
+}
 
 Recipe prepareRecipe(const RecipeConfig& config, const PickParams& cell_picking) {
   estimation::EstimationConfig settings;
@@ -22,7 +49,8 @@ Recipe prepareRecipe(const RecipeConfig& config, const PickParams& cell_picking)
                                            &recipe.model_from_cache);
   recipe.detector = std::make_shared<const estimation::Detector>(std::move(model), settings.detector);
   recipe.picking = cell_picking;
-  recipe.picking.grasps = config.grasps;
+  // Hand-written (or file) grasps take precedence over generated ones.
+  recipe.picking.grasps = config.grasps.empty() ? generatedGrasps(config, cell_picking) : config.grasps;
   recipe.picking.symmetry = config.symmetry;
   return recipe;
 }

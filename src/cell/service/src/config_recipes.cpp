@@ -1,26 +1,27 @@
 // The `recipes:` list: the parts the cell can pick, each with its model, settings and grasps.
 #include <set>
 
+#include "binpick/cell/grasps_file.hpp"
 #include "config_pose.hpp"
 #include "config_sections.hpp"
 
 namespace binpick::cell {
 namespace {
 
-std::vector<Grasp> readGrasps(YamlSection& recipe, const std::string& path, const std::string& origin) {
-  const YAML::Node list = recipe.has("grasps") ? recipe.node()["grasps"] : YAML::Node();
+// grasps: a list written in place, a string naming a grasps file (`binpick grasps`), or absent:
+// then they are generated from the model when the cell is prepared (cell_setup.cpp).
+std::vector<Grasp> readGrasps(YamlSection& recipe, const std::string& path, const std::string& origin,
+                              const PathResolver& resolve) {
   recipe.skip("grasps");
-  if (!list || !list.IsSequence() || list.size() == 0) recipe.fail("grasps", "needs a list of at least one grasp");
-  std::vector<Grasp> grasps;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    YamlSection entry(list[i], path + "grasps[" + std::to_string(i) + "].", origin);
-    Grasp grasp;
-    grasp.name = "grasp " + std::to_string(i);
-    entry.read("name", grasp.name);
-    grasp.T_model_grasp = readPose(entry);  // also rejects unknown keys
-    grasps.push_back(grasp);
+  if (!recipe.has("grasps")) return {};
+  const YAML::Node grasps = recipe.node()["grasps"];
+  if (!grasps.IsScalar()) return readGraspList(grasps, path, origin);
+  const std::string file = resolve(grasps.as<std::string>());
+  try {
+    return readGraspsFile(file);
+  } catch (const Error& e) {
+    throw Error(origin + ": " + path + "grasps: " + e.what());
   }
-  return grasps;
 }
 
 // symmetry: {rotations: [[...rotation values...], ...], convention: NAME, continuous_axis: [x, y, z]}
@@ -52,7 +53,7 @@ RecipeConfig readRecipe(YamlSection s, const std::string& path, const std::strin
   s.read("model", recipe.model_file);
   s.read("cache", recipe.model_cache);
   s.read("settings", recipe.settings_file);
-  recipe.grasps = readGrasps(s, path, origin);
+  recipe.grasps = readGrasps(s, path, origin, resolve);
   // A flip of the part about x (e.g. a plate that may lie either way up) is written as order 2
   // about x; a turned part as continuous about its axis.
   recipe.symmetry = readSymmetry(s.child("symmetry"));
