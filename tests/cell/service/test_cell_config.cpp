@@ -81,7 +81,7 @@ TEST(CellConfig, MistakesNameTheKey) {
                            "hand_eye.T_base_camera.rotation"));
   EXPECT_TRUE(throwsNaming([] { parse("source: {mode: camera}\nrecipes: []\n"); }, "source.mode"));
   EXPECT_TRUE(throwsNaming([] { parse("source: {replay: {path: c}}\n"); }, "recipes"));
-  EXPECT_TRUE(throwsNaming([] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply}]\n"); },
+  EXPECT_TRUE(throwsNaming([] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: []}]\n"); },
                            "recipes[0].grasps"));
   EXPECT_TRUE(throwsNaming(
       [] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: [{translaton: [0, 0, 0]}]}]\n"); },

@@ -25,7 +25,7 @@ std::string gripperTypeName(GripperType type);
 struct GripperParams {
   GripperType type = GripperType::Suction;
   // Suction
-  double cup_diameter = 0.016;     // metres: the disc that must seal on the part
+  double cup_diameter = 0.010;     // metres: the disc that must seal on the part
   double cup_length = 0.025;       // metres: cup + bellows along the approach axis
   double seal_tolerance = 0.0008;  // metres: how far the surface under the cup may leave its plane
   // Parallel jaw

@@ -36,7 +36,7 @@ struct RecipeConfig {
   std::string model_file;          // mesh or cloud of the part (metres)
   std::string model_cache;         // prepared-model cache ("" = none): fast restarts
   std::string settings_file;       // estimation settings (model:, detection:); "" = defaults
-  std::vector<Grasp> grasps;       // model frame
+  std::vector<Grasp> grasps;       // model frame; empty: generated from the model at startup
   PartSymmetry symmetry;
 };
 
