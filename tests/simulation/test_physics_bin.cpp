@@ -7,6 +7,7 @@
 #include "binpick/io/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/physics_pile.hpp"
+#include "binpick/simulation/pile.hpp"
 #include "mesh_test_utils.hpp"
 
 namespace binpick::sim {
@@ -139,6 +140,88 @@ TEST(PhysicsBin, RejectsBadInput) {
   bin.drop(1);
   EXPECT_THROW(bin.remove(1), Error);
   EXPECT_THROW(bin.remove(-1), Error);
+}
+
+// A quarter-resolution camera keeps the rendering fast; the geometry does not change.
+PileParams smallView(int objects) {
+  PileParams params;
+  params.objects = objects;
+  params.seed = 5;
+  params.rig.camera = params.rig.camera.scaled(0.5);
+  return params;
+}
+
+bool sameBits(const PointCloud& a, const PointCloud& b) {
+  if (a.points.size() != b.points.size()) return false;
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    const Eigen::Vector3f &p = a.points[i], &q = b.points[i];
+    for (int k = 0; k < 3; ++k) {
+      if (!(p[k] == q[k] || (std::isnan(p[k]) && std::isnan(q[k])))) return false;
+    }
+  }
+  return true;
+}
+
+// The poses a pile settled at, viewed again, give the very scene generatePile gave.
+TEST(PileView, ViewAtThePhysicsPosesIsTheGeneratedPile) {
+  const TriangleMesh part = makePart("clamp").mesh;
+  const PileParams params = smallView(6);
+  const PileScene generated = generatePile(part, params);
+  const PileScene viewed = viewPile(part, params, generated.physics.T_bin_object);
+  ASSERT_EQ(viewed.objects.size(), generated.objects.size());
+  for (std::size_t i = 0; i < viewed.objects.size(); ++i) {
+    EXPECT_TRUE(viewed.objects[i].T_camera_object.matrix() ==
+                generated.objects[i].T_camera_object.matrix());
+    EXPECT_EQ(viewed.objects[i].visible_pixels, generated.objects[i].visible_pixels);
+    EXPECT_EQ(viewed.objects[i].unoccluded_pixels, generated.objects[i].unoccluded_pixels);
+  }
+  EXPECT_EQ(viewed.instance, generated.instance);
+  EXPECT_TRUE(sameBits(viewed.cloud, generated.cloud));
+  EXPECT_TRUE(sameBits(viewed.exact_cloud, generated.exact_cloud));
+  EXPECT_TRUE(viewed.T_camera_bin.matrix() == generated.T_camera_bin.matrix());
+}
+
+TEST(PileView, EmptyBinShowsTheBinOnly) {
+  const PileParams params = smallView(0);
+  const PileCapture capture = renderPileCaptureAt(makePart("clamp").mesh, params, {},
+                                                  PatternSetSpec{}, PhotometryParams{});
+  EXPECT_TRUE(capture.scene.objects.empty());
+  EXPECT_FALSE(capture.images.empty());
+  int bin_pixels = 0;
+  for (const int32_t id : capture.scene.instance) {
+    EXPECT_LT(id, 0);
+    bin_pixels += id == -2;
+  }
+  EXPECT_GT(bin_pixels, static_cast<int>(capture.scene.instance.size()) / 4);
+}
+
+// A part placed by hand appears where it was put: its pixels lie around its projected centre.
+TEST(PileView, PartAppearsAtItsGivenPose) {
+  const PileParams params = smallView(0);
+  Eigen::Isometry3d T_bin_object = Eigen::Isometry3d::Identity();
+  T_bin_object.translation() = Eigen::Vector3d(0.08, -0.05, 0.02);
+  const PileScene scene = viewPile(makePart("clamp").mesh, params, {T_bin_object});
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_GT(scene.objects[0].visible_pixels, 50);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (std::size_t i = 0; i < scene.instance.size(); ++i) {
+    if (scene.instance[i] != 0) continue;
+    sum += scene.exact_cloud.points[i].cast<double>();
+    ++count;
+  }
+  ASSERT_GT(count, 0);
+  const Eigen::Vector3d centre_in_bin = scene.T_camera_bin.inverse() * (sum / count);
+  EXPECT_LT(1e3 * (centre_in_bin.head<2>() - T_bin_object.translation().head<2>()).norm(), 15.0);
+}
+
+TEST(BinMesh, IsTheClosedBinAroundTheInterior) {
+  const TriangleMesh mesh = binMesh(BinInterior{0.3, 0.2, 0.1});
+  EXPECT_EQ(test::closedManifoldProblem(mesh), "");
+  const test::PlacedMesh placed = test::place(mesh, Eigen::Isometry3d::Identity());
+  EXPECT_NEAR(placed.box.max().z(), 0.1, 1e-6);
+  EXPECT_NEAR(placed.box.max().x(), 0.16, 1e-6);  // the 10 mm wall outside the interior
+  EXPECT_THROW(binMesh(BinInterior{0.3, -0.2, 0.1}), Error);
 }
 
 }  // namespace

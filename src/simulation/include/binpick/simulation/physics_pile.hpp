@@ -23,6 +23,11 @@ struct BinInterior {
   double wall_height = 0.15;  // metres
 };
 
+// The bin as the rig sees it and as the physics holds it: a closed triangle mesh in the bin frame,
+// the floor slab (10 mm thick, below z = 0) and four walls (10 mm thick) outside the interior.
+// Throws binpick::Error unless the three sizes are positive and finite.
+TriangleMesh binMesh(const BinInterior& bin);
+
 struct PhysicsParams {
   // Parts are released in layers above whatever already lies in the bin: each part's lowest point
   // starts this far above the highest point of the pile (or of the floor), uniformly at random.
