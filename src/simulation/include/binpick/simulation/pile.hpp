@@ -80,7 +80,7 @@ PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& para
 
 // The parts at the given poses (T_bin_object, bin frame), seen by the rig, with the same truth as
 // generatePile gives for its own poses (generatePile is simulatePile, then this): no physics is
-// run, the poses are taken as they are (a PhysicsBin's keep the parts inside and apart);
+// run, the poses are taken as they are (a PhysicsBin gives them inside the bin and apart);
 // params.objects and params.physics are not used. objects[i] is T_bin_objects[i];
 // scene.physics holds the poses, settled, and no counts. No poses: the empty bin. Throws
 // binpick::Error on bad params, a bad part mesh or a pose that is not a finite rigid transform.
