@@ -1,5 +1,9 @@
 #include "bin.hpp"
 
+#include <cmath>
+
+#include "binpick/io/error.hpp"
+#include "binpick/simulation/physics_pile.hpp"
 #include "mesh_geometry.hpp"
 
 namespace binpick::sim::detail {
@@ -19,3 +23,16 @@ TriangleMesh makeBinMesh(double length, double width, double wall_height) {
 }
 
 }  // namespace binpick::sim::detail
+
+namespace binpick::sim {
+
+TriangleMesh binMesh(const BinInterior& bin) {
+  for (const double size : {bin.length, bin.width, bin.wall_height}) {
+    if (!(std::isfinite(size) && size > 0.0)) {
+      throw Error("binMesh: the bin's length, width and wall_height must be positive and finite");
+    }
+  }
+  return detail::makeBinMesh(bin.length, bin.width, bin.wall_height);
+}
+
+}  // namespace binpick::sim

@@ -1,5 +1,9 @@
-// generatePile: a physical pile in the bin, seen by the rig, with its ground truth.
+// generatePile and viewPile: a pile in the bin, dropped or at given poses, seen by the rig, with its
+// ground truth.
 #include "binpick/simulation/pile.hpp"
+
+#include <string>
+#include <utility>
 
 #include "bin.hpp"
 #include "binpick/io/error.hpp"
@@ -48,7 +52,7 @@ void recordTruth(PileScene& scene, const SensorGeometry& geometry,
 }
 
 // The pile as the rig sees it: what every camera pixel hits, lit or not.
-SensorGeometry viewPile(const TriangleMesh& part, const PileScene& scene, const PileParams& params,
+SensorGeometry castRays(const TriangleMesh& part, const PileScene& scene, const PileParams& params,
                         std::vector<ObjectVisibility>* visibility = nullptr) {
   const TriangleMesh bin_mesh =
       detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
@@ -62,27 +66,50 @@ SensorGeometry viewPile(const TriangleMesh& part, const PileScene& scene, const 
   return geometry;
 }
 
-// generatePile, handing out the sensor geometry it cast so that images need not cast it again.
-PileScene generatePileWithGeometry(const TriangleMesh& part, const PileParams& params,
-                                   SensorGeometry& geometry) {
-  params.validate();
-  if (part.empty()) throw Error("generatePile: the part mesh has no triangles");
-  validateMesh(part, "generatePile part");
+void requireValidPart(const TriangleMesh& part, const char* caller) {
+  if (part.empty()) throw Error(std::string(caller) + ": the part mesh has no triangles");
+  validateMesh(part, std::string(caller) + " part");
+}
 
+// The scene at the given poses, handing out the sensor geometry it cast so that images need not
+// cast it again. Inputs already validated.
+PileScene sceneAt(const TriangleMesh& part, const PileParams& params,
+                  const std::vector<Eigen::Isometry3d>& T_bin_objects, SensorGeometry& geometry) {
   PileScene scene;
   scene.rig = params.rig;
   scene.T_camera_bin = cameraAboveBin(params.camera_height);
-  const BinInterior bin{params.bin_length, params.bin_width, params.bin_wall_height};
-  scene.physics = simulatePile(part, params.objects, bin, params.physics, params.seed);
-  for (const Eigen::Isometry3d& T_bin_object : scene.physics.T_bin_object) {
+  for (const Eigen::Isometry3d& T_bin_object : T_bin_objects) {
     scene.objects.push_back({scene.T_camera_bin * T_bin_object, 0, 0, 0.0});
   }
   std::vector<ObjectVisibility> visibility;
-  geometry = viewPile(part, scene, params, &visibility);
+  geometry = castRays(part, scene, params, &visibility);
   recordTruth(scene, geometry, visibility);
   scene.cloud = detail::measurableCloud(geometry, params.max_view_angle_deg);
   detail::applySensorNoise(scene.cloud, params.depth_noise, params.dropout, params.seed,
                            kSensorStream);
+  return scene;
+}
+
+// generatePile: the physics, then the view of the poses it gives.
+PileScene generatePileWithGeometry(const TriangleMesh& part, const PileParams& params,
+                                   SensorGeometry& geometry) {
+  params.validate();
+  requireValidPart(part, "generatePile");
+  const BinInterior bin{params.bin_length, params.bin_width, params.bin_wall_height};
+  PhysicsPile physics = simulatePile(part, params.objects, bin, params.physics, params.seed);
+  PileScene scene = sceneAt(part, params, physics.T_bin_object, geometry);
+  scene.physics = std::move(physics);
+  return scene;
+}
+
+PileScene viewPileWithGeometry(const TriangleMesh& part, const PileParams& params,
+                               const std::vector<Eigen::Isometry3d>& T_bin_objects,
+                               SensorGeometry& geometry) {
+  params.validate();
+  requireValidPart(part, "viewPile");
+  PileScene scene = sceneAt(part, params, T_bin_objects, geometry);
+  scene.physics.T_bin_object = T_bin_objects;
+  scene.physics.settled = true;
   return scene;
 }
 
@@ -105,7 +132,7 @@ std::vector<cv::Mat> renderPileImages(const TriangleMesh& part, const PileScene&
                                       const PileParams& params, const PatternSetSpec& patterns,
                                       const PhotometryParams& photometry) {
   params.validate();
-  return imagesOf(viewPile(part, scene, params), scene, params, patterns, photometry);
+  return imagesOf(castRays(part, scene, params), scene, params, patterns, photometry);
 }
 
 PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& params,
@@ -114,6 +141,23 @@ PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& para
   SensorGeometry geometry;
   PileCapture capture;
   capture.scene = generatePileWithGeometry(part, params, geometry);
+  capture.images = imagesOf(geometry, capture.scene, params, patterns, photometry);
+  return capture;
+}
+
+PileScene viewPile(const TriangleMesh& part, const PileParams& params,
+                   const std::vector<Eigen::Isometry3d>& T_bin_objects) {
+  SensorGeometry geometry;
+  return viewPileWithGeometry(part, params, T_bin_objects, geometry);
+}
+
+PileCapture renderPileCaptureAt(const TriangleMesh& part, const PileParams& params,
+                                const std::vector<Eigen::Isometry3d>& T_bin_objects,
+                                const PatternSetSpec& patterns,
+                                const PhotometryParams& photometry) {
+  SensorGeometry geometry;
+  PileCapture capture;
+  capture.scene = viewPileWithGeometry(part, params, T_bin_objects, geometry);
   capture.images = imagesOf(geometry, capture.scene, params, patterns, photometry);
   return capture;
 }

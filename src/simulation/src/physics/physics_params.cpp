@@ -53,6 +53,8 @@ void PhysicsParams::validate(const std::string& name) const {
   check.require(substeps >= 1 && substeps <= kMaxSubsteps, "substeps", "in [1, 1000]", substeps);
   check.require(positiveUpTo(max_simulated_time, kMaxSimulatedTime), "max_simulated_time",
                 "in (0, 3600]", max_simulated_time);
+  check.require(positiveUpTo(max_resettle_time, kMaxSimulatedTime), "max_resettle_time",
+                "in (0, 3600]", max_resettle_time);
   check.require(std::isfinite(settle_linear_velocity) && settle_linear_velocity > 0.0,
                 "settle_linear_velocity", "positive", settle_linear_velocity);
   check.require(std::isfinite(settle_angular_velocity) && settle_angular_velocity > 0.0,

@@ -1,8 +1,10 @@
-// simulatePile: drop layers of parts into the bin until all have come to rest inside it.
+// PhysicsBin: drop layers of parts into the bin until all have come to rest inside it, take parts
+// out and let the rest re-settle. simulatePile is a fresh PhysicsBin's first drop.
 #include "binpick/simulation/physics_pile.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -28,12 +30,15 @@ void requirePositive(double value, const char* field) {
   throw Error(message.str());
 }
 
-void requireValidInputs(const TriangleMesh& part, int objects, const BinInterior& bin,
-                        const PhysicsParams& params) {
-  params.validate();
+void requireObjects(int objects) {
   if (objects < 0) {
     throw Error("simulatePile: objects must be >= 0 (got " + std::to_string(objects) + ")");
   }
+}
+
+void requireValidInputs(const TriangleMesh& part, const BinInterior& bin,
+                        const PhysicsParams& params) {
+  params.validate();
   requirePositive(bin.length, "bin.length");
   requirePositive(bin.width, "bin.width");
   requirePositive(bin.wall_height, "bin.wall_height");
@@ -65,28 +70,69 @@ double requireFitsInBin(const TriangleMesh& part, const BinInterior& bin,
   return clearance;
 }
 
+// Validates everything about the inputs before any work is done; returns the clearance kept from
+// the walls at release.
+double validatedClearance(const TriangleMesh& part, const BinInterior& bin,
+                          const PhysicsParams& params) {
+  requireValidInputs(part, bin, params);
+  return requireFitsInBin(part, bin, params);
+}
+
+// Time limits in whole steps, so that no rounding of a running sum decides when to stop.
+int framesIn(double seconds, const PhysicsParams& params) {
+  return static_cast<int>(std::floor(seconds / params.time_step));
+}
+
 }  // namespace
 
-PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterior& bin,
-                         const PhysicsParams& params, uint64_t seed) {
-  requireValidInputs(part, objects, bin, params);
-  const double clearance = requireFitsInBin(part, bin, params);
-  const detail::PartShape shape(part, params);
-  detail::PileSimulation simulation(shape, bin, params);
-  detail::Rng rng = detail::makeRng(seed, kReleaseStream);
+struct PhysicsBin::Impl {
+  Impl(const TriangleMesh& part, const BinInterior& bin_interior, const PhysicsParams& physics,
+       uint64_t seed)
+      : interior(bin_interior),
+        params(physics),
+        clearance(validatedClearance(part, interior, params)),
+        shape(part, params),
+        simulation(shape, interior, params),
+        rng(detail::makeRng(seed, kReleaseStream)) {}
+
+  BinInterior interior;
+  PhysicsParams params;
+  double clearance;  // kept from the walls at release
+  detail::PartShape shape;
+  detail::PileSimulation simulation;  // refers to `shape`: declared after it
+  detail::Rng rng;
+};
+
+PhysicsBin::PhysicsBin(const TriangleMesh& part, const BinInterior& bin,
+                       const PhysicsParams& params, uint64_t seed)
+    : impl_(std::make_unique<Impl>(part, bin, params, seed)) {}
+
+PhysicsBin::~PhysicsBin() = default;
+PhysicsBin::PhysicsBin(PhysicsBin&&) noexcept = default;
+PhysicsBin& PhysicsBin::operator=(PhysicsBin&&) noexcept = default;
+
+// Layer after layer until every part lies inside the bin; parts that came to rest outside it are
+// dropped again, as long as time remains.
+PhysicsPile PhysicsBin::drop(int objects) {
+  requireObjects(objects);
+  Impl& bin = *impl_;
+  detail::PileSimulation& simulation = bin.simulation;
+  const int first_frame = simulation.frames();
+  const int frame_limit = first_frame + framesIn(bin.params.max_simulated_time, bin.params);
 
   PhysicsPile result;
-  result.convex_pieces = shape.pieces();
+  result.convex_pieces = bin.shape.pieces();
   int waiting = objects;
   bool settled = true;
   while (waiting > 0) {
-    const auto layer = detail::releaseLayer(waiting, simulation.pileTop(), shape.extremePoints(),
-                                            bin, params, clearance, rng);
+    const auto layer = detail::releaseLayer(waiting, simulation.pileTop(), bin.shape.extremePoints(),
+                                            bin.interior, bin.params, bin.clearance, bin.rng);
     simulation.release(layer);
     waiting -= static_cast<int>(layer.size());
     ++result.layers;
-    settled = simulation.settle();
-    const int escaped = simulation.removeEscaped();  // never kept, settled or not
+    settled = simulation.settle(frame_limit);
+    // Never kept, settled or not.
+    const int escaped = static_cast<int>(simulation.removeEscaped().size());
     if (!settled) {
       result.lost = waiting + escaped;
       break;
@@ -94,11 +140,46 @@ PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterio
     waiting += escaped;
     result.redrops += escaped;
   }
+  const int frames = simulation.frames() - first_frame;
   result.settled = settled;
   result.T_bin_object = simulation.poses();
-  result.simulated_time = simulation.simulatedTime();
-  result.steps = simulation.steps();
+  result.simulated_time = frames * bin.params.time_step;
+  result.steps = static_cast<long>(frames) * bin.params.substeps;
   return result;
+}
+
+std::vector<Eigen::Isometry3d> PhysicsBin::poses() const { return impl_->simulation.poses(); }
+
+int PhysicsBin::size() const { return impl_->simulation.size(); }
+
+SettleResult PhysicsBin::remove(int index) {
+  detail::PileSimulation& simulation = impl_->simulation;
+  if (index < 0 || index >= simulation.size()) {
+    throw Error("PhysicsBin::remove: index " + std::to_string(index) + " is not in [0, " +
+                std::to_string(simulation.size()) + ")");
+  }
+  const std::vector<int> serials_before = simulation.serials();
+  const int first_frame = simulation.frames();
+  simulation.removeAt(index);
+
+  SettleResult result;
+  result.settled =
+      simulation.settle(first_frame + framesIn(impl_->params.max_resettle_time, impl_->params));
+  for (const int serial : simulation.removeEscaped()) {
+    const auto at = std::find(serials_before.begin(), serials_before.end(), serial);
+    result.escaped.push_back(static_cast<int>(at - serials_before.begin()));
+  }
+  std::sort(result.escaped.begin(), result.escaped.end());
+  const int frames = simulation.frames() - first_frame;
+  result.simulated_time = frames * impl_->params.time_step;
+  result.steps = static_cast<long>(frames) * impl_->params.substeps;
+  return result;
+}
+
+PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterior& bin,
+                         const PhysicsParams& params, uint64_t seed) {
+  requireObjects(objects);
+  return PhysicsBin(part, bin, params, seed).drop(objects);
 }
 
 }  // namespace binpick::sim

@@ -34,7 +34,10 @@ double PileSimulation::pileTop() const {
 }
 
 void PileSimulation::release(const std::vector<Eigen::Isometry3d>& T_bin_model) {
-  for (const auto& pose : T_bin_model) bodies_.push_back(world_.addPart(part_, pose));
+  for (const auto& pose : T_bin_model) {
+    bodies_.push_back(world_.addPart(part_, pose));
+    bodies_.back()->setUserIndex(next_serial_++);  // user data only: no influence on the physics
+  }
 }
 
 bool PileSimulation::atRest(const btRigidBody* body, const btTransform& window_start,
@@ -46,21 +49,17 @@ bool PileSimulation::atRest(const btRigidBody* body, const btTransform& window_s
          turned < params_.settle_angular_velocity * window;
 }
 
-bool PileSimulation::outOfTime() const {
-  // Counted in whole steps, so that no rounding of a running sum decides when to stop.
-  return frames_ >= static_cast<int>(std::floor(params_.max_simulated_time / params_.time_step));
-}
-
 // Compares each part's pose at the end of a window of settle_time with its start: the mean speeds
-// over the window, unlike the instantaneous ones, are not kept up by the solver's jitter.
-bool PileSimulation::settle() {
+// over the window, unlike the instantaneous ones, are not kept up by the solver's jitter. The limit
+// is counted in whole steps, so that no rounding of a running sum decides when to stop.
+bool PileSimulation::settle(int frame_limit) {
   const int window_frames =
       std::max(1, static_cast<int>(std::ceil(params_.settle_time / params_.time_step - 1e-9)));
   const double window = window_frames * params_.time_step;
   const double step = params_.time_step / params_.substeps;
   std::vector<btTransform> window_start;
   int frames_in_window = 0;
-  while (!outOfTime()) {
+  while (frames_ < frame_limit) {
     if (frames_in_window == 0) {
       window_start.clear();
       for (const btRigidBody* body : bodies_) window_start.push_back(body->getWorldTransform());
@@ -91,8 +90,10 @@ bool PileSimulation::removeFallen() {
   for (btRigidBody* body : bodies_) {
     if (toMetres(body->getWorldTransform().getOrigin()).z() < -kFallenDepth) fallen.push_back(body);
   }
-  for (btRigidBody* body : fallen) remove(body);
-  fallen_ += static_cast<int>(fallen.size());
+  for (btRigidBody* body : fallen) {
+    fallen_.push_back(body->getUserIndex());
+    remove(body);
+  }
   return !fallen.empty();
 }
 
@@ -108,20 +109,36 @@ bool PileSimulation::isInsideBin(const btRigidBody* body) const {
                      });
 }
 
-int PileSimulation::removeEscaped() {
+std::vector<int> PileSimulation::removeEscaped() {
   std::vector<btRigidBody*> outside;
   for (btRigidBody* body : bodies_) {
     if (!isInsideBin(body)) outside.push_back(body);
   }
-  for (btRigidBody* body : outside) remove(body);
-  const int removed = static_cast<int>(outside.size()) + fallen_;
-  fallen_ = 0;
+  std::vector<int> removed;
+  removed.swap(fallen_);
+  for (btRigidBody* body : outside) {
+    removed.push_back(body->getUserIndex());
+    remove(body);
+  }
   return removed;
+}
+
+void PileSimulation::removeAt(int index) {
+  remove(bodies_.at(static_cast<std::size_t>(index)));
+  // activate(true) also restarts each body's countdown to sleep, so that none dozes off again
+  // before its new support has been found.
+  for (btRigidBody* body : bodies_) body->activate(true);
 }
 
 std::vector<Eigen::Isometry3d> PileSimulation::poses() const {
   std::vector<Eigen::Isometry3d> out;
   for (const btRigidBody* body : bodies_) out.push_back(T_bin_model(body));
+  return out;
+}
+
+std::vector<int> PileSimulation::serials() const {
+  std::vector<int> out;
+  for (const btRigidBody* body : bodies_) out.push_back(body->getUserIndex());
   return out;
 }
 

@@ -18,14 +18,23 @@ class PileSimulation {
 
   // Highest point of any part in the world (0, the floor, when there is none). Metres, bin frame.
   double pileTop() const;
+  // Adds the parts; each gets the next serial number (0, 1, ... over the simulation's life).
   void release(const std::vector<Eigen::Isometry3d>& T_bin_model);
 
-  // Steps until every part has come to rest (true), or until max_simulated_time (false).
-  bool settle();
-  // Takes out every part not inside the bin (see isInsideBin) and returns how many.
-  int removeEscaped();
+  // Steps until every part has come to rest (true), or until `frame_limit` time steps have been
+  // simulated since the simulation began (false).
+  bool settle(int frame_limit);
+  // Takes out every part not inside the bin (see isInsideBin), and those that fell off the world
+  // while settling; returns their serial numbers.
+  std::vector<int> removeEscaped();
+  // Takes out the part at `index` (release order) and wakes all others: a body Bullet has put to
+  // sleep stays where it is, supported or not, until something wakes it.
+  void removeAt(int index);
 
   std::vector<Eigen::Isometry3d> poses() const;  // T_bin_model of the parts, in release order
+  std::vector<int> serials() const;              // of the parts, in release order
+  int size() const { return static_cast<int>(bodies_.size()); }
+  int frames() const { return frames_; }         // time steps simulated
   long steps() const { return static_cast<long>(frames_) * params_.substeps; }
   double simulatedTime() const { return frames_ * params_.time_step; }
 
@@ -33,7 +42,6 @@ class PileSimulation {
   Eigen::Isometry3d T_bin_model(const btRigidBody* body) const;
   bool atRest(const btRigidBody* body, const btTransform& window_start, double window) const;
   bool isInsideBin(const btRigidBody* body) const;
-  bool outOfTime() const;
   bool removeFallen();  // true if any
   void remove(btRigidBody* body);
 
@@ -41,9 +49,10 @@ class PileSimulation {
   BinInterior bin_;
   PhysicsParams params_;
   BulletWorld world_;
-  std::vector<btRigidBody*> bodies_;  // in release order
+  std::vector<btRigidBody*> bodies_;  // in release order; each one's user index is its serial
   int frames_ = 0;                    // time steps simulated
-  int fallen_ = 0;                    // taken out while falling off the world
+  int next_serial_ = 0;
+  std::vector<int> fallen_;           // serials taken out while falling off the world
 };
 
 }  // namespace binpick::sim::detail

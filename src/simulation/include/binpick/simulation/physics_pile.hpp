@@ -1,11 +1,13 @@
 #pragma once
 // A physical pile: identical rigid parts dropped into a bin and simulated (Bullet) until they come
 // to rest. Deterministic for a seed: the same inputs give bit-identical poses on the same build.
-// Stateless: every call builds its own world, so concurrent calls do not influence each other.
+// simulatePile is stateless: every call builds its own world, so concurrent calls do not influence
+// each other. A PhysicsBin keeps its world: parts are taken out one by one and the rest re-settle.
 // (Bullet itself updates a few global statistics counters without locking; nothing reads them,
 // but a race detector will report them when calls run on several threads.)
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,11 @@ struct BinInterior {
   double width = 0.30;        // metres, along y
   double wall_height = 0.15;  // metres
 };
+
+// The bin as the rig sees it and as the physics holds it: a closed triangle mesh in the bin frame,
+// the floor slab (10 mm thick, below z = 0) and four walls (10 mm thick) outside the interior.
+// Throws binpick::Error unless the three sizes are positive and finite.
+TriangleMesh binMesh(const BinInterior& bin);
 
 struct PhysicsParams {
   // Parts are released in layers above whatever already lies in the bin: each part's lowest point
@@ -40,6 +47,9 @@ struct PhysicsParams {
   double time_step = 1.0 / 120.0;  // seconds
   int substeps = 2;
   double max_simulated_time = 30.0;  // seconds, all layers together; the run stops there
+  // Budget of each PhysicsBin::remove: the rest of the pile re-settles within this much simulated
+  // time or the call stops there (and reports it).
+  double max_resettle_time = 5.0;  // seconds
 
   // The pile has come to rest when, over a window of settle_time, every part's centre of mass has
   // moved slower than settle_linear_velocity and the part has turned slower than
@@ -93,5 +103,54 @@ struct PhysicsPile {
 // appears to enclose.
 PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterior& bin,
                          const PhysicsParams& params, uint64_t seed);
+
+// How the pile re-settled after a part was taken out (PhysicsBin::remove).
+struct SettleResult {
+  bool settled = false;         // every remaining part came to rest within max_resettle_time
+  double simulated_time = 0.0;  // seconds, this call
+  long steps = 0;               // Bullet steps of time_step / substeps, this call
+  // Parts that ended outside the bin (over a wall, off the world) and were taken out too: their
+  // indices into poses() as it was before the call (the removed part itself is not among them).
+  std::vector<int> escaped;
+};
+
+// A pile that lives on: parts dropped into the bin stay in one Bullet world, and taking one out
+// lets the rest slide and fall into their new places. Deterministic: the same seed and the same
+// sequence of calls give bit-identical poses on the same build. Not copyable; one thread at a time
+// (calls on different PhysicsBin objects may run concurrently, as simulatePile's do).
+class PhysicsBin {
+ public:
+  // Builds the part's collision shape (0.03-0.15 s for the built-in parts). Throws
+  // binpick::Error on bad params or bin, a bad mesh, or a part too large for the bin, as
+  // simulatePile does.
+  PhysicsBin(const TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params,
+             uint64_t seed);
+  ~PhysicsBin();
+  PhysicsBin(PhysicsBin&&) noexcept;
+  PhysicsBin& operator=(PhysicsBin&&) noexcept;
+  PhysicsBin(const PhysicsBin&) = delete;
+  PhysicsBin& operator=(const PhysicsBin&) = delete;
+
+  // Drops `objects` more parts onto whatever lies in the bin, exactly as simulatePile does
+  // (simulatePile is a fresh PhysicsBin's first drop). The time limit max_simulated_time and
+  // the counts (settled, lost, redrops, layers, time, steps) are this call's; T_bin_object lists
+  // every part now in the bin, as poses() does. Throws binpick::Error when objects < 0.
+  PhysicsPile drop(int objects);
+
+  // T_bin_object of every part in the bin, in the order the parts were added (the order of their
+  // last release), removed ones left out.
+  std::vector<Eigen::Isometry3d> poses() const;
+  int size() const;
+
+  // Takes part `index` (into poses()) out of the world, wakes every other part (resting parts
+  // sleep, and Bullet would leave one hanging in the air when its support goes), steps until
+  // everything is at rest again or max_resettle_time runs out, then takes out parts that ended
+  // outside the bin. Throws binpick::Error on an index outside [0, size()).
+  SettleResult remove(int index);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace binpick::sim

@@ -78,6 +78,21 @@ struct PileCapture {
 PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& params,
                                 const PatternSetSpec& patterns, const PhotometryParams& photometry);
 
+// The parts at the given poses (T_bin_object, bin frame), seen by the rig, with the same truth as
+// generatePile gives for its own poses (generatePile is simulatePile, then this): no physics is
+// run, the poses are taken as they are (a PhysicsBin gives them inside the bin and apart);
+// params.objects and params.physics are not used. objects[i] is T_bin_objects[i];
+// scene.physics holds the poses, settled, and no counts. No poses: the empty bin. Throws
+// binpick::Error on bad params, a bad part mesh or a pose that is not a finite rigid transform.
+PileScene viewPile(const TriangleMesh& part, const PileParams& params,
+                   const std::vector<Eigen::Isometry3d>& T_bin_objects);
+
+// viewPile and its pattern images in one pass, as generatePileCapture.
+PileCapture renderPileCaptureAt(const TriangleMesh& part, const PileParams& params,
+                                const std::vector<Eigen::Isometry3d>& T_bin_objects,
+                                const PatternSetSpec& patterns,
+                                const PhotometryParams& photometry);
+
 // The images as the rig would have recorded them: a Capture with its metadata (image size, bit
 // depth, pattern set and names, a nominal exposure, the time now), ready for writeCapture or the
 // decoder. `source` describes the scene in the metadata.
