@@ -45,7 +45,9 @@ TEST_F(EmptyingTest, FiveBracketsLeaveTheBinWithoutAFailedPick) {
       EXPECT_EQ(cycle.parts_after, cycle.parts_before) << cycleLine(cycle);
     }
   }
-  if (report.picked + report.escaped == report.objects) EXPECT_EQ(report.end, EmptyingEnd::Empty);
+  if (report.picked + report.escaped == report.objects) {
+    EXPECT_EQ(report.end, EmptyingEnd::Empty);
+  }
   EXPECT_EQ(report.left.size(), static_cast<std::size_t>(report.objects - report.picked - report.escaped));
 }
 
