@@ -69,8 +69,8 @@ inline ::testing::AssertionResult samePose(const Eigen::Isometry3d& a, const Eig
 inline ::testing::AssertionResult picksOne(const PickPlan& plan) {
   if (plan.picks.size() == 1) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure()
-         << plan.picks.size() << " picks; rejected collision " << plan.rejected_collision
-         << ", avoided " << plan.rejected_avoided << ", invalid " << plan.rejected_invalid;
+         << plan.picks.size() << " picks; rejected tilt " << plan.rejected.tilt << ", bin "
+         << plan.rejected.bin << ", cloud " << plan.rejected.cloud << ", avoided " << plan.rejected.avoided << ", invalid " << plan.rejected.invalid;
 }
 
 }  // namespace binpick::cell::test

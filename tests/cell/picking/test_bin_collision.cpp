@@ -62,7 +62,7 @@ TEST(picking_bin, CorridorCrossingTheWallTopIsRejected) {
 // as z does, so from a grasp point at z = 120 mm the limit is x = 170 - 51.2 mm.
 TEST(picking_bin, TiltedCorridorLimitHoldsToTheMillimetre) {
   const PickParams params = leaningGraspParams();
-  const double radius = params.tool_radius + params.wall_clearance;
+  const double radius = params.gripper.tool_radius + params.wall_clearance;
   const double checked_up_to = params.bin.wall_height + radius * std::sin(radians(45));
   const double limit_x = 0.5 * params.bin.length - radius - (checked_up_to - 0.12);
   EXPECT_TRUE(reachable(params, partGraspedAt({limit_x - 0.001, 0, 0.12})));

@@ -63,7 +63,8 @@ TEST(picking_params, BinMustBeARigidPoseAndPositiveSizes) {
 
 TEST(picking_params, DistancesAnglesAndStepsMustBeInRange) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.approach_distance = -0.01; }, "approach_distance"));
-  EXPECT_TRUE(rejects([](PickParams& p) { p.tool_radius = kNaN; }, "tool_radius"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.gripper.tool_radius = kNaN; }, "gripper.tool_radius"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.gripper.cup_diameter = 0; }, "gripper.cup_diameter"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.wall_clearance = -0.001; }, "wall_clearance"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.max_tilt_deg = 181; }, "max_tilt_deg"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.max_tilt_deg = -1; }, "max_tilt_deg"));
@@ -72,11 +73,25 @@ TEST(picking_params, DistancesAnglesAndStepsMustBeInRange) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.continuous_symmetry_steps = 4000; },
                       "continuous_symmetry_steps"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.avoid_radius = -0.02; }, "avoid_radius"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.collision_margin = -0.001; }, "collision_margin"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.finger_clearance = kNaN; }, "finger_clearance"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.clearance_cap = 0; }, "clearance_cap"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.cover_radius = -0.04; }, "cover_radius"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.cover_height = kNaN; }, "cover_height"));
+}
+
+TEST(picking_params, RankingWeightsAndGraspQualityMustBeInRange) {
+  EXPECT_TRUE(rejects([](PickParams& p) { p.ranking.free = -1; }, "ranking.free"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.ranking.clearance = kNaN; }, "ranking.clearance"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.ranking.quality = -0.5; }, "ranking.quality"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.grasps[0].quality = 1.5; }, "grasps"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.grasps[0].width = -0.01; }, "grasps"));
 }
 
 TEST(picking_params, PickOrderNames) {
   EXPECT_EQ(pickOrderFromName("highest_first"), PickOrder::HighestFirst);
   EXPECT_EQ(pickOrderFromName("best_score"), PickOrder::BestScore);
+  EXPECT_EQ(pickOrderFromName("best_rank"), PickOrder::BestRank);
   EXPECT_TRUE(throwsNaming([] { pickOrderFromName("lowest_first"); }, "\"lowest_first\""));
 }
 

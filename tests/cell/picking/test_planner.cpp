@@ -47,7 +47,8 @@ TEST(picking_planner, ApproachSteeperThanMaxTiltIsRejected) {
   params.max_tilt_deg = 49.999;
   const PickPlan too_steep = planPicks({leaning}, {}, params);
   EXPECT_TRUE(too_steep.picks.empty());
-  EXPECT_EQ(too_steep.rejected_collision, 1);
+  EXPECT_EQ(too_steep.rejected.tilt, 1);
+  EXPECT_EQ(too_steep.rejected.total(), 1);
 }
 
 TEST(picking_planner, LeastTiltWinsThenTheLowestGraspIndex) {
@@ -72,10 +73,10 @@ TEST(picking_planner, ObjectsNearAFailedPickAreAvoided) {
   const std::vector<DetectedPart> parts = {part({-0.05, 0, 0.05}), part({0.05, 0, 0.05})};
   const PickPlan plan = planPicks(parts, {{-0.035, 0, 0.05}}, params);  // 15 mm from part 0
   EXPECT_EQ(pickedObjects(plan), std::vector<int>{1});
-  EXPECT_EQ(plan.rejected_avoided, 1);
+  EXPECT_EQ(plan.rejected.avoided, 1);
   const PickPlan far = planPicks(parts, {{-0.025, 0, 0.05}}, params);  // 25 mm away
   EXPECT_EQ(far.picks.size(), 2u);
-  EXPECT_EQ(far.rejected_avoided, 0);
+  EXPECT_EQ(far.rejected.avoided, 0);
 }
 
 // Grasp heights and scores with ties in each key; parts spread along x.
@@ -106,29 +107,29 @@ TEST(picking_planner, BestScoreOrdersByScoreThenHeightThenIndex) {
 
 TEST(picking_planner, InvalidDetectionsAreSkippedAndCounted) {
   const PickParams params = topGraspParams();
-  std::vector<DetectedPart> parts(5, part({0, 0, 0.05}));
+  std::vector<DetectedPart> parts(6, part({0, 0, 0.05}));
   parts[0].T_base_model.translation().x() = kNaN;
   parts[1].T_base_model.linear()(1, 2) = std::numeric_limits<double>::infinity();
   parts[2].T_base_model.linear() *= 2.0;  // a scale, not a rotation
   parts[3].score = kNaN;
+  parts[4].coverage = kNaN;
   const PickPlan plan = planPicks(parts, {{kNaN, 0, 0}}, params);
-  EXPECT_EQ(pickedObjects(plan), std::vector<int>{4});
-  EXPECT_EQ(plan.rejected_invalid, 4);
-  EXPECT_EQ(plan.rejected_avoided, 0);
-  EXPECT_EQ(plan.rejected_collision, 0);
+  EXPECT_EQ(pickedObjects(plan), std::vector<int>{5});
+  EXPECT_EQ(plan.rejected.invalid, 5);
+  EXPECT_EQ(plan.rejected.total(), 5);
 }
 
 TEST(picking_planner, NoDetectionsGiveAnEmptyPlan) {
   const PickPlan plan = planPicks({}, {}, topGraspParams());
   EXPECT_TRUE(plan.picks.empty());
-  EXPECT_EQ(plan.rejected_collision + plan.rejected_avoided + plan.rejected_invalid, 0);
+  EXPECT_EQ(plan.rejected.total(), 0);
 }
 
 TEST(picking_planner, BadParamsThrowNamingTheField) {
   PickParams params = topGraspParams();
-  params.tool_radius = -0.01;
+  params.gripper.tool_radius = -0.01;
   EXPECT_TRUE(binpick::test::throwsNaming([&] { planPicks({part({0, 0, 0.05})}, {}, params); },
-                                          "picking.tool_radius"));
+                                          "picking.gripper.tool_radius"));
 }
 
 }  // namespace

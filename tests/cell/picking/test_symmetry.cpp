@@ -46,7 +46,7 @@ TEST(picking_symmetry, TwinOfATooSteepGraspIsPicked) {
 
   const PickPlan without_symmetry = planPicks({leaning}, {}, params);
   EXPECT_TRUE(without_symmetry.picks.empty());
-  EXPECT_EQ(without_symmetry.rejected_collision, 1);
+  EXPECT_EQ(without_symmetry.rejected.tilt, 1);
 
   params.symmetry.discrete = {rotZ(0), rotZ(180)};
   const PickPlan plan = planPicks({leaning}, {}, params);
@@ -98,7 +98,7 @@ TEST(picking_symmetry, ContinuousAndDiscreteSymmetriesCombine) {
   const DetectedPart upside_down = part({0.01, 0.02, 0.05}, rotX(180) * rotZ(17));
 
   const PickPlan without_flip = planPicks({upside_down}, {}, params);
-  EXPECT_EQ(without_flip.rejected_collision, 1);
+  EXPECT_EQ(without_flip.rejected.tilt, 1);
 
   params.symmetry.discrete = {rotX(0), rotX(180)};
   const PickPlan plan = planPicks({upside_down}, {}, params);

@@ -35,6 +35,36 @@ TEST(CellConfig, TheDocumentedExampleParsesWithItsDefaults) {
   EXPECT_NEAR(config.T_base_camera->translation().z(), 0.9, 1e-12);
 }
 
+TEST(CellConfig, PickingReadsEveryGripperKeyAndTheRankingWeights) {
+  const CellConfig config = parse(kMinimal +
+                                  "picking:\n"
+                                  "  gripper: {type: parallel, cup_diameter: 0.02, cup_length: 0.03, seal_tolerance: 0.001,\n"
+                                  "            stroke: 0.06, finger_width: 0.01, finger_depth: 0.025, finger_thickness: 0.006,\n"
+                                  "            tool_radius: 0.03, tool_length: 0.2}\n"
+                                  "  ranking: {free: 3, height: 0.5, coverage: 2, upright: 0.25, clearance: 0, quality: 4}\n"
+                                  "  collision_margin: 0.003\n"
+                                  "  finger_clearance: 0.004\n"
+                                  "  clearance_cap: 0.03\n"
+                                  "  cover_radius: 0.05\n"
+                                  "  cover_height: 0.006\n"
+                                  "  order: best_rank\n");
+  const PickParams& p = config.picking;
+  const GripperParams& g = p.gripper;
+  EXPECT_EQ(g.type, GripperType::Parallel);
+  EXPECT_EQ(std::vector<double>({g.cup_diameter, g.cup_length, g.seal_tolerance, g.stroke, g.finger_width,
+                                 g.finger_depth, g.finger_thickness, g.tool_radius, g.tool_length}),
+            std::vector<double>({0.02, 0.03, 0.001, 0.06, 0.01, 0.025, 0.006, 0.03, 0.2}));
+  const RankWeights& w = p.ranking;
+  EXPECT_EQ(std::vector<double>({w.free, w.height, w.coverage, w.upright, w.clearance, w.quality}),
+            std::vector<double>({3, 0.5, 2, 0.25, 0, 4}));
+  EXPECT_EQ(std::vector<double>({p.collision_margin, p.finger_clearance, p.clearance_cap, p.cover_radius,
+                                 p.cover_height}),
+            std::vector<double>({0.003, 0.004, 0.03, 0.05, 0.006}));
+  EXPECT_EQ(p.order, PickOrder::BestRank);
+  EXPECT_EQ(parse(kMinimal).picking.order, PickOrder::HighestFirst);  // absent: as before the ranking
+  EXPECT_EQ(loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml").picking.order, PickOrder::BestRank);
+}
+
 TEST(CellConfig, RelativePathsAreRelativeToTheFile) {
   const CellConfig config = parse(kMinimal);
   EXPECT_EQ(config.source.replay.path, "/base/captures");
@@ -74,7 +104,13 @@ TEST(CellConfig, MistakesNameTheKey) {
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {framing: json}\n"); }, "robot.framing"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "limits: {capture_timeout_ms: 0}\n"); }, "capture_timeout_ms"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {order: random}\n"); }, "picking.order"));
-  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {tool_radius: -1}\n"); }, "tool_radius"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {gripper: {tool_radius: -1}}\n"); },
+                           "picking.gripper.tool_radius"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {tool_radius: 0.02}\n"); },
+                           "moved to picking.gripper.tool_radius"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {gripper: {type: magnet}}\n"); }, "picking.gripper.type"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {gripper: {cup_size: 1}}\n"); }, "picking.gripper.cup_size"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {ranking: {free: -1}}\n"); }, "picking.ranking.free"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "reconstruction: {decode: {min_contrast: -1}}\n"); },
                            "min_contrast"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "hand_eye: {T_base_camera: {rotation: [0, 0, 0, 0]}}\n"); },

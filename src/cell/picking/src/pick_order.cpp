@@ -12,10 +12,12 @@ void sortPicks(std::vector<Pick>& picks, const std::vector<DetectedPart>& parts,
   };
   // Tuples compare key by key; negating height and score makes them descend.
   const auto sortKey = [&](const Pick& pick) {
-    if (order == PickOrder::HighestFirst) {
-      return std::make_tuple(-height(pick), -score(pick), pick.object);
+    switch (order) {
+      case PickOrder::HighestFirst: return std::make_tuple(-height(pick), -score(pick), pick.object);
+      case PickOrder::BestScore: return std::make_tuple(-score(pick), -height(pick), pick.object);
+      case PickOrder::BestRank: break;
     }
-    return std::make_tuple(-score(pick), -height(pick), pick.object);
+    return std::make_tuple(-pick.rank, -height(pick), pick.object);
   };
   std::sort(picks.begin(), picks.end(),
             [&](const Pick& a, const Pick& b) { return sortKey(a) < sortKey(b); });

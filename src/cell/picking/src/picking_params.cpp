@@ -20,6 +20,9 @@ void validateGrasps(const std::vector<Grasp>& grasps) {
   for (const Grasp& grasp : grasps) {
     requireField(isRigidPose(grasp.T_model_grasp, kConfigTolerance), kOwner, "grasps",
                  "finite rigid poses", grasp.name);
+    requireField(grasp.quality >= 0.0 && grasp.quality <= 1.0, kOwner, "grasps",
+                 "of quality in [0, 1]", grasp.name);
+    requireField(isNonNegative(grasp.width), kOwner, "grasps", "of width >= 0", grasp.name);
   }
 }
 
@@ -50,10 +53,21 @@ void validateBin(const BinBox& bin) {
 
 }  // namespace
 
+void RankWeights::validate() const {
+  const std::string owner = kOwner + ".ranking";
+  requireField(isNonNegative(free), owner, "free", ">= 0", free);
+  requireField(isNonNegative(height), owner, "height", ">= 0", height);
+  requireField(isNonNegative(coverage), owner, "coverage", ">= 0", coverage);
+  requireField(isNonNegative(upright), owner, "upright", ">= 0", upright);
+  requireField(isNonNegative(clearance), owner, "clearance", ">= 0", clearance);
+  requireField(isNonNegative(quality), owner, "quality", ">= 0", quality);
+}
+
 PickOrder pickOrderFromName(const std::string& name) {
   if (name == "highest_first") return PickOrder::HighestFirst;
   if (name == "best_score") return PickOrder::BestScore;
-  throw Error("unknown pick order \"" + name + "\" (use highest_first or best_score)");
+  if (name == "best_rank") return PickOrder::BestRank;
+  throw Error("unknown pick order \"" + name + "\" (use highest_first, best_score or best_rank)");
 }
 
 void PickParams::validate() const {
@@ -70,6 +84,12 @@ void PickParams::validate() const {
   requireField(continuous_symmetry_steps >= 1 && continuous_symmetry_steps <= 3600, kOwner,
                "continuous_symmetry_steps", "in [1, 3600]", continuous_symmetry_steps);
   requireField(isNonNegative(avoid_radius), kOwner, "avoid_radius", ">= 0", avoid_radius);
+  requireField(isNonNegative(collision_margin), kOwner, "collision_margin", ">= 0", collision_margin);
+  requireField(isNonNegative(finger_clearance), kOwner, "finger_clearance", ">= 0", finger_clearance);
+  requireField(isPositive(clearance_cap), kOwner, "clearance_cap", "> 0", clearance_cap);
+  requireField(isNonNegative(cover_radius), kOwner, "cover_radius", ">= 0", cover_radius);
+  requireField(isNonNegative(cover_height), kOwner, "cover_height", ">= 0", cover_height);
+  ranking.validate();
 }
 
 }  // namespace binpick::cell

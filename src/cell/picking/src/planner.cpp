@@ -1,4 +1,5 @@
-// planPicks: per part, the best reachable symmetric grasp; then the order.
+// planPicks: per part, the best-ranked symmetric grasp that passes the tilt, bin and cloud tests;
+// then the order.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -7,6 +8,7 @@
 #include "binpick/cell/picking.hpp"
 #include "grasp_candidates.hpp"
 #include "pick_order.hpp"
+#include "binpick/cell/tool_collision.hpp"
 #include "rigid.hpp"
 
 namespace binpick::cell {
@@ -14,11 +16,12 @@ namespace {
 
 // Detected poses are float refinements: rigid to ~1e-7, far inside this.
 constexpr double kPoseTolerance = 1e-4;
-// Tilts this close count as equal, so the grasp index and the wrist angle decide.
-constexpr double kTiltTieDeg = 1e-6;
+// Ranks this close count as equal, so the grasp index and the wrist angle decide (1e-7 of the
+// height term is 15 nm; symmetric copies differ by rounding only).
+constexpr double kRankTie = 1e-7;
 
 bool isValidPart(const DetectedPart& part) {
-  return std::isfinite(part.score) && isRigidPose(part.T_base_model, kPoseTolerance);
+  return std::isfinite(part.score) && std::isfinite(part.coverage) && isRigidPose(part.T_base_model, kPoseTolerance);
 }
 
 bool isNearAvoided(const Eigen::Vector3d& centre, const std::vector<Eigen::Vector3d>& avoid,
@@ -42,44 +45,154 @@ double wristAlignment(const Eigen::Isometry3d& T_base_grasp) {
   return T_base_grasp.linear().col(0).dot(reference.normalized());
 }
 
-// Whether `challenger` (no more tilted than the least tilt + kTiltTieDeg) beats `incumbent`:
-// the lower grasp index, then the better wrist alignment; a full tie keeps the earlier one.
+// A tie in rank (within kRankTie): the lower grasp index, then the better wrist alignment; a full
+// tie keeps the incumbent.
 bool breaksTieBetter(const Pick& challenger, const Pick& incumbent) {
   if (challenger.grasp != incumbent.grasp) return challenger.grasp < incumbent.grasp;
   return wristAlignment(challenger.T_base_grasp) > wristAlignment(incumbent.T_base_grasp);
 }
 
-std::vector<Pick> reachablePicks(const DetectedPart& part, int object,
-                                 const std::vector<GraspCandidate>& candidates,
-                                 const PickParams& params) {
-  std::vector<Pick> reachable;
-  for (const GraspCandidate& candidate : candidates) {
-    const Eigen::Isometry3d T_base_grasp = part.T_base_model * candidate.T_model_grasp;
-    const double tilt_deg = approachTiltDeg(T_base_grasp);
-    if (tilt_deg > params.max_tilt_deg) continue;
-    if (approachHitsBin(T_base_grasp, params)) continue;
-    reachable.push_back({object, candidate.grasp, T_base_grasp, tilt_deg});
-  }
-  return reachable;
+bool ranksBetter(const Pick& challenger, const Pick& incumbent) {
+  if (challenger.rank > incumbent.rank + kRankTie) return true;
+  if (challenger.rank < incumbent.rank - kRankTie) return false;
+  return breaksTieBetter(challenger, incumbent);
 }
 
-// The least tilted of the reachable picks, ties broken by breaksTieBetter.
-std::optional<Pick> bestPick(const std::vector<Pick>& reachable) {
-  if (reachable.empty()) return std::nullopt;
-  double least_tilt = reachable.front().tilt_deg;
-  for (const Pick& pick : reachable) least_tilt = std::min(least_tilt, pick.tilt_deg);
+// The rank terms known without the measured cloud (RankWeights in picking.hpp).
+double rankWithoutCloud(const DetectedPart& part, const Grasp& grasp, const Pick& pick, const PickParams& params) {
+  const RankWeights& w = params.ranking;
+  const Eigen::Vector3d in_bin = params.bin.T_base_bin.inverse() * pick.T_base_grasp.translation();
+  return w.height * in_bin.z() / params.bin.wall_height + w.coverage * part.coverage +
+         w.upright * (1.0 - pick.tilt_deg / 90.0) + w.quality * grasp.quality;
+}
+
+// How far a part's grasps got through the tests, in test order.
+enum class Reached { Tilt, Bin, Cloud };
+
+struct Screened {
+  std::vector<Pick> survivors;  // rank: the terms known without the cloud
+  Reached furthest = Reached::Tilt;
+};
+
+// The cheap tests: tilt, then the approach corridor against the bin.
+Screened screenCandidates(const DetectedPart& part, int object, const std::vector<GraspCandidate>& candidates,
+                          const PickParams& params) {
+  Screened screened;
+  for (const GraspCandidate& candidate : candidates) {
+    Pick pick;
+    pick.object = object;
+    pick.grasp = candidate.grasp;
+    pick.T_base_grasp = part.T_base_model * candidate.T_model_grasp;
+    pick.tilt_deg = approachTiltDeg(pick.T_base_grasp);
+    if (pick.tilt_deg > params.max_tilt_deg) continue;
+    screened.furthest = std::max(screened.furthest, Reached::Bin);
+    if (approachHitsBin(pick.T_base_grasp, params)) continue;
+    screened.furthest = Reached::Cloud;
+    pick.rank = rankWithoutCloud(part, params.grasps[static_cast<std::size_t>(pick.grasp)], pick, params);
+    screened.survivors.push_back(pick);
+  }
+  return screened;
+}
+
+// No measured cloud: nothing covers the part and the tool has all the clearance it can count.
+std::optional<Pick> bestWithoutCloud(std::vector<Pick> survivors, const PickParams& params) {
   std::optional<Pick> best;
-  for (const Pick& pick : reachable) {
-    if (pick.tilt_deg > least_tilt + kTiltTieDeg) continue;
-    if (!best || breaksTieBetter(pick, *best)) best = pick;
+  for (Pick& pick : survivors) {
+    pick.clearance = params.clearance_cap;
+    pick.rank += params.ranking.free + params.ranking.clearance;
+    if (!best || ranksBetter(pick, *best)) best = pick;
   }
   return best;
+}
+
+ToolSweep sweepFor(const Grasp& grasp, const PickParams& params) {
+  ToolSweep sweep;
+  sweep.approach_distance = params.approach_distance;
+  sweep.margin = params.collision_margin;
+  sweep.opening = grasp.width > 0.0 ? grasp.width + 2.0 * params.finger_clearance : 0.0;
+  sweep.clearance_cap = params.clearance_cap;
+  return sweep;
+}
+
+// One part's queries of the measured scene, remembered per grasp point: the cover depends on the
+// point alone, and a suction tool is round about its approach, so grasps differing only by a turn
+// about it (a continuous symmetry about the approach axis) meet the cloud alike.
+class PartCloudTests {
+ public:
+  PartCloudTests(const MeasuredScene& scene, const PickParams& params) : scene_(scene), params_(params) {}
+
+  double covered(const Pick& pick) { return entryFor(pick).covered; }
+
+  ToolContact contact(const Pick& pick) {
+    const Grasp& grasp = params_.grasps[static_cast<std::size_t>(pick.grasp)];
+    const auto query = [&] {
+      return toolCollision(scene_, pick.T_base_grasp, params_.gripper, sweepFor(grasp, params_));
+    };
+    if (params_.gripper.type != GripperType::Suction) return query();
+    Entry& entry = entryFor(pick);
+    if (!entry.contact) entry.contact = query();
+    return *entry.contact;
+  }
+
+ private:
+  struct Entry {
+    Eigen::Vector3d point, approach;
+    double covered = 0.0;
+    std::optional<ToolContact> contact;
+  };
+
+  Entry& entryFor(const Pick& pick) {
+    const Eigen::Vector3d point = pick.T_base_grasp.translation();
+    const Eigen::Vector3d approach = pick.T_base_grasp.linear().col(2);
+    for (Entry& entry : entries_) {
+      if ((entry.point - point).norm() < kSameAxis && (entry.approach - approach).norm() < kSameAxis) return entry;
+    }
+    const double covered = scene_.shareCoveredAbove(point, params_.cover_radius, params_.cover_height);
+    entries_.push_back({point, approach, covered, std::nullopt});
+    return entries_.back();
+  }
+
+  static constexpr double kSameAxis = 1e-9;  // metres, and for the unit approach vector
+  const MeasuredScene& scene_;
+  const PickParams& params_;
+  std::vector<Entry> entries_;
+};
+
+// Branch and bound in the order of the rank known without the cloud: the cover and clearance
+// terms add at most free + clearance weight, so once a candidate cannot reach the best full rank
+// neither can any after it. The result equals testing every candidate; usually the first
+// collision-free one ends the search.
+std::optional<Pick> bestAgainstCloud(std::vector<Pick> survivors, const PickParams& params,
+                                     const MeasuredScene& scene) {
+  std::stable_sort(survivors.begin(), survivors.end(), [](const Pick& a, const Pick& b) { return a.rank > b.rank; });
+  const RankWeights& w = params.ranking;
+  PartCloudTests tests(scene, params);
+  std::optional<Pick> best;
+  for (Pick& pick : survivors) {
+    if (best && pick.rank + w.free + w.clearance < best->rank - kRankTie) break;
+    const double without_clearance = pick.rank + w.free * (1.0 - tests.covered(pick));
+    if (best && without_clearance + w.clearance < best->rank - kRankTie) continue;
+    const ToolContact contact = tests.contact(pick);
+    if (contact.collision) continue;
+    pick.clearance = contact.clearance;
+    pick.rank = without_clearance + w.clearance * contact.clearance / params.clearance_cap;
+    if (!best || ranksBetter(pick, *best)) best = pick;
+  }
+  return best;
+}
+
+void countRejection(Reached furthest, PickRejections& rejected) {
+  switch (furthest) {
+    case Reached::Tilt: ++rejected.tilt; break;
+    case Reached::Bin: ++rejected.bin; break;
+    case Reached::Cloud: ++rejected.cloud; break;
+  }
 }
 
 }  // namespace
 
 PickPlan planPicks(const std::vector<DetectedPart>& parts, const std::vector<Eigen::Vector3d>& avoid,
-                   const PickParams& params, const MeasuredScene* /*scene*/) {
+                   const PickParams& params, const MeasuredScene* scene) {
   params.validate();
   const std::vector<GraspCandidate> candidates = symmetricGraspCandidates(params);
   PickPlan plan;
@@ -93,11 +206,13 @@ PickPlan planPicks(const std::vector<DetectedPart>& parts, const std::vector<Eig
       ++plan.rejected.avoided;
       continue;
     }
-    const auto object = static_cast<int>(i);
-    if (auto pick = bestPick(reachablePicks(part, object, candidates, params))) {
+    Screened screened = screenCandidates(part, static_cast<int>(i), candidates, params);
+    const std::optional<Pick> pick = scene ? bestAgainstCloud(std::move(screened.survivors), params, *scene)
+                                           : bestWithoutCloud(std::move(screened.survivors), params);
+    if (pick) {
       plan.picks.push_back(*pick);
     } else {
-      ++plan.rejected.bin;
+      countRejection(screened.furthest, plan.rejected);
     }
   }
   sortPicks(plan.picks, parts, params.order);

@@ -16,6 +16,36 @@ auto choice(const YamlSection& section, const char* key, const std::string& text
   }
 }
 
+GripperParams readGripper(YamlSection s) {
+  GripperParams gripper;
+  std::string type = gripperTypeName(gripper.type);
+  s.read("type", type);
+  s.read("cup_diameter", gripper.cup_diameter);
+  s.read("cup_length", gripper.cup_length);
+  s.read("seal_tolerance", gripper.seal_tolerance);
+  s.read("stroke", gripper.stroke);
+  s.read("finger_width", gripper.finger_width);
+  s.read("finger_depth", gripper.finger_depth);
+  s.read("finger_thickness", gripper.finger_thickness);
+  s.read("tool_radius", gripper.tool_radius);
+  s.read("tool_length", gripper.tool_length);
+  s.finish();
+  gripper.type = choice(s, "type", type, gripperTypeFromName);
+  return gripper;
+}
+
+RankWeights readRanking(YamlSection s) {
+  RankWeights weights;
+  s.read("free", weights.free);
+  s.read("height", weights.height);
+  s.read("coverage", weights.coverage);
+  s.read("upright", weights.upright);
+  s.read("clearance", weights.clearance);
+  s.read("quality", weights.quality);
+  s.finish();
+  return weights;
+}
+
 }  // namespace
 
 PickParams readPicking(YamlSection s) {
@@ -27,12 +57,20 @@ PickParams readPicking(YamlSection s) {
   if (bin.has("T_base_bin")) params.bin.T_base_bin = readPose(bin.child("T_base_bin"));
   else bin.skip("T_base_bin");
   bin.finish();
+  if (s.has("tool_radius")) s.fail("tool_radius", "moved to picking.gripper.tool_radius");
+  params.gripper = readGripper(s.child("gripper"));
   s.read("approach_distance", params.approach_distance);
-  s.read("tool_radius", params.gripper.tool_radius);
   s.read("wall_clearance", params.wall_clearance);
   s.read("max_tilt_deg", params.max_tilt_deg);
   s.read("continuous_symmetry_steps", params.continuous_symmetry_steps);
   s.read("avoid_radius", params.avoid_radius);
+  s.read("collision_margin", params.collision_margin);
+  s.read("finger_clearance", params.finger_clearance);
+  s.read("clearance_cap", params.clearance_cap);
+  s.read("cover_radius", params.cover_radius);
+  s.read("cover_height", params.cover_height);
+  params.ranking = readRanking(s.child("ranking"));
+  // Settings files written before the ranking keep their order: absent means highest_first.
   std::string order = "highest_first";
   s.read("order", order);
   s.finish();

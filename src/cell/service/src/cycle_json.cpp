@@ -13,6 +13,11 @@ nlohmann::json poseJson(const Eigen::Isometry3d& pose) {
   return {{"translation", {t.x(), t.y(), t.z()}}, {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
 }
 
+// The confident detections that were not picked, by the reason (picking.hpp).
+nlohmann::json rejectedJson(const PickRejections& r) {
+  return {{"invalid", r.invalid}, {"avoided", r.avoided}, {"tilt", r.tilt}, {"bin", r.bin}, {"cloud", r.cloud}};
+}
+
 }  // namespace
 
 std::string cycleJson(const SavedCycle& cycle) {
@@ -22,6 +27,8 @@ std::string cycleJson(const SavedCycle& cycle) {
     picks.push_back({{"object", pick.object},
                      {"grasp", pick.grasp},
                      {"tilt_deg", pick.tilt_deg},
+                     {"clearance", pick.clearance},
+                     {"rank", pick.rank},
                      {"T_base_grasp", poseJson(pick.T_base_grasp)}});
   }
   const CycleTimings& t = outcome.timing_ms;
@@ -32,6 +39,7 @@ std::string cycleJson(const SavedCycle& cycle) {
       {"detail", outcome.detail},
       {"bin_points", outcome.bin_points},
       {"picks", picks},
+      {"rejected", rejectedJson(outcome.rejected)},
       {"timing_ms",
        {{"capture", t.capture}, {"reconstruct", t.reconstruct}, {"detect", t.detect}, {"plan", t.plan}, {"total", t.total}}},
       {"detection", estimation::toJson(outcome.detection)},

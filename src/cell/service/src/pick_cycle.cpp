@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "binpick/cell/tool_collision.hpp"
+
 namespace binpick::cell {
 namespace {
 
@@ -23,7 +25,8 @@ Candidates pickCandidates(const std::vector<Eigen::Isometry3d>& T_base_objects,
   Candidates candidates;
   for (std::size_t i = 0; i < T_base_objects.size(); ++i) {
     if (result.detections[i].coverage < min_coverage) continue;
-    candidates.parts.push_back({T_base_objects[i], result.detections[i].score});
+    const estimation::Detection& detection = result.detections[i];
+    candidates.parts.push_back({T_base_objects[i], detection.score, detection.coverage});
     candidates.detection.push_back(static_cast<int>(i));
   }
   return candidates;
@@ -34,6 +37,14 @@ void classifyEmpty(CycleOutcome& outcome, const CellSetup& setup) {
   const bool empty = outcome.bin_points <= setup.config.limits.empty_bin_max_points;
   outcome.status = empty ? robot::Status::BinEmpty : robot::Status::NoObjects;
   outcome.detail = std::to_string(outcome.bin_points) + " points in the bin";
+}
+
+// "12 parts detected: 2 not sure enough, 4 too tilted, ..." for a cycle without a pick.
+std::string unreachableDetail(std::size_t detected, std::size_t not_sure, const PickRejections& r) {
+  return std::to_string(detected) + " parts detected: " + std::to_string(not_sure) + " not sure enough, " +
+         std::to_string(r.tilt) + " too tilted, " + std::to_string(r.bin) + " with the tool hitting the bin, " +
+         std::to_string(r.cloud) + " with the tool hitting the measured cloud, " + std::to_string(r.avoided) +
+         " avoided, " + std::to_string(r.invalid) + " invalid";
 }
 
 }  // namespace
@@ -76,23 +87,22 @@ CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const 
   }
   const Candidates candidates =
       pickCandidates(outcome.T_base_objects, outcome.detection, setup.config.limits.min_pick_coverage);
-  PickPlan plan = planPicks(candidates.parts, avoid, recipe.picking);
+  const MeasuredScene scene(outcome.reconstruction.cloud, T_base_camera);
+  PickPlan plan = planPicks(candidates.parts, avoid, recipe.picking, &scene);
   if (plan.picks.size() > static_cast<std::size_t>(setup.config.limits.max_picks)) {
     plan.picks.resize(setup.config.limits.max_picks);
   }
   for (Pick& pick : plan.picks) pick.object = candidates.detection[static_cast<std::size_t>(pick.object)];
   outcome.picks = std::move(plan.picks);
+  outcome.rejected = plan.rejected;
   outcome.timing_ms.plan = millisecondsSince(start);
 
   if (outcome.T_base_objects.empty()) {
     classifyEmpty(outcome, setup);
   } else if (outcome.picks.empty()) {
     outcome.status = robot::Status::Unreachable;
-    outcome.detail = std::to_string(outcome.T_base_objects.size()) + " parts detected: " +
-                     std::to_string(outcome.T_base_objects.size() - candidates.parts.size()) + " not sure enough, " +
-                     std::to_string(plan.rejected.bin) + " without a collision-free grasp, " +
-                     std::to_string(plan.rejected.avoided) + " avoided, " + std::to_string(plan.rejected.invalid) +
-                     " invalid";
+    outcome.detail = unreachableDetail(outcome.T_base_objects.size(),
+                                       outcome.T_base_objects.size() - candidates.parts.size(), plan.rejected);
   }
   return outcome;
 }

@@ -30,6 +30,9 @@ struct Grasp {
   // How good the grasp is on the part alone, in [0, 1] (grasp_generation.hpp: seal margin, distance
   // from the centre of mass); hand-written grasps count as 1.
   double quality = 1.0;
+  // Parallel jaw: the part's width between the two contact points, metres; the fingers open to
+  // it plus PickParams::finger_clearance each side (at most the stroke). 0: unknown, fully open.
+  double width = 0.0;
 };
 
 // Rotations mapping the part onto itself about its model origin: a grasp S * T_model_grasp is as
@@ -48,8 +51,29 @@ struct BinBox {
   double length = 0.40, width = 0.30, wall_height = 0.15;  // metres, inner sizes
 };
 
-enum class PickOrder { HighestFirst, BestScore };
-PickOrder pickOrderFromName(const std::string& name);  // "highest_first" | "best_score"
+enum class PickOrder { HighestFirst, BestScore, BestRank };
+// "highest_first" | "best_score" | "best_rank"
+PickOrder pickOrderFromName(const std::string& name);
+
+// The ranking value of a surviving grasp (Pick::rank), a weighted sum of terms near [0, 1], each
+// "higher is likelier to succeed":
+//   free       1 - the share of the measured columns within cover_radius of the grasp point that
+//              rise more than cover_height above it (1 without a measured scene): the part on top
+//   height     the grasp point's height above the bin floor / wall_height (not clamped)
+//   coverage   DetectedPart::coverage: how much of the part the fit explains
+//   upright    1 - tilt_deg / 90
+//   clearance  Pick::clearance / clearance_cap (1 without a measured scene)
+//   quality    Grasp::quality
+// A part's pick is its best-ranked grasp; PickOrder::BestRank orders the parts by it.
+struct RankWeights {
+  double free = 2.0;       // being on top matters most: a buried part drags its neighbours along
+  double height = 1.0;
+  double coverage = 1.0;
+  double upright = 1.0;
+  double clearance = 0.5;
+  double quality = 1.0;
+  void validate() const;   // each finite and >= 0; throws binpick::Error naming the field
+};
 
 struct PickParams {
   std::vector<Grasp> grasps;               // at least one; rigid, finite poses
@@ -60,10 +84,17 @@ struct PickParams {
   double wall_clearance = 0.005;           // metres kept between the corridor and the walls
   double max_tilt_deg = 60.0;              // approach vs straight down (base -z); steeper: rejected
   int continuous_symmetry_steps = 36;      // grasps tried around a continuous axis, in [1, 3600]
-  // HighestFirst: the grasp point's base z, descending; BestScore: detection score, descending.
-  // Ties: the other key, then the object index.
-  PickOrder order = PickOrder::HighestFirst;
+  // HighestFirst: the grasp point's base z, descending; BestScore: detection score, descending;
+  // BestRank: Pick::rank, descending. Ties: height or score, then the object index.
+  PickOrder order = PickOrder::BestRank;
   double avoid_radius = 0.02;              // metres: a failed object's centre this close is avoided
+  // The tool against the measured cloud (tool_collision.hpp), when planPicks is given one:
+  double collision_margin = 0.002;         // metres the tool's volume is grown by (cloud noise)
+  double finger_clearance = 0.005;         // metres between an open finger and the part, each side
+  double clearance_cap = 0.02;             // metres: clearances up to this count in the ranking
+  double cover_radius = 0.04;              // metres around the grasp point searched for cover
+  double cover_height = 0.005;             // metres above the grasp point a covering point rises
+  RankWeights ranking;
   void validate() const;                   // throws binpick::Error naming the field
 };
 
@@ -82,9 +113,10 @@ struct Pick {
   double rank = 0.0;       // the ranking value the picks were ordered by, higher first
 };
 
-// Why parts were not picked, one count per part: the last test its best grasp failed.
+// Why parts were not picked, one count per part: the furthest test any of its grasps reached
+// (tilt, then bin, then cloud) and failed.
 struct PickRejections {
-  int invalid = 0;    // a non-finite or non-rigid pose, or a non-finite score
+  int invalid = 0;    // a non-finite or non-rigid pose, or a non-finite score or coverage
   int avoided = 0;    // near a failed pick
   int tilt = 0;       // every grasp tilted beyond max_tilt_deg
   int bin = 0;        // every grasp within the tilt limit: the tool hits the bin's walls or floor

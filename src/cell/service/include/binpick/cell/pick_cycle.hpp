@@ -1,6 +1,7 @@
 #pragma once
 // One pick cycle after the capture: reconstruct the cloud, detect the parts, tell an empty bin
-// from a bin whose parts were not found, plan the picks in the robot base frame. Expected
+// from a bin whose parts were not found, plan the picks in the robot base frame with the tool
+// tested against the measured cloud (tool_collision.hpp). Expected
 // outcomes (nothing found, empty bin, nothing reachable) are statuses, not exceptions.
 // Stateless functions: thread-safe.
 #include <Eigen/Geometry>
@@ -20,6 +21,7 @@ struct CycleOutcome {
   robot::Status status = robot::Status::Ok;
   std::string detail;  // why, when status is not ok
   std::vector<Pick> picks;                           // ordered, at most limits.max_picks
+  PickRejections rejected;                           // the confident detections not picked, by reason
   std::vector<Eigen::Isometry3d> T_base_objects;     // every detection, base frame
   estimation::DetectionResult detection;
   reconstruction::Reconstruction reconstruction;
