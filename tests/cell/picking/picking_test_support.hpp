@@ -70,7 +70,8 @@ inline ::testing::AssertionResult picksOne(const PickPlan& plan) {
   if (plan.picks.size() == 1) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure()
          << plan.picks.size() << " picks; rejected tilt " << plan.rejected.tilt << ", bin "
-         << plan.rejected.bin << ", cloud " << plan.rejected.cloud << ", avoided " << plan.rejected.avoided << ", invalid " << plan.rejected.invalid;
+         << plan.rejected.bin << ", cloud " << plan.rejected.cloud
+         << ", avoided " << plan.rejected.avoided << ", invalid " << plan.rejected.invalid;
 }
 
 }  // namespace binpick::cell::test

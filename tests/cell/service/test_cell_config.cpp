@@ -38,10 +38,12 @@ TEST(CellConfig, TheDocumentedExampleParsesWithItsDefaults) {
 TEST(CellConfig, PickingReadsEveryGripperKeyAndTheRankingWeights) {
   const CellConfig config = parse(kMinimal +
                                   "picking:\n"
-                                  "  gripper: {type: parallel, cup_diameter: 0.02, cup_length: 0.03, seal_tolerance: 0.001,\n"
-                                  "            stroke: 0.06, finger_width: 0.01, finger_depth: 0.025, finger_thickness: 0.006,\n"
+                                  "  gripper: {type: parallel, cup_diameter: 0.02, cup_length: 0.03,\n"
+                                  "            seal_tolerance: 0.001, stroke: 0.06, finger_width: 0.01,\n"
+                                  "            finger_depth: 0.025, finger_thickness: 0.006,\n"
                                   "            tool_radius: 0.03, tool_length: 0.2}\n"
-                                  "  ranking: {free: 3, height: 0.5, coverage: 2, upright: 0.25, clearance: 0, quality: 4}\n"
+                                  "  ranking: {free: 3, height: 0.5, coverage: 2, upright: 0.25,\n"
+                                  "            clearance: 0, quality: 4}\n"
                                   "  collision_margin: 0.003\n"
                                   "  finger_clearance: 0.004\n"
                                   "  clearance_cap: 0.03\n"
@@ -108,8 +110,10 @@ TEST(CellConfig, MistakesNameTheKey) {
                            "picking.gripper.tool_radius"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {tool_radius: 0.02}\n"); },
                            "moved to picking.gripper.tool_radius"));
-  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {gripper: {type: magnet}}\n"); }, "picking.gripper.type"));
-  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {gripper: {cup_size: 1}}\n"); }, "picking.gripper.cup_size"));
+  EXPECT_TRUE(
+      throwsNaming([] { parse(kMinimal + "picking: {gripper: {type: magnet}}\n"); }, "picking.gripper.type"));
+  EXPECT_TRUE(
+      throwsNaming([] { parse(kMinimal + "picking: {gripper: {cup_size: 1}}\n"); }, "picking.gripper.cup_size"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {ranking: {free: -1}}\n"); }, "picking.ranking.free"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "reconstruction: {decode: {min_contrast: -1}}\n"); },
                            "min_contrast"));

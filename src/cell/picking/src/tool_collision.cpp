@@ -275,9 +275,10 @@ ToolContact toolCollision(const MeasuredScene& scene, const Eigen::Isometry3d& T
     const Eigen::Vector3d p = T_grasp_base * base_point.cast<double>();
     for (int i = 0; i < tool.cylinder_count + tool.box_count; ++i) {
       bool counts = true;
+      const auto box = static_cast<std::size_t>(i - tool.cylinder_count);
       const double distance = i < tool.cylinder_count
                                   ? cylinderDistance(tool.cylinders[static_cast<std::size_t>(i)], p, counts)
-                                  : boxDistance(tool.boxes[static_cast<std::size_t>(i - tool.cylinder_count)], p, counts);
+                                  : boxDistance(tool.boxes[box], p, counts);
       if (distance < 0.0) {
         collision = true;
         return false;
