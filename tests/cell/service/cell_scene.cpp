@@ -131,7 +131,7 @@ std::string cellConfigYaml(const CellScene& scene, const std::string& extra, con
        << "      - {name: long leg outside, translation: [0.0124, -0.0126, 0], rotation: [-90, 0, 0], convention: euler_xyz}\n"
        << "      - {name: long leg inside, translation: [0.0164, -0.0046, 0], rotation: [90, 0, 0], convention: euler_xyz}\n"
        << "  - {name: second, model: " << scene.model << ", grasps: [{translation: [0, 0, 0]}]}\n"
-       << "picking: {bin: {T_base_bin: {translation: [0.6, 0, 0]}}, max_tilt_deg: 80}\n"
+       << "picking: {bin: {T_base_bin: {translation: [0.6, 0, 0]}}, max_tilt_deg: 80, order: highest_first}\n"
        << "robot: {bind_address: 127.0.0.1, port: 0}\n"
        << extra;
   return yaml.str();

@@ -70,8 +70,7 @@ PickParams readPicking(YamlSection s) {
   s.read("cover_radius", params.cover_radius);
   s.read("cover_height", params.cover_height);
   params.ranking = readRanking(s.child("ranking"));
-  // Settings files written before the ranking keep their order: absent means highest_first.
-  std::string order = "highest_first";
+  std::string order = "best_rank";
   s.read("order", order);
   s.finish();
   params.order = choice(s, "order", order, pickOrderFromName);
