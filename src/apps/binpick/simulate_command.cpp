@@ -2,7 +2,8 @@
 //                  [--bin-length L --bin-width W --bin-wall-height H] [--camera-height Z]
 //                  [--bit-depth 8|16] [--cloud-only] [--threads T] --out DIR
 // binpick simulate (--part NAME | --mesh FILE [--mesh-scale S]) [--objects N] [--seed S] --empty-bin
-//                  [--gripper suction|parallel] [--max-cycles K] [bin options] --out DIR (emptying.hpp)
+//                  [--gripper suction|parallel] [--cup-diameter M] [--tool-radius M] [--stroke M]
+//                  [--max-cycles K] [bin options] --out DIR (emptying.hpp)
 // binpick simulate --calibration-board charuco|chessboard [--poses K] [--seed S] --out DIR
 // binpick simulate --hand-eye eye-to-hand|eye-in-hand [--views K] ... --out DIR (simulate_hand_eye.hpp)
 // binpick simulate --list-parts
@@ -87,6 +88,9 @@ int emptyBin(const Arguments& args) {
   params.photometry.seed = params.pile.seed;
   params.photometry.threads = params.pile.threads;
   params.gripper.type = cell::gripperTypeFromName(args.value("--gripper").value_or("suction"));
+  params.gripper.cup_diameter = args.number("--cup-diameter").value_or(params.gripper.cup_diameter);
+  params.gripper.tool_radius = args.number("--tool-radius").value_or(params.gripper.tool_radius);
+  params.gripper.stroke = args.number("--stroke").value_or(params.gripper.stroke);
   params.max_cycles = args.integer("--max-cycles").value_or(0);
   params.out_directory = args.required("--out");
   requireFreshDirectory(params.out_directory);
@@ -169,7 +173,8 @@ int runSimulate(const std::vector<std::string>& raw) {
   const Arguments args(raw,
                        {"--part", "--mesh", "--mesh-scale", "--objects", "--seed", "--out",
                         "--bit-depth", "--threads", "--calibration-board", "--poses", "--bin-length",
-                        "--bin-width", "--bin-wall-height", "--camera-height", "--gripper", "--max-cycles"},
+                        "--bin-width", "--bin-wall-height", "--camera-height", "--gripper", "--max-cycles",
+                        "--cup-diameter", "--tool-radius", "--stroke"},
                        {"--cloud-only", "--empty-bin"});
   if (args.value("--calibration-board")) return simulateCalibration(args);
   if (args.flag("--empty-bin")) return emptyBin(args);

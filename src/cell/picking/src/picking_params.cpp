@@ -90,6 +90,7 @@ void PickParams::validate() const {
   requireField(isNonNegative(cover_radius), kOwner, "cover_radius", ">= 0", cover_radius);
   requireField(isNonNegative(cover_height), kOwner, "cover_height", ">= 0", cover_height);
   ranking.validate();
+  seal_check.validate();
 }
 
 }  // namespace binpick::cell

@@ -67,7 +67,7 @@ double rankWithoutCloud(const DetectedPart& part, const Grasp& grasp, const Pick
 }
 
 // How far a part's grasps got through the tests, in test order.
-enum class Reached { Tilt, Bin, Cloud };
+enum class Reached { Tilt, Bin, Cloud, Seal };
 
 struct Screened {
   std::vector<Pick> survivors;  // rank: the terms known without the cloud
@@ -158,12 +158,20 @@ class PartCloudTests {
   std::vector<Entry> entries_;
 };
 
+// A suction cup must find a face under its whole disc in the measured cloud (seal_check.hpp);
+// jaws and a plan without the organized cloud skip the test.
+bool sealsOnSurface(const Pick& pick, const PickParams& params, const MeasuredSurface* surface) {
+  if (!surface || params.gripper.type != GripperType::Suction) return true;
+  const GripperParams& g = params.gripper;
+  return surface->check(pick.T_base_grasp, 0.5 * g.cup_diameter, g.seal_tolerance, params.seal_check).seals;
+}
+
 // Branch and bound in the order of the rank known without the cloud: the cover and clearance
 // terms add at most free + clearance weight, so once a candidate cannot reach the best full rank
 // neither can any after it. The result equals testing every candidate; usually the first
 // collision-free one ends the search.
 std::optional<Pick> bestAgainstCloud(std::vector<Pick> survivors, const PickParams& params,
-                                     const MeasuredScene& scene) {
+                                     const MeasuredScene& scene, const MeasuredSurface* surface, Reached& furthest) {
   std::stable_sort(survivors.begin(), survivors.end(), [](const Pick& a, const Pick& b) { return a.rank > b.rank; });
   const RankWeights& w = params.ranking;
   PartCloudTests tests(scene, params);
@@ -174,6 +182,8 @@ std::optional<Pick> bestAgainstCloud(std::vector<Pick> survivors, const PickPara
     if (best && without_clearance + w.clearance < best->rank - kRankTie) continue;
     const ToolContact contact = tests.contact(pick);
     if (contact.collision) continue;
+    furthest = std::max(furthest, Reached::Seal);
+    if (!sealsOnSurface(pick, params, surface)) continue;
     pick.clearance = contact.clearance;
     pick.rank = without_clearance + w.clearance * contact.clearance / params.clearance_cap;
     if (!best || ranksBetter(pick, *best)) best = pick;
@@ -186,13 +196,14 @@ void countRejection(Reached furthest, PickRejections& rejected) {
     case Reached::Tilt: ++rejected.tilt; break;
     case Reached::Bin: ++rejected.bin; break;
     case Reached::Cloud: ++rejected.cloud; break;
+    case Reached::Seal: ++rejected.seal; break;
   }
 }
 
 }  // namespace
 
 PickPlan planPicks(const std::vector<DetectedPart>& parts, const std::vector<Eigen::Vector3d>& avoid,
-                   const PickParams& params, const MeasuredScene* scene) {
+                   const PickParams& params, const MeasuredScene* scene, const MeasuredSurface* surface) {
   params.validate();
   const std::vector<GraspCandidate> candidates = symmetricGraspCandidates(params);
   PickPlan plan;
@@ -207,8 +218,9 @@ PickPlan planPicks(const std::vector<DetectedPart>& parts, const std::vector<Eig
       continue;
     }
     Screened screened = screenCandidates(part, static_cast<int>(i), candidates, params);
-    const std::optional<Pick> pick = scene ? bestAgainstCloud(std::move(screened.survivors), params, *scene)
-                                           : bestWithoutCloud(std::move(screened.survivors), params);
+    const std::optional<Pick> pick =
+        scene ? bestAgainstCloud(std::move(screened.survivors), params, *scene, surface, screened.furthest)
+              : bestWithoutCloud(std::move(screened.survivors), params);
     if (pick) {
       plan.picks.push_back(*pick);
     } else {

@@ -15,7 +15,7 @@ nlohmann::json poseJson(const Eigen::Isometry3d& pose) {
 
 // The confident detections that were not picked, by the reason (picking.hpp).
 nlohmann::json rejectedJson(const PickRejections& r) {
-  return {{"invalid", r.invalid}, {"avoided", r.avoided}, {"tilt", r.tilt}, {"bin", r.bin}, {"cloud", r.cloud}};
+  return {{"invalid", r.invalid}, {"avoided", r.avoided}, {"tilt", r.tilt}, {"bin", r.bin}, {"cloud", r.cloud}, {"seal", r.seal}};
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "binpick/cell/tool_collision.hpp"
 
@@ -43,7 +44,8 @@ void classifyEmpty(CycleOutcome& outcome, const CellSetup& setup) {
 std::string unreachableDetail(std::size_t detected, std::size_t not_sure, const PickRejections& r) {
   return std::to_string(detected) + " parts detected: " + std::to_string(not_sure) + " not sure enough, " +
          std::to_string(r.tilt) + " too tilted, " + std::to_string(r.bin) + " with the tool hitting the bin, " +
-         std::to_string(r.cloud) + " with the tool hitting the measured cloud, " + std::to_string(r.avoided) +
+         std::to_string(r.cloud) + " with the tool hitting the measured cloud, " + std::to_string(r.seal) +
+         " with no measured face under the cup, " + std::to_string(r.avoided) +
          " avoided, " + std::to_string(r.invalid) + " invalid";
 }
 
@@ -88,7 +90,11 @@ CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const 
   const Candidates candidates =
       pickCandidates(outcome.T_base_objects, outcome.detection, setup.config.limits.min_pick_coverage);
   const MeasuredScene scene(outcome.reconstruction.cloud, T_base_camera);
-  PickPlan plan = planPicks(candidates.parts, avoid, recipe.picking, &scene);
+  const PointCloud& cloud = outcome.reconstruction.cloud;
+  const LensIntrinsics& camera = setup.reconstructor->rig().camera;
+  std::optional<MeasuredSurface> surface;  // the seal test reads the cloud through the camera's pixels
+  if (cloud.width == camera.width && cloud.height == camera.height) surface.emplace(cloud, camera, T_base_camera);
+  PickPlan plan = planPicks(candidates.parts, avoid, recipe.picking, &scene, surface ? &*surface : nullptr);
   if (plan.picks.size() > static_cast<std::size_t>(setup.config.limits.max_picks)) {
     plan.picks.resize(setup.config.limits.max_picks);
   }

@@ -122,7 +122,9 @@ class EmptyingRun {
         judgePick(truth, T_bin_grasp, params_.gripper, params_.approach_distance, params_.truth);
     pick.ok = judgement.ok;
     pick.reason = judgement.reason;
-    if (judgement.object >= 0) pick.T_base_part_true = cell_->T_base_bin() * poses[judgement.object];
+    // The part held, or on a miss the part the cup or a jaw touched first.
+    const int part = judgement.object >= 0 ? judgement.object : judgement.touched;
+    if (part >= 0) pick.T_base_part_true = cell_->T_base_bin() * poses[part];
     if (judgement.ok) {
       report_.escaped += static_cast<int>(physics_.remove(judgement.object).escaped.size());
       ++report_.picked;

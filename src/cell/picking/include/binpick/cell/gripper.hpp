@@ -25,7 +25,7 @@ std::string gripperTypeName(GripperType type);
 struct GripperParams {
   GripperType type = GripperType::Suction;
   // Suction
-  double cup_diameter = 0.010;     // metres: the disc that must seal on the part
+  double cup_diameter = 0.006;     // metres: the disc that must seal on the part
   double cup_length = 0.025;       // metres: cup + bellows along the approach axis
   double seal_tolerance = 0.0008;  // metres: how far the surface under the cup may leave its plane
   // Parallel jaw
@@ -34,7 +34,7 @@ struct GripperParams {
   double finger_depth = 0.020;     // metres, along the approach
   double finger_thickness = 0.008; // metres, along the closing direction
   // Tool body behind the cup or the fingers
-  double tool_radius = 0.025;      // metres
+  double tool_radius = 0.015;      // metres
   double tool_length = 0.15;       // metres
   void validate() const;           // throws binpick::Error naming the field
 };

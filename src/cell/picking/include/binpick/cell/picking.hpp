@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "binpick/cell/gripper.hpp"
+#include "binpick/cell/seal_check.hpp"
 #include "binpick/io/point_cloud.hpp"
 
 namespace binpick::cell {
@@ -95,6 +96,7 @@ struct PickParams {
   double cover_radius = 0.04;              // metres around the grasp point searched for cover
   double cover_height = 0.005;             // metres above the grasp point a covering point rises
   RankWeights ranking;
+  SealCheckParams seal_check;              // suction: the measured surface under the cup (seal_check.hpp)
   void validate() const;                   // throws binpick::Error naming the field
 };
 
@@ -114,14 +116,15 @@ struct Pick {
 };
 
 // Why parts were not picked, one count per part: the furthest test any of its grasps reached
-// (tilt, then bin, then cloud) and failed.
+// (tilt, then bin, then cloud, then seal) and failed.
 struct PickRejections {
   int invalid = 0;    // a non-finite or non-rigid pose, or a non-finite score or coverage
   int avoided = 0;    // near a failed pick
   int tilt = 0;       // every grasp tilted beyond max_tilt_deg
   int bin = 0;        // every grasp within the tilt limit: the tool hits the bin's walls or floor
   int cloud = 0;      // every grasp left: the tool hits the measured cloud (a neighbour, the part)
-  int total() const { return invalid + avoided + tilt + bin + cloud; }
+  int seal = 0;       // every grasp left: the measured surface under the cup would not seal
+  int total() const { return invalid + avoided + tilt + bin + cloud + seal; }
 };
 
 struct PickPlan {
@@ -135,10 +138,12 @@ class MeasuredScene;
 
 // `avoid` holds the base-frame centres (T_base_model translations) of objects the robot failed
 // to pick; non-finite entries avoid nothing. `scene` (may be null: no cloud test) is the measured
-// cloud the tool must not run into. Every grasp of every symmetric copy is tested (tilt, bin,
-// cloud) and the surviving ones ranked (see PickParams); a part's best survivor is its pick.
+// cloud the tool must not run into; `surface` (may be null: no seal test) the organized cloud a
+// suction cup must seal on. Every grasp of every symmetric copy is tested (tilt, bin, cloud, seal)
+// and the surviving ones ranked (see PickParams); a part's best survivor is its pick.
 // Throws binpick::Error when params.validate() does.
 PickPlan planPicks(const std::vector<DetectedPart>& parts, const std::vector<Eigen::Vector3d>& avoid,
-                   const PickParams& params, const MeasuredScene* scene = nullptr);
+                   const PickParams& params, const MeasuredScene* scene = nullptr,
+                   const MeasuredSurface* surface = nullptr);
 
 }  // namespace binpick::cell

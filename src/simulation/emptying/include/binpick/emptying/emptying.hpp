@@ -48,7 +48,7 @@ struct PickRecord {
   int grasp = -1;                     // index into the recipe's grasps
   std::string grasp_name;
   Eigen::Isometry3d T_base_grasp = Eigen::Isometry3d::Identity();  // as commanded, metres
-  std::optional<Eigen::Isometry3d> T_base_part_true;               // the part under the tool, if any
+  std::optional<Eigen::Isometry3d> T_base_part_true;               // the part held; on a miss the one touched, if any
 };
 
 struct CycleRecord {
