@@ -3,7 +3,9 @@
 // cleared, failed picks, cycles, the cell's cycle time (reconstruct + detect + plan; the rendering
 // apart), and a plot of the parts left against the cycle.
 //   bench_emptying [--parts a,b,...] [--meshes FILE[:SCALE],...] [--grippers suction,parallel]
-//                  [--bins 5] [--objects 20] [--first-seed 1] [--threads 0] --out DIR
+//                  [--cups PART=M,...] [--bins 5] [--objects 20] [--first-seed 1] [--threads 0] --out DIR
+// --cups sets the suction cup's diameter (metres) for a part, as an integrator chooses the cup for
+// the part's narrowest faces; the others get the default (cell/gripper.hpp).
 // Writes DIR/emptying.md (tables), DIR/emptying.csv (one row per bin, flushed as it goes),
 // DIR/emptying-parts-left.png; each bin's run (emptying.json, overlays) under DIR/emptying-runs/.
 #include <algorithm>
@@ -31,13 +33,26 @@ struct Options {
   std::vector<std::string> parts = sim::partNames();
   std::vector<std::string> meshes;  // FILE[:SCALE]: parts the cell has never seen, without grasps
   std::vector<std::string> grippers = {"suction"};
+  std::map<std::string, double> cups;  // part name -> cup diameter, metres
   int bins = 5, objects = 20, first_seed = 1, threads = 0;
   std::string out;
 };
 
 constexpr const char* kUsage =
     "usage: bench_emptying [--parts a,b,...] [--meshes FILE[:SCALE],...] [--grippers suction,parallel]\n"
-    "                      [--bins 5] [--objects 20] [--first-seed 1] [--threads 0] --out DIR\n";
+    "                      [--cups PART=M,...] [--bins 5] [--objects 20] [--first-seed 1] [--threads 0]\n"
+    "                      --out DIR\n";
+
+// "l_bracket_long=0.004,gear=0.01" -> {l_bracket_long: 0.004, gear: 0.01}
+std::map<std::string, double> parseCups(const std::string& text) {
+  std::map<std::string, double> cups;
+  for (const std::string& item : splitCommas(text)) {
+    const auto equals = item.find('=');
+    if (equals == std::string::npos) throw Error("--cups: \"" + item + "\" is not PART=METRES");
+    cups[item.substr(0, equals)] = std::stod(item.substr(equals + 1));
+  }
+  return cups;
+}
 
 Options parseOptions(int argc, char** argv) {
   Options options;
@@ -52,6 +67,7 @@ Options parseOptions(int argc, char** argv) {
     if (key == "--parts") options.parts = splitCommas(value);
     else if (key == "--meshes") options.meshes = splitCommas(value);
     else if (key == "--grippers") options.grippers = splitCommas(value);
+    else if (key == "--cups") options.cups = parseCups(value);
     else if (key == "--bins") options.bins = std::stoi(value);
     else if (key == "--objects") options.objects = std::stoi(value);
     else if (key == "--first-seed") options.first_seed = std::stoi(value);
@@ -79,15 +95,16 @@ sim::Part meshPart(const std::string& spec) {
 struct Row {
   std::string part, gripper;
   int seed = 0;
+  double cup_mm = 0.0;  // suction cup diameter; 0 for jaws
   emptying::EmptyingReport report;
 };
 
 std::string csvLine(const Row& row) {
   const emptying::EmptyingReport& r = row.report;
   char text[256];
-  std::snprintf(text, sizeof(text), "%s,%s,%d,%d,%d,%d,%zu,%s,%.1f,%.1f,%d\n", row.part.c_str(), row.gripper.c_str(),
-                row.seed, r.objects, r.picked, r.failed_picks, r.cycles.size(), emptyingEndName(r.end).c_str(),
-                r.median_cycle_ms, r.max_cycle_ms, r.grasps);
+  std::snprintf(text, sizeof(text), "%s,%s,%.1f,%d,%d,%d,%d,%zu,%s,%.1f,%.1f,%d\n", row.part.c_str(),
+                row.gripper.c_str(), row.cup_mm, row.seed, r.objects, r.picked, r.failed_picks, r.cycles.size(),
+                emptyingEndName(r.end).c_str(), r.median_cycle_ms, r.max_cycle_ms, r.grasps);
   return text;
 }
 
@@ -108,8 +125,8 @@ std::string summaryTable(const std::vector<Row>& rows) {
     groups[key].push_back(&row);
   }
   std::string table =
-      "| part | gripper | bins | cleared | bins with 0 failed picks | failed picks | cycles | median cycle | "
-      "max cycle | grasps |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+      "| part | gripper | cup | bins | cleared | bins with 0 failed picks | failed picks | cycles | median cycle | "
+      "max cycle | grasps |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& key : order) {
     const auto& group = groups[key];
     int picked = 0, objects = 0, failed = 0, clean_bins = 0, cycles = 0, grasps = 0;
@@ -127,9 +144,11 @@ std::string summaryTable(const std::vector<Row>& rows) {
       }
       max_ms = std::max(max_ms, row->report.max_cycle_ms);
     }
+    char cup[16] = "-";
+    if (group.front()->cup_mm > 0) std::snprintf(cup, sizeof(cup), "%.0f mm", group.front()->cup_mm);
     char line[320];
-    std::snprintf(line, sizeof(line), "| %s | %s | %zu | %.1f%% (%d/%d) | %d/%zu | %d | %.1f | %.2f s | %.2f s | %d |\n",
-                  key.first.c_str(), key.second.c_str(), group.size(), 100.0 * picked / std::max(objects, 1), picked,
+    std::snprintf(line, sizeof(line), "| %s | %s | %s | %zu | %.1f%% (%d/%d) | %d/%zu | %d | %.1f | %.2f s | %.2f s | %d |\n",
+                  key.first.c_str(), key.second.c_str(), cup, group.size(), 100.0 * picked / std::max(objects, 1), picked,
                   objects, clean_bins, group.size(), failed, static_cast<double>(cycles) / group.size(),
                   median(cycle_ms) / 1000.0, max_ms / 1000.0, grasps);
     table += line;
@@ -204,12 +223,12 @@ int run(int argc, char** argv) {
   for (const std::string& spec : options.meshes) parts.push_back(meshPart(spec));
 
   std::ofstream csv(fs::path(options.out) / "emptying.csv");
-  csv << "part,gripper,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,grasps\n";
+  csv << "part,gripper,cup_mm,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,grasps\n";
   std::vector<Row> rows;
   for (const sim::Part& part : parts) {
     for (const std::string& gripper : options.grippers) {
       for (int b = 0; b < options.bins; ++b) {
-        Row row{part.name, gripper, options.first_seed + b, {}};
+        Row row{part.name, gripper, options.first_seed + b, 0.0, {}};
         emptying::EmptyingParams params;
         params.pile.objects = options.objects;
         params.pile.seed = static_cast<uint64_t>(row.seed);
@@ -217,6 +236,8 @@ int run(int argc, char** argv) {
         params.photometry.seed = params.pile.seed;
         params.photometry.threads = options.threads;
         params.gripper.type = cell::gripperTypeFromName(gripper);
+        if (options.cups.count(part.name)) params.gripper.cup_diameter = options.cups.at(part.name);
+        if (params.gripper.type == cell::GripperType::Suction) row.cup_mm = 1000.0 * params.gripper.cup_diameter;
         const fs::path run_dir =
             fs::path(options.out) / "emptying-runs" / (part.name + "-" + gripper + "-" + std::to_string(row.seed));
         fs::remove_all(run_dir);
