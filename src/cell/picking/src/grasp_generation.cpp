@@ -119,8 +119,12 @@ std::vector<Grasp> generate(const SurfaceModel& surface, const GripperParams& gr
   std::vector<Grasp> grasps;
   for (const Ranked& chosen : select(std::move(ranked), comparison, params.max_grasps)) {
     const std::string rank = std::to_string(grasps.size() + 1);
-    grasps.push_back({gripperTypeName(gripper.type) + " " + rank + " (" + chosen.proposal.where + ")",
-                      chosen.proposal.T_model_grasp, chosen.quality});
+    Grasp grasp;
+    grasp.name = gripperTypeName(gripper.type) + " " + rank + " (" + chosen.proposal.where + ")";
+    grasp.T_model_grasp = chosen.proposal.T_model_grasp;
+    grasp.quality = chosen.quality;
+    grasp.width = chosen.proposal.width;
+    grasps.push_back(grasp);
   }
   return grasps;
 }

@@ -14,6 +14,7 @@ struct GraspProposal {
   Eigen::Isometry3d T_model_grasp = Eigen::Isometry3d::Identity();
   int patch = 0;        // the face it holds (suction) or first touches (parallel)
   double margin = 0.0;  // in [0, 1]: seal margin or finger contact share (grasp_generation.hpp)
+  double width = 0.0;   // parallel: metres between the contacts (Grasp::width); suction: 0
   std::string where;    // e.g. "face +z", "faces +-x, 30.0 mm"
 };
 

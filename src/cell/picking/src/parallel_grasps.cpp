@@ -95,6 +95,7 @@ std::vector<GraspProposal> proposeParallelGrasps(const SurfaceModel& surface, co
       proposal.margin = (std::min(near_share, far_share) - kMinContactShare) / (1.0 - kMinContactShare);
       proposal.patch = sample.patch;
       proposal.where = facesLabel(closing, width);
+      proposal.width = width;
       proposals.push_back(proposal);
     }
   }

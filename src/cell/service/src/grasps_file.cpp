@@ -1,5 +1,6 @@
 #include "binpick/cell/grasps_file.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -32,6 +33,8 @@ std::vector<Grasp> readGraspList(const YAML::Node& list, const std::string& path
     entry.read("name", grasp.name);
     entry.read("quality", grasp.quality);
     if (!(grasp.quality >= 0.0 && grasp.quality <= 1.0)) entry.fail("quality", "must be in [0, 1]");
+    entry.read("width", grasp.width);
+    if (!(grasp.width >= 0.0 && std::isfinite(grasp.width))) entry.fail("width", "must be >= 0 (metres)");
     grasp.T_model_grasp = readPose(entry);  // also rejects unknown keys
     grasps.push_back(grasp);
   }
@@ -61,6 +64,7 @@ std::string graspsYaml(const std::vector<Grasp>& grasps, const std::string& comm
          << "    rotation: [" << q.w() << ", " << q.x() << ", " << q.y() << ", " << q.z() << "]\n"
          << "    convention: quaternion\n"
          << "    quality: " << grasp.quality << "\n";
+    if (grasp.width > 0.0) text << "    width: " << grasp.width << "\n";  // parallel jaws: metres between the contacts
   }
   return text.str();
 }

@@ -114,12 +114,18 @@ class EmptyingRun {
     pick.T_base_grasp = *next.T_base_tool;
     pick.grasp = next.integers.size() > 2 ? next.integers[2] : -1;
     const auto& grasps = cell_->recipe().picking.grasps;
-    if (pick.grasp >= 0 && pick.grasp < static_cast<int>(grasps.size())) pick.grasp_name = grasps[pick.grasp].name;
+    if (pick.grasp >= static_cast<int>(grasps.size())) pick.grasp = -1;
+    if (pick.grasp >= 0) pick.grasp_name = grasps[pick.grasp].name;
 
     const Eigen::Isometry3d T_bin_grasp = cell_->T_base_bin().inverse() * pick.T_base_grasp;
     const TrueScene truth(part_.mesh, poses, binOf(params_.pile));
+    // Jaws open to the grasp's width and the cell's clearance each side, as the planner swept them.
+    const auto& picking = cell_->recipe().picking;
+    const double opening = pick.grasp >= 0 && grasps[pick.grasp].width > 0
+                               ? grasps[pick.grasp].width + 2.0 * picking.finger_clearance
+                               : 0.0;
     const PickJudgement judgement =
-        judgePick(truth, T_bin_grasp, params_.gripper, params_.approach_distance, params_.truth);
+        judgePick(truth, T_bin_grasp, params_.gripper, params_.approach_distance, params_.truth, opening);
     pick.ok = judgement.ok;
     pick.reason = judgement.reason;
     // The part held, or on a miss the part the cup or a jaw touched first.

@@ -1,5 +1,6 @@
 // The parallel jaws' judge: a clear way in with the jaws open, then both jaws closing on opposite
 // faces of one part.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -8,10 +9,10 @@
 namespace binpick::emptying::detail {
 namespace {
 
-// What a jaw meets first as it closes from the open stroke.
+// What a jaw meets first as it closes from its open position, `opening` / 2 off the grasp axis.
 struct JawContact {
-  bool hit = false;        // within the stroke
-  bool any = false;        // at any distance: even beyond the stroke, a surface met from behind
+  bool hit = false;        // within the opening
+  bool any = false;        // at any distance: even beyond the opening, a surface met from behind
   int object = -1;
   double travel = 0.0;     // metres from the open position
   Eigen::Vector3d normal;  // grasp frame, outward from the surface met
@@ -20,15 +21,15 @@ struct JawContact {
 
 // side +1: the jaw at +x closing along -x; -1: the one at -x closing along +x.
 JawContact closeJaw(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                    const cell::GripperParams& gripper, const PickTruthParams& params, int side) {
+                    const cell::GripperParams& gripper, double opening, const PickTruthParams& params, int side) {
   const double half_width = 0.5 * gripper.finger_width, half_depth = 0.5 * gripper.finger_depth;
   std::vector<Eigen::Vector3d> origins;
   for (const Eigen::Vector2d& yz : rectangleSamples(-half_width, half_width, -half_depth, half_depth,
                                                     params.sample_spacing)) {
-    origins.emplace_back(side * 0.5 * gripper.stroke, yz.x(), yz.y());
+    origins.emplace_back(side * 0.5 * opening, yz.x(), yz.y());
   }
   const Eigen::Vector3d closing(-side, 0.0, 0.0);
-  // Traced past the stroke: a face inside a part wider than the stroke meets it from behind only
+  // Traced past the opening: a face inside a part wider than the opening meets it from behind only
   // beyond the other jaw.
   JawContact first;
   for (const sim::RayHit& hit :
@@ -40,15 +41,15 @@ JawContact closeJaw(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp
     first.normal = T_bin_grasp.linear().transpose() * hit.normal;
     first.from_inside = first.normal.dot(closing) > 0.0;
   }
-  first.hit = first.any && first.travel <= gripper.stroke;
+  first.hit = first.any && first.travel <= opening;
   return first;
 }
 
 // The open fingers (boxes outside the contact faces, up to their tips) swept back along the
 // approach.
-std::vector<Column> fingerColumns(const cell::GripperParams& gripper, double approach_distance,
+std::vector<Column> fingerColumns(const cell::GripperParams& gripper, double opening, double approach_distance,
                                   const PickTruthParams& params) {
-  const double inner = 0.5 * gripper.stroke, outer = inner + gripper.finger_thickness;
+  const double inner = 0.5 * opening, outer = inner + gripper.finger_thickness;
   const double half_width = 0.5 * gripper.finger_width, half_depth = 0.5 * gripper.finger_depth;
   std::vector<Column> columns;
   for (const double side : {1.0, -1.0}) {
@@ -73,12 +74,12 @@ std::vector<Column> bodyColumns(const cell::GripperParams& gripper, double appro
 }
 
 // Empty when the two contacts grip one part from opposite sides.
-std::string gripProblem(const JawContact& right, const JawContact& left) {
+std::string gripProblem(const JawContact& right, const JawContact& left, const std::string& wider) {
   if (!right.hit || !left.hit) return "nothing between the jaws";
   if (right.object == PickJudgement::kBin || left.object == PickJudgement::kBin) {
     return "jaw on the bin";
   }
-  if (right.from_inside || left.from_inside) return "part wider than the stroke";
+  if (right.from_inside || left.from_inside) return wider;
   if (right.object != left.object) return "jaws on two parts";
   return {};
 }
@@ -86,21 +87,23 @@ std::string gripProblem(const JawContact& right, const JawContact& left) {
 }  // namespace
 
 PickJudgement judgeParallel(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                            const cell::GripperParams& gripper, double approach_distance,
+                            const cell::GripperParams& gripper, double approach_distance, double opening,
                             const PickTruthParams& params) {
   PickJudgement judgement;
-  const JawContact right = closeJaw(scene, T_bin_grasp, gripper, params, +1);
-  const JawContact left = closeJaw(scene, T_bin_grasp, gripper, params, -1);
+  opening = opening > 0.0 ? std::min(opening, gripper.stroke) : gripper.stroke;
+  const std::string wider = opening < gripper.stroke ? "part wider than the opening" : "part wider than the stroke";
+  const JawContact right = closeJaw(scene, T_bin_grasp, gripper, opening, params, +1);
+  const JawContact left = closeJaw(scene, T_bin_grasp, gripper, opening, params, -1);
   if (right.hit && right.object >= 0) judgement.touched = right.object;
   // Both open jaws inside one part: it is wider than they open (their sweep would hit it too,
   // but this says why).
   if (right.from_inside && left.from_inside && right.object == left.object && right.object >= 0) {
     judgement.touched = right.object;
-    judgement.reason = "part wider than the stroke";
+    judgement.reason = wider;
     return judgement;
   }
   for (const auto& [solid, columns] :
-       {std::pair{"finger", fingerColumns(gripper, approach_distance, params)},
+       {std::pair{"finger", fingerColumns(gripper, opening, approach_distance, params)},
         std::pair{"tool", bodyColumns(gripper, approach_distance, params)}}) {
     const SweepHit sweep = sweepHits(scene, T_bin_grasp, columns);
     if (!sweep.hit) continue;
@@ -108,9 +111,9 @@ PickJudgement judgeParallel(const TrueScene& scene, const Eigen::Isometry3d& T_b
     judgement.reason = hitReason(solid, sweep.object);
     return judgement;
   }
-  judgement.reason = gripProblem(right, left);
+  judgement.reason = gripProblem(right, left, wider);
   if (!judgement.reason.empty()) return judgement;
-  judgement.distance = gripper.stroke - right.travel - left.travel;
+  judgement.distance = opening - right.travel - left.travel;
   judgement.angle_deg = angleDeg(right.normal, -left.normal);
   if (judgement.angle_deg > params.max_antipodal_angle_deg) {
     judgement.reason =

@@ -52,7 +52,7 @@ PickJudgement judgeSuction(const TrueScene& scene, const Eigen::Isometry3d& T_bi
                            const cell::GripperParams& gripper, double approach_distance,
                            const PickTruthParams& params);
 PickJudgement judgeParallel(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                            const cell::GripperParams& gripper, double approach_distance,
+                            const cell::GripperParams& gripper, double approach_distance, double opening,
                             const PickTruthParams& params);
 
 }  // namespace binpick::emptying::detail

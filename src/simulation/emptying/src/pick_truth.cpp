@@ -65,7 +65,7 @@ TrueScene::TrueScene(const TriangleMesh& part, const std::vector<Eigen::Isometry
 
 PickJudgement judgePick(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
                         const cell::GripperParams& gripper, double approach_distance,
-                        const PickTruthParams& params) {
+                        const PickTruthParams& params, double opening) {
   params.validate();
   gripper.validate();
   if (!(std::isfinite(approach_distance) && approach_distance >= 0.0)) {
@@ -76,7 +76,7 @@ PickJudgement judgePick(const TrueScene& scene, const Eigen::Isometry3d& T_bin_g
   if (gripper.type == cell::GripperType::Suction) {
     return detail::judgeSuction(scene, T_bin_grasp, gripper, approach_distance, params);
   }
-  return detail::judgeParallel(scene, T_bin_grasp, gripper, approach_distance, params);
+  return detail::judgeParallel(scene, T_bin_grasp, gripper, approach_distance, opening, params);
 }
 
 }  // namespace binpick::emptying

@@ -10,9 +10,9 @@
 // part within the gripper's seal_tolerance of the face's plane at the centre: the bellows takes up
 // the tilt, not steps, gaps or neighbours), and the cup and the tool body, swept back along the
 // approach by approach_distance, meet no surface of any part or of the bin.
-// Parallel jaws: with the jaws open to the stroke, the fingers and the body sweep in without
-// collision; closing, each jaw's face first meets the same part, on faces whose normals are
-// opposite within max_antipodal_angle_deg.
+// Parallel jaws: with the jaws open (to the stroke, or to the opening the cell commands), the
+// fingers and the body sweep in without collision; closing, each jaw's face first meets the same
+// part, on faces whose normals are opposite within max_antipodal_angle_deg.
 // A pick that passes is held by the part under the cup (or between the jaws), whichever part that
 // is: a pick aimed at one part that seals on its neighbour lifts the neighbour.
 //
@@ -83,11 +83,13 @@ class TrueScene {
 };
 
 // Judges the gripper at T_bin_grasp (grasp frame: gripper.hpp) reaching it along its z axis from
-// approach_distance behind. Expected failures are values (ok false, a reason); throws
+// approach_distance behind. Parallel jaws open to `opening` (metres between the contact faces, at
+// most the stroke; <= 0: the stroke), as a cell opens them to the part's width and a margin so as
+// not to reach into the neighbours. Expected failures are values (ok false, a reason); throws
 // binpick::Error only on bad input: invalid params or gripper, a negative or non-finite
 // approach_distance, a grasp pose that is not a finite rigid transform.
 PickJudgement judgePick(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
                         const cell::GripperParams& gripper, double approach_distance,
-                        const PickTruthParams& params);
+                        const PickTruthParams& params, double opening = 0.0);
 
 }  // namespace binpick::emptying
