@@ -48,7 +48,17 @@ Eigen::Isometry3d fromAbove(double x, double y, double z) {
   return T;
 }
 
-cell::GripperParams suction() { return cell::GripperParams{}; }
+// A 16 mm cup, 25 mm long, on a 25 mm tool body 150 mm long: the geometry the cases below are
+// laid out for.
+cell::GripperParams suction() {
+  cell::GripperParams gripper;
+  gripper.type = cell::GripperType::Suction;
+  gripper.cup_diameter = 0.016;
+  gripper.cup_length = 0.025;
+  gripper.tool_radius = 0.025;
+  gripper.tool_length = 0.15;
+  return gripper;
+}
 
 cell::GripperParams jaws() {
   cell::GripperParams gripper;

@@ -1,6 +1,7 @@
 // The approach corridor against the bin (picking.hpp): walls, wall top, floor, a moved bin.
-// Default bin: inner half sizes 200 x 150 mm, walls 150 mm high; corridor radius 25 + 5 = 30 mm,
-// so a grasp point below the wall top must stay within 170 x 120 mm of the centre.
+// Default bin: inner half sizes 200 x 150 mm, walls 150 mm high; with the 25 mm tool these tests
+// set and the default 5 mm clearance the corridor radius is 30 mm, so a grasp point below the wall
+// top must stay within 170 x 120 mm of the centre.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,12 +18,19 @@ DetectedPart partGraspedAt(const Eigen::Vector3d& grasp_point) {
   return part(grasp_point - Eigen::Vector3d(0, 0, 0.02));
 }
 
+// The top grasp with the tool the limits below are worked out for.
+PickParams wideToolParams() {
+  PickParams params = topGraspParams();
+  params.gripper.tool_radius = 0.025;
+  return params;
+}
+
 bool reachable(const PickParams& params, const DetectedPart& detected) {
   return planPicks({detected}, {}, params).picks.size() == 1;
 }
 
 TEST(picking_bin, VerticalGraspNearAWallIsRejectedInTheCentreAccepted) {
-  const PickParams params = topGraspParams();
+  const PickParams params = wideToolParams();
   EXPECT_FALSE(reachable(params, partGraspedAt({0.185, 0, 0.06})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0, -0.135, 0.06})));
   EXPECT_TRUE(reachable(params, partGraspedAt({0, 0, 0.06})));
@@ -30,7 +38,7 @@ TEST(picking_bin, VerticalGraspNearAWallIsRejectedInTheCentreAccepted) {
 
 // Analytic, not sampled: 1 mm either side of each limit decides.
 TEST(picking_bin, VerticalCorridorLimitsHoldToTheMillimetre) {
-  const PickParams params = topGraspParams();
+  const PickParams params = wideToolParams();
   EXPECT_TRUE(reachable(params, partGraspedAt({0.169, 0, 0.06})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0.171, 0, 0.06})));
   EXPECT_TRUE(reachable(params, partGraspedAt({0, -0.119, 0.06})));
@@ -43,7 +51,7 @@ TEST(picking_bin, VerticalCorridorLimitsHoldToTheMillimetre) {
 // Approach 45 degrees off vertical, from +x: the pre-grasp point lies 70.7 mm further out in x
 // and up in z than the grasp point.
 PickParams leaningGraspParams() {
-  PickParams params;
+  PickParams params = wideToolParams();
   params.grasps = {{"leaning", pose({0, 0, 0.02}, rotY(45) * rotX(180))}};
   return params;
 }
@@ -78,7 +86,7 @@ TEST(picking_bin, GraspPointJustAboveTheFloorIsAcceptedBelowItRejected) {
 }
 
 TEST(picking_bin, ApproachFromBelowTheFloorIsRejected) {
-  PickParams params = topGraspParams();
+  PickParams params = wideToolParams();
   params.max_tilt_deg = 180;
   const DetectedPart upside_down = part({0, 0, 0.05}, rotX(180));  // grasp point 30 mm up
   EXPECT_FALSE(reachable(params, upside_down));  // pre-grasp point 70 mm below the floor
@@ -89,7 +97,7 @@ TEST(picking_bin, ApproachFromBelowTheFloorIsRejected) {
 // The bin turned a quarter about base z (its length along base y), tilted 10 degrees and moved:
 // limits hold in the bin frame, and the pick is the bin-frame grasp carried into the base.
 TEST(picking_bin, MovedAndTiltedBinChecksInItsOwnFrame) {
-  PickParams params = topGraspParams();
+  PickParams params = wideToolParams();
   params.bin.T_base_bin = pose({0.8, -0.2, 0.3}, rotZ(90) * rotX(10));
   const auto inBin = [&params](const Eigen::Vector3d& grasp_point_in_bin) {
     return DetectedPart{params.bin.T_base_bin * partGraspedAt(grasp_point_in_bin).T_base_model, 1};

@@ -45,9 +45,19 @@ int faceOf(const Grasp& grasp) {
 
 GraspGenerationParams defaults() { return GraspGenerationParams{}; }
 
+// A 16 mm cup (0.8 mm seal tolerance) on a 25 mm tool: wide enough that edges, curvature and
+// narrow faces decide where it seals.
+GripperParams wideCup() {
+  GripperParams gripper;
+  gripper.cup_diameter = 0.016;
+  gripper.seal_tolerance = 0.0008;
+  gripper.tool_radius = 0.025;
+  return gripper;
+}
+
 TEST(SuctionGrasps, EveryFaceOfABoxAwayFromItsEdges) {
   const Eigen::Vector3d size(0.060, 0.040, 0.030);
-  const GripperParams gripper;
+  const GripperParams gripper = wideCup();
   const std::vector<Grasp> grasps = generateGrasps(makeBox(size.x(), size.y(), size.z()), gripper, {}, defaults());
   std::set<int> faces;
   const double cup_radius = gripper.cup_diameter / 2;
@@ -87,7 +97,7 @@ TEST(SuctionGrasps, TheSameForTheSameSeedAndSpreadForAnother) {
 }
 
 TEST(SuctionGrasps, ACylinderSideOnlyWhenItsCurvatureLetsTheCupSeal) {
-  const GripperParams gripper;  // 16 mm cup, 0.8 mm tolerance: a side of radius >= 40 mm seals
+  const GripperParams gripper = wideCup();  // 16 mm cup, 0.8 mm tolerance: a side of radius >= 40 mm seals
   const auto sideAndEnds = [&](const TriangleMesh& mesh) {
     int side = 0, ends = 0;
     for (const Grasp& grasp : generateGrasps(mesh, gripper, {}, defaults())) {
@@ -137,7 +147,7 @@ TEST(SuctionGrasps, ATurnedPartWithAContinuousAxisKeepsOneGraspPerHeight) {
   turned.continuous_axis = Eigen::Vector3d::UnitZ();
   GraspGenerationParams params;
   params.max_grasps = 1000;
-  const auto grasps = generateGrasps(makeCylinder(0.060, 0.030, 96), GripperParams{}, turned, params);
+  const auto grasps = generateGrasps(makeCylinder(0.060, 0.030, 96), wideCup(), turned, params);
   int side = 0;
   for (const Grasp& grasp : grasps) side += std::abs(approachOf(grasp).z()) < 0.02;
   EXPECT_GE(side, 1);
@@ -289,12 +299,12 @@ TEST(SuctionGrasps, EveryBuiltInPartOnEachLargeFace) {
   }
 }
 
-// With the default 16 mm cup: the ring magnet (13 mm between bore and rim, a 25 mm radius side)
+// With a 16 mm cup: the ring magnet (13 mm between bore and rim, a 25 mm radius side)
 // has nowhere to seal; the plate with a bulge seals on both its sides.
 TEST(SuctionGrasps, ABuiltInPartTooNarrowForTheCupHasNone) {
-  EXPECT_TRUE(generateGrasps(sim::makePart("ring_magnet").mesh, GripperParams{}, {}, defaults()).empty());
+  EXPECT_TRUE(generateGrasps(sim::makePart("ring_magnet").mesh, wideCup(), {}, defaults()).empty());
   int sides = 0;
-  for (const Grasp& grasp : generateGrasps(sim::makePart("bulge").mesh, GripperParams{}, {}, defaults())) {
+  for (const Grasp& grasp : generateGrasps(sim::makePart("bulge").mesh, wideCup(), {}, defaults())) {
     sides += std::abs(approachOf(grasp).z()) > std::cos(1.0 * M_PI / 180.0);
   }
   EXPECT_GE(sides, 2);

@@ -32,6 +32,7 @@ TEST(picking_ranking, APartCoveredByAnotherPartsPointsLosesToAFreeOne) {
   const std::vector<DetectedPart> parts = {partWithTop({-0.08, 0, 0.07}, cloud),
                                            partWithTop({0.08, 0, 0.07}, cloud)};
   PickParams params = topGraspParams();
+  params.gripper.tool_radius = 0.025;
   EXPECT_EQ(pickedObjects(planPicks(parts, {}, params, nullptr)), (std::vector<int>{0, 1}));
   const MeasuredScene uncovered = cloud.scene();
   EXPECT_EQ(pickedObjects(planPicks(parts, {}, params, &uncovered)), (std::vector<int>{0, 1}));  // a tie
@@ -77,6 +78,8 @@ TEST(picking_ranking, RejectionsAreCountedByReason) {
 
 TEST(picking_ranking, ACollidingGraspGivesWayToTheNextOne) {
   PickParams params = topGraspParams();
+  params.gripper.cup_diameter = 0.016;  // the cup reaches 10 mm from the axis with the margin
+  params.gripper.tool_radius = 0.025;
   params.grasps.push_back({"other end", pose({0.03, 0, 0.02}, rotX(180))});
   CloudBuilder cloud;
   cloud.slab(-0.02, 0.05, -0.015, 0.015, 0.07);

@@ -1,6 +1,7 @@
 // toolCollision against MeasuredScene (tool_collision.hpp): the suction cup and body, the swept
 // approach, parallel fingers, the clearance; the scene built from an organized camera cloud.
-// Default gripper: cup 16 mm wide, 25 mm long; body radius 25 mm; margin 2 mm.
+// The gripper measured against: cup 16 mm wide, 25 mm long; body radius 25 mm, 150 mm long; the
+// default sweep's margin, 2 mm.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,8 +32,17 @@ CloudBuilder flatPlane() {
   return cloud;
 }
 
+GripperParams measuredGripper() {
+  GripperParams gripper;
+  gripper.cup_diameter = 0.016;
+  gripper.cup_length = 0.025;
+  gripper.tool_radius = 0.025;
+  gripper.tool_length = 0.15;
+  return gripper;
+}
+
 ToolContact contact(const MeasuredScene& scene, const Eigen::Isometry3d& T_base_grasp,
-                    const GripperParams& gripper = {}, const ToolSweep& sweep = {}) {
+                    const GripperParams& gripper = measuredGripper(), const ToolSweep& sweep = {}) {
   return toolCollision(scene, T_base_grasp, gripper, sweep);
 }
 
@@ -67,7 +77,7 @@ TEST(picking_tool_collision, TheApproachSweepsTheBodyBackToThePreGrasp) {
   EXPECT_TRUE(contact(scene, graspAt(0, 0)).collision);
   ToolSweep no_approach;
   no_approach.approach_distance = 0.0;
-  EXPECT_FALSE(contact(scene, graspAt(0, 0), {}, no_approach).collision);
+  EXPECT_FALSE(contact(scene, graspAt(0, 0), measuredGripper(), no_approach).collision);
 }
 
 // A neighbour's column 60 mm to the side: a vertical tool stays 33 mm from it, one tilted 30
@@ -100,6 +110,7 @@ TEST(picking_tool_collision, ClearanceGrowsWithTheNeighboursDistance) {
 class picking_parallel_fingers : public ::testing::Test {
  protected:
   picking_parallel_fingers() {
+    gripper = measuredGripper();
     gripper.type = GripperType::Parallel;
     gripper.finger_depth = 0.03;
     sweep.opening = 0.04;
@@ -169,9 +180,9 @@ TEST(picking_tool_collision, SceneFromAnOrganizedCameraCloudIsInTheBaseFrameAndT
     ASSERT_TRUE(std::abs(p.z()) < 1e-4 || std::abs(p.z() - 0.04) < 1e-4) << p.transpose();
   }
   const Eigen::Isometry3d on_floor = pose({-0.1, 0, 0}, rotX(180));
-  EXPECT_FALSE(toolCollision(scene, on_floor, {}, {}).collision);
+  EXPECT_FALSE(toolCollision(scene, on_floor, measuredGripper(), {}).collision);
   const Eigen::Isometry3d beside_bump = pose({0.1 - 0.035, 0, 0}, rotX(180));
-  EXPECT_TRUE(toolCollision(scene, beside_bump, {}, {}).collision);  // the bump under the body
+  EXPECT_TRUE(toolCollision(scene, beside_bump, measuredGripper(), {}).collision);  // the bump under the body
   EXPECT_NEAR(scene.shareCoveredAbove({0.1, 0, 0}, 0.01, 0.005), 1.0, 1e-9);
   EXPECT_NEAR(scene.shareCoveredAbove({-0.1, 0, 0}, 0.04, 0.005), 0.0, 1e-9);
 }
@@ -179,7 +190,7 @@ TEST(picking_tool_collision, SceneFromAnOrganizedCameraCloudIsInTheBaseFrameAndT
 TEST(picking_tool_collision, AnEmptySceneHoldsNothingAndBadInputThrows) {
   const MeasuredScene empty(PointCloud{}, Eigen::Isometry3d::Identity());
   EXPECT_EQ(empty.size(), 0u);
-  const ToolContact free = toolCollision(empty, graspAt(0, 0), {}, {});
+  const ToolContact free = toolCollision(empty, graspAt(0, 0), measuredGripper(), {});
   EXPECT_FALSE(free.collision);
   EXPECT_NEAR(free.clearance, 0.02, 1e-12);
   Eigen::Isometry3d scaled = Eigen::Isometry3d::Identity();

@@ -49,7 +49,7 @@ TEST(CellConfig, PickingReadsEveryGripperKeyAndTheRankingWeights) {
                                   "  clearance_cap: 0.03\n"
                                   "  cover_radius: 0.05\n"
                                   "  cover_height: 0.006\n"
-                                  "  order: best_rank\n");
+                                  "  order: highest_first\n");
   const PickParams& p = config.picking;
   const GripperParams& g = p.gripper;
   EXPECT_EQ(g.type, GripperType::Parallel);
@@ -62,8 +62,8 @@ TEST(CellConfig, PickingReadsEveryGripperKeyAndTheRankingWeights) {
   EXPECT_EQ(std::vector<double>({p.collision_margin, p.finger_clearance, p.clearance_cap, p.cover_radius,
                                  p.cover_height}),
             std::vector<double>({0.003, 0.004, 0.03, 0.05, 0.006}));
-  EXPECT_EQ(p.order, PickOrder::BestRank);
-  EXPECT_EQ(parse(kMinimal).picking.order, PickOrder::HighestFirst);  // absent: as before the ranking
+  EXPECT_EQ(p.order, PickOrder::HighestFirst);
+  EXPECT_EQ(parse(kMinimal).picking.order, PickOrder::BestRank);  // absent: the ranking decides
   EXPECT_EQ(loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml").picking.order, PickOrder::BestRank);
 }
 

@@ -18,8 +18,10 @@ using test::throwsNaming;
 
 class RecipeGrasps : public test::TempDirectoryTest {
  protected:
-  CellConfig parse(const std::string& recipe) {
-    return parseCellConfig("source: {replay: {path: captures}}\nrecipes: [" + recipe + "]\n", "cell.yaml", root());
+  // `more`: further top-level settings, one or more lines.
+  CellConfig parse(const std::string& recipe, const std::string& more = "") {
+    return parseCellConfig("source: {replay: {path: captures}}\nrecipes: [" + recipe + "]\n" + more, "cell.yaml",
+                           root());
   }
 };
 
@@ -81,7 +83,7 @@ TEST_F(RecipeGrasps, ARecipeWithoutGraspsGetsThemGeneratedFromItsModel) {
 
 TEST_F(RecipeGrasps, AGripperThatFitsNowhereStopsTheCellNamingTheRecipe) {
   writeMesh(pathOf("magnet.ply"), sim::makePart("ring_magnet").mesh);  // 13 mm wide: no 16 mm cup seals
-  const CellConfig config = parse("{name: magnet, model: magnet.ply}");
+  const CellConfig config = parse("{name: magnet, model: magnet.ply}", "picking: {gripper: {cup_diameter: 0.016}}\n");
   EXPECT_TRUE(throwsNaming([&] { prepareCell(config); }, "recipe magnet"));
 }
 
