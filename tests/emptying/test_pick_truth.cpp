@@ -223,6 +223,21 @@ TEST(JawTruth, NeighbourWhereAFingerGoesFails) {
   EXPECT_TRUE(judge(scene, turned, jaws()).ok);
 }
 
+TEST(JawTruth, JawsOpenedToThePartsWidthPassBesideANeighbour) {
+  // The 40 mm cube and a neighbour whose near face stands 44 mm off the axis, in the open finger's
+  // way at the full 80 mm stroke but clear of jaws opened to 50 mm.
+  const TrueScene scene = boxes(kCube, {{0.0, 0.0}, {0.064, 0.0}});
+  const Eigen::Isometry3d above = fromAbove(0.0, 0.0, 0.032);
+  EXPECT_FALSE(judgePick(scene, above, jaws(), kApproach, PickTruthParams{}).ok);
+  const PickJudgement opened = judgePick(scene, above, jaws(), kApproach, PickTruthParams{}, 0.050);
+  EXPECT_TRUE(opened.ok) << opened.reason;
+  EXPECT_NEAR(1e3 * opened.distance, 40.0, 0.01);
+  // Opened narrower than the part, the jaws land on it.
+  const PickJudgement narrow = judgePick(scene, above, jaws(), kApproach, PickTruthParams{}, 0.030);
+  EXPECT_FALSE(narrow.ok);
+  EXPECT_EQ(narrow.reason, "part wider than the opening");
+}
+
 TEST(JawTruth, JawsOnTwoPartsOrNothingFail) {
   const TrueScene scene = boxes(Eigen::Vector3d(0.020, 0.040, 0.040), {{-0.015, 0.0}, {0.015, 0.0}});
   const PickJudgement two = judge(scene, fromAbove(0.0, 0.0, 0.032), jaws());
