@@ -27,4 +27,10 @@ nlohmann::json toJson(const DetectionResult& result) {
             {"refreshes", result.refreshes}}}};
 }
 
+nlohmann::json poseJson(const Eigen::Isometry3d& pose) {
+  const Eigen::Quaterniond q(pose.linear());
+  const Eigen::Vector3d t = pose.translation();
+  return {{"translation", {t.x(), t.y(), t.z()}}, {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
+}
+
 }  // namespace binpick::estimation

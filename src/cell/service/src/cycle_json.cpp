@@ -7,15 +7,12 @@
 namespace binpick::cell {
 namespace {
 
-nlohmann::json poseJson(const Eigen::Isometry3d& pose) {
-  const Eigen::Quaterniond q(pose.linear());
-  const Eigen::Vector3d t = pose.translation();
-  return {{"translation", {t.x(), t.y(), t.z()}}, {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
-}
+using estimation::poseJson;
 
 // The confident detections that were not picked, by the reason (picking.hpp).
 nlohmann::json rejectedJson(const PickRejections& r) {
-  return {{"invalid", r.invalid}, {"avoided", r.avoided}, {"tilt", r.tilt}, {"bin", r.bin}, {"cloud", r.cloud}, {"seal", r.seal}};
+  return {{"invalid", r.invalid}, {"avoided", r.avoided}, {"tilt", r.tilt},
+          {"bin", r.bin},         {"cloud", r.cloud},     {"seal", r.seal}};
 }
 
 }  // namespace

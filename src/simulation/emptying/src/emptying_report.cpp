@@ -5,16 +5,13 @@
 #include <nlohmann/json.hpp>
 
 #include "binpick/emptying/emptying.hpp"
+#include "binpick/estimation/result_json.hpp"
 #include "binpick/io/error.hpp"
 
 namespace binpick::emptying {
 namespace {
 
-nlohmann::json poseJson(const Eigen::Isometry3d& pose) {
-  const Eigen::Quaterniond q(pose.linear());
-  const Eigen::Vector3d t = pose.translation();
-  return {{"translation", {t.x(), t.y(), t.z()}}, {"quaternion_wxyz", {q.w(), q.x(), q.y(), q.z()}}};
-}
+using estimation::poseJson;
 
 nlohmann::json pickJson(const PickRecord& pick) {
   return {{"cycle", pick.cycle},

@@ -12,4 +12,8 @@ namespace binpick::estimation {
 
 nlohmann::json toJson(const DetectionResult& result);
 
+// A rigid pose as {"translation": [x, y, z], "quaternion_wxyz": [w, x, y, z]} (saved cycles, the
+// bin-emptying report).
+nlohmann::json poseJson(const Eigen::Isometry3d& pose);
+
 }  // namespace binpick::estimation
