@@ -158,12 +158,16 @@ class PartCloudTests {
   std::vector<Entry> entries_;
 };
 
-// A suction cup must find a face under its whole disc in the measured cloud (seal_check.hpp);
-// jaws and a plan without the organized cloud skip the test.
-bool sealsOnSurface(const Pick& pick, const PickParams& params, const MeasuredSurface* surface) {
+// A suction cup must find a face under its whole disc in the measured cloud (seal_check.hpp),
+// where it is or slid along the face by up to seal_check.max_shift (the pick then moves with it:
+// within the collision margin of where the tool was tested); jaws and a plan without the organized
+// cloud skip the test.
+bool sealsOnSurface(Pick& pick, const PickParams& params, const MeasuredSurface* surface) {
   if (!surface || params.gripper.type != GripperType::Suction) return true;
   const GripperParams& g = params.gripper;
-  return surface->check(pick.T_base_grasp, 0.5 * g.cup_diameter, g.seal_tolerance, params.seal_check).seals;
+  const auto sealed = surface->findSeal(pick.T_base_grasp, 0.5 * g.cup_diameter, g.seal_tolerance, params.seal_check);
+  if (sealed) pick.T_base_grasp = *sealed;
+  return sealed.has_value();
 }
 
 // Branch and bound in the order of the rank known without the cloud: the cover and clearance

@@ -12,6 +12,8 @@ namespace {
 // radius, denser outwards where edges cross first. About 1 mm apart on a 10 mm cup.
 constexpr int kRings = 3;
 constexpr int kSamplesPerRing[kRings] = {8, 16, 24};
+// Pixels searched around an unmeasured sample for the far side of an edge (3: a 7 x 7 window, about 2 mm across).
+constexpr long kEdgeSearch = 3;
 
 }  // namespace
 
@@ -20,6 +22,8 @@ void SealCheckParams::validate() const {
   requireField(std::isfinite(rim_margin) && rim_margin >= 0, owner, "rim_margin", ">= 0", rim_margin);
   requireField(std::isfinite(noise) && noise >= 0, owner, "noise", ">= 0", noise);
   requireField(min_seen_share >= 0 && min_seen_share <= 1, owner, "min_seen_share", "in [0, 1]", min_seen_share);
+  requireField(std::isfinite(max_shift) && max_shift >= 0, owner, "max_shift", ">= 0", max_shift);
+  requireField(std::isfinite(shift_step) && shift_step > 0, owner, "shift_step", "> 0", shift_step);
 }
 
 MeasuredSurface::MeasuredSurface(const PointCloud& cloud, const LensIntrinsics& camera,
@@ -44,6 +48,25 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
   int samples = 0, seen = 0;
   SealCheck result;
   bool flat = true;
+  const auto pointAt = [&](long u, long v) -> const Eigen::Vector3f& {
+    return cloud_.points[static_cast<std::size_t>(v) * static_cast<std::size_t>(camera_.width) +
+                         static_cast<std::size_t>(u)];
+  };
+  const auto offPlaneNear = [&](long u, long v, double limit, const auto& deviation) {
+    for (long dv = -kEdgeSearch; dv <= kEdgeSearch; ++dv) {
+      for (long du = -kEdgeSearch; du <= kEdgeSearch; ++du) {
+        const long x = u + du, y = v + dv;
+        if (x < 0 || y < 0 || x >= camera_.width || y >= camera_.height) continue;
+        const Eigen::Vector3f& near = pointAt(x, y);
+        if (near.allFinite() && deviation(near) > limit) return true;
+      }
+    }
+    return false;
+  };
+  const auto deviationOf = [&](const Eigen::Vector3f& measured) {
+    // Distance of the measured point from the grasp plane, along the approach.
+    return std::abs((measured.cast<double>() - origin).dot(normal));
+  };
   const auto sample = [&](const Eigen::Vector3d& in_grasp) {
     ++samples;
     const Eigen::Vector3d point = T_camera_grasp * in_grasp;
@@ -51,11 +74,15 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
     const Eigen::Vector2d pixel = camera_.project(point);
     const long u = std::lround(pixel.x()), v = std::lround(pixel.y());
     if (!(u >= 0 && v >= 0 && u < camera_.width && v < camera_.height)) return;
-    const Eigen::Vector3f& measured = cloud_.points[static_cast<std::size_t>(v) * camera_.width + u];
-    if (!measured.allFinite()) return;
+    const Eigen::Vector3f& measured = pointAt(u, v);
+    if (!measured.allFinite()) {
+      // Nothing measured here: a dropout inside a face, or the shadow or filtered mixed pixels
+      // along a depth edge. Next to an edge a pixel close by measures the other side of it.
+      flat = flat && !offPlaneNear(u, v, allowed, deviationOf);
+      return;
+    }
     ++seen;
-    // Distance of the measured point from the grasp plane: along the approach, positive beyond it.
-    const double deviation = std::abs((measured.cast<double>() - origin).dot(normal));
+    const double deviation = deviationOf(measured);
     result.worst_deviation = std::max(result.worst_deviation, deviation);
     flat = flat && deviation <= allowed;
   };
@@ -70,6 +97,24 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
   result.seen_share = static_cast<double>(seen) / samples;
   result.seals = flat && result.seen_share >= params.min_seen_share;
   return result;
+}
+
+std::optional<Eigen::Isometry3d> MeasuredSurface::findSeal(const Eigen::Isometry3d& T_base_grasp, double radius,
+                                                           double tolerance, const SealCheckParams& params) const {
+  if (check(T_base_grasp, radius, tolerance, params).seals) return T_base_grasp;
+  const int rings = static_cast<int>(std::floor(params.max_shift / params.shift_step + 1e-9));
+  for (int ring = 1; ring <= rings; ++ring) {
+    const double shift = ring * params.shift_step;
+    const int places = 8 * ring;  // about shift_step apart around the ring
+    for (int k = 0; k < places; ++k) {
+      const double angle = 2.0 * M_PI * k / places;
+      // Along the grasp's own xy plane: the face under the cup, whatever the grasp's tilt.
+      const Eigen::Isometry3d slid =
+          T_base_grasp * Eigen::Translation3d(shift * std::cos(angle), shift * std::sin(angle), 0.0);
+      if (check(slid, radius, tolerance, params).seals) return slid;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace binpick::cell
