@@ -90,6 +90,37 @@ TEST(picking_seal, UnmeasuredPixelsUnderTheCupFailIt) {
   EXPECT_TRUE(checkAt(surface, -0.005, 0.0).seals);  // wholly on the measured side
 }
 
+TEST(picking_seal, AnUnmeasuredRimNextToTheFarSideOfAnEdgeFails) {
+  const LensIntrinsics camera = downwardCamera();
+  // A band along the plateau's +x edge measured nothing (a shadow): one of the 49 samples falls
+  // in it, within the share allowed unseen, but the floor measured beside it shows the edge.
+  const PointCloud shadowed =
+      plateauCloud(camera, [](double x, double) { return x > 0.0096 && x < 0.0105; });
+  const MeasuredSurface surface(shadowed, camera, Eigen::Isometry3d::Identity());
+  EXPECT_FALSE(checkAt(surface, 0.0062, 0.0).seals);
+  EXPECT_TRUE(checkAt(surface, 0.0030, 0.0).seals);
+}
+
+TEST(picking_seal, ACupJustOverTheEdgeSlidesBackOntoTheFace) {
+  const LensIntrinsics camera = downwardCamera();
+  const PointCloud cloud = plateauCloud(camera);
+  const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
+  const SealCheckParams params;  // up to 2 mm in 1 mm steps
+  const Eigen::Isometry3d over_edge = pose({0.0075, 0.0, kPlateauZ});  // 1 mm too far out
+  ASSERT_FALSE(checkAt(surface, 0.0075, 0.0).seals);
+  const auto slid = surface.findSeal(over_edge, 0.003, 0.0008, params);
+  ASSERT_TRUE(slid.has_value());
+  const Eigen::Vector3d moved = slid->translation() - over_edge.translation();
+  EXPECT_LE(1e3 * moved.norm(), 2.0 + 1e-9);
+  EXPECT_LT(slid->translation().x(), over_edge.translation().x());  // back towards the face
+  EXPECT_NEAR(moved.z(), 0.0, 1e-12);                                // along the face only
+  EXPECT_TRUE(surface.check(*slid, 0.003, 0.0008, params).seals);
+  // 3 mm out is further than it may slide; a cup that seals where it is stays there.
+  EXPECT_FALSE(surface.findSeal(pose({0.0095, 0.0, kPlateauZ}), 0.003, 0.0008, params).has_value());
+  const Eigen::Isometry3d centred = pose({0.0, 0.0, kPlateauZ});
+  EXPECT_TRUE(surface.findSeal(centred, 0.003, 0.0008, params)->isApprox(centred));
+}
+
 TEST(picking_seal, TheBaseFrameIsHonoured) {
   const LensIntrinsics camera = downwardCamera();
   const PointCloud cloud = plateauCloud(camera);
