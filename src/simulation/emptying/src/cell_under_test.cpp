@@ -132,8 +132,7 @@ CellUnderTest::CellUnderTest(const sim::Part& part, const EmptyingParams& params
   writeMesh((directory / "part.ply").string(), part.mesh);
   writeRigCalibration((directory / "calib.yaml").string(), params.pile.rig);
   writeText(directory / "detection.yaml", detectionSettings(params.pile));
-  const int max_cycles = params.max_cycles > 0 ? params.max_cycles : 2 * params.pile.objects + 10;
-  writeText(directory / "binpickd.yaml", cellSettings(params, T_base_camera, max_cycles));
+  writeText(directory / "binpickd.yaml", cellSettings(params, T_base_camera, params.cycleLimit()));
 
   cell::CellConfig config = cell::loadCellConfig((directory / "binpickd.yaml").string());
   // The settings file's symmetry syntax covers one axis; the built-in parts declare theirs exactly.

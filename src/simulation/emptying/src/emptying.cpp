@@ -45,10 +45,9 @@ class EmptyingRun {
   }
 
   EmptyingReport run(const CycleObserver& observer) {
-    const int max_cycles = params_.max_cycles > 0 ? params_.max_cycles : 2 * params_.pile.objects + 10;
     int idle_cycles = 0;       // cycles in a row without a pick
     int last_failed_cycle = -1000;
-    for (int cycle = 1; cycle <= max_cycles; ++cycle) {
+    for (int cycle = 1; cycle <= params_.cycleLimit(); ++cycle) {
       CycleRecord record = runCycle(cycle);
       if (observer) observer(record);
       report_.cycles.push_back(record);

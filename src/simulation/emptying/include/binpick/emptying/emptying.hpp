@@ -39,6 +39,7 @@ struct EmptyingParams {
   // detections per cycle) and emptying.json go. Must be given.
   std::string out_directory;
   void validate() const;  // throws binpick::Error naming the field
+  int cycleLimit() const { return max_cycles > 0 ? max_cycles : 2 * pile.objects + 10; }
 };
 
 struct PickRecord {
