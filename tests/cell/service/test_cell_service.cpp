@@ -126,6 +126,29 @@ TEST(CellService, AFailedPickIsAvoidedInTheNextCycle) {
   }
 }
 
+TEST(CellService, APartFailingAgainIsAvoidedTwiceAsLong) {
+  Cell cell(cellConfigYaml(cellScene(), "limits: {avoid_cycles: 1}\n"));
+  // Whether the first pick's part is offered in the next cycle (the same bin: replay loops).
+  const auto offeredAgain = [&cell](const Eigen::Vector3d& where) {
+    EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
+    for (const robot::Reply& pick : cell.allPicks()) {
+      if ((pick.T_base_tool->translation() - where).norm() < 0.01) return true;
+    }
+    return false;
+  };
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);  // cycle 1
+  const robot::Reply first = cell.ask(request(Command::NextPick));
+  ASSERT_EQ(first.status, Status::Ok);
+  const Eigen::Vector3d where = first.T_base_tool->translation();
+  ASSERT_EQ(cell.ask(request(Command::PickFailed)).status, Status::Ok);  // avoided in cycle 2
+  EXPECT_FALSE(offeredAgain(where));                                      // cycle 2
+  EXPECT_TRUE(offeredAgain(where));                                       // cycle 3: its first pick
+  ASSERT_EQ(cell.ask(request(Command::PickFailed, std::to_string(first.integers.at(1)))).status, Status::Ok);
+  EXPECT_FALSE(offeredAgain(where));  // cycle 4
+  EXPECT_FALSE(offeredAgain(where));  // cycle 5: a second failure doubles the time
+  EXPECT_TRUE(offeredAgain(where));   // cycle 6
+}
+
 TEST(CellService, AnEmptyBinIsToldFromPartsNotFound) {
   Cell cell(cellConfigYaml(cellScene(), "", cellScene().empty_capture));
   ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);

@@ -30,7 +30,32 @@ std::optional<int> parseIndex(const std::string& text) {
   return std::stoi(text);
 }
 
+constexpr uint64_t kForgetCycles = 200;  // a failed place not failed again for this long is forgotten
+constexpr int kMaxDoublings = 6;          // avoided at most 64 x limits.avoid_cycles
+
 }  // namespace
+
+// A part whose pick failed is avoided for limits.avoid_cycles cycles; each further failure at the
+// same place (within the recipe's avoid_radius of an earlier one) doubles that, so that a part the
+// robot cannot hold stops being offered instead of failing every few cycles.
+uint64_t CellService::State::avoidFailedPart(const Eigen::Vector3d& centre) {
+  const uint64_t now = latest->number;
+  const double radius = setup->recipes.at(static_cast<std::size_t>(recipe)).picking.avoid_radius;
+  avoid.erase(std::remove_if(avoid.begin(), avoid.end(),
+                             [&](const AvoidEntry& e) { return e.until_cycle + kForgetCycles < now; }),
+              avoid.end());
+  auto same_place = std::find_if(avoid.begin(), avoid.end(),
+                                 [&](const AvoidEntry& e) { return (e.centre - centre).norm() <= radius; });
+  int failures = 1;
+  if (same_place != avoid.end()) {
+    failures = same_place->failures + 1;
+    avoid.erase(same_place);
+  }
+  const uint64_t cycles = static_cast<uint64_t>(setup->config.limits.avoid_cycles)
+                          << std::min(failures - 1, kMaxDoublings);
+  avoid.push_back({centre, now + cycles, failures});
+  return cycles;
+}
 
 robot::Reply CellService::State::nextPick() {
   if (latest->status != Status::Ok) return reply(Command::NextPick, latest->status, {0});
@@ -121,10 +146,8 @@ void CellService::handle(ClientId client, const robot::Request& request) {
           outbox.add(client, reply(Command::PickFailed, Status::BadMessage));
           break;
         }
-        const Eigen::Vector3d centre = s.latest->T_base_objects[*object].translation();
-        s.avoid.push_back({centre, s.latest->number + static_cast<uint64_t>(s.setup->config.limits.avoid_cycles)});
-        logger()->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *object, s.latest->number,
-                       s.setup->config.limits.avoid_cycles);
+        const uint64_t cycles = s.avoidFailedPart(s.latest->T_base_objects[*object].translation());
+        logger()->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *object, s.latest->number, cycles);
         outbox.add(client, reply(Command::PickFailed, Status::Ok, {*object}));
         break;
       }

@@ -46,6 +46,7 @@ struct LatestCycle {
 struct AvoidEntry {
   Eigen::Vector3d centre;
   uint64_t until_cycle = 0;  // avoided in cycles numbered up to this one
+  int failures = 1;          // picks of a part at this place that failed, in a row
 };
 
 struct CellService::State {
@@ -81,6 +82,8 @@ struct CellService::State {
   robot::Reply nextPick();  // NEXT from `latest`
   void answerWaiters(Outbox& outbox);
   void failRunningStage(robot::Status status, Outbox& outbox);
+  // FAILED: avoid the part at `centre` (base frame); returns for how many cycles.
+  uint64_t avoidFailedPart(const Eigen::Vector3d& centre);
 };
 
 }  // namespace binpick::cell
