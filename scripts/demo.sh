@@ -5,15 +5,15 @@
 # a simulated robot fetches the first pick over the robot protocol and executes it against the
 # truth, a part it holds leaves the bin and the pile re-settles, until binpickd reports the bin empty.
 # Output: demo-output/ (emptying.json, the cell's settings under cell/, every cycle's overlay and
-# detections under cycles/; overlay.png: the last cycle that offered a pick).
+# detections under cycles/; overlay.png: the first cycle's, the full pile with the picks it offered).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh binpick
 out=demo-output
 rm -rf "$out"
 ./build/src/apps/binpick simulate --part l_bracket --objects 20 --seed 3 --empty-bin --out "$out"
-overlay=$(ls -d "$out"/cycles/cycle-*/overlay.png 2>/dev/null | sort -V | tail -n 1 || true)
+overlay=$(ls -d "$out"/cycles/cycle-*/overlay.png 2>/dev/null | sort -V | head -n 1 || true)
 if [ -n "$overlay" ]; then
   cp "$overlay" "$out/overlay.png"
-  echo "demo: the picks drawn on the camera image: $out/overlay.png; the run: $out/emptying.json"
+  echo "demo: the first cycle's picks drawn on the camera image: $out/overlay.png; the run: $out/emptying.json"
 fi
