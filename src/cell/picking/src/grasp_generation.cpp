@@ -8,13 +8,12 @@
 
 #include "binpick/io/error.hpp"
 #include "grasp_proposals.hpp"
+#include "rigid.hpp"
 
 namespace binpick::cell {
 namespace {
 
 const std::string kOwner = "grasp_generation";
-
-bool isPositive(double value) { return std::isfinite(value) && value > 0.0; }
 
 struct Ranked {
   GraspProposal proposal;
@@ -148,7 +147,7 @@ void GraspGenerationParams::validate() const {
   requireField(isPositive(sample_spacing), kOwner, "sample_spacing", "> 0", sample_spacing);
   requireField(max_samples >= 10, kOwner, "max_samples", ">= 10", max_samples);
   requireField(max_grasps >= 1, kOwner, "max_grasps", ">= 1", max_grasps);
-  requireField(std::isfinite(min_separation) && min_separation >= 0.0, kOwner, "min_separation", ">= 0",
+  requireField(isNonNegative(min_separation), kOwner, "min_separation", ">= 0",
                min_separation);
   requireField(std::isfinite(symmetry_angle_deg) && symmetry_angle_deg >= 0.0 && symmetry_angle_deg <= 90.0, kOwner,
                "symmetry_angle_deg", "in [0, 90]", symmetry_angle_deg);

@@ -3,14 +3,12 @@
 #include <cmath>
 
 #include "binpick/io/error.hpp"
+#include "rigid.hpp"
 
 namespace binpick::cell {
 namespace {
 
 const std::string kOwner = "picking.gripper";
-
-bool isPositive(double value) { return std::isfinite(value) && value > 0.0; }
-bool isNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
 
 }  // namespace
 

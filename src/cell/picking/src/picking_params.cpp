@@ -12,8 +12,6 @@ const std::string kOwner = "picking";
 // Configured poses and rotations come from text with a few decimals: looser than double rounding.
 constexpr double kConfigTolerance = 1e-5;
 
-bool isPositive(double value) { return std::isfinite(value) && value > 0.0; }
-bool isNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
 
 void validateGrasps(const std::vector<Grasp>& grasps) {
   requireField(!grasps.empty(), kOwner, "grasps", "at least one grasp", grasps.size());

@@ -1,9 +1,13 @@
 #pragma once
-// Checks that a matrix or transform is what the planner can trust as a rotation or rigid pose:
-// a pose that only looks rigid (NaN, a scale, a mirror) would hand the robot nonsense.
+// Checks of what the picking settings and the planner are handed: a pose that only looks rigid
+// (NaN, a scale, a mirror) would hand the robot nonsense, a NaN length would pass `> 0`.
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace binpick::cell {
+
+inline bool isPositive(double value) { return std::isfinite(value) && value > 0.0; }
+inline bool isNonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
 
 // Orthonormal within `tolerance` (Frobenius norm of R^T R - I) and not a mirror.
 inline bool isRotation(const Eigen::Matrix3d& R, double tolerance) {

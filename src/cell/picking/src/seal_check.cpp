@@ -4,6 +4,7 @@
 #include <string>
 
 #include "binpick/io/error.hpp"
+#include "rigid.hpp"
 
 namespace binpick::cell {
 namespace {
@@ -19,11 +20,11 @@ constexpr long kEdgeSearch = 3;
 
 void SealCheckParams::validate() const {
   const std::string owner = "picking.seal_check";
-  requireField(std::isfinite(rim_margin) && rim_margin >= 0, owner, "rim_margin", ">= 0", rim_margin);
-  requireField(std::isfinite(noise) && noise >= 0, owner, "noise", ">= 0", noise);
+  requireField(isNonNegative(rim_margin), owner, "rim_margin", ">= 0", rim_margin);
+  requireField(isNonNegative(noise), owner, "noise", ">= 0", noise);
   requireField(min_seen_share >= 0 && min_seen_share <= 1, owner, "min_seen_share", "in [0, 1]", min_seen_share);
-  requireField(std::isfinite(max_shift) && max_shift >= 0, owner, "max_shift", ">= 0", max_shift);
-  requireField(std::isfinite(shift_step) && shift_step > 0, owner, "shift_step", "> 0", shift_step);
+  requireField(isNonNegative(max_shift), owner, "max_shift", ">= 0", max_shift);
+  requireField(isPositive(shift_step), owner, "shift_step", "> 0", shift_step);
 }
 
 MeasuredSurface::MeasuredSurface(const PointCloud& cloud, const LensIntrinsics& camera,
