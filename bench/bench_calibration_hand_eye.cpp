@@ -12,7 +12,7 @@
 
 #include "binpick/calibration/board_detection.hpp"
 #include "binpick/calibration/hand_eye.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 
 namespace {
@@ -31,14 +31,14 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (i + 1 >= argc) throw Error("bench_calibration_hand_eye: " + flag + " needs a value");
+    if (i + 1 >= argc) throw core::Error("bench_calibration_hand_eye: " + flag + " needs a value");
     const std::string value = argv[++i];
     if (flag == "--views") o.views = std::stoi(value);
     else if (flag == "--seeds") o.seeds = std::stoi(value);
     else if (flag == "--seed") o.seed = std::stoull(value);
-    else throw Error("bench_calibration_hand_eye: unknown option " + flag);
+    else throw core::Error("bench_calibration_hand_eye: unknown option " + flag);
   }
-  if (o.views < 6 || o.seeds < 1) throw Error("bench_calibration_hand_eye: --views >= 6, --seeds >= 1");
+  if (o.views < 6 || o.seeds < 1) throw core::Error("bench_calibration_hand_eye: --views >= 6, --seeds >= 1");
   return o;
 }
 
@@ -63,14 +63,14 @@ std::vector<Variant> variants() {
 }
 
 // Per setup, seed: the board poses PnP measures in the rendered images, by view name.
-std::vector<std::pair<std::string, Eigen::Isometry3d>> measuredBoards(const sim::HandEyeSessionParams& params) {
-  const sim::HandEyeSession session = sim::simulateHandEyeSession(params);
-  const sim::CalibrationBoard board(params.board);
+std::vector<std::pair<std::string, Eigen::Isometry3d>> measuredBoards(const simulation::HandEyeSessionParams& params) {
+  const simulation::HandEyeSession session = simulation::simulateHandEyeSession(params);
+  const simulation::CalibrationBoard board(params.board);
   const calibration::BoardLayout layout = params.board.layout();
   std::vector<std::pair<std::string, Eigen::Isometry3d>> boards;
   uint64_t noise_seed = params.seed * 1000;
-  for (const sim::HandEyeSessionView& view : session.views) {
-    const cv::Mat image = sim::renderHandEyeImage(board, view.T_camera_board, params, ++noise_seed);
+  for (const simulation::HandEyeSessionView& view : session.views) {
+    const cv::Mat image = simulation::renderHandEyeImage(board, view.T_camera_board, params, ++noise_seed);
     const auto pose = calibration::estimateBoardPose(calibration::detectBoard(image, layout), layout,
                                                      params.rig.camera);
     if (pose) boards.emplace_back(view.name, pose->T_camera_board);
@@ -94,7 +94,7 @@ void runSetup(HandEyeSetup setup, const Options& o) {
   const std::vector<Variant> methods = variants();
   std::vector<std::vector<Tally>> tallies(kNoiseLevels.size(), std::vector<Tally>(methods.size()));
   for (int s = 0; s < o.seeds; ++s) {
-    sim::HandEyeSessionParams params;
+    simulation::HandEyeSessionParams params;
     params.setup = setup;
     params.views = o.views;
     params.seed = o.seed + static_cast<uint64_t>(s);
@@ -102,7 +102,7 @@ void runSetup(HandEyeSetup setup, const Options& o) {
     for (std::size_t n = 0; n < kNoiseLevels.size(); ++n) {
       params.robot_noise_mm = kNoiseLevels[n].mm;
       params.robot_noise_deg = kNoiseLevels[n].deg;
-      const sim::HandEyeSession session = sim::simulateHandEyeSession(params);
+      const simulation::HandEyeSession session = simulation::simulateHandEyeSession(params);
       std::vector<calibration::HandEyeView> views;
       for (const auto& [name, T_camera_board] : boards) {
         const int index = std::stoi(name.substr(name.find('_') + 1));
@@ -117,7 +117,7 @@ void runSetup(HandEyeSetup setup, const Options& o) {
           const calibration::HandEyeResult r = calibration::solveHandEye(views, solver);
           tallies[n][m].add(calibration::poseDifference(r.T_mount_camera, session.T_mount_camera));
           if (!r.ok()) ++tallies[n][m].failed;
-        } catch (const Error&) {
+        } catch (const core::Error&) {
           ++tallies[n][m].failed;
         }
       }

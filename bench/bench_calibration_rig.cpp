@@ -8,7 +8,6 @@
 //
 //   bench_calibration_rig [--poses 12] [--board charuco|chessboard] [--seed 1] [--objects 10]
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -17,7 +16,8 @@
 #include <vector>
 
 #include "binpick/calibration/rig_calibrator.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
@@ -27,7 +27,6 @@
 namespace {
 
 using namespace binpick;
-using Clock = std::chrono::steady_clock;
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 struct Options {
@@ -41,20 +40,16 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (i + 1 >= argc) throw Error("bench_calibration_rig: " + flag + " needs a value");
+    if (i + 1 >= argc) throw core::Error("bench_calibration_rig: " + flag + " needs a value");
     const std::string value = argv[++i];
     if (flag == "--poses") o.poses = std::stoi(value);
     else if (flag == "--board") o.board = value;
     else if (flag == "--seed") o.seed = std::stoi(value);
     else if (flag == "--objects") o.objects = std::stoi(value);
-    else throw Error("bench_calibration_rig: unknown option " + flag);
+    else throw core::Error("bench_calibration_rig: unknown option " + flag);
   }
-  if (o.poses < 3 || o.objects < 1) throw Error("bench_calibration_rig: --poses >= 3, --objects >= 1");
+  if (o.poses < 3 || o.objects < 1) throw core::Error("bench_calibration_rig: --poses >= 3, --objects >= 1");
   return o;
-}
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 double quantile(std::vector<double> values, double q) {
@@ -80,9 +75,9 @@ struct MeasuredSequence {
 };
 
 void compareWithTruth(const calibration::RigView& view,
-                      const std::vector<sim::CornerObservation>& truth, MeasuredSequence& m) {
-  std::map<int, sim::CornerObservation> by_id;
-  for (const sim::CornerObservation& corner : truth) by_id[corner.id] = corner;
+                      const std::vector<simulation::CornerObservation>& truth, MeasuredSequence& m) {
+  std::map<int, simulation::CornerObservation> by_id;
+  for (const simulation::CornerObservation& corner : truth) by_id[corner.id] = corner;
   for (std::size_t i = 0; i < view.board.ids.size(); ++i) {
     m.camera_errors_px.push_back((view.board.pixels[i] - by_id.at(view.board.ids[i]).camera_pixel).norm());
   }
@@ -91,15 +86,15 @@ void compareWithTruth(const calibration::RigView& view,
   }
 }
 
-MeasuredSequence measureSequence(const sim::CalibrationSequenceParams& params,
+MeasuredSequence measureSequence(const simulation::CalibrationSequenceParams& params,
                                  const calibration::BoardLayout& layout) {
-  const sim::CalibrationBoard board(params.board, params.texel_size);
-  const std::vector<Eigen::Isometry3d> poses = sim::randomBoardPoses(board, params.rig, params.poses);
+  const simulation::CalibrationBoard board(params.board, params.texel_size);
+  const std::vector<Eigen::Isometry3d> poses = simulation::randomBoardPoses(board, params.rig, params.poses);
   MeasuredSequence m;
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    const Clock::time_point start = Clock::now();
-    const Capture capture = sim::renderCalibrationCapture(board, poses[i], params, 100 + i);
-    m.render_ms += msSince(start);
+    const core::Stopwatch render;
+    const io::Capture capture = simulation::renderCalibrationCapture(board, poses[i], params, 100 + i);
+    m.render_ms += render.elapsedMs();
     char name[32];
     std::snprintf(name, sizeof name, "pose_%03zu", i);
     m.views.push_back(calibration::measureRigView(capture, name, layout));
@@ -107,7 +102,7 @@ MeasuredSequence measureSequence(const sim::CalibrationSequenceParams& params,
     m.timings.decode += view.timings.decode;
     m.timings.detect += view.timings.detect;
     m.timings.projector_corners += view.timings.projector_corners;
-    compareWithTruth(view, sim::observeCorners(board, params.rig, poses[i]), m);
+    compareWithTruth(view, simulation::observeCorners(board, params.rig, poses[i]), m);
     std::printf("  %s: %zu of %d corners, %zu with a projector pixel\n", name, view.board.ids.size(),
                 view.board.expected, view.projector.corners.size());
     std::fflush(stdout);
@@ -126,13 +121,13 @@ void printSequence(const MeasuredSequence& m) {
 // ---------------------------------------------------------------------------------------------
 // 2. The calibration against the true rig.
 
-void printLensErrors(const char* device, const LensIntrinsics& lens, const LensIntrinsics& truth) {
+void printLensErrors(const char* device, const io::LensIntrinsics& lens, const io::LensIntrinsics& truth) {
   std::printf("  %-9s fx %+.2f  fy %+.2f  cx %+.2f  cy %+.2f px (of fx %.0f)\n", device,
               lens.fx - truth.fx, lens.fy - truth.fy, lens.cx - truth.cx, lens.cy - truth.cy, truth.fx);
 }
 
 void printCalibration(const char* label, const calibration::RigCalibrationResult& r,
-                      const RigCalibration& truth) {
+                      const io::RigCalibration& truth) {
   const Eigen::Isometry3d& T = r.rig.T_projector_camera;
   const Eigen::Isometry3d& T_true = truth.T_projector_camera;
   const double rotation = Eigen::AngleAxisd(T.linear().transpose() * T_true.linear()).angle();
@@ -157,8 +152,8 @@ struct DepthErrors {
   std::vector<double> between, true_vs_depth, recovered_vs_depth;  // |dz|, mm
 };
 
-DepthErrors compareDepth(const sim::PileScene& scene, const PointCloud& with_true,
-                         const PointCloud& with_recovered) {
+DepthErrors compareDepth(const simulation::PileScene& scene, const io::PointCloud& with_true,
+                         const io::PointCloud& with_recovered) {
   DepthErrors e;
   for (std::size_t i = 0; i < with_true.points.size(); ++i) {
     const Eigen::Vector3f a = with_true.points[i], b = with_recovered.points[i];
@@ -171,22 +166,22 @@ DepthErrors compareDepth(const sim::PileScene& scene, const PointCloud& with_tru
   return e;
 }
 
-void benchDepth(const RigCalibration& truth, const RigCalibration& recovered, const Options& o) {
-  sim::PileParams params;
+void benchDepth(const io::RigCalibration& truth, const io::RigCalibration& recovered, const Options& o) {
+  simulation::PileParams params;
   params.objects = o.objects;
   params.seed = static_cast<uint64_t>(o.seed);
   params.rig = truth;
-  PatternSetSpec patterns;
+  io::PatternSetSpec patterns;
   patterns.projector_width = truth.projector.width;
   patterns.projector_height = truth.projector.height;
-  sim::PhotometryParams photometry;
+  simulation::PhotometryParams photometry;
   photometry.seed = params.seed;
-  const sim::Part part = sim::makePart("l_bracket");
-  sim::PileCapture pile = sim::generatePileCapture(part.mesh, params, patterns, photometry);
-  const Capture capture = sim::recordedCapture(std::move(pile.images), params, patterns, photometry,
+  const simulation::Part part = simulation::makePart("l_bracket");
+  simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, params, patterns, photometry);
+  const io::Capture capture = simulation::recordedCapture(std::move(pile.images), params, patterns, photometry,
                                                "bench_calibration_rig");
-  const PointCloud with_true = reconstruction::Reconstructor(truth).reconstruct(capture).cloud;
-  const PointCloud with_recovered = reconstruction::Reconstructor(recovered).reconstruct(capture).cloud;
+  const io::PointCloud with_true = reconstruction::Reconstructor(truth).reconstruct(capture).cloud;
+  const io::PointCloud with_recovered = reconstruction::Reconstructor(recovered).reconstruct(capture).cloud;
   const DepthErrors e = compareDepth(pile.scene, with_true, with_recovered);
   std::printf("\n== 3. Depth of a pile (%d x l_bracket, seed %d), |dz| over pixels valid in both ==\n",
               o.objects, o.seed);
@@ -198,8 +193,8 @@ void benchDepth(const RigCalibration& truth, const RigCalibration& recovered, co
 }
 
 void run(const Options& o) {
-  sim::CalibrationSequenceParams params;
-  params.board.type = sim::boardTypeFromName(o.board);
+  simulation::CalibrationSequenceParams params;
+  params.board.type = simulation::boardTypeFromName(o.board);
   params.poses.count = o.poses;
   params.poses.seed = static_cast<uint64_t>(o.seed);
   params.pattern_set.projector_width = params.rig.projector.width;

@@ -9,7 +9,6 @@
 // Writes DIR/emptying.md (tables), DIR/emptying.csv (one row per bin, flushed as it goes),
 // DIR/emptying-parts-left.png; each bin's run (emptying.json, overlays) under DIR/emptying-runs/.
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -20,7 +19,8 @@
 
 #include "bench_support.hpp"
 #include "binpick/emptying/emptying.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "plot.hpp"
 
@@ -30,7 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct Options {
-  std::vector<std::string> parts = sim::partNames();
+  std::vector<std::string> parts = simulation::partNames();
   std::vector<std::string> meshes;  // FILE[:SCALE]: parts the cell has never seen, without grasps
   std::vector<std::string> grippers = {"suction"};
   std::map<std::string, double> cups;  // part name -> cup diameter, metres
@@ -48,7 +48,7 @@ std::map<std::string, double> parseCups(const std::string& text) {
   std::map<std::string, double> cups;
   for (const std::string& item : splitCommas(text)) {
     const auto equals = item.find('=');
-    if (equals == std::string::npos) throw Error("--cups: \"" + item + "\" is not PART=METRES");
+    if (equals == std::string::npos) throw core::Error("--cups: \"" + item + "\" is not PART=METRES");
     cups[item.substr(0, equals)] = std::stod(item.substr(equals + 1));
   }
   return cups;
@@ -62,7 +62,7 @@ Options parseOptions(int argc, char** argv) {
       std::cout << kUsage;
       std::exit(0);
     }
-    if (i + 1 >= argc) throw Error("option " + key + " needs a value\n" + kUsage);
+    if (i + 1 >= argc) throw core::Error("option " + key + " needs a value\n" + kUsage);
     const std::string value = argv[++i];
     if (key == "--parts") options.parts = splitCommas(value);
     else if (key == "--meshes") options.meshes = splitCommas(value);
@@ -73,20 +73,20 @@ Options parseOptions(int argc, char** argv) {
     else if (key == "--first-seed") options.first_seed = std::stoi(value);
     else if (key == "--threads") options.threads = std::stoi(value);
     else if (key == "--out") options.out = value;
-    else throw Error("unknown option " + key + "\n" + kUsage);
+    else throw core::Error("unknown option " + key + "\n" + kUsage);
   }
-  if (options.out.empty()) throw Error(std::string("--out is needed\n") + kUsage);
-  if (options.bins < 1 || options.objects < 1) throw Error("--bins and --objects must be >= 1");
+  if (options.out.empty()) throw core::Error(std::string("--out is needed\n") + kUsage);
+  if (options.bins < 1 || options.objects < 1) throw core::Error("--bins and --objects must be >= 1");
   return options;
 }
 
 // A user's mesh as a part: FILE or FILE:SCALE (an STL in millimetres: FILE:0.001); no symmetry.
-sim::Part meshPart(const std::string& spec) {
+simulation::Part meshPart(const std::string& spec) {
   const auto colon = spec.rfind(':');
   const bool scaled = colon != std::string::npos && colon > 0;
-  sim::Part part;
+  simulation::Part part;
   part.name = fs::path(scaled ? spec.substr(0, colon) : spec).stem().string();
-  part.mesh = readMesh(scaled ? spec.substr(0, colon) : spec);
+  part.mesh = io::readMesh(scaled ? spec.substr(0, colon) : spec);
   const float scale = scaled ? std::stof(spec.substr(colon + 1)) : 1.0f;
   for (auto& v : part.mesh.vertices) v *= scale;
   return part;
@@ -216,16 +216,16 @@ int run(int argc, char** argv) {
   fs::create_directories(options.out);
   std::string command = "bench_emptying";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
-  const auto start = std::chrono::steady_clock::now();
+  const core::Stopwatch stopwatch;
 
-  std::vector<sim::Part> parts;
-  for (const std::string& name : options.parts) parts.push_back(sim::makePart(name));
+  std::vector<simulation::Part> parts;
+  for (const std::string& name : options.parts) parts.push_back(simulation::makePart(name));
   for (const std::string& spec : options.meshes) parts.push_back(meshPart(spec));
 
   std::ofstream csv(fs::path(options.out) / "emptying.csv");
   csv << "part,gripper,cup_mm,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,grasps\n";
   std::vector<Row> rows;
-  for (const sim::Part& part : parts) {
+  for (const simulation::Part& part : parts) {
     for (const std::string& gripper : options.grippers) {
       for (int b = 0; b < options.bins; ++b) {
         Row row{part.name, gripper, options.first_seed + b, 0.0, {}};
@@ -235,9 +235,9 @@ int run(int argc, char** argv) {
         params.pile.threads = options.threads;
         params.photometry.seed = params.pile.seed;
         params.photometry.threads = options.threads;
-        params.gripper.type = cell::gripperTypeFromName(gripper);
+        params.gripper.type = picking::gripperTypeFromName(gripper);
         if (options.cups.count(part.name)) params.gripper.cup_diameter = options.cups.at(part.name);
-        if (params.gripper.type == cell::GripperType::Suction) row.cup_mm = 1000.0 * params.gripper.cup_diameter;
+        if (params.gripper.type == picking::GripperType::Suction) row.cup_mm = 1000.0 * params.gripper.cup_diameter;
         const fs::path run_dir =
             fs::path(options.out) / "emptying-runs" / (part.name + "-" + gripper + "-" + std::to_string(row.seed));
         fs::remove_all(run_dir);
@@ -255,9 +255,9 @@ int run(int argc, char** argv) {
       }
     }
   }
-  if (rows.empty()) throw Error("no bin could be run");
+  if (rows.empty()) throw core::Error("no bin could be run");
   writePartsLeftPlot((fs::path(options.out) / "emptying-parts-left.png").string(), rows);
-  const double minutes = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60.0;
+  const double minutes = stopwatch.elapsedMs() / 60000.0;
   writeReport(options, rows, command, minutes);
   std::cout << summaryTable(rows);
   return 0;

@@ -12,10 +12,10 @@
 
 #include "bench_support.hpp"
 #include "binpick/estimation/detector.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 
 namespace {
 
@@ -37,7 +37,7 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (i + 1 >= argc) throw Error("bench_estimation: " + flag + " needs a value");
+    if (i + 1 >= argc) throw core::Error("bench_estimation: " + flag + " needs a value");
     const std::string value = argv[++i];
     if (flag == "--parts") o.parts = splitCommas(value);
     else if (flag == "--scenes") o.scenes = std::stoi(value);
@@ -46,9 +46,9 @@ Options parse(int argc, char** argv) {
     else if (flag == "--method") o.method = value;
     else if (flag == "--threads") o.threads = std::stoi(value);
     else if (flag == "--max-pairs-per-feature") o.max_pairs_per_feature = static_cast<uint32_t>(std::stoul(value));
-    else throw Error("bench_estimation: unknown option " + flag);
+    else throw core::Error("bench_estimation: unknown option " + flag);
   }
-  if (o.scenes < 1 || o.objects < 1) throw Error("bench_estimation: --scenes and --objects must be >= 1");
+  if (o.scenes < 1 || o.objects < 1) throw core::Error("bench_estimation: --scenes and --objects must be >= 1");
   return o;
 }
 
@@ -56,7 +56,7 @@ estimation::DetectorParams detectorParams(const Options& o) {
   estimation::DetectorParams p;
   if (o.method == "ppf1") p = estimation::DetectorParams::drost(1.0f);
   else if (o.method == "ppf5") p = estimation::DetectorParams::drost(0.2f);
-  else if (o.method != "li_hashimoto") throw Error("bench_estimation: --method must be li_hashimoto, ppf1 or ppf5");
+  else if (o.method != "li_hashimoto") throw core::Error("bench_estimation: --method must be li_hashimoto, ppf1 or ppf5");
   p.selection.max_objects = o.objects;
   p.threads = o.threads;
   return p;
@@ -66,7 +66,7 @@ struct Totals {
   estimation::StageTimings ms;
   int findable = 0, found = 0, detections = 0, correct = 0, wrong_first_10 = 0, scene_points = 0;
   std::size_t input_points = 0;
-  void add(const estimation::DetectionResult& r, const eval::Score& s, std::size_t valid_points) {
+  void add(const estimation::DetectionResult& r, const evaluation::Score& s, std::size_t valid_points) {
     ms.prepare_scene += r.timing_ms.prepare_scene;
     ms.voting += r.timing_ms.voting;
     ms.verification += r.timing_ms.verification;
@@ -83,28 +83,28 @@ struct Totals {
   }
 };
 
-std::size_t validPoints(const PointCloud& cloud) {
+std::size_t validPoints(const io::PointCloud& cloud) {
   std::size_t n = 0;
   for (const auto& p : cloud.points) n += p.allFinite() ? 1 : 0;
   return n;
 }
 
 void benchPart(const std::string& part_name, const Options& o) {
-  const sim::Part part = sim::makePart(part_name);
+  const simulation::Part part = simulation::makePart(part_name);
   estimation::ModelParams model_params;
   model_params.max_pairs_per_feature = o.max_pairs_per_feature;
-  const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, model_params);
+  const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, model_params);
   estimation::DetectorParams params = detectorParams(o);
   Totals totals;
   for (int s = 0; s < o.scenes; ++s) {
-    sim::PileParams pile;
+    simulation::PileParams pile;
     pile.objects = o.objects;
     pile.seed = o.seed + static_cast<uint64_t>(s);
-    const sim::PileScene scene = sim::generatePile(part.mesh, pile);
-    params.scene.crop = eval::binInterior(scene, pile);
+    const simulation::PileScene scene = simulation::generatePile(part.mesh, pile);
+    params.scene.crop = evaluation::binInterior(scene, pile);
     const estimation::Detector detector(model, params);
     const estimation::DetectionResult result = detector.detect(scene.cloud);
-    const eval::Score score = eval::scoreDetections(result.detections, scene.objects, part.symmetry,
+    const evaluation::Score score = evaluation::scoreDetections(result.detections, scene.objects, part.symmetry,
                                                     {model.diameter / 10.0, 10.0});
     totals.add(result, score, validPoints(scene.cloud));
   }

@@ -7,7 +7,6 @@
 //   bench_reconstruction [--part l_bracket] [--parts l_bracket,clamp,gear,ring_magnet]
 //                        [--scenes 3] [--repeats 15] [--threads 0] [--skip-large] [--skip-detection]
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -17,18 +16,18 @@
 
 #include "bench_support.hpp"
 #include "binpick/estimation/detector.hpp"
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 
 namespace {
 
 using namespace binpick;
-using Clock = std::chrono::steady_clock;
 
 constexpr int kObjects = 20;
 constexpr double kWrongMm = 5.0;      // a point this far off in z is a wrong point, not noise
@@ -54,22 +53,18 @@ Options parse(int argc, char** argv) {
     const std::string flag = argv[i];
     if (flag == "--skip-large") { o.skip_large = true; continue; }
     if (flag == "--skip-detection") { o.skip_detection = true; continue; }
-    if (i + 1 >= argc) throw Error("bench_reconstruction: " + flag + " needs a value");
+    if (i + 1 >= argc) throw core::Error("bench_reconstruction: " + flag + " needs a value");
     const std::string value = argv[++i];
     if (flag == "--part") o.part = value;
     else if (flag == "--parts") o.parts = splitCommas(value);
     else if (flag == "--scenes") o.scenes = std::stoi(value);
     else if (flag == "--repeats") o.repeats = std::stoi(value);
     else if (flag == "--threads") o.threads = std::stoi(value);
-    else throw Error("bench_reconstruction: unknown option " + flag);
+    else throw core::Error("bench_reconstruction: unknown option " + flag);
   }
-  if (o.scenes < 1 || o.repeats < 1) throw Error("bench_reconstruction: --scenes and --repeats must be >= 1");
-  if (o.threads < 0) throw Error("bench_reconstruction: --threads must be >= 0");
+  if (o.scenes < 1 || o.repeats < 1) throw core::Error("bench_reconstruction: --scenes and --repeats must be >= 1");
+  if (o.threads < 0) throw core::Error("bench_reconstruction: --threads must be >= 0");
   return o;
-}
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -78,8 +73,8 @@ double msSince(Clock::time_point start) {
 // The virtual rig with a 5 MP sensor behind a lens of the same field of view: the focal length
 // scales with the sensor width (2448 / 1280 = 1.9125) and the distortion, being in normalised
 // coordinates, stays the same.
-RigCalibration largeRig() {
-  RigCalibration rig = sim::makeVirtualRig();
+io::RigCalibration largeRig() {
+  io::RigCalibration rig = simulation::makeVirtualRig();
   rig.camera.width = 2448;
   rig.camera.height = 2048;
   rig.camera.fx = rig.camera.fy = 1600.0 * 1.9125;
@@ -89,30 +84,30 @@ RigCalibration largeRig() {
 }
 
 struct RenderedPile {
-  sim::PileParams params;
-  sim::PileScene scene;
-  Capture capture;
+  simulation::PileParams params;
+  simulation::PileScene scene;
+  io::Capture capture;
 };
 
 // The default pattern set (Gray code columns + rows, 4 phase steps) for the rig's projector.
-PatternSetSpec defaultPatterns(const RigCalibration& rig) {
-  PatternSetSpec patterns;
+io::PatternSetSpec defaultPatterns(const io::RigCalibration& rig) {
+  io::PatternSetSpec patterns;
   patterns.projector_width = rig.projector.width;
   patterns.projector_height = rig.projector.height;
   return patterns;
 }
 
-RenderedPile renderPile(const sim::Part& part, const RigCalibration& rig, uint64_t seed) {
+RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& rig, uint64_t seed) {
   RenderedPile r;
   r.params.objects = kObjects;
   r.params.seed = seed;
   r.params.rig = rig;
-  const PatternSetSpec patterns = defaultPatterns(rig);
-  sim::PhotometryParams photometry;
+  const io::PatternSetSpec patterns = defaultPatterns(rig);
+  simulation::PhotometryParams photometry;
   photometry.seed = seed;
-  sim::PileCapture pile = sim::generatePileCapture(part.mesh, r.params, patterns, photometry);
+  simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, r.params, patterns, photometry);
   r.scene = std::move(pile.scene);
-  r.capture = sim::recordedCapture(std::move(pile.images), r.params, patterns, photometry,
+  r.capture = simulation::recordedCapture(std::move(pile.images), r.params, patterns, photometry,
                                    "bench_reconstruction " + part.name);
   return r;
 }
@@ -140,9 +135,9 @@ Timing timeRuns(int repeats, Setup setup, Run run) {
   std::vector<double> ms;
   for (int i = 0; i < repeats; ++i) {
     setup();
-    const Clock::time_point start = Clock::now();
+    const core::Stopwatch stopwatch;
     run();
-    ms.push_back(msSince(start));
+    ms.push_back(stopwatch.elapsedMs());
   }
   std::sort(ms.begin(), ms.end());
   return {ms[ms.size() / 2], ms.front()};
@@ -160,7 +155,7 @@ struct SpeedResult {
 
 // Each stage is timed on its own, from the previous stage's output computed once, so that the
 // stage numbers do not include each other; the whole reconstruct is timed separately.
-SpeedResult measureSpeed(const RigCalibration& rig, const Capture& capture, const Options& o,
+SpeedResult measureSpeed(const io::RigCalibration& rig, const io::Capture& capture, const Options& o,
                          reconstruction::Reconstruction& result) {
   namespace rc = reconstruction;
   const rc::ReconstructionParams params = reconstructionParams(o);
@@ -172,7 +167,7 @@ SpeedResult measureSpeed(const RigCalibration& rig, const Capture& capture, cons
   s.decode = timeRuns(o.repeats, [&] { decoded = rc::decodeCapture(capture, params.decode); });
   rc::TriangulatedCloud triangulated;
   s.triangulate = timeRuns(o.repeats, [&] { triangulated = triangulator.triangulate(decoded); });
-  PointCloud cloud;
+  io::PointCloud cloud;
   cv::Mat status;
   s.filter = timeRuns(
       o.repeats, [&] { cloud = triangulated.cloud; status = triangulated.status.clone(); },
@@ -241,7 +236,7 @@ ErrorStats errorStats(std::vector<double> signed_mm) {
 // Whether a truth depth edge (adjacent pixels more than kEdgeStepMm apart, or one of them seeing
 // nothing) lies within kEdgeRadius pixels: wrong points there are mixed or misdecoded edge pixels,
 // elsewhere they point at a decoding problem on smooth surfaces.
-bool nearDepthEdge(const sim::PileScene& scene, int x, int y) {
+bool nearDepthEdge(const simulation::PileScene& scene, int x, int y) {
   const int w = scene.cloud.width, h = scene.cloud.height;
   const auto step = [&](int x0, int y0, int x1, int y1) {
     if (x1 >= w || y1 >= h) return false;
@@ -260,7 +255,7 @@ bool nearDepthEdge(const sim::PileScene& scene, int x, int y) {
 // Why the ideal sensor has no point where the reconstruction has one.
 enum class ExtraKind { Grazing, Unlit, NothingSeen };
 
-ExtraKind extraKind(const sim::PileScene& scene, const sim::PileParams& params, std::size_t i) {
+ExtraKind extraKind(const simulation::PileScene& scene, const simulation::PileParams& params, std::size_t i) {
   const Eigen::Vector3f p = scene.exact_cloud.points[i];
   if (!p.allFinite()) return ExtraKind::NothingSeen;
   const float cos_view = -scene.exact_cloud.normals[i].dot(p.normalized());
@@ -285,7 +280,7 @@ double zErrorMm(const Eigen::Vector3f& point, float true_z) {
   return (static_cast<double>(point.z()) - static_cast<double>(true_z)) * 1000.0;
 }
 
-void countWrongNearEdges(const sim::PileScene& scene, const PointCloud& cloud, Accuracy& a) {
+void countWrongNearEdges(const simulation::PileScene& scene, const io::PointCloud& cloud, Accuracy& a) {
   for (std::size_t i = 0; i < cloud.points.size(); ++i) {
     const Eigen::Vector3f p = cloud.points[i];
     if (!p.allFinite() || !std::isfinite(scene.depth[i]) || std::abs(zErrorMm(p, scene.depth[i])) <= kWrongMm) {
@@ -299,7 +294,7 @@ void countWrongNearEdges(const sim::PileScene& scene, const PointCloud& cloud, A
 
 Accuracy measureAccuracy(const std::string& name, const RenderedPile& pile,
                          const reconstruction::Reconstruction& r) {
-  const sim::PileScene& scene = pile.scene;
+  const simulation::PileScene& scene = pile.scene;
   Accuracy a;
   a.name = name;
   // The status image is indexed like the cloud: make sure it is one block.
@@ -396,16 +391,16 @@ struct CloudTotals {
   std::size_t points = 0;
 };
 
-std::size_t validPoints(const PointCloud& cloud) {
+std::size_t validPoints(const io::PointCloud& cloud) {
   std::size_t n = 0;
   for (const auto& p : cloud.points) n += p.allFinite() ? 1 : 0;
   return n;
 }
 
-void detectInto(const estimation::Detector& detector, const PointCloud& cloud, const sim::PileScene& scene,
-                const sim::Part& part, CloudTotals& totals) {
+void detectInto(const estimation::Detector& detector, const io::PointCloud& cloud, const simulation::PileScene& scene,
+                const simulation::Part& part, CloudTotals& totals) {
   const estimation::DetectionResult result = detector.detect(cloud);
-  const eval::Score score = eval::scoreDetections(result.detections, scene.objects, part.symmetry,
+  const evaluation::Score score = evaluation::scoreDetections(result.detections, scene.objects, part.symmetry,
                                                   {detector.model().diameter / 10.0, 10.0});
   totals.findable += score.findable;
   totals.found += score.found;
@@ -426,15 +421,15 @@ void printDetectionRow(const char* label, const CloudTotals& t, const Options& o
 // ideal sensor and as exact geometry; the gaps between them are what reconstruction costs.
 void benchDetectionPart(const std::string& part_name, const reconstruction::Reconstructor& reconstructor,
                         const Options& o) {
-  const sim::Part part = sim::makePart(part_name);
-  const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {});
+  const simulation::Part part = simulation::makePart(part_name);
+  const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, {});
   estimation::DetectorParams params;
   params.selection.max_objects = kObjects;
   params.threads = o.threads;
   CloudTotals reconstructed, ideal, exact;
   for (int s = 1; s <= o.scenes; ++s) {
     const RenderedPile pile = renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s));
-    params.scene.crop = eval::binInterior(pile.scene, pile.params);
+    params.scene.crop = evaluation::binInterior(pile.scene, pile.params);
     const estimation::Detector detector(model, params);
     detectInto(detector, reconstructor.reconstruct(pile.capture).cloud, pile.scene, part, reconstructed);
     detectInto(detector, pile.scene.cloud, pile.scene, part, ideal);
@@ -451,7 +446,7 @@ void benchDetection(const Options& o) {
               "correct: < diam/10 and 10 deg) ==\n",
               o.scenes, kObjects, o.scenes);
   std::printf("  %-26s %9s %17s %10s %12s\n", "cloud", "pts/scene", "recognition", "wrong@10", "ms/object");
-  const reconstruction::Reconstructor reconstructor(sim::makeVirtualRig(), reconstructionParams(o));
+  const reconstruction::Reconstructor reconstructor(simulation::makeVirtualRig(), reconstructionParams(o));
   for (const std::string& part : o.parts) benchDetectionPart(part, reconstructor, o);
   std::printf("  (recognition: found / objects >= 50%% visible; wrong@10: wrong among the first 10 "
               "detections, summed over scenes)\n");
@@ -460,16 +455,16 @@ void benchDetection(const Options& o) {
 // ---------------------------------------------------------------------------------------------
 
 void benchReconstruction(const Options& o) {
-  const sim::Part part = sim::makePart(o.part);
-  std::vector<RigCalibration> rigs{sim::makeVirtualRig()};
+  const simulation::Part part = simulation::makePart(o.part);
+  std::vector<io::RigCalibration> rigs{simulation::makeVirtualRig()};
   if (!o.skip_large) rigs.push_back(largeRig());
   std::vector<SpeedResult> speed;
   std::vector<Accuracy> accuracy;
-  for (const RigCalibration& rig : rigs) {
-    const Clock::time_point start = Clock::now();
+  for (const io::RigCalibration& rig : rigs) {
+    const core::Stopwatch render;
     const RenderedPile pile = renderPile(part, rig, 1);
     std::printf("rendered %dx%d: %zu images of %s x %d in %.1f s\n", rig.camera.width, rig.camera.height,
-                pile.capture.images.size(), o.part.c_str(), kObjects, msSince(start) / 1000.0);
+                pile.capture.images.size(), o.part.c_str(), kObjects, render.elapsedMs() / 1000.0);
     std::fflush(stdout);
     reconstruction::Reconstruction result;
     speed.push_back(measureSpeed(rig, pile.capture, o, result));
@@ -486,7 +481,7 @@ int main(int argc, char** argv) {
     const Options options = parse(argc, argv);
     std::printf("bench_reconstruction: %d threads (--threads %d), default pattern set (Gray columns + "
                 "rows, 4 phase steps), reconstruction defaults\n",
-                resolveThreadCount(options.threads), options.threads);
+                core::resolveThreadCount(options.threads), options.threads);
     benchReconstruction(options);
     if (!options.skip_detection) benchDetection(options);
     return 0;

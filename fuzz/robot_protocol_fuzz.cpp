@@ -11,12 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/robot_protocol.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/robot/protocol.hpp"
 
 namespace {
 
 using namespace binpick::robot;
+namespace core = binpick::core;
 
 // The bytes in C escapes, for the report.
 std::string escaped(const std::string& bytes) {
@@ -41,9 +42,9 @@ void require(bool ok, const char* invariant, const std::string& bytes = "") {
 }
 
 CodecParams paramsFor(uint8_t selector, Framing framing) {
-  constexpr Orientation kOrientations[] = {Orientation::Quaternion, Orientation::EulerZYX,
-                                           Orientation::FixedXYZ, Orientation::RotationVector,
-                                           Orientation::EulerXYZ};
+  constexpr core::Orientation kOrientations[] = {core::Orientation::Quaternion, core::Orientation::EulerZYX,
+                                           core::Orientation::FixedXYZ, core::Orientation::RotationVector,
+                                           core::Orientation::EulerXYZ};
   constexpr std::size_t kLineLengths[] = {80, 16, 200};
   CodecParams params;
   params.framing = framing;
@@ -105,7 +106,7 @@ Reply replyFor(const Decoded& decoded, uint64_t seed) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = Eigen::Vector3d(random[0], random[1], random[2]) * reach;
     random[1] += 0.01;  // never the zero quaternion
-    T.linear() = rotationFromValues(random, Orientation::Quaternion);
+    T.linear() = core::rotationFromValues(random, core::Orientation::Quaternion);
     reply.T_base_tool = T;
   }
   return reply;
@@ -129,7 +130,7 @@ void checkReplyReadsBack(const Reply& sent, const std::string& bytes, const Code
   std::optional<Reply> read;
   try {
     read = decoder.next();
-  } catch (const binpick::Error& error) {
+  } catch (const binpick::core::Error& error) {
     std::fprintf(stderr, "%s\n", error.what());
     require(false, "every encoded reply decodes", bytes);
   }
@@ -149,8 +150,8 @@ void checkReplyReadsBack(const Reply& sent, const std::string& bytes, const Code
     const double millimetres = (read->T_base_tool->translation() - T.translation()).norm() * 1e3;
     require(millimetres <= 0.087 + 1e-12 * T.translation().norm() * 1e3,
             "a pick's position survives", bytes);
-    const std::vector<double> turn = orientationValues(
-        read->T_base_tool->linear().transpose() * T.linear(), Orientation::RotationVector);
+    const std::vector<double> turn = core::orientationValues(
+        read->T_base_tool->linear().transpose() * T.linear(), core::Orientation::RotationVector);
     const double radians = Eigen::Vector3d(turn[0], turn[1], turn[2]).norm();
     require(radians <= 0.004, "a pick's orientation survives", bytes);
   }
@@ -165,7 +166,7 @@ void checkPoseReadsBack(const Eigen::Isometry3d& sent, const Eigen::Isometry3d& 
   require(millimetres <= 0.0087 + 1e-12 * sent.translation().norm() * 1e3,
           "a POSE's position survives encoding", bytes);
   const std::vector<double> turn =
-      orientationValues(read.linear().transpose() * sent.linear(), Orientation::RotationVector);
+      core::orientationValues(read.linear().transpose() * sent.linear(), core::Orientation::RotationVector);
   require(Eigen::Vector3d(turn[0], turn[1], turn[2]).norm() <= 3.5e-4,
           "a POSE's orientation survives encoding", bytes);
 }
@@ -174,7 +175,7 @@ void checkRequestRoundTrip(const Request& request, const CodecParams& params) {
   std::string bytes;
   try {
     bytes = encodeRequest(request, params);
-  } catch (const binpick::Error& error) {
+  } catch (const binpick::core::Error& error) {
     // A line that arrived with a bare "\n" may be one too long to send back with "\r\n"; a POSE
     // typed with fewer digits than the codec writes may be longer at its precision.
     const std::string message = error.what();
@@ -234,7 +235,7 @@ void fuzzReplies(const std::string& stream, const CodecParams& params) {
   for (int i = 0; i < kRepliesPerInput; ++i) {
     try {
       if (!decoder.next()) return;
-    } catch (const binpick::Error&) {
+    } catch (const binpick::core::Error&) {
       // Malformed: the expected outcome for most inputs.
     }
   }

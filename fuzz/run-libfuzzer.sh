@@ -20,10 +20,11 @@ if [ "${FUZZ_KEEP:-0}" = 1 ]; then echo "working in $work"; else trap 'rm -rf "$
 # Every file includes robot_protocol.hpp, i.e. Eigen: precompiled once, it no longer dominates
 # the build. Then two compilers at a time: the sources are independent.
 flags="-std=c++17 -O1 -gline-tables-only -fsanitize=fuzzer-no-link,address,undefined"
-flags="$flags -fno-sanitize-recover=undefined -I$root/src/io/include -isystem $eigen"
-"$cxx" $flags -x c++-header "$root/src/io/include/binpick/io/robot_protocol.hpp" -o "$work/protocol.pch"
-ls "$here/robot_protocol_fuzz.cpp" "$root"/src/io/src/robot_orientation.cpp \
-   "$root"/src/io/src/robot_protocol_*.cpp |
+flags="$flags -fno-sanitize-recover=undefined -I$root/src/core/include -I$root/src/robot/include -isystem $eigen"
+"$cxx" $flags -x c++-header "$root/src/robot/include/binpick/robot/protocol.hpp" -o "$work/protocol.pch"
+ls "$here/robot_protocol_fuzz.cpp" "$root"/src/core/src/orientation.cpp \
+   "$root"/src/robot/src/protocol.cpp "$root"/src/robot/src/ascii.cpp "$root"/src/robot/src/binary.cpp \
+   "$root"/src/robot/src/pose.cpp |
   xargs -P 2 -I SOURCE sh -c '"$1" $2 -include-pch "$4/protocol.pch" -c "$3" -o "$4/$(basename "$3").o"' \
     _ "$cxx" "$flags" SOURCE "$work"
 "$cxx" -fsanitize=fuzzer,address,undefined "$work"/*.o -o "$work/robot_protocol_fuzz"

@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 bash scripts/build.sh binpick
 out=demo-output
 rm -rf "$out"
-./build/src/apps/binpick simulate --part l_bracket --objects 20 --seed 3 --empty-bin --out "$out"
+./build/src/cli/binpick simulate --part l_bracket --objects 20 --seed 3 --empty-bin --out "$out"
 overlay=$(ls -d "$out"/cycles/cycle-*/overlay.png 2>/dev/null | sort -V | head -n 1 || true)
 if [ -n "$overlay" ]; then
   cp "$overlay" "$out/overlay.png"

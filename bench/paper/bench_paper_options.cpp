@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "bench_support.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 
 namespace binpick::bench {
@@ -19,12 +19,12 @@ bool contains(const std::vector<std::string>& list, const std::string& item) {
 std::vector<std::string> checkedList(const std::string& option, const std::string& value,
                                      const std::vector<std::string>& allowed) {
   const std::vector<std::string> items = splitCommas(value);
-  if (items.empty()) throw Error(option + " needs at least one item");
+  if (items.empty()) throw core::Error(option + " needs at least one item");
   for (const std::string& item : items) {
     if (allowed.empty() || contains(allowed, item)) continue;
     std::string known;
     for (const std::string& a : allowed) known += (known.empty() ? "" : ", ") + a;
-    throw Error(option + ": '" + item + "' is unknown (" + known + ")");
+    throw core::Error(option + ": '" + item + "' is unknown (" + known + ")");
   }
   return items;
 }
@@ -39,7 +39,7 @@ std::vector<CloudInput> inputsFrom(const std::string& value) {
 
 int positive(const std::string& option, const std::string& value) {
   const int n = std::stoi(value);
-  if (n < 1) throw Error(option + " must be >= 1");
+  if (n < 1) throw core::Error(option + " must be >= 1");
   return n;
 }
 
@@ -71,14 +71,14 @@ bool PaperBenchOptions::runsPeersOn(const std::string& part) const {
 
 PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
   PaperBenchOptions o;
-  const std::vector<std::string> parts = sim::partNames();
+  const std::vector<std::string> parts = simulation::partNames();
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--help" || flag == "-h") {
       o.help = true;
       continue;
     }
-    if (i + 1 >= argc) throw Error(flag + " needs a value");
+    if (i + 1 >= argc) throw core::Error(flag + " needs a value");
     const std::string value = argv[++i];
     try {
       if (flag == "--scenes") o.scenes = positive(flag, value);
@@ -94,9 +94,9 @@ PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
       else if (flag == "--scaling-part") o.scaling_part = checkedList(flag, value, parts).front();
       else if (flag == "--scaling-scenes") o.scaling_scenes = positive(flag, value);
       else if (flag == "--out") o.out = value;
-      else throw Error("unknown option " + flag);
+      else throw core::Error("unknown option " + flag);
     } catch (const std::logic_error&) {  // std::stoi and friends
-      throw Error(flag + ": '" + value + "' is not a number");
+      throw core::Error(flag + ": '" + value + "' is not a number");
     }
   }
   return o;

@@ -30,7 +30,7 @@ struct PaperBenchOptions {
 
 const char* paperBenchUsage();
 
-// Throws binpick::Error naming the bad option or value.
+// Throws core::Error naming the bad option or value.
 PaperBenchOptions parsePaperBenchOptions(int argc, char** argv);
 
 }  // namespace binpick::bench

@@ -9,8 +9,8 @@
 #include <memory>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "binpick_method.hpp"
 #include "experiment.hpp"
 #include "opencv_ppf_method.hpp"
@@ -27,7 +27,7 @@ std::unique_ptr<PoseMethod> makeMethod(const std::string& name, const MethodSetu
   if (isBinpickMethod(name)) return makeBinpickMethod(name, setup);
   if (name == "opencv_ppf") return std::make_unique<OpenCvPpfMethod>(setup);
   if (name == "pcl_ppf") return std::make_unique<PclPpfMethod>(setup);
-  throw Error("unknown method " + name);
+  throw core::Error("unknown method " + name);
 }
 
 bool isPeer(const std::string& method) { return !isBinpickMethod(method); }
@@ -56,7 +56,7 @@ std::string preamble(const PaperBenchOptions& o, int argc, char** argv) {
   std::ostringstream out;
   out << "# Benchmark results\n\n"
       << "Generated " << utcNow() << " by `" << commandLine(argc, argv) << "` with "
-      << resolveThreadCount(o.threads) << " threads on " << cpuName() << ".\n\n"
+      << core::resolveThreadCount(o.threads) << " threads on " << cpuName() << ".\n\n"
       << "Scenes: " << o.scenes << " per part, " << o.objects << " objects each, seeds " << o.seed << ".."
       << o.seed + o.scenes - 1 << " (OpenCV's and PCL's matchers: the first " << o.peer_scenes
       << (o.peer_parts.empty() ? "" : ", on " + joined(o.peer_parts) + " only")
@@ -77,7 +77,7 @@ struct ExperimentData {
 // Every method on one scene and input. A method that fails is reported and skipped: one peer's
 // exception must not lose the hours of results around it.
 void runScene(const std::vector<std::unique_ptr<PoseMethod>>& methods, const BenchScene& scene, int scene_index,
-              const sim::Part& part, double diameter, const PaperBenchOptions& o, std::ofstream& csv,
+              const simulation::Part& part, double diameter, const PaperBenchOptions& o, std::ofstream& csv,
               ExperimentData& data) {
   for (CloudInput input : o.inputs) {
     for (const auto& method : methods) {
@@ -99,8 +99,8 @@ void runScene(const std::vector<std::unique_ptr<PoseMethod>>& methods, const Ben
 }
 
 void runPart(const PaperBenchOptions& o, const std::string& part_name, std::ofstream& csv, ExperimentData& data) {
-  const sim::Part part = sim::makePart(part_name);
-  const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {});
+  const simulation::Part part = simulation::makePart(part_name);
+  const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, {});
   const MethodSetup setup{&model, o.objects, o.threads};
   std::vector<std::unique_ptr<PoseMethod>> methods;
   if (o.has("paper")) {
@@ -166,7 +166,7 @@ void runPaperBench(const PaperBenchOptions& o, int argc, char** argv) {
   markdown << preamble(o, argc, argv);
   if (o.has("paper") || o.has("selection")) {
     std::ofstream csv(dir / "outcomes.csv");
-    if (!csv) throw Error("cannot write " + (dir / "outcomes.csv").string());
+    if (!csv) throw core::Error("cannot write " + (dir / "outcomes.csv").string());
     writeOutcomeHeader(csv);
     ExperimentData data;
     for (const std::string& part : o.parts) runPart(o, part, csv, data);
@@ -174,8 +174,8 @@ void runPaperBench(const PaperBenchOptions& o, int argc, char** argv) {
     if (o.has("selection")) markdown << selectionSection(data.selection, dir);
   }
   if (o.has("scaling")) {
-    const sim::Part part = sim::makePart(o.scaling_part);
-    const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {});
+    const simulation::Part part = simulation::makePart(o.scaling_part);
+    const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, {});
     ScalingParams params;
     params.scenes = o.scaling_scenes;
     params.objects = o.objects;
@@ -186,7 +186,7 @@ void runPaperBench(const PaperBenchOptions& o, int argc, char** argv) {
   }
   std::ofstream results(dir / "results.md");
   results << markdown.str();
-  if (!results) throw Error("cannot write " + (dir / "results.md").string());
+  if (!results) throw core::Error("cannot write " + (dir / "results.md").string());
   std::fprintf(stderr, "wrote %s\n", (dir / "results.md").c_str());
 }
 

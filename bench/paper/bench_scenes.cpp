@@ -1,16 +1,15 @@
 #include "bench_scenes.hpp"
 
-#include <chrono>
-
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "pose_method.hpp"
 
 namespace binpick::bench {
 namespace {
 
-void setPileParams(const SceneRequest& request, sim::PileParams& p) {
+void setPileParams(const SceneRequest& request, simulation::PileParams& p) {
   p.objects = request.objects;
   p.seed = request.seed;
   p.rig = request.rig;
@@ -19,8 +18,8 @@ void setPileParams(const SceneRequest& request, sim::PileParams& p) {
 }
 
 // The default pattern set (Gray code columns + rows, phase shift) at the projector's size.
-PatternSetSpec patternsFor(const RigCalibration& rig) {
-  PatternSetSpec patterns;
+io::PatternSetSpec patternsFor(const io::RigCalibration& rig) {
+  io::PatternSetSpec patterns;
   patterns.projector_width = rig.projector.width;
   patterns.projector_height = rig.projector.height;
   return patterns;
@@ -30,9 +29,9 @@ PatternSetSpec patternsFor(const RigCalibration& rig) {
 
 std::string inputName(CloudInput input) { return input == CloudInput::Exact ? "exact" : "reconstructed"; }
 
-const PointCloud& BenchScene::cloud(CloudInput input) const {
+const io::PointCloud& BenchScene::cloud(CloudInput input) const {
   if (input == CloudInput::Exact) return truth.cloud;
-  if (reconstructed.empty()) throw Error("bench: the scene was made without its reconstructed cloud");
+  if (reconstructed.empty()) throw core::Error("bench: the scene was made without its reconstructed cloud");
   return reconstructed;
 }
 
@@ -40,27 +39,27 @@ std::size_t BenchScene::pointsInBin(CloudInput input) const {
   return input == CloudInput::Exact ? exact_in_bin : reconstructed_in_bin;
 }
 
-BenchScene makeBenchScene(const sim::Part& part, const SceneRequest& request) {
+BenchScene makeBenchScene(const simulation::Part& part, const SceneRequest& request) {
   BenchScene s;
   setPileParams(request, s.params);
   if (!request.reconstruct) {
-    s.truth = sim::generatePile(part.mesh, s.params);
+    s.truth = simulation::generatePile(part.mesh, s.params);
   } else {
-    const PatternSetSpec patterns = patternsFor(request.rig);
-    sim::PhotometryParams photometry;
+    const io::PatternSetSpec patterns = patternsFor(request.rig);
+    simulation::PhotometryParams photometry;
     photometry.seed = request.seed;
-    sim::PileCapture pile = sim::generatePileCapture(part.mesh, s.params, patterns, photometry);
+    simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, s.params, patterns, photometry);
     s.truth = std::move(pile.scene);
-    const Capture capture = sim::recordedCapture(std::move(pile.images), s.params, patterns, photometry,
+    const io::Capture capture = simulation::recordedCapture(std::move(pile.images), s.params, patterns, photometry,
                                                  "bench_paper " + part.name);
     reconstruction::ReconstructionParams params;
     params.setThreads(request.threads);
     const reconstruction::Reconstructor reconstructor(request.rig, params);
-    const auto start = std::chrono::steady_clock::now();
+    const core::Stopwatch stopwatch;
     s.reconstructed = reconstructor.reconstruct(capture).cloud;
-    s.reconstruct_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    s.reconstruct_ms = stopwatch.elapsedMs();
   }
-  s.crop = eval::binInterior(s.truth, s.params);
+  s.crop = evaluation::binInterior(s.truth, s.params);
   s.exact_in_bin = croppedPoints({&s.truth.cloud, s.crop}).size();
   s.reconstructed_in_bin = croppedPoints({&s.reconstructed, s.crop}).size();
   return s;

@@ -1,6 +1,6 @@
 #include "binpick_method.hpp"
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::bench {
 
@@ -29,7 +29,7 @@ std::unique_ptr<BinpickMethod> makeBinpickMethod(const std::string& name, const 
   if (name == "binpick") return std::make_unique<BinpickMethod>(name, setup, estimation::DetectorParams{});
   if (name == "ppf1") return std::make_unique<BinpickMethod>(name, setup, estimation::DetectorParams::drost(1.0f));
   if (name == "ppf5") return std::make_unique<BinpickMethod>(name, setup, estimation::DetectorParams::drost(0.2f));
-  throw Error("bench: '" + name + "' is not one of binpick's methods (binpick, ppf1, ppf5)");
+  throw core::Error("bench: '" + name + "' is not one of binpick's methods (binpick, ppf1, ppf5)");
 }
 
 }  // namespace binpick::bench

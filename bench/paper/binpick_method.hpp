@@ -24,7 +24,7 @@ class BinpickMethod : public PoseMethod {
 };
 
 // "binpick" (defaults), "ppf1" (Drost, every scene point a reference) or "ppf5" (Drost, 20% of
-// them); throws binpick::Error naming any other.
+// them); throws core::Error naming any other.
 std::unique_ptr<BinpickMethod> makeBinpickMethod(const std::string& name, const MethodSetup& setup);
 bool isBinpickMethod(const std::string& name);
 

@@ -1,7 +1,6 @@
 #include "experiment.hpp"
 
-#include <chrono>
-
+#include "binpick/core/stopwatch.hpp"
 #include "binpick_method.hpp"
 
 namespace binpick::bench {
@@ -20,14 +19,14 @@ void addStages(estimation::StageTimings& sum, const estimation::StageTimings& t)
 
 }  // namespace
 
-eval::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<sim::ObjectTruth>& truth,
-                       const sim::Part& part, double diameter) {
+evaluation::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<simulation::ObjectTruth>& truth,
+                       const simulation::Part& part, double diameter) {
   std::vector<estimation::Detection> detections(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) detections[i].T_camera_model = poses[i];
-  return eval::scoreDetections(detections, truth, part.symmetry, {diameter / 10.0, 10.0});
+  return evaluation::scoreDetections(detections, truth, part.symmetry, {diameter / 10.0, 10.0});
 }
 
-std::string describeScore(const eval::Score& s, std::size_t poses) {
+std::string describeScore(const evaluation::Score& s, std::size_t poses) {
   std::string text = "found " + std::to_string(s.found) + " of " + std::to_string(s.findable) + " findable, " +
                      std::to_string(poses) + " poses, matched objects:";
   for (int m : s.matched_object) text += " " + std::to_string(m);
@@ -51,7 +50,7 @@ double Tally::recall() const { return ratio(found, findable); }
 double Tally::msPerObject() const { return ratio(ms, objects); }
 
 SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudInput input,
-                       const sim::Part& part, double diameter) {
+                       const simulation::Part& part, double diameter) {
   const MethodInput method_input{&scene.cloud(input), scene.crop};
   SceneOutcome o;
   o.part = part.name;
@@ -62,7 +61,7 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   o.input_points = scene.pointsInBin(input);
 
   std::vector<Eigen::Isometry3f> poses;
-  const auto start = std::chrono::steady_clock::now();
+  const core::Stopwatch stopwatch;
   if (const auto* own = dynamic_cast<const BinpickMethod*>(&method)) {
     const estimation::DetectionResult result = own->detectWithDetails(method_input);
     o.stages = result.timing_ms;
@@ -70,9 +69,9 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   } else {
     poses = method.detect(method_input);
   }
-  o.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  o.ms = stopwatch.elapsedMs();
 
-  const eval::Score score = scorePoses(poses, scene.truth.objects, part, diameter);
+  const evaluation::Score score = scorePoses(poses, scene.truth.objects, part, diameter);
   o.findable = score.findable;
   o.found = score.found;
   o.detections = static_cast<int>(poses.size());

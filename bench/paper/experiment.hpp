@@ -9,7 +9,7 @@
 
 #include "bench_scenes.hpp"
 #include "binpick/estimation/detector.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "pose_method.hpp"
 
 namespace binpick::bench {
@@ -44,14 +44,14 @@ struct Tally {
 
 // The paper's criterion on poses in order: correct within diam/10 and 10 degrees of an object not
 // claimed before (the minimum over the part's symmetries); repeats are wrong.
-eval::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<sim::ObjectTruth>& truth,
-                       const sim::Part& part, double diameter);
+evaluation::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<simulation::ObjectTruth>& truth,
+                       const simulation::Part& part, double diameter);
 // "found F of N findable, D poses, matched objects: ..." for messages.
-std::string describeScore(const eval::Score& score, std::size_t poses);
+std::string describeScore(const evaluation::Score& score, std::size_t poses);
 
 // Runs `method` on the scene's `input` cloud and scores it (symmetry-aware; repeats are wrong).
 SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudInput input,
-                       const sim::Part& part, double diameter);
+                       const simulation::Part& part, double diameter);
 
 // Tallies by (input, part, method).
 using TallyKey = std::tuple<CloudInput, std::string, std::string>;

@@ -3,7 +3,6 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <opencv2/core.hpp>
@@ -11,7 +10,8 @@
 #include <opencv2/surface_matching/ppf_helpers.hpp>
 #include <unordered_map>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 
 // How binpick's resolution is given to OpenCV 4.6 (read from modules/surface_matching/src):
 //
@@ -51,11 +51,6 @@ namespace binpick::bench {
 namespace {
 
 namespace ppf = cv::ppf_match_3d;
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // cv::setNumThreads for one scope. OpenCV reads 0 as "no threads" and a negative value as "its
 // default (all cores)", so setup.threads = 0 becomes -1.
@@ -172,20 +167,20 @@ void orthonormalise(std::vector<cv::ppf_match_3d::Pose3DPtr>& poses) {
 
 void OpenCvPpfParams::validate() const {
   const std::string owner = "OpenCvPpfParams";
-  requireField(reference_fraction > 0.0 && reference_fraction <= 1.0, owner, "reference_fraction",
+  core::requireField(reference_fraction > 0.0 && reference_fraction <= 1.0, owner, "reference_fraction",
                "in (0, 1]", reference_fraction);
-  requireField(num_angles >= 4, owner, "num_angles", ">= 4", num_angles);
-  requireField(cluster_translation_ratio > 0.0, owner, "cluster_translation_ratio", "> 0",
+  core::requireField(num_angles >= 4, owner, "num_angles", ">= 4", num_angles);
+  core::requireField(cluster_translation_ratio > 0.0, owner, "cluster_translation_ratio", "> 0",
                cluster_translation_ratio);
-  requireField(cluster_rotation_deg > 0.0 && cluster_rotation_deg <= 180.0, owner,
+  core::requireField(cluster_rotation_deg > 0.0 && cluster_rotation_deg <= 180.0, owner,
                "cluster_rotation_deg", "in (0, 180]", cluster_rotation_deg);
-  requireField(normal_voxel_ratio >= 0.0, owner, "normal_voxel_ratio", ">= 0", normal_voxel_ratio);
-  requireField(normal_neighbours >= 3, owner, "normal_neighbours", ">= 3", normal_neighbours);
-  requireField(icp_iterations >= 0, owner, "icp_iterations", ">= 0 (0: no ICP)", icp_iterations);
-  requireField(icp_tolerance > 0.0f, owner, "icp_tolerance", "> 0", icp_tolerance);
-  requireField(icp_rejection_scale >= 0.0f, owner, "icp_rejection_scale", ">= 0 (0: off)",
+  core::requireField(normal_voxel_ratio >= 0.0, owner, "normal_voxel_ratio", ">= 0", normal_voxel_ratio);
+  core::requireField(normal_neighbours >= 3, owner, "normal_neighbours", ">= 3", normal_neighbours);
+  core::requireField(icp_iterations >= 0, owner, "icp_iterations", ">= 0 (0: no ICP)", icp_iterations);
+  core::requireField(icp_tolerance > 0.0f, owner, "icp_tolerance", "> 0", icp_tolerance);
+  core::requireField(icp_rejection_scale >= 0.0f, owner, "icp_rejection_scale", ">= 0 (0: off)",
                icp_rejection_scale);
-  requireField(icp_levels >= 1, owner, "icp_levels", ">= 1", icp_levels);
+  core::requireField(icp_levels >= 1, owner, "icp_levels", ">= 1", icp_levels);
 }
 
 struct OpenCvPpfMethod::Trained {
@@ -202,7 +197,7 @@ OpenCvPpfMethod::OpenCvPpfMethod(const MethodSetup& setup, OpenCvPpfParams param
   const estimation::PreparedModel* model = setup_.model;
   if (model == nullptr || model->points.size() < 2 ||
       model->normals.size() != model->points.size()) {
-    throw Error("OpenCvPpfMethod: needs a prepared model with points and normals");
+    throw core::Error("OpenCvPpfMethod: needs a prepared model with points and normals");
   }
   // Distance step = relative step * diag(bbox(model)) = d_dist (see the comment at the top).
   const double relative_step = model->step / boxExtent(model->points).norm();
@@ -229,7 +224,7 @@ std::vector<Eigen::Isometry3f> OpenCvPpfMethod::detect(const MethodInput& input)
   timing_ = {};
   if (input.cloud == nullptr || setup_.max_objects <= 0) return {};
   const ScopedCvThreads threads(setup_.threads);
-  auto start = Clock::now();  // "normals": cropping, pre-sampling and computeNormalsPC3d
+  core::Stopwatch stage;  // "normals": cropping, pre-sampling and computeNormalsPC3d
   std::vector<Eigen::Vector3f> points = croppedPoints(input);
   const float step = setup_.model->step;
   if (params_.normal_voxel_ratio > 0.0) {
@@ -245,17 +240,15 @@ std::vector<Eigen::Isometry3f> OpenCvPpfMethod::detect(const MethodInput& input)
   cv::Mat scene;
   ppf::computeNormalsPC3d(toMat(points), scene, params_.normal_neighbours, true,
                           cv::Vec3f(0.0f, 0.0f, 0.0f));  // flip towards the camera
-  timing_.normals = msSince(start);
+  timing_.normals = stage.lapMs();
 
-  start = Clock::now();
   std::vector<ppf::Pose3DPtr> poses;
   // Grid cells of d_dist along the scene's longest axis (see the comment at the top).
   const double relative_scene_step = std::min(1.0, static_cast<double>(step) / extent.maxCoeff());
   trained_->detector.match(scene, poses, params_.reference_fraction, relative_scene_step);
-  timing_.match = msSince(start);
+  timing_.match = stage.lapMs();
 
   // OpenCV returns the clusters by votes; refine the best max_objects, as binpick's Drost does.
-  start = Clock::now();
   if (poses.size() > static_cast<std::size_t>(setup_.max_objects)) poses.resize(setup_.max_objects);
   orthonormalise(poses);
   ppf::ICP icp(params_.icp_iterations, params_.icp_tolerance, params_.icp_rejection_scale,
@@ -269,7 +262,7 @@ std::vector<Eigen::Isometry3f> OpenCvPpfMethod::detect(const MethodInput& input)
     };
     std::stable_sort(poses.begin(), poses.end(), by_residual);
   }
-  timing_.icp = msSince(start);
+  timing_.icp = stage.lapMs();
 
   std::vector<Eigen::Isometry3f> result;
   result.reserve(poses.size());

@@ -48,12 +48,12 @@ struct OpenCvPpfParams {
   // wrong poses in the first 10 (7 vs 4); the residual also mixes point and normal differences
   // and is OpenCV's 1e10 sentinel both for a perfect fit and for no correspondences.
   bool order_by_residual = false;
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 class OpenCvPpfMethod : public PoseMethod {
  public:
-  // Trains the detector on setup.model's points and normals (model frame). Throws binpick::Error
+  // Trains the detector on setup.model's points and normals (model frame). Throws core::Error
   // without a model or with bad params.
   explicit OpenCvPpfMethod(const MethodSetup& setup, OpenCvPpfParams params = {});
   ~OpenCvPpfMethod() override;

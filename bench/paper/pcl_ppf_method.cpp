@@ -44,12 +44,12 @@
 #include <pcl/search/kdtree.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 
 namespace binpick::bench {
 
@@ -58,13 +58,8 @@ namespace {
 using PointN = pcl::PointNormal;
 using CloudN = pcl::PointCloud<PointN>;
 using SceneTree = pcl::search::KdTree<PointN>;
-using Clock = std::chrono::steady_clock;
 
 constexpr double kPi = 3.14159265358979323846;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 float radians(float degrees) { return static_cast<float>(degrees * kPi / 180.0); }
 
@@ -94,7 +89,7 @@ float accumulatorSafeAngleStep(float step_deg) {
       }
     }
   }
-  throw Error("pcl_ppf: no float angle step near the requested one is safe in PCL's accumulator");
+  throw core::Error("pcl_ppf: no float angle step near the requested one is safe in PCL's accumulator");
 }
 
 // The prepared model as PCL points with normals (model frame).
@@ -197,22 +192,22 @@ CloudN::Ptr facingCamera(const CloudN& posed) {
 
 void PclPpfParams::validate() const {
   const auto positive = [](float v, const char* field) {
-    if (!(v > 0.0f) || !std::isfinite(v)) throw Error(std::string("pcl_ppf params: ") + field + " must be > 0");
+    if (!(v > 0.0f) || !std::isfinite(v)) throw core::Error(std::string("pcl_ppf params: ") + field + " must be > 0");
   };
   if (!(reference_fraction > 0.0f && reference_fraction <= 1.0f))
-    throw Error("pcl_ppf params: reference_fraction must be in (0, 1]");
+    throw core::Error("pcl_ppf params: reference_fraction must be in (0, 1]");
   if (!(angle_step_deg > 0.0f && angle_step_deg <= 180.0f))
-    throw Error("pcl_ppf params: angle_step_deg must be in (0, 180]");
+    throw core::Error("pcl_ppf params: angle_step_deg must be in (0, 180]");
   positive(distance_step_ratio, "distance_step_ratio");
   positive(voxel_ratio, "voxel_ratio");
   positive(normal_radius_ratio, "normal_radius_ratio");
   positive(cluster_translation_ratio, "cluster_translation_ratio");
   positive(cluster_rotation_deg, "cluster_rotation_deg");
-  if (icp_iterations < 0) throw Error("pcl_ppf params: icp_iterations must be >= 0");
+  if (icp_iterations < 0) throw core::Error("pcl_ppf params: icp_iterations must be >= 0");
   positive(icp_max_distance_ratio, "icp_max_distance_ratio");
   positive(support_distance_ratio, "support_distance_ratio");
   if (!(min_support >= 0.0f && min_support <= 1.0f))
-    throw Error("pcl_ppf params: min_support must be in [0, 1]");
+    throw core::Error("pcl_ppf params: min_support must be in [0, 1]");
   positive(removal_radius_ratio, "removal_radius_ratio");
 }
 
@@ -316,8 +311,8 @@ CloudN::Ptr PclPpfMethod::Impl::withoutExplained(const CloudN& scene, const Clou
 }
 
 PclPpfMethod::PclPpfMethod(const MethodSetup& setup, PclPpfParams params) : impl_(std::make_unique<Impl>()) {
-  if (setup.model == nullptr || setup.model->size() < 2) throw Error("pcl_ppf: the setup needs a prepared model");
-  if (setup.model->normals.size() != setup.model->size()) throw Error("pcl_ppf: model normals missing");
+  if (setup.model == nullptr || setup.model->size() < 2) throw core::Error("pcl_ppf: the setup needs a prepared model");
+  if (setup.model->normals.size() != setup.model->size()) throw core::Error("pcl_ppf: model normals missing");
   params.validate();
   if (params.quiet_pcl && pcl::console::isVerbosityLevelEnabled(pcl::console::L_WARN)) {
     pcl::console::setVerbosityLevel(pcl::console::L_ERROR);
@@ -351,34 +346,32 @@ std::vector<Eigen::Isometry3f> PclPpfMethod::detect(const MethodInput& input, Pc
   if (input.cloud == nullptr) return poses;
   const Impl& im = *impl_;
 
-  auto start = Clock::now();
+  const core::Stopwatch normals;
   CloudN::Ptr remaining = sceneWithNormals(croppedPoints(input), im.params.voxel_ratio * im.step,
                                            im.params.normal_radius_ratio * im.step, im.threads);
   t.scene_points = remaining->size();
-  t.normals = msSince(start);
+  t.normals = normals.elapsedMs();
 
   while (static_cast<int>(poses.size()) < im.max_objects && remaining->size() >= im.minScenePoints()) {
     auto tree = std::make_shared<SceneTree>();
     tree->setInputCloud(remaining);
 
-    start = Clock::now();
+    core::Stopwatch stage;  // started after the tree: building it is no stage's time
     const Eigen::Isometry3f coarse = im.align(remaining, tree);
-    t.align += msSince(start);
+    t.align += stage.lapMs();
     ++t.align_calls;
     if (!coarse.matrix().allFinite()) break;  // not seen; PCL would repeat it on the same points
 
-    start = Clock::now();
     const Eigen::Isometry3f refined = im.refine(remaining, tree, coarse);
-    t.icp += msSince(start);
+    t.icp += stage.lapMs();
 
-    start = Clock::now();
     const CloudN::Ptr posed = posedModel(*im.model_cloud, refined);
     const bool supported = im.support(*posed, *tree) >= im.params.min_support;
     if (supported) {
       poses.push_back(refined);
       remaining = im.withoutExplained(*remaining, posed);
     }
-    t.removal += msSince(start);
+    t.removal += stage.lapMs();
     if (!supported) break;  // the same points would give PCL the same pose again
   }
   return poses;

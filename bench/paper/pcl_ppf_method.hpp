@@ -60,7 +60,7 @@ struct PclPpfParams {
   // PCL_INFO prints five lines per align() to stdout. true lowers PCL's console verbosity to
   // errors, process-wide (pcl::console has one global level), when the method is built.
   bool quiet_pcl = true;
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 // Wall-clock milliseconds of one detect() call, for the benchmark's stage breakdown.

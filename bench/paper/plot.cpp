@@ -10,7 +10,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::bench {
 namespace {
@@ -31,9 +31,9 @@ const cv::Scalar kLegendEdge(170, 170, 170);
 // Input checks and data ranges
 
 void validate(const LinePlot& plot) {
-  requireField(plot.width >= kMinWidth && plot.width <= kMaxSide, "LinePlot", "width",
+  core::requireField(plot.width >= kMinWidth && plot.width <= kMaxSide, "LinePlot", "width",
                "240..16384 pixels", plot.width);
-  requireField(plot.height >= kMinHeight && plot.height <= kMaxSide, "LinePlot", "height",
+  core::requireField(plot.height >= kMinHeight && plot.height <= kMaxSide, "LinePlot", "height",
                "180..16384 pixels", plot.height);
   for (std::size_t i = 0; i < plot.series.size(); ++i) {
     const PlotSeries& series = plot.series[i];
@@ -41,7 +41,7 @@ void validate(const LinePlot& plot) {
     std::ostringstream message;
     message << "LinePlot.series[" << i << "] ('" << series.label << "') has " << series.x.size()
             << " x values but " << series.y.size() << " y values";
-    throw Error(message.str());
+    throw core::Error(message.str());
   }
 }
 
@@ -81,7 +81,7 @@ std::pair<Range, Range> dataRanges(const LinePlot& plot, const PlotAxis& x, cons
     }
   }
   if (xs.empty()) {
-    throw Error(std::string("LinePlot '") + plot.title + "' has no finite point to draw" +
+    throw core::Error(std::string("LinePlot '") + plot.title + "' has no finite point to draw" +
                 (x.log || y.log ? " (log axes skip values <= 0)" : ""));
   }
   return {xs, ys};
@@ -112,7 +112,7 @@ Range widenDegenerate(Range range) {
 // frame closes on labelled values. Multiples (not repeated addition) keep 0.1 + 0.2 exact.
 PlotAxis linearAxis(Range range, int target) {
   range = widenDegenerate(range);
-  if (!std::isfinite(range.hi - range.lo)) throw Error("LinePlot: data span more than a double");
+  if (!std::isfinite(range.hi - range.lo)) throw core::Error("LinePlot: data span more than a double");
   const double step = niceStep((range.hi - range.lo) / std::max(target, 1));
   const auto first = static_cast<std::int64_t>(std::floor(range.lo / step + 1e-9));
   const auto last = static_cast<std::int64_t>(std::ceil(range.hi / step - 1e-9));
@@ -369,7 +369,7 @@ PlotFrame::PlotFrame(const LinePlot& plot) {
   padEnds(x_, xs, false);
   area_ = cv::Rect(left, top, plot.width - left - right, plot_height);
   if (area_.width < 40 || area_.height < 40) {
-    throw Error("LinePlot " + std::to_string(plot.width) + "x" + std::to_string(plot.height) +
+    throw core::Error("LinePlot " + std::to_string(plot.width) + "x" + std::to_string(plot.height) +
                 " is too small for its labels");
   }
 }
@@ -660,11 +660,11 @@ cv::Mat renderLinePlot(const LinePlot& plot) {
 void writeLinePlot(const std::string& path, const LinePlot& plot) {
   const cv::Mat image = renderLinePlot(plot);
   std::vector<uchar> png;
-  if (!cv::imencode(".png", image, png)) throw Error("cannot encode the plot for '" + path + "'");
+  if (!cv::imencode(".png", image, png)) throw core::Error("cannot encode the plot for '" + path + "'");
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   out.close();
-  if (!out) throw Error("cannot write the plot '" + path + "'");
+  if (!out) throw core::Error("cannot write the plot '" + path + "'");
 }
 
 }  // namespace binpick::bench

@@ -36,7 +36,7 @@ struct PlotAxis {
 // alone, so tests (and anything composing charts) can find a data point's pixel.
 class PlotFrame {
  public:
-  // Throws binpick::Error when the plot is malformed (see writeLinePlot).
+  // Throws core::Error when the plot is malformed (see writeLinePlot).
   explicit PlotFrame(const LinePlot& plot);
 
   // Pixel (x right, y down) of a data point; meaningful for points the plot would draw.
@@ -55,7 +55,7 @@ class PlotFrame {
 // The colour (BGR) of the index-th series; the palette repeats after 8 series.
 cv::Scalar seriesColour(std::size_t index);
 
-// Draws the chart and writes it as PNG; throws binpick::Error naming the path when it cannot be
+// Draws the chart and writes it as PNG; throws core::Error naming the path when it cannot be
 // written, or naming the problem when the plot is malformed (x/y length mismatch, no finite point
 // at all, size too small).
 void writeLinePlot(const std::string& path, const LinePlot& plot);

@@ -24,7 +24,7 @@ struct MethodSetup {
 // One scene: an organized cloud in the camera frame (camera at the origin looking along +z,
 // metres, NaN where nothing was measured) and the bin's inside, outside which nothing is sought.
 struct MethodInput {
-  const PointCloud* cloud = nullptr;
+  const io::PointCloud* cloud = nullptr;
   estimation::CropBox crop;
 };
 

@@ -1,22 +1,20 @@
 #include "scaling.hpp"
 
-#include <chrono>
 #include <thread>
 
 #include "bench_scenes.hpp"
 #include "binpick/estimation/detector.hpp"
-#include "binpick/io/thread_count.hpp"
-#include "evaluation.hpp"
+#include "binpick/core/stopwatch.hpp"
+#include "binpick/core/thread_count.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "pose_method.hpp"
 
 namespace binpick::bench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // The virtual rig with a sensor `width` pixels wide (5:4) behind a lens of the same field of view.
-RigCalibration rigOfWidth(int width) {
-  RigCalibration rig = sim::makeVirtualRig();
+io::RigCalibration rigOfWidth(int width) {
+  io::RigCalibration rig = simulation::makeVirtualRig();
   const double scale = static_cast<double>(width) / rig.camera.width;
   rig.camera.width = width;
   rig.camera.height = width * 4 / 5;
@@ -28,8 +26,8 @@ RigCalibration rigOfWidth(int width) {
 }
 
 // Every second pixel of every second row: what a user would do to a cloud too big to handle.
-PointCloud decimated(const PointCloud& cloud) {
-  PointCloud out;
+io::PointCloud decimated(const io::PointCloud& cloud) {
+  io::PointCloud out;
   out.width = (cloud.width + 1) / 2;
   out.height = (cloud.height + 1) / 2;
   out.points.reserve(static_cast<std::size_t>(out.width) * out.height);
@@ -67,24 +65,24 @@ estimation::Detector detectorWith(const estimation::PreparedModel& model, int ob
 }
 
 // Detects on the scene (decimating first when asked, inside the timed span) and adds it up.
-void detectInto(const estimation::Detector& detector, const sim::Part& part, const BenchScene& scene,
+void detectInto(const estimation::Detector& detector, const simulation::Part& part, const BenchScene& scene,
                 bool decimate, Accumulator& acc) {
-  const Clock::time_point start = Clock::now();
-  const PointCloud reduced = decimate ? decimated(scene.truth.cloud) : PointCloud{};
-  const PointCloud& cloud = decimate ? reduced : scene.truth.cloud;
+  const core::Stopwatch stopwatch;
+  const io::PointCloud reduced = decimate ? decimated(scene.truth.cloud) : io::PointCloud{};
+  const io::PointCloud& cloud = decimate ? reduced : scene.truth.cloud;
   const estimation::DetectionResult result = detector.detect(cloud, scene.crop);
-  acc.ms += std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  acc.ms += stopwatch.elapsedMs();
   acc.prepare_ms += result.timing_ms.prepare_scene;
   acc.input_points += static_cast<double>(croppedPoints({&cloud, scene.crop}).size());
   acc.scene_points += static_cast<double>(result.scene_points);
   acc.objects += static_cast<int>(scene.truth.objects.size());
-  acc.correct += eval::scoreDetections(result.detections, scene.truth.objects, part.symmetry,
+  acc.correct += evaluation::scoreDetections(result.detections, scene.truth.objects, part.symmetry,
                                        {detector.model().diameter / 10.0, 10.0})
                      .correct;
   ++acc.scenes;
 }
 
-SceneRequest request(const ScalingParams& p, int objects, int scene_index, const RigCalibration& rig) {
+SceneRequest request(const ScalingParams& p, int objects, int scene_index, const io::RigCalibration& rig) {
   SceneRequest r;
   r.objects = objects;
   r.seed = p.seed + static_cast<uint64_t>(scene_index);
@@ -93,11 +91,11 @@ SceneRequest request(const ScalingParams& p, int objects, int scene_index, const
   return r;
 }
 
-void pointsScaling(const sim::Part& part, const estimation::PreparedModel& model, const ScalingParams& p,
+void pointsScaling(const simulation::Part& part, const estimation::PreparedModel& model, const ScalingParams& p,
                    ScalingResults& out) {
   const estimation::Detector detector = detectorWith(model, p.objects, p.threads);
   for (int width : p.camera_widths) {
-    const RigCalibration rig = rigOfWidth(width);
+    const io::RigCalibration rig = rigOfWidth(width);
     Accumulator full, reduced;
     for (int s = 0; s < p.scenes; ++s) {
       const BenchScene scene = makeBenchScene(part, request(p, p.objects, s, rig));
@@ -110,26 +108,26 @@ void pointsScaling(const sim::Part& part, const estimation::PreparedModel& model
   }
 }
 
-void objectScaling(const sim::Part& part, const estimation::PreparedModel& model, const ScalingParams& p,
+void objectScaling(const simulation::Part& part, const estimation::PreparedModel& model, const ScalingParams& p,
                    ScalingResults& out) {
   for (int objects : p.object_counts) {
     const estimation::Detector detector = detectorWith(model, objects, p.threads);
     Accumulator acc;
     for (int s = 0; s < p.scenes; ++s) {
-      detectInto(detector, part, makeBenchScene(part, request(p, objects, s, sim::makeVirtualRig())), false, acc);
+      detectInto(detector, part, makeBenchScene(part, request(p, objects, s, simulation::makeVirtualRig())), false, acc);
     }
     out.objects.push_back(acc.point(std::to_string(objects) + " objects", objects));
   }
 }
 
-void threadScaling(const sim::Part& part, const estimation::PreparedModel& model, const ScalingParams& p,
+void threadScaling(const simulation::Part& part, const estimation::PreparedModel& model, const ScalingParams& p,
                    ScalingResults& out) {
   std::vector<BenchScene> scenes;
   for (int s = 0; s < p.scenes; ++s) {
-    scenes.push_back(makeBenchScene(part, request(p, p.objects, s, sim::makeVirtualRig())));
+    scenes.push_back(makeBenchScene(part, request(p, p.objects, s, simulation::makeVirtualRig())));
   }
   for (int threads : p.thread_counts) {
-    const int resolved = resolveThreadCount(threads);
+    const int resolved = core::resolveThreadCount(threads);
     const estimation::Detector detector = detectorWith(model, p.objects, resolved);
     Accumulator acc;
     for (const BenchScene& scene : scenes) detectInto(detector, part, scene, false, acc);
@@ -141,7 +139,7 @@ void threadScaling(const sim::Part& part, const estimation::PreparedModel& model
 
 }  // namespace
 
-ScalingResults measureScaling(const sim::Part& part, const estimation::PreparedModel& model,
+ScalingResults measureScaling(const simulation::Part& part, const estimation::PreparedModel& model,
                               const ScalingParams& params) {
   ScalingResults out;
   pointsScaling(part, model, params, out);

@@ -33,7 +33,7 @@ struct ScalingResults {
   std::vector<ScalingPoint> points_full, points_decimated, objects, threads;
 };
 
-ScalingResults measureScaling(const sim::Part& part, const estimation::PreparedModel& model,
+ScalingResults measureScaling(const simulation::Part& part, const estimation::PreparedModel& model,
                               const ScalingParams& params);
 
 }  // namespace binpick::bench

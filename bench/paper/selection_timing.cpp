@@ -64,7 +64,7 @@ void algorithm1Picks(const std::vector<VerifiedCandidate>& candidates, std::size
 
 }  // namespace
 
-SelectionCurves measureSelection(const estimation::PreparedModel& model, const PointCloud& cloud,
+SelectionCurves measureSelection(const estimation::PreparedModel& model, const io::PointCloud& cloud,
                                  const estimation::CropBox& crop, int picks, int threads) {
   estimation::SceneParams scene_params;
   scene_params.crop = crop;

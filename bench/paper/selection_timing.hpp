@@ -27,7 +27,7 @@ struct SelectionCurves {
 
 // One thread for the selection strategies (Algorithm 1 is sequential); voting and verification
 // use `threads` (0: all).
-SelectionCurves measureSelection(const estimation::PreparedModel& model, const PointCloud& cloud,
+SelectionCurves measureSelection(const estimation::PreparedModel& model, const io::PointCloud& cloud,
                                  const estimation::CropBox& crop, int picks, int threads);
 
 }  // namespace binpick::bench

@@ -14,7 +14,7 @@
 
 #include "binpick/acquisition/camera.hpp"
 #include "binpick/acquisition/projector.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::acquisition::testing {
 
@@ -52,7 +52,7 @@ class FakeCamera : public Camera {
     ++state_->open_attempts;
     if (state_->failing_opens > 0) {
       --state_->failing_opens;
-      throw Error("fake camera 'FAKE-0001': not found on any interface");
+      throw core::Error("fake camera 'FAKE-0001': not found on any interface");
     }
     ++state_->opens;
     state_->open = true;
@@ -66,14 +66,14 @@ class FakeCamera : public Camera {
   }
   bool isOpen() const override { return state_->open; }
   void start() override {
-    if (!state_->open) throw Error("fake camera 'FAKE-0001': start() before open()");
+    if (!state_->open) throw core::Error("fake camera 'FAKE-0001': start() before open()");
     state_->started = true;
   }
   void stop() override { state_->started = false; }
 
   void trigger() override {
     if (state_->hardware_trigger) return;
-    if (state_->connection_lost) throw Error("fake camera 'FAKE-0001': not connected");
+    if (state_->connection_lost) throw core::Error("fake camera 'FAKE-0001': not connected");
     ++state_->triggers;
     ++state_->pending_triggers;
   }

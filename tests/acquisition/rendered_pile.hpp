@@ -11,14 +11,14 @@
 namespace binpick::acquisition::testing {
 
 struct RenderedPile {
-  PatternSetSpec patterns;
+  io::PatternSetSpec patterns;
   std::vector<cv::Mat> images;  // patternSequence order, CV_8UC1
-  RigCalibration rig;           // the rig that saw them, to reconstruct recordings
+  io::RigCalibration rig;           // the rig that saw them, to reconstruct recordings
 };
 
 inline const RenderedPile& renderedPile() {
   static const RenderedPile pile = [] {
-    sim::PileParams params;
+    simulation::PileParams params;
     params.objects = 5;
     params.seed = 11;
     params.rig.camera = params.rig.camera.scaled(0.25);
@@ -26,9 +26,9 @@ inline const RenderedPile& renderedPile() {
     out.patterns.projector_width = params.rig.projector.width;
     out.patterns.projector_height = params.rig.projector.height;
     out.patterns.row_codes = false;
-    sim::PhotometryParams photometry;
+    simulation::PhotometryParams photometry;
     photometry.seed = 3;
-    sim::PileCapture capture = sim::generatePileCapture(sim::makePart("clamp").mesh, params, out.patterns, photometry);
+    simulation::PileCapture capture = simulation::generatePileCapture(simulation::makePart("clamp").mesh, params, out.patterns, photometry);
     out.images = std::move(capture.images);
     out.rig = capture.scene.rig;
     return out;

@@ -11,7 +11,7 @@
 
 #include "binpick/acquisition/aravis_camera.hpp"
 #include "binpick/acquisition/fake_gige_camera.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/pattern_renderer.hpp"
 #include "rendered_pile.hpp"
 #include "thrown_message.hpp"
@@ -62,10 +62,10 @@ cv::Mat syntheticImage(int width, int height, int type, uint64_t seed) {
 // formation. Tests make their images before opening the camera: under a slow runner (valgrind)
 // a long pause between open() and the first frame can cost the heartbeat its control.
 std::vector<cv::Mat> patternImages(int width, int height, int bit_depth, int count) {
-  std::vector<sim::PixelLighting> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  std::vector<simulation::PixelLighting> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      sim::PixelLighting& p = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+      simulation::PixelLighting& p = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
       p.projector_x = 0.9f * static_cast<float>(x) + 40.0f;
       p.projector_y = 0.7f * static_cast<float>(y) + 30.0f;
       p.blur_sigma = 0.6f;
@@ -74,13 +74,13 @@ std::vector<cv::Mat> patternImages(int width, int height, int bit_depth, int cou
       p.global = 3.0f;
     }
   }
-  sim::PhotometryParams photometry;
+  simulation::PhotometryParams photometry;
   photometry.bit_depth = bit_depth;
   photometry.seed = 5;
-  PatternSetSpec spec;
+  io::PatternSetSpec spec;
   spec.row_codes = false;
   spec.phase_steps = 0;
-  std::vector<cv::Mat> images = sim::renderPatternImages(pixels, width, height, spec, photometry);
+  std::vector<cv::Mat> images = simulation::renderPatternImages(pixels, width, height, spec, photometry);
   images.resize(static_cast<std::size_t>(count));
   return images;
 }
@@ -162,7 +162,7 @@ TEST(GigECamera, FullSizeFramesFollowTheVirtualProjector) {
     ASSERT_EQ(frame.status, FrameStatus::Ok) << "pattern " << k << ": " << frame.detail;
     EXPECT_TRUE(identical(frame.image, images[static_cast<std::size_t>(k)])) << "pattern " << k;
   }
-  EXPECT_THROW(projector->showPattern(3), Error);
+  EXPECT_THROW(projector->showPattern(3), core::Error);
   EXPECT_NE(projector->description().find("3 images"), std::string::npos);
 }
 
@@ -266,7 +266,7 @@ TEST(GigECamera, UnknownCameraIdIsNamedInTheError) {
   EXPECT_NE(error.find("BINPICK-NO-SUCH-CAMERA"), std::string::npos) << error;
   EXPECT_FALSE(camera->isOpen());
   EXPECT_EQ(camera->grab(10).status, FrameStatus::Failed);
-  EXPECT_THROW(camera->start(), Error);
+  EXPECT_THROW(camera->start(), core::Error);
 }
 
 TEST(GigECamera, SettingsTheCameraRefusesAreNamed) {
@@ -305,18 +305,18 @@ TEST(GigECamera, InvalidParamsAreRefusedBeforeAnyCameraIsTouched) {
   try {
     makeAravisCamera(buffers);
     ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("camera params.buffers"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(FakeGigECamera(fakeParams(0, 512, false)), Error);
+  EXPECT_THROW(FakeGigECamera(fakeParams(0, 512, false)), core::Error);
 }
 
 TEST(FakeGigECamera, RefusesAWrongImageAndASecondServerOnThePort) {
   FakeGigECamera fake(fakeParams(640, 512, false));
-  EXPECT_THROW(fake.serve(cv::Mat(512, 640, CV_16UC1, cv::Scalar(0))), Error);
-  EXPECT_THROW(fake.serve(cv::Mat(100, 100, CV_8UC1, cv::Scalar(0))), Error);
-  EXPECT_THROW(fake.setPacketLoss(1.5), Error);
-  EXPECT_THROW(FakeGigECamera second(fakeParams(640, 512, false)), Error);
+  EXPECT_THROW(fake.serve(cv::Mat(512, 640, CV_16UC1, cv::Scalar(0))), core::Error);
+  EXPECT_THROW(fake.serve(cv::Mat(100, 100, CV_8UC1, cv::Scalar(0))), core::Error);
+  EXPECT_THROW(fake.setPacketLoss(1.5), core::Error);
+  EXPECT_THROW(FakeGigECamera second(fakeParams(640, 512, false)), core::Error);
 }
 
 }  // namespace

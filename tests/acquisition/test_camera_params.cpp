@@ -4,7 +4,7 @@
 #include <string>
 
 #include "binpick/acquisition/camera.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "thrown_message.hpp"
 
 namespace binpick::acquisition {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "binpick/acquisition/projector.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "thrown_message.hpp"
 
 namespace binpick::acquisition {

@@ -34,7 +34,7 @@ TEST(LiveCapture, RecordsTheRenderedPatternsByteForByteAndReplaysAndReconstructs
   camera->open();
   camera->start();
   SequencerReport report;
-  const Capture capture = sequencer.capture(r.patterns, &report);
+  const io::Capture capture = sequencer.capture(r.patterns, &report);
   camera->stop();
   camera->close();
 
@@ -44,10 +44,10 @@ TEST(LiveCapture, RecordsTheRenderedPatternsByteForByteAndReplaysAndReconstructs
   }
   const std::string directory = (std::filesystem::temp_directory_path() / "binpick_live_capture_test").string();
   std::filesystem::remove_all(directory);
-  writeCapture(directory, capture);
+  io::writeCapture(directory, capture);
   ReplayParams replay;
   replay.path = directory;
-  const Capture replayed = makeReplaySource(replay)->next();
+  const io::Capture replayed = makeReplaySource(replay)->next();
   for (std::size_t k = 0; k < replayed.images.size(); ++k) EXPECT_TRUE(identical(replayed.images[k], r.images[k]));
   const reconstruction::Reconstruction cloud = reconstruction::Reconstructor(r.rig).reconstruct(replayed);
   EXPECT_GT(cloud.validPoints(), cloud.cloud.size() / 4);

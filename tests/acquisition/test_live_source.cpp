@@ -48,13 +48,13 @@ std::string nextError(CaptureSource& source, bool* connection_lost = nullptr) {
   } catch (const CaptureError& e) {
     if (connection_lost != nullptr) *connection_lost = e.connectionLost();
     return e.what();
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     return e.what();
   }
   return "";
 }
 
-bool matchesRendered(const Capture& capture) {
+bool matchesRendered(const io::Capture& capture) {
   if (capture.images.size() != renderedPile().images.size()) return false;
   for (std::size_t i = 0; i < capture.images.size(); ++i) {
     if (!identical(capture.images[i], renderedPile().images[i])) return false;
@@ -135,7 +135,7 @@ TEST(LiveSource, ParamsAreCheckedNamingTheField) {
   auto error = [](const LiveParams& params) {
     try {
       Live live(params);
-    } catch (const Error& e) {
+    } catch (const core::Error& e) {
       return std::string(e.what());
     }
     return std::string();
@@ -149,7 +149,7 @@ TEST(LiveSource, ParamsAreCheckedNamingTheField) {
   LiveParams sequencer = fastParams();
   sequencer.sequencer.frame_timeout_ms = -5;
   EXPECT_TRUE(contains(error(sequencer), "sequencer params.frame_timeout_ms")) << error(sequencer);
-  EXPECT_THROW(makeLiveSource(nullptr, makeFreeRunningProjector(), fastParams()), Error);
+  EXPECT_THROW(makeLiveSource(nullptr, makeFreeRunningProjector(), fastParams()), core::Error);
 }
 
 TEST(Backoff, DoublesUpToTheMaximumAndStartsOverAfterASuccess) {
@@ -173,8 +173,8 @@ TEST(Backoff, DoublesUpToTheMaximumAndStartsOverAfterASuccess) {
 }
 
 TEST(Backoff, RefusesNonsense) {
-  EXPECT_THROW(Backoff(milliseconds(0), milliseconds(10)), Error);
-  EXPECT_THROW(Backoff(milliseconds(10), milliseconds(5)), Error);
+  EXPECT_THROW(Backoff(milliseconds(0), milliseconds(10)), core::Error);
+  EXPECT_THROW(Backoff(milliseconds(10), milliseconds(5)), core::Error);
 }
 
 }  // namespace

@@ -27,16 +27,16 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 
 // A tiny capture (14 patterns of 16 x 12 pixels) whose images all hold `value`, and whose source
 // says `name`: enough to tell captures apart.
-Capture tinyCapture(const std::string& name, int value) {
-  Capture capture;
-  PatternSetSpec& spec = capture.metadata.pattern_set;
+io::Capture tinyCapture(const std::string& name, int value) {
+  io::Capture capture;
+  io::PatternSetSpec& spec = capture.metadata.pattern_set;
   spec.projector_width = 64;
   spec.projector_height = 32;
   spec.row_codes = false;
   spec.phase_steps = 0;
   capture.metadata.patterns = reconstruction::patternNames(spec);
   capture.metadata.source = name;
-  capture.metadata.timestamp = utcTimestamp();
+  capture.metadata.timestamp = io::utcTimestamp();
   capture.metadata.image_width = 16;
   capture.metadata.image_height = 12;
   for (std::size_t i = 0; i < capture.metadata.patterns.size(); ++i) {
@@ -63,15 +63,15 @@ TEST_F(ReplaySource, RecordedCaptureReplaysBitIdentical) {
   camera.start();
   SequencerParams params;
   params.settle_us = 0;
-  const Capture recorded = CaptureSequencer(camera, projector, params).capture(renderedPile().patterns);
+  const io::Capture recorded = CaptureSequencer(camera, projector, params).capture(renderedPile().patterns);
   const std::string directory = pathOf("capture_0001");
-  writeCapture(directory, recorded, 2);
+  io::writeCapture(directory, recorded, 2);
 
   ReplayParams replay;
   replay.path = directory;
   replay.threads = 2;
   const auto source = makeReplaySource(replay);
-  const Capture replayed = source->next();
+  const io::Capture replayed = source->next();
   ASSERT_EQ(replayed.images.size(), recorded.images.size());
   for (std::size_t i = 0; i < replayed.images.size(); ++i) {
     EXPECT_TRUE(identical(replayed.images[i], renderedPile().images[i])) << "image " << i;
@@ -85,15 +85,15 @@ TEST_F(ReplaySource, RecordedCaptureReplaysBitIdentical) {
 }
 
 TEST_F(ReplaySource, ReplaysADirectoryOfCapturesInNameOrderThenEnds) {
-  writeCapture(pathOf("2024-01-02_b"), tinyCapture("b", 2));
-  writeCapture(pathOf("2024-01-01_a"), tinyCapture("a", 1));
-  writeCapture(pathOf("2024-01-03_c"), tinyCapture("c", 3));
+  io::writeCapture(pathOf("2024-01-02_b"), tinyCapture("b", 2));
+  io::writeCapture(pathOf("2024-01-01_a"), tinyCapture("a", 1));
+  io::writeCapture(pathOf("2024-01-03_c"), tinyCapture("c", 3));
   std::ofstream(pathOf("notes.txt")) << "cell 3, shift 2\n";  // files beside captures are ignored
   ReplayParams params;
   params.path = root();
   const auto source = makeReplaySource(params);
   EXPECT_EQ(source->next().metadata.source, "a");
-  const Capture b = source->next();
+  const io::Capture b = source->next();
   EXPECT_EQ(b.metadata.source, "b");
   EXPECT_EQ(b.images[5].at<uint8_t>(3, 4), 2);
   EXPECT_EQ(source->next().metadata.source, "c");
@@ -102,8 +102,8 @@ TEST_F(ReplaySource, ReplaysADirectoryOfCapturesInNameOrderThenEnds) {
 }
 
 TEST_F(ReplaySource, LoopsWhenAsked) {
-  writeCapture(pathOf("a"), tinyCapture("a", 1));
-  writeCapture(pathOf("b"), tinyCapture("b", 2));
+  io::writeCapture(pathOf("a"), tinyCapture("a", 1));
+  io::writeCapture(pathOf("b"), tinyCapture("b", 2));
   ReplayParams params;
   params.path = root();
   params.loop = true;
@@ -114,8 +114,8 @@ TEST_F(ReplaySource, LoopsWhenAsked) {
 }
 
 TEST_F(ReplaySource, NamesAHalfWrittenCapture) {
-  writeCapture(pathOf("a"), tinyCapture("a", 1));
-  writeCapture(pathOf("c"), tinyCapture("c", 3));
+  io::writeCapture(pathOf("a"), tinyCapture("a", 1));
+  io::writeCapture(pathOf("c"), tinyCapture("c", 3));
   // What an interrupted writeCapture leaves: images, no capture.json.
   fs::create_directories(pathOf("b/images"));
   ReplayParams params;
@@ -126,9 +126,9 @@ TEST_F(ReplaySource, NamesAHalfWrittenCapture) {
 }
 
 TEST_F(ReplaySource, ADamagedCaptureIsReportedAndTheReplayGoesOn) {
-  writeCapture(pathOf("a"), tinyCapture("a", 1));
-  writeCapture(pathOf("b"), tinyCapture("b", 2));
-  writeCapture(pathOf("c"), tinyCapture("c", 3));
+  io::writeCapture(pathOf("a"), tinyCapture("a", 1));
+  io::writeCapture(pathOf("b"), tinyCapture("b", 2));
+  io::writeCapture(pathOf("c"), tinyCapture("c", 3));
   fs::remove(pathOf("b/images/004_gray_col_01.png"));
   ReplayParams params;
   params.path = root();

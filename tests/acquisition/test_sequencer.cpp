@@ -34,7 +34,7 @@ struct Rig {
     camera.open();
     camera.start();
   }
-  Capture capture(SequencerReport* report = nullptr) {
+  io::Capture capture(SequencerReport* report = nullptr) {
     return CaptureSequencer(camera, projector, params).capture(renderedPile().patterns, report);
   }
 };
@@ -72,13 +72,13 @@ TEST(SequencerParams, RefusesNonsenseNamingTheField) {
 TEST(CaptureSequencer, RefusesInvalidParams) {
   Rig rig;
   rig.params.max_retries = -3;
-  EXPECT_THROW(CaptureSequencer(rig.camera, rig.projector, rig.params), Error);
+  EXPECT_THROW(CaptureSequencer(rig.camera, rig.projector, rig.params), core::Error);
 }
 
 TEST(CaptureSequencer, CapturesEveryPatternAsRendered) {
   Rig rig;
   SequencerReport report;
-  const Capture capture = rig.capture(&report);
+  const io::Capture capture = rig.capture(&report);
   const auto& rendered = renderedPile();
   ASSERT_EQ(capture.images.size(), rendered.images.size());
   for (std::size_t i = 0; i < capture.images.size(); ++i) {
@@ -92,7 +92,7 @@ TEST(CaptureSequencer, CapturesEveryPatternAsRendered) {
   EXPECT_TRUE(report.retry_reasons.empty());
   EXPECT_GE(report.milliseconds, 0.0);
 
-  const CaptureMetadata& m = capture.metadata;
+  const io::CaptureMetadata& m = capture.metadata;
   EXPECT_EQ(m.image_width, rendered.images[0].cols);
   EXPECT_EQ(m.image_height, rendered.images[0].rows);
   EXPECT_EQ(m.bit_depth, 8);
@@ -110,7 +110,7 @@ TEST(CaptureSequencer, CapturesEveryPatternAsRendered) {
 TEST(CaptureSequencer, SixteenBitFramesMakeASixteenBitCapture) {
   Rig rig;
   for (cv::Mat& image : rig.state->images) image.convertTo(image, CV_16UC1, 257.0);
-  const Capture capture = rig.capture();
+  const io::Capture capture = rig.capture();
   EXPECT_EQ(capture.metadata.bit_depth, 16);
   EXPECT_TRUE(identical(capture.images.back(), rig.state->images.back()));
 }
@@ -119,7 +119,7 @@ TEST(CaptureSequencer, CameraOnlyLeavesTriggeringToTheProjector) {
   Rig rig;
   rig.state->hardware_trigger = true;
   rig.params.order = TriggerOrder::CameraOnly;
-  const Capture capture = rig.capture();
+  const io::Capture capture = rig.capture();
   EXPECT_EQ(rig.state->triggers, 0);
   EXPECT_TRUE(identical(capture.images[7], renderedPile().images[7]));
 }
@@ -128,7 +128,7 @@ TEST(CaptureSequencer, RetriesALostFrameAndStillCompletes) {
   Rig rig;
   rig.state->frame_faults[5] = FrameStatus::Timeout;
   SequencerReport report;
-  const Capture capture = rig.capture(&report);
+  const io::Capture capture = rig.capture(&report);
   EXPECT_EQ(report.retries, 1);
   ASSERT_EQ(report.retry_reasons.size(), 1u);
   const std::string name = reconstruction::patternNames(renderedPile().patterns)[5];

@@ -11,7 +11,7 @@ namespace binpick::bench::testing {
 
 // An organized cloud of NaN pixels and an empty cloud give no poses, and no exception.
 inline void expectNoPosesWithoutPoints(const PoseMethod& method, const estimation::CropBox& crop) {
-  PointCloud nan_cloud;
+  io::PointCloud nan_cloud;
   nan_cloud.width = 64;
   nan_cloud.height = 48;
   nan_cloud.points.assign(64 * 48, Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN()));
@@ -19,7 +19,7 @@ inline void expectNoPosesWithoutPoints(const PoseMethod& method, const estimatio
   EXPECT_NO_THROW(poses = method.detect(MethodInput{&nan_cloud, crop}));
   EXPECT_TRUE(poses.empty());
 
-  const PointCloud empty_cloud;
+  const io::PointCloud empty_cloud;
   EXPECT_NO_THROW(poses = method.detect(MethodInput{&empty_cloud, crop}));
   EXPECT_TRUE(poses.empty());
 }

@@ -11,7 +11,7 @@
 
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "bench_test_support.hpp"
 #include "experiment.hpp"
 #include "opencv_ppf_method.hpp"
@@ -29,11 +29,11 @@ estimation::ModelParams coarseModel() {
 }
 
 struct Fixture {
-  sim::Part part = sim::makePart("l_bracket");
+  simulation::Part part = simulation::makePart("l_bracket");
   estimation::PreparedModel model =
-      estimation::prepareModel(ModelGeometry{part.mesh, {}}, coarseModel());
-  sim::PileParams pile;
-  sim::PileScene scene;
+      estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, coarseModel());
+  simulation::PileParams pile;
+  simulation::PileScene scene;
 
   Fixture() {
     // A bin small enough for the parts to lean on each other (as in tests/estimation): parts
@@ -44,7 +44,7 @@ struct Fixture {
     pile.depth_noise = 0.0;
     pile.bin_length = 0.24;
     pile.bin_width = 0.18;
-    scene = sim::generatePile(part.mesh, pile);
+    scene = simulation::generatePile(part.mesh, pile);
   }
 };
 
@@ -60,7 +60,7 @@ MethodSetup setupFor(const Fixture& f) {
   return setup;
 }
 
-eval::Score score(const Fixture& f, const std::vector<Eigen::Isometry3f>& poses) {
+evaluation::Score score(const Fixture& f, const std::vector<Eigen::Isometry3f>& poses) {
   return scorePoses(poses, f.scene.objects, f.part, f.model.diameter);
 }
 
@@ -69,11 +69,11 @@ TEST(OpenCvPpfMethod, FindsThePartsOfASmallPile) {
   const OpenCvPpfMethod method(setupFor(f));
   EXPECT_EQ(method.name(), "opencv_ppf");
 
-  const MethodInput input{&f.scene.cloud, eval::binInterior(f.scene, f.pile)};
+  const MethodInput input{&f.scene.cloud, evaluation::binInterior(f.scene, f.pile)};
   const std::vector<Eigen::Isometry3f> poses = method.detect(input);
   ASSERT_LE(poses.size(), static_cast<std::size_t>(f.pile.objects));
 
-  const eval::Score s = score(f, poses);
+  const evaluation::Score s = score(f, poses);
   const std::string what = describeScore(s, poses.size());
   ASSERT_GE(s.findable, 2) << what;  // the pile itself: enough visible parts to test anything
   // Measured: 2 of 5 findable, the first two detections correct (OpenCV's PPF is weak on this
@@ -92,13 +92,13 @@ TEST(OpenCvPpfMethod, ReturnsModelToCameraPosesInMetres) {
   estimation::ModelParams dense_params;
   dense_params.sampling_ratio = 0.04f;
   const estimation::PreparedModel dense =
-      estimation::prepareModel(ModelGeometry{f.part.mesh, {}}, dense_params);
+      estimation::prepareModel(io::ModelGeometry{f.part.mesh, {}}, dense_params);
 
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
   const Eigen::Vector3f axis = Eigen::Vector3f(1.0f, -2.0f, 0.5f).normalized();
   T_camera_model.linear() = Eigen::AngleAxisf(2.0f, axis).toRotationMatrix();
   T_camera_model.translation() = Eigen::Vector3f(0.03f, -0.02f, 0.8f);
-  PointCloud cloud;
+  io::PointCloud cloud;
   for (std::size_t i = 0; i < dense.size(); ++i) {
     const Eigen::Vector3f p = T_camera_model * dense.points[i];
     if ((T_camera_model.linear() * dense.normals[i]).dot(p) < 0.0f) cloud.points.push_back(p);
@@ -128,13 +128,13 @@ TEST(OpenCvPpfMethod, ReturnsModelToCameraPosesInMetres) {
 TEST(OpenCvPpfMethod, NaNOnlyAndEmptyCloudsGiveNoPoses) {
   const Fixture& f = fixture();
   const OpenCvPpfMethod method(setupFor(f));
-  const estimation::CropBox crop = eval::binInterior(f.scene, f.pile);
+  const estimation::CropBox crop = evaluation::binInterior(f.scene, f.pile);
 
   testing::expectNoPosesWithoutPoints(method, crop);
   std::vector<Eigen::Isometry3f> poses;
 
   // A few points, all in one plane inside the bin: too few and too flat for OpenCV's quantisation.
-  PointCloud few;
+  io::PointCloud few;
   const Eigen::Vector3f centre = crop.T_camera_box.translation();
   for (int i = 0; i < 5; ++i) {
     few.points.push_back(centre + Eigen::Vector3f(0.001f * i, 0.0f, 0.0f));

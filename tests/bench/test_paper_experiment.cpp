@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "bench_scenes.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick_method.hpp"
 #include "experiment.hpp"
 #include "selection_timing.hpp"
@@ -14,13 +14,13 @@
 namespace binpick::bench {
 namespace {
 
-const sim::Part& lBracket() {
-  static const sim::Part part = sim::makePart("l_bracket");
+const simulation::Part& lBracket() {
+  static const simulation::Part part = simulation::makePart("l_bracket");
   return part;
 }
 
 const estimation::PreparedModel& lBracketModel() {
-  static const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{lBracket().mesh, {}}, {});
+  static const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{lBracket().mesh, {}}, {});
   return model;
 }
 
@@ -43,7 +43,7 @@ class TruthMethod : public PoseMethod {
   std::string name() const override { return "truth"; }
   std::vector<Eigen::Isometry3f> detect(const MethodInput&) const override {
     std::vector<Eigen::Isometry3f> poses;
-    for (const sim::ObjectTruth& object : scene_.truth.objects) {
+    for (const simulation::ObjectTruth& object : scene_.truth.objects) {
       Eigen::Isometry3f pose = object.T_camera_object.cast<float>();
       pose.translation() += offset_;
       for (int c = 0; c < copies_; ++c) poses.push_back(pose);
@@ -105,7 +105,7 @@ TEST(PaperExperiment, DrostBaselinesFollowTableOne) {
   const MethodSetup setup{&lBracketModel(), 6, 0};
   EXPECT_EQ(makeBinpickMethod("ppf1", setup)->name(), "ppf1");
   EXPECT_EQ(makeBinpickMethod("ppf5", setup)->name(), "ppf5");
-  EXPECT_THROW(makeBinpickMethod("ppf3", setup), Error);
+  EXPECT_THROW(makeBinpickMethod("ppf3", setup), core::Error);
 }
 
 TEST(BenchScenes, TheReconstructedCloudLiesOnTheExactOne) {

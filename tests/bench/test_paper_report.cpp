@@ -4,7 +4,7 @@
 #include <string>
 
 #include "bench_paper_options.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "report.hpp"
 
 namespace binpick::bench {
@@ -62,7 +62,7 @@ std::string optionError(std::vector<std::string> args) {
   for (std::string& a : args) argv.push_back(a.data());
   try {
     parsePaperBenchOptions(static_cast<int>(argv.size()), argv.data());
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     return e.what();
   }
   return "";

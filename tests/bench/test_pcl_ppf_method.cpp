@@ -13,7 +13,7 @@
 #include "binpick/estimation/detector.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "bench_test_support.hpp"
 #include "experiment.hpp"
 #include "pcl_ppf_method.hpp"
@@ -30,23 +30,23 @@ namespace {
 constexpr float kTestSamplingRatio = 0.06f;
 
 struct Pile {
-  sim::Part part;
+  simulation::Part part;
   estimation::PreparedModel model;
-  sim::PileParams params;
-  sim::PileScene scene;
+  simulation::PileParams params;
+  simulation::PileScene scene;
 };
 
 // A pile of l_brackets and the part's prepared model.
 Pile makePile(int objects, uint64_t seed, double depth_noise, float sampling_ratio) {
   Pile pile;
-  pile.part = sim::makePart("l_bracket");
+  pile.part = simulation::makePart("l_bracket");
   estimation::ModelParams model_params;
   model_params.sampling_ratio = sampling_ratio;
-  pile.model = estimation::prepareModel(ModelGeometry{pile.part.mesh, {}}, model_params);
+  pile.model = estimation::prepareModel(io::ModelGeometry{pile.part.mesh, {}}, model_params);
   pile.params.objects = objects;
   pile.params.seed = seed;
   pile.params.depth_noise = depth_noise;
-  pile.scene = sim::generatePile(pile.part.mesh, pile.params);
+  pile.scene = simulation::generatePile(pile.part.mesh, pile.params);
   return pile;
 }
 
@@ -55,7 +55,7 @@ const Pile& smallPile() {
   return pile;
 }
 
-eval::Score score(const Pile& pile, const std::vector<Eigen::Isometry3f>& poses) {
+evaluation::Score score(const Pile& pile, const std::vector<Eigen::Isometry3f>& poses) {
   return scorePoses(poses, pile.scene.objects, pile.part, pile.model.diameter);
 }
 
@@ -75,7 +75,7 @@ const PclPpfMethod& smallPileMethod() {
 // The origin of the nearest true part, and its distance from the pose's origin.
 double distanceToNearestPart(const Pile& pile, const Eigen::Isometry3f& pose) {
   double nearest = std::numeric_limits<double>::infinity();
-  for (const sim::ObjectTruth& object : pile.scene.objects) {
+  for (const simulation::ObjectTruth& object : pile.scene.objects) {
     nearest = std::min(nearest, (object.T_camera_object.translation() - pose.translation().cast<double>()).norm());
   }
   return nearest;
@@ -89,10 +89,10 @@ double distanceToNearestPart(const Pile& pile, const Eigen::Isometry3f& pose) {
 // true origin). Inverted poses (camera in model) or millimetres for metres fail both.
 TEST(PclPpfMethod, FindsAPartOfASmallPileAndEveryPoseLiesOnAPart) {
   const Pile& pile = smallPile();
-  const MethodInput input{&pile.scene.cloud, eval::binInterior(pile.scene, pile.params)};
+  const MethodInput input{&pile.scene.cloud, evaluation::binInterior(pile.scene, pile.params)};
   EXPECT_EQ(smallPileMethod().name(), "pcl_ppf");
   const std::vector<Eigen::Isometry3f> poses = smallPileMethod().detect(input);
-  const eval::Score s = score(pile, poses);
+  const evaluation::Score s = score(pile, poses);
   ASSERT_EQ(s.findable, 4) << describeScore(s, poses.size());
   ASSERT_FALSE(poses.empty());
   EXPECT_LE(poses.size(), static_cast<std::size_t>(pile.params.objects));
@@ -106,7 +106,7 @@ TEST(PclPpfMethod, FindsAPartOfASmallPileAndEveryPoseLiesOnAPart) {
 TEST(PclPpfMethod, NanOnlyAndEmptyCloudsGiveNoPoses) {
   const Pile& pile = smallPile();
   const PclPpfMethod& method = smallPileMethod();
-  const estimation::CropBox crop = eval::binInterior(pile.scene, pile.params);
+  const estimation::CropBox crop = evaluation::binInterior(pile.scene, pile.params);
 
   testing::expectNoPosesWithoutPoints(method, crop);
   std::vector<Eigen::Isometry3f> poses;

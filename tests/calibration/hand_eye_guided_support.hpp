@@ -14,15 +14,15 @@
 #include <optional>
 #include <variant>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "hand_eye_guided_camera.hpp"
 #include "hand_eye_guided_session.hpp"
 
 namespace binpick::cli::testing {
 
 // A 640x480 pinhole camera without distortion.
-inline LensIntrinsics testCamera() {
-  LensIntrinsics camera;
+inline io::LensIntrinsics testCamera() {
+  io::LensIntrinsics camera;
   camera.width = 640;
   camera.height = 480;
   camera.fx = camera.fy = 800.0;
@@ -75,10 +75,10 @@ class ScriptedCamera : public ViewCamera {
     changed_.notify_all();
     changed_.wait(lock, [this] { return !held_; });
     grabbing_ = false;
-    if (script_.empty()) throw Error("scripted camera: nothing queued");
+    if (script_.empty()) throw core::Error("scripted camera: nothing queued");
     const std::variant<cv::Mat, std::string> next = script_.front();
     script_.pop_front();
-    if (const std::string* message = std::get_if<std::string>(&next)) throw Error(*message);
+    if (const std::string* message = std::get_if<std::string>(&next)) throw core::Error(*message);
     return std::get<cv::Mat>(next);
   }
   std::string description() const override { return "scripted camera"; }
@@ -100,14 +100,14 @@ class ScriptedCamera : public ViewCamera {
 class Replies {
  public:
   GuidedReplySink sink() {
-    return [this](cell::ClientId client, const robot::Reply& reply) {
+    return [this](robot::ClientId client, const robot::Reply& reply) {
       std::lock_guard<std::mutex> lock(mutex_);
       replies_[client].push_back(reply);
       arrived_.notify_all();
     };
   }
   // The next reply to `client`; fails the test if none comes within a minute (a hang).
-  robot::Reply next(cell::ClientId client) {
+  robot::Reply next(robot::ClientId client) {
     std::unique_lock<std::mutex> lock(mutex_);
     const bool arrived = arrived_.wait_for(lock, std::chrono::minutes(1),
                                            [&] { return !replies_[client].empty(); });
@@ -119,7 +119,7 @@ class Replies {
     replies_[client].pop_front();
     return reply;
   }
-  std::size_t waiting(cell::ClientId client) {
+  std::size_t waiting(robot::ClientId client) {
     std::lock_guard<std::mutex> lock(mutex_);
     return replies_[client].size();
   }
@@ -127,7 +127,7 @@ class Replies {
  private:
   std::mutex mutex_;
   std::condition_variable arrived_;
-  std::map<cell::ClientId, std::deque<robot::Reply>> replies_;
+  std::map<robot::ClientId, std::deque<robot::Reply>> replies_;
 };
 
 inline robot::Request pose(double x_m, double angle_deg = 0.0) {

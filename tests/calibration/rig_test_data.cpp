@@ -24,24 +24,24 @@ Eigen::Isometry3d shifted(const Eigen::Isometry3d& pose, double offset_x) {
   return moved;
 }
 
-void writeExtraView(const sim::CalibrationSequenceParams& params, const Eigen::Isometry3d& pose,
+void writeExtraView(const simulation::CalibrationSequenceParams& params, const Eigen::Isometry3d& pose,
                     const std::string& directory) {
-  const sim::CalibrationBoard board(params.board, params.texel_size);
-  writeCapture(directory, sim::renderCalibrationCapture(board, pose, params, 99));
+  const simulation::CalibrationBoard board(params.board, params.texel_size);
+  io::writeCapture(directory, simulation::renderCalibrationCapture(board, pose, params, 99));
 }
 
-Eigen::Vector3d boardCentre(const sim::CalibrationSequenceParams& params,
+Eigen::Vector3d boardCentre(const simulation::CalibrationSequenceParams& params,
                             const Eigen::Isometry3d& pose) {
-  const sim::CalibrationBoard board(params.board, params.texel_size);
+  const simulation::CalibrationBoard board(params.board, params.texel_size);
   const Eigen::Vector2d centre = board.printedFace().center();
   return pose * Eigen::Vector3d(centre.x(), centre.y(), 0.0);
 }
 
 // The sequence, then the views a calibration must not use as they are.
 void renderData(const std::string& directory) {
-  const sim::CalibrationSequenceParams params = rigTestParams();
+  const simulation::CalibrationSequenceParams params = rigTestParams();
   const std::vector<Eigen::Isometry3d> poses =
-      sim::writeCalibrationSequence(directory + "/sequence", params);
+      simulation::writeCalibrationSequence(directory + "/sequence", params);
   const Eigen::Isometry3d& pose = poses.front();
   // 2 m sideways at under 1.1 m: far outside the camera's 0.8-wide field of view.
   writeExtraView(params, shifted(pose, 2.0), directory + "/no_board");
@@ -49,7 +49,7 @@ void renderData(const std::string& directory) {
   // its centre sits there, where the projector (whose field reaches x = -0.41 z) still lights it.
   const Eigen::Vector3d centre = boardCentre(params, pose);
   writeExtraView(params, shifted(pose, -0.40 * centre.z() - centre.x()), directory + "/half_out");
-  sim::CalibrationSequenceParams columns_only = params;
+  simulation::CalibrationSequenceParams columns_only = params;
   columns_only.pattern_set.row_codes = false;
   writeExtraView(columns_only, pose, directory + "/no_rows");
 }
@@ -87,8 +87,8 @@ RigTestData loadData() {
 
 }  // namespace
 
-sim::CalibrationSequenceParams rigTestParams() {
-  sim::CalibrationSequenceParams params;
+simulation::CalibrationSequenceParams rigTestParams() {
+  simulation::CalibrationSequenceParams params;
   params.rig.camera = params.rig.camera.scaled(0.5);
   params.pattern_set.projector_width = params.rig.projector.width;
   params.pattern_set.projector_height = params.rig.projector.height;
@@ -113,11 +113,11 @@ bool anyWarningNames(const calibration::RigCalibrationResult& result, const std:
   });
 }
 
-const RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
+const io::RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
                                 const std::string& view) {
   const auto& views = result.quality.views;
   const auto it = std::find_if(views.begin(), views.end(),
-                               [&](const RigViewQuality& q) { return q.name == view; });
+                               [&](const io::RigViewQuality& q) { return q.name == view; });
   if (it == views.end()) throw std::runtime_error("no quality entry for " + view);
   return *it;
 }

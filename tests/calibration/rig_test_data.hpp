@@ -21,12 +21,12 @@ struct RigTestData {
   std::string no_board;             // the board outside the camera's view
   std::string half_out;             // the board half out of the camera image, on its left
   std::string no_rows;              // a good pose captured without row codes
-  sim::CalibrationSequenceParams params;  // what rendered the sequence (rig = the truth)
+  simulation::CalibrationSequenceParams params;  // what rendered the sequence (rig = the truth)
   calibration::BoardLayout layout;
 };
 
 // The sequence's parameters: 10 ChArUco poses, seed 1.
-sim::CalibrationSequenceParams rigTestParams();
+simulation::CalibrationSequenceParams rigTestParams();
 
 // Rendered on first use (some 20 s), then read from disk.
 const RigTestData& rigTestData();
@@ -39,7 +39,7 @@ std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& 
 bool anyWarningNames(const calibration::RigCalibrationResult& result, const std::string& view,
                      const std::string& text);
 // The quality entry of `view`; throws std::runtime_error when there is none.
-const RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
+const io::RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
                                 const std::string& view);
 
 }  // namespace binpick::test

@@ -24,11 +24,11 @@ namespace {
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 struct RenderedView {
-  sim::BoardSpec spec;
-  RigCalibration rig;
+  simulation::BoardSpec spec;
+  io::RigCalibration rig;
   Eigen::Isometry3d T_camera_board;
   cv::Mat white;
-  std::vector<sim::CornerObservation> truth;  // by corner id
+  std::vector<simulation::CornerObservation> truth;  // by corner id
 };
 
 // The white image of a render, kept in the build tree: each render is a whole pattern sequence
@@ -51,19 +51,19 @@ const RenderedView& renderedView(BoardType type) {
   static std::map<BoardType, RenderedView> views;
   auto found = views.find(type);
   if (found != views.end()) return found->second;
-  sim::CalibrationSequenceParams params;
+  simulation::CalibrationSequenceParams params;
   params.board.type = type;
   params.pattern_set.row_codes = false;  // only the white image is used here
   params.pattern_set.phase_steps = 0;
   params.poses.count = 1;
   params.poses.seed = 5;
-  const sim::CalibrationBoard board(params.board, params.texel_size);
+  const simulation::CalibrationBoard board(params.board, params.texel_size);
   RenderedView view{params.board, params.rig, {}, {}, {}};
-  view.T_camera_board = sim::randomBoardPoses(board, params.rig, params.poses).front();
+  view.T_camera_board = simulation::randomBoardPoses(board, params.rig, params.poses).front();
   view.white = cachedWhite(boardTypeName(type), [&] {
-    return sim::renderCalibrationCapture(board, view.T_camera_board, params, 3).images.at(0);
+    return simulation::renderCalibrationCapture(board, view.T_camera_board, params, 3).images.at(0);
   });
-  view.truth = sim::observeCorners(board, params.rig, view.T_camera_board);
+  view.truth = simulation::observeCorners(board, params.rig, view.T_camera_board);
   return views.emplace(type, view).first->second;
 }
 
@@ -90,12 +90,12 @@ void expectCornersOnTruth(const BoardDetection& detection, const RenderedView& v
 
 TEST(BoardLayout, CornersAreTheVirtualBoardsCorners) {
   for (const BoardType type : {BoardType::Charuco, BoardType::Chessboard}) {
-    sim::BoardSpec spec;
+    simulation::BoardSpec spec;
     spec.type = type;
-    const sim::CalibrationBoard board(spec);
+    const simulation::CalibrationBoard board(spec);
     const BoardLayout layout = spec.layout();
     ASSERT_EQ(layout.cornerCount(), static_cast<int>(board.corners().size()));
-    for (const sim::BoardCorner& corner : board.corners()) {
+    for (const simulation::BoardCorner& corner : board.corners()) {
       EXPECT_LT((layout.cornerPoint(corner.id) - corner.point).norm(), 1e-12);
     }
   }
@@ -226,7 +226,7 @@ TEST(BoardPose, PoseOfTheDetectedBoardIsTheTruth) {
 TEST(BoardPose, NoPoseWithoutABoard) {
   BoardDetection missing;
   missing.problem = "not there";
-  EXPECT_FALSE(estimateBoardPose(missing, BoardLayout{}, sim::makeVirtualRig().camera));
+  EXPECT_FALSE(estimateBoardPose(missing, BoardLayout{}, simulation::makeVirtualRig().camera));
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ TEST_F(ReplayCamera, ServesTheDirectorysImagesInNameOrderThenFails) {
 
 TEST_F(ReplayCamera, ADirectoryWithoutImagesIsRefused) {
   EXPECT_TRUE(test::throwsNaming([&] { makeReplayViewCamera(root()); }, "no PNG images"));
-  EXPECT_THROW(makeReplayViewCamera(pathOf("missing")), Error);
+  EXPECT_THROW(makeReplayViewCamera(pathOf("missing")), core::Error);
 }
 
 struct LiveCamera : ::testing::Test {
@@ -71,7 +71,7 @@ TEST_F(LiveCamera, AFailedFrameClosesTheCameraAndTheNextViewReopensIt) {
 
 TEST_F(LiveCamera, ALostCameraIsReopenedAndOneThatWillNotOpenIsRetried) {
   state->lose_connection_at = 0;
-  EXPECT_THROW(camera->grab(), Error);
+  EXPECT_THROW(camera->grab(), core::Error);
   state->lose_connection_at = std::numeric_limits<uint64_t>::max();
   state->failing_opens = 1;
   EXPECT_TRUE(test::throwsNaming([&] { camera->grab(); }, "not found"));

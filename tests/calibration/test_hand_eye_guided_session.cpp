@@ -21,8 +21,8 @@ using testing::boardImage;
 using testing::pose;
 using testing::request;
 
-constexpr cell::ClientId kRobot = 1;
-constexpr cell::ClientId kMonitor = 2;
+constexpr robot::ClientId kRobot = 1;
+constexpr robot::ClientId kMonitor = 2;
 
 bool sameImage(const cv::Mat& a, const std::string& path) {
   const cv::Mat b = cv::imread(path, cv::IMREAD_UNCHANGED);
@@ -46,10 +46,10 @@ class GuidedSession : public test::TempDirectoryTest {
     params.wanted = wanted;
     params.camera = testing::testCamera();
     params.final_reply_grace = grace;
-    recorder = std::make_unique<GuidedViewRecorder>(root(), robot::Orientation::EulerZYX);
+    recorder = std::make_unique<GuidedViewRecorder>(root(), core::Orientation::EulerZYX);
     session = std::make_unique<HandEyeGuidedSession>(params, *recorder, camera, replies.sink());
   }
-  robot::Reply ask(const robot::Request& r, cell::ClientId client = kRobot) {
+  robot::Reply ask(const robot::Request& r, robot::ClientId client = kRobot) {
     session->handle(client, r);
     return replies.next(client);
   }
@@ -198,7 +198,7 @@ TEST_F(GuidedSession, ASecondSessionContinuesTheFirst) {
             "attempt_003");
   // Poses in another convention would make a file that is not one: refused.
   session.reset();
-  EXPECT_THROW(GuidedViewRecorder(root(), robot::Orientation::Quaternion), Error);
+  EXPECT_THROW(GuidedViewRecorder(root(), core::Orientation::Quaternion), core::Error);
 }
 
 }  // namespace

@@ -17,14 +17,14 @@ namespace {
 using test::throwsNaming;
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
-sim::HandEyeSession session(HandEyeSetup setup, double noise_mm = 0.0, double noise_deg = 0.0,
+simulation::HandEyeSession session(HandEyeSetup setup, double noise_mm = 0.0, double noise_deg = 0.0,
                             uint64_t seed = 3) {
-  sim::HandEyeSessionParams params;
+  simulation::HandEyeSessionParams params;
   params.setup = setup;
   params.seed = seed;
   params.robot_noise_mm = noise_mm;
   params.robot_noise_deg = noise_deg;
-  return sim::simulateHandEyeSession(params);
+  return simulation::simulateHandEyeSession(params);
 }
 
 // Standard normal vectors from mt19937 (whose output the standard fixes) by Box-Muller: the
@@ -48,11 +48,11 @@ Eigen::Isometry3d measured(const Eigen::Isometry3d& T, std::mt19937& rng, double
   return out;
 }
 
-std::vector<HandEyeView> viewsOf(const sim::HandEyeSession& s, double board_mm = 0.0,
+std::vector<HandEyeView> viewsOf(const simulation::HandEyeSession& s, double board_mm = 0.0,
                                  double board_deg = 0.0) {
   std::mt19937 rng(7);
   std::vector<HandEyeView> views;
-  for (const sim::HandEyeSessionView& v : s.views) {
+  for (const simulation::HandEyeSessionView& v : s.views) {
     const Eigen::Isometry3d board =
         board_mm > 0.0 ? measured(v.T_camera_board, rng, board_mm, board_deg) : v.T_camera_board;
     views.push_back({v.name, v.T_base_flange, board});
@@ -71,7 +71,7 @@ class ExactPoses : public ::testing::TestWithParam<std::tuple<HandEyeSetup, Hand
 
 TEST_P(ExactPoses, RecoverTheTruth) {
   const auto [setup, method] = GetParam();
-  const sim::HandEyeSession s = session(setup);
+  const simulation::HandEyeSession s = session(setup);
   const HandEyeResult result = solveHandEye(viewsOf(s), paramsFor(setup, method));
   const PoseDifference camera = poseDifference(result.T_mount_camera, s.T_mount_camera);
   const PoseDifference board = poseDifference(result.T_mount_board, s.T_mount_board);
@@ -112,7 +112,7 @@ TEST(HandEyeSolver, TsaisBreakdownIsCaughtNotWritten) {
 TEST(HandEyeSolver, NoisyPosesStayWithinTolerance) {
   for (const HandEyeSetup setup : {HandEyeSetup::EyeToHand, HandEyeSetup::EyeInHand}) {
     for (const uint64_t seed : {1, 2, 3}) {
-      const sim::HandEyeSession s = session(setup, 0.1, 0.05, seed);
+      const simulation::HandEyeSession s = session(setup, 0.1, 0.05, seed);
       const HandEyeResult result = solveHandEye(viewsOf(s, 0.2, 0.02), paramsFor(setup));
       const PoseDifference camera = poseDifference(result.T_mount_camera, s.T_mount_camera);
       SCOPED_TRACE(handEyeSetupName(setup) + " seed " + std::to_string(seed));
@@ -130,7 +130,7 @@ TEST(HandEyeSolver, NoisyPosesStayWithinTolerance) {
 // exact poses it stays at the truth, and eye-to-hand with noise it stays within the tolerance.
 TEST(HandEyeSolver, TheRefinementKeepsTheTruthAndStaysWithinTolerance) {
   for (const HandEyeSetup setup : {HandEyeSetup::EyeToHand, HandEyeSetup::EyeInHand}) {
-    const sim::HandEyeSession s = session(setup);
+    const simulation::HandEyeSession s = session(setup);
     HandEyeParams params = paramsFor(setup);
     params.refine = true;
     const HandEyeResult exact = solveHandEye(viewsOf(s), params);
@@ -138,7 +138,7 @@ TEST(HandEyeSolver, TheRefinementKeepsTheTruthAndStaysWithinTolerance) {
     EXPECT_LT(poseDifference(exact.T_mount_camera, s.T_mount_camera).rotation_deg, 1e-6);
   }
   for (const uint64_t seed : {1, 2}) {
-    const sim::HandEyeSession s = session(HandEyeSetup::EyeToHand, 0.1, 0.05, seed);
+    const simulation::HandEyeSession s = session(HandEyeSetup::EyeToHand, 0.1, 0.05, seed);
     HandEyeParams params = paramsFor(HandEyeSetup::EyeToHand);
     params.refine = true;
     const HandEyeResult result = solveHandEye(viewsOf(s, 0.2, 0.02), params);
@@ -164,7 +164,7 @@ TEST(HandEyeSolver, TheWrongSetupIsDetected) {
 
 // Eye-in-hand views whose flange only turns about the base's vertical axis (joint 1 alone).
 std::vector<HandEyeView> turningViews(double step_deg, bool second_axis) {
-  const sim::HandEyeSession s = session(HandEyeSetup::EyeInHand);
+  const simulation::HandEyeSession s = session(HandEyeSetup::EyeInHand);
   std::vector<HandEyeView> views;
   for (int i = 0; i < 8; ++i) {
     Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
@@ -243,7 +243,7 @@ TEST(HandEyeSolver, TheViewsThatSpoilAFitAreNamed) {
 }
 
 TEST(HandEyeSolver, ResidualsOfTheTruthAreZero) {
-  const sim::HandEyeSession s = session(HandEyeSetup::EyeInHand);
+  const simulation::HandEyeSession s = session(HandEyeSetup::EyeInHand);
   for (const HandEyeResidual& r :
        handEyeResiduals(viewsOf(s), HandEyeSetup::EyeInHand, s.T_mount_camera, s.T_mount_board)) {
     EXPECT_LT(r.translation_mm, 1e-9);

@@ -34,7 +34,7 @@ std::string sessionDirectory(HandEyeSetup setup) {
   const int lock = ::open((directory.string() + ".lock").c_str(), O_CREAT | O_RDWR, 0644);
   ::flock(lock, LOCK_EX);
   if (!fs::exists(directory / "truth" / "hand_eye.yaml")) {
-    sim::HandEyeSessionParams params;
+    simulation::HandEyeSessionParams params;
     params.setup = setup;
     params.views = 6;
     params.seed = 11;
@@ -42,14 +42,14 @@ std::string sessionDirectory(HandEyeSetup setup) {
     params.robot_noise_deg = 0.05;
     params.rig.camera = params.rig.camera.scaled(0.5);
     fs::remove_all(directory);  // an interrupted render's remains
-    sim::writeHandEyeSession(directory.string(), params);
+    simulation::writeHandEyeSession(directory.string(), params);
   }
   ::close(lock);  // releases the lock
   return directory.string();
 }
 
 std::vector<MeasuredView> measureAll(const std::string& directory) {
-  const RigCalibration rig = readRigCalibration(directory + "/calib.yaml");
+  const io::RigCalibration rig = io::readRigCalibration(directory + "/calib.yaml");
   std::vector<MeasuredView> views;
   for (const HandEyeViewFile& file : listHandEyeViews(directory)) {
     views.push_back(measureView(file, BoardLayout{}, rig.camera));
@@ -151,7 +151,7 @@ TEST_F(HandEyeBadViews, ABoardMostlyOutOfTheImageIsLeftOutAPartlyOutOneNoted) {
 
 TEST_F(HandEyeBadViews, AnImageOfAnotherSizeOrKindIsAnErrorNamingTheView) {
   const std::string dir = copy();
-  const RigCalibration rig = readRigCalibration(dir + "/calib.yaml");
+  const io::RigCalibration rig = io::readRigCalibration(dir + "/calib.yaml");
   cv::imwrite(dir + "/view_03.png", cv::Mat(100, 200, CV_8UC1, cv::Scalar(60)));
   const std::vector<HandEyeViewFile> files = listHandEyeViews(dir);
   EXPECT_TRUE(throwsNaming([&] { measureView(files[3], BoardLayout{}, rig.camera); },

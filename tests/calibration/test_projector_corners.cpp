@@ -20,9 +20,9 @@ namespace {
 
 using test::rigTestData;
 
-std::map<int, Eigen::Vector2d> trueProjectorPixels(const sim::CalibrationTruthPose& pose) {
+std::map<int, Eigen::Vector2d> trueProjectorPixels(const simulation::CalibrationTruthPose& pose) {
   std::map<int, Eigen::Vector2d> pixels;
-  for (const sim::CornerObservation& corner : pose.corners) pixels[corner.id] = corner.projector_pixel;
+  for (const simulation::CornerObservation& corner : pose.corners) pixels[corner.id] = corner.projector_pixel;
   return pixels;
 }
 
@@ -33,7 +33,7 @@ double quantile(std::vector<double> values, double q) {
 
 // Projector-pixel errors of the corners found in one view.
 std::vector<double> errorsAgainstTruth(const ProjectorCorners& found,
-                                       const sim::CalibrationTruthPose& pose) {
+                                       const simulation::CalibrationTruthPose& pose) {
   const std::map<int, Eigen::Vector2d> truth = trueProjectorPixels(pose);
   std::vector<double> errors;
   for (const ProjectorCorner& corner : found.corners) {
@@ -48,12 +48,12 @@ struct Corners {
   BoardDetection exact;
 };
 
-Corners cornersOf(const Capture& capture, const sim::CalibrationTruthPose& pose) {
+Corners cornersOf(const io::Capture& capture, const simulation::CalibrationTruthPose& pose) {
   Corners corners;
   corners.detected = detectBoard(capture.images[0], rigTestData().layout);
   corners.exact = corners.detected;
   std::map<int, Eigen::Vector2d> truth;
-  for (const sim::CornerObservation& corner : pose.corners) truth[corner.id] = corner.camera_pixel;
+  for (const simulation::CornerObservation& corner : pose.corners) truth[corner.id] = corner.camera_pixel;
   for (std::size_t i = 0; i < corners.exact.ids.size(); ++i) {
     corners.exact.pixels[i] = truth.at(corners.exact.ids[i]);
   }
@@ -71,11 +71,11 @@ void recordQuantiles(const std::string& name, const std::vector<double>& errors)
 // into the projector image magnified by the projector's pixels per camera pixel (about 2 here).
 TEST(ProjectorCorners, EveryCornerOfEveryViewLandsOnTheTruth) {
   const test::RigTestData& data = rigTestData();
-  const sim::CalibrationTruth truth = sim::readCalibrationTruth(data.sequence);
+  const simulation::CalibrationTruth truth = simulation::readCalibrationTruth(data.sequence);
   std::vector<double> fit_errors, errors;
   for (std::size_t v = 0; v < data.views.size(); ++v) {
     SCOPED_TRACE(data.views[v]);
-    const Capture capture = readCapture(data.views[v]);
+    const io::Capture capture = io::readCapture(data.views[v]);
     const Corners corners = cornersOf(capture, truth.poses[v]);
     ASSERT_TRUE(corners.detected.found()) << corners.detected.problem;
     const reconstruction::DecodedCapture decoded = reconstruction::decodeCapture(capture);
@@ -102,7 +102,7 @@ TEST(ProjectorCorners, EveryCornerOfEveryViewLandsOnTheTruth) {
 // cut there must be dropped, never extrapolated, and the others must stay exact.
 TEST(ProjectorCorners, CornersAtTheEdgeOfTheDecodedAreaAreDroppedNotExtrapolated) {
   const test::RigTestData& data = rigTestData();
-  const Capture capture = readCapture(data.views[0]);
+  const io::Capture capture = io::readCapture(data.views[0]);
   const BoardDetection board = detectBoard(capture.images[0], data.layout);
   ASSERT_TRUE(board.complete()) << board.problem;
   reconstruction::DecodedCapture decoded = reconstruction::decodeCapture(capture);
@@ -123,12 +123,12 @@ TEST(ProjectorCorners, CornersAtTheEdgeOfTheDecodedAreaAreDroppedNotExtrapolated
   }
   EXPECT_GT(found.outside_data + found.too_few_decoded, 0);
   EXPECT_EQ(static_cast<std::size_t>(found.dropped()) + found.corners.size(), board.ids.size());
-  const sim::CalibrationTruth truth = sim::readCalibrationTruth(data.sequence);
+  const simulation::CalibrationTruth truth = simulation::readCalibrationTruth(data.sequence);
   EXPECT_LT(quantile(errorsAgainstTruth(found, truth.poses[0]), 1.0), 0.8);
 }
 
 TEST(ProjectorCorners, ACaptureWithoutRowsIsRefused) {
-  const Capture capture = readCapture(rigTestData().no_rows);
+  const io::Capture capture = io::readCapture(rigTestData().no_rows);
   const reconstruction::DecodedCapture decoded = reconstruction::decodeCapture(capture);
   const BoardDetection board = detectBoard(capture.images[0], rigTestData().layout);
   ASSERT_TRUE(board.found());

@@ -79,7 +79,7 @@ TEST(RigCalibrationBadInput, BadParamsAreNamed) {
 
   RigViewParams view_params;
   view_params.projector.half_window = 0;
-  EXPECT_TRUE(test::throwsNaming([&] { measureRigView(Capture{}, "v", BoardLayout{}, view_params); },
+  EXPECT_TRUE(test::throwsNaming([&] { measureRigView(io::Capture{}, "v", BoardLayout{}, view_params); },
                                  "RigViewParams.projector: ProjectorCornerParams.half_window"));
 }
 

@@ -37,8 +37,8 @@ struct RigErrors {
   double rotation_deg;
 };
 
-RigErrors errorsAgainstTruth(const RigCalibration& rig) {
-  const RigCalibration& truth = rigTestData().params.rig;
+RigErrors errorsAgainstTruth(const io::RigCalibration& rig) {
+  const io::RigCalibration& truth = rigTestData().params.rig;
   const Eigen::Isometry3d& T = rig.T_projector_camera;
   const Eigen::Isometry3d& T_true = truth.T_projector_camera;
   RigErrors e{};

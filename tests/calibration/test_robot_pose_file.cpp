@@ -25,7 +25,7 @@ TEST(RobotPoseFile, ReadsMillimetresAndTheNamedConvention) {
       "view_a 600 -25.5 300 90 0 180\n"
       "  # a comment between views\n"
       "view.b-2 0 0 1000 0 0 0\n");
-  EXPECT_EQ(file.orientation, robot::Orientation::EulerZYX);
+  EXPECT_EQ(file.orientation, core::Orientation::EulerZYX);
   ASSERT_EQ(file.poses.size(), 2u);
   EXPECT_EQ(file.poses[0].view, "view_a");
   EXPECT_EQ(file.poses[0].line, 4);
@@ -41,7 +41,7 @@ TEST(RobotPoseFile, ReadsMillimetresAndTheNamedConvention) {
 TEST(RobotPoseFile, EveryConventionRoundTrips) {
   for (const char* name : {"quaternion", "euler_zyx", "fixed_xyz", "rotation_vector", "euler_xyz"}) {
     RobotPoseFile file;
-    file.orientation = robot::orientationFromName(name);
+    file.orientation = core::orientationFromName(name);
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()).matrix();
     pose.translation() = Eigen::Vector3d(0.61234567, -0.2, 0.45);

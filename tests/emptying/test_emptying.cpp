@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "binpick/emptying/emptying.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "temp_directory_test.hpp"
 
 namespace binpick::emptying {
@@ -24,7 +24,7 @@ EmptyingParams smallBin(const std::string& out, int objects, uint64_t seed) {
 }
 
 TEST_F(EmptyingTest, FiveBracketsLeaveTheBinWithoutAFailedPick) {
-  const sim::Part part = sim::makePart("l_bracket");
+  const simulation::Part part = simulation::makePart("l_bracket");
   std::vector<CycleRecord> seen;
   const EmptyingReport report =
       emptyBin(part, smallBin(pathOf("run"), 5, 4), [&](const CycleRecord& cycle) { seen.push_back(cycle); });
@@ -52,7 +52,7 @@ TEST_F(EmptyingTest, FiveBracketsLeaveTheBinWithoutAFailedPick) {
 }
 
 TEST_F(EmptyingTest, WritesTheReportAndTheCellsFiles) {
-  const EmptyingReport report = emptyBin(sim::makePart("l_bracket"), smallBin(pathOf("run"), 2, 7));
+  const EmptyingReport report = emptyBin(simulation::makePart("l_bracket"), smallBin(pathOf("run"), 2, 7));
   std::ifstream file(pathOf("run/emptying.json"));
   ASSERT_TRUE(file.good());
   const nlohmann::json json = nlohmann::json::parse(file);
@@ -73,7 +73,7 @@ TEST_F(EmptyingTest, WritesTheReportAndTheCellsFiles) {
 
 TEST_F(EmptyingTest, RefusesAMissingOutputDirectory) {
   EmptyingParams params = smallBin("", 2, 1);
-  EXPECT_THROW(emptyBin(sim::makePart("l_bracket"), params), Error);
+  EXPECT_THROW(emptyBin(simulation::makePart("l_bracket"), params), core::Error);
 }
 
 }  // namespace

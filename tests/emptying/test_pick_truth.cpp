@@ -5,14 +5,14 @@
 #include <vector>
 
 #include "binpick/emptying/pick_truth.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 
 namespace binpick::emptying {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const sim::BinInterior kBin;  // 400 x 300 mm, walls 150 mm high
+const simulation::BinInterior kBin;  // 400 x 300 mm, walls 150 mm high
 constexpr double kApproach = 0.10;
 
 struct Box {
@@ -22,9 +22,9 @@ struct Box {
 
 // A box centred on its model origin. A TrueScene holds copies of one part, so each scene is made
 // of equal boxes.
-TriangleMesh boxMesh(const Eigen::Vector3d& size) {
+io::TriangleMesh boxMesh(const Eigen::Vector3d& size) {
   const double x = 0.5 * size.x(), y = 0.5 * size.y();
-  return sim::makePrism({{-x, -y}, {x, -y}, {x, y}, {-x, y}}, size.z());
+  return simulation::makePrism({{-x, -y}, {x, -y}, {x, y}, {-x, y}}, size.z());
 }
 
 Eigen::Isometry3d onFloor(const Box& box) {
@@ -50,9 +50,9 @@ Eigen::Isometry3d fromAbove(double x, double y, double z) {
 
 // A 16 mm cup, 25 mm long, on a 25 mm tool body 150 mm long: the geometry the cases below are
 // laid out for.
-cell::GripperParams suction() {
-  cell::GripperParams gripper;
-  gripper.type = cell::GripperType::Suction;
+picking::GripperParams suction() {
+  picking::GripperParams gripper;
+  gripper.type = picking::GripperType::Suction;
   gripper.cup_diameter = 0.016;
   gripper.cup_length = 0.025;
   gripper.tool_radius = 0.025;
@@ -60,14 +60,14 @@ cell::GripperParams suction() {
   return gripper;
 }
 
-cell::GripperParams jaws() {
-  cell::GripperParams gripper;
-  gripper.type = cell::GripperType::Parallel;
+picking::GripperParams jaws() {
+  picking::GripperParams gripper;
+  gripper.type = picking::GripperType::Parallel;
   return gripper;
 }
 
 PickJudgement judge(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                    const cell::GripperParams& gripper) {
+                    const picking::GripperParams& gripper) {
   return judgePick(scene, T_bin_grasp, gripper, kApproach, PickTruthParams{});
 }
 
@@ -252,21 +252,21 @@ TEST(PickTruth, RejectsBadInput) {
   const TrueScene scene = boxes(kBlock, {{0.0, 0.0}});
   PickTruthParams bad;
   bad.max_axis_angle_deg = 0.0;
-  EXPECT_THROW(judgePick(scene, fromAbove(0, 0, 0.03), suction(), kApproach, bad), Error);
+  EXPECT_THROW(judgePick(scene, fromAbove(0, 0, 0.03), suction(), kApproach, bad), core::Error);
   try {
     bad = PickTruthParams{};
     bad.sample_spacing = 1.0;
     bad.validate();
     ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("sample_spacing"), std::string::npos);
   }
-  EXPECT_THROW(judgePick(scene, fromAbove(0, 0, 0.03), suction(), -1.0, PickTruthParams{}), Error);
+  EXPECT_THROW(judgePick(scene, fromAbove(0, 0, 0.03), suction(), -1.0, PickTruthParams{}), core::Error);
   Eigen::Isometry3d scaled = fromAbove(0, 0, 0.03);
   scaled.linear() *= 2.0;
-  EXPECT_THROW(judgePick(scene, scaled, suction(), kApproach, PickTruthParams{}), Error);
-  EXPECT_THROW(TrueScene(TriangleMesh{}, {}, kBin), Error);
-  EXPECT_THROW(TrueScene(boxMesh(kBlock), {}, sim::BinInterior{0.4, 0.0, 0.1}), Error);
+  EXPECT_THROW(judgePick(scene, scaled, suction(), kApproach, PickTruthParams{}), core::Error);
+  EXPECT_THROW(TrueScene(io::TriangleMesh{}, {}, kBin), core::Error);
+  EXPECT_THROW(TrueScene(boxMesh(kBlock), {}, simulation::BinInterior{0.4, 0.0, 0.1}), core::Error);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "binpick/estimation/model.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "thrown_message.hpp"
 
@@ -73,7 +73,7 @@ inline const PreparedModel& cachedModel(const std::string& part, float sampling_
   if (it == models.end()) {
     ModelParams params;
     params.sampling_ratio = sampling_ratio;
-    it = models.emplace(key, prepareModel(ModelGeometry{sim::makePart(part).mesh, {}}, params)).first;
+    it = models.emplace(key, prepareModel(io::ModelGeometry{simulation::makePart(part).mesh, {}}, params)).first;
   }
   return it->second;
 }
@@ -81,7 +81,7 @@ inline const PreparedModel& cachedModel(const std::string& part, float sampling_
 // A small clamp model (a few hundred points) for the tests that compare against brute force.
 inline const PreparedModel& smallModel() { return cachedModel("clamp", 0.08f); }
 
-// Runs `f`, expects binpick::Error and returns its message ("" and a failure when nothing or
+// Runs `f`, expects core::Error and returns its message ("" and a failure when nothing or
 // something else was thrown).
 template <class F>
 std::string errorMessage(F&& f) {

@@ -3,7 +3,7 @@
 
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/result_json.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "estimation_test_support.hpp"
 
 namespace binpick::estimation {

@@ -11,7 +11,7 @@
 #include "binpick/estimation/detector.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -19,8 +19,8 @@ namespace {
 using testing::cachedModel;
 
 struct Pile {
-  sim::PileParams params;
-  sim::PileScene scene;
+  simulation::PileParams params;
+  simulation::PileScene scene;
 };
 
 const Pile& cachedPile(const std::string& part, int objects, uint64_t seed) {
@@ -35,7 +35,7 @@ const Pile& cachedPile(const std::string& part, int objects, uint64_t seed) {
     // cell: in the default bin a dozen parts lie flat side by side, showing one face each.
     pile.params.bin_length = 0.24;
     pile.params.bin_width = 0.18;
-    pile.scene = sim::generatePile(sim::makePart(part).mesh, pile.params);
+    pile.scene = simulation::generatePile(simulation::makePart(part).mesh, pile.params);
     it = piles.emplace(key, std::move(pile)).first;
   }
   return it->second;
@@ -43,17 +43,17 @@ const Pile& cachedPile(const std::string& part, int objects, uint64_t seed) {
 
 DetectorParams paramsFor(const Pile& pile, DetectorParams params = {}) {
   params.selection.max_objects = pile.params.objects;
-  params.scene.crop = eval::binInterior(pile.scene, pile.params);
+  params.scene.crop = evaluation::binInterior(pile.scene, pile.params);
   return params;
 }
 
-eval::Score score(const std::string& part, const PreparedModel& model, const Pile& pile,
+evaluation::Score score(const std::string& part, const PreparedModel& model, const Pile& pile,
                   const DetectionResult& result) {
-  return eval::scoreDetections(result.detections, pile.scene.objects, sim::makePart(part).symmetry,
+  return evaluation::scoreDetections(result.detections, pile.scene.objects, simulation::makePart(part).symmetry,
                                {model.diameter / 10.0, 10.0});
 }
 
-std::string describe(const eval::Score& s, const DetectionResult& r) {
+std::string describe(const evaluation::Score& s, const DetectionResult& r) {
   std::string text = "found " + std::to_string(s.found) + " of " + std::to_string(s.findable) + " findable, " +
                      std::to_string(r.detections.size()) + " detections, matched objects:";
   for (int m : s.matched_object) text += " " + std::to_string(m);
@@ -83,7 +83,7 @@ TEST_P(DetectorOnPiles, FindsMostHalfVisibleObjectsAndTheFirstPicksAreRight) {
   const Pile& pile = cachedPile(c.part, c.objects, c.seed);
   const Detector detector(model, paramsFor(pile));
   const DetectionResult result = detector.detect(pile.scene.cloud);
-  const eval::Score s = score(c.part, model, pile, result);
+  const evaluation::Score s = score(c.part, model, pile, result);
   SCOPED_TRACE(describe(s, result));
   RecordProperty("score", describe(s, result));
 
@@ -122,7 +122,7 @@ TEST(DetectorDrost, FindsTheMostVisibleObject) {
   const Detector detector(model, paramsFor(pile, DetectorParams::drost(0.2f)));
   EXPECT_EQ(detector.params().method, Method::Drost);
   const DetectionResult result = detector.detect(pile.scene.cloud);
-  const eval::Score s = score(part, model, pile, result);
+  const evaluation::Score s = score(part, model, pile, result);
   SCOPED_TRACE(describe(s, result));
   RecordProperty("score", describe(s, result));
 

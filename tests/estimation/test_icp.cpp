@@ -53,8 +53,8 @@ double viewConditioning(const PreparedScene& scene, double radius) {
 SinglePart renderSinglePart(const std::string& part, uint64_t seed) {
   SinglePart s;
   s.model = &cachedModel(part);
-  const sim::Part built = sim::makePart(part);
-  const RigCalibration rig = sim::makeVirtualRig();
+  const simulation::Part built = simulation::makePart(part);
+  const io::RigCalibration rig = simulation::makeVirtualRig();
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int attempt = 0; attempt < 50; ++attempt) {
@@ -63,9 +63,9 @@ SinglePart renderSinglePart(const std::string& part, uint64_t seed) {
                         .normalized()
                         .toRotationMatrix();
     pose.translation() = Eigen::Vector3d(0.02, -0.01, 0.85);
-    const sim::RayCaster caster({{&built.mesh, pose, 0}});
-    const sim::SensorGeometry geometry = sim::computeSensorGeometry(rig, caster);
-    PointCloud cloud;
+    const simulation::RayCaster caster({{&built.mesh, pose, 0}});
+    const simulation::SensorGeometry geometry = simulation::computeSensorGeometry(rig, caster);
+    io::PointCloud cloud;
     cloud.width = geometry.width;
     cloud.height = geometry.height;
     const float nan = std::numeric_limits<float>::quiet_NaN();

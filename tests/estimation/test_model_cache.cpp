@@ -13,7 +13,7 @@
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -65,7 +65,7 @@ class ModelCache : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir); }
 
-  // Expects loadModelCache to reject the file with a binpick::Error naming it.
+  // Expects loadModelCache to reject the file with a core::Error naming it.
   void expectRejected(const fs::path& path, const std::string& what) {
     SCOPED_TRACE(what);
     const std::string message = errorMessage([&] { loadModelCache(path.string()); });
@@ -90,14 +90,14 @@ TEST_F(ModelCache, RoundTripIsExactAndDetectsTheSame) {
   EXPECT_EQ(readBytes(path), readBytes(again));
 
   // The same detections, bit for bit, from a small pile.
-  sim::PileParams pile;
+  simulation::PileParams pile;
   pile.objects = 4;
   pile.seed = 8;
   pile.rig.camera = pile.rig.camera.scaled(0.5);
-  const sim::PileScene scene = sim::generatePile(sim::makePart("clamp").mesh, pile);
+  const simulation::PileScene scene = simulation::generatePile(simulation::makePart("clamp").mesh, pile);
   DetectorParams params;
   params.selection.max_objects = 4;
-  params.scene.crop = eval::binInterior(scene, pile);
+  params.scene.crop = evaluation::binInterior(scene, pile);
   params.threads = 2;
   const DetectionResult a = Detector(model, params).detect(scene.cloud);
   const DetectionResult b = Detector(loaded.model, params).detect(scene.cloud);
@@ -140,7 +140,7 @@ TEST_F(ModelCache, RejectsDamagedFilesWithTheirName) {
   expectRejected(dir / "longer.bpmodel", "trailing bytes");
   // Wrong magic: another file format.
   const fs::path ply = dir / "clamp.ply";
-  writeMesh(ply.string(), sim::makePart("clamp").mesh);
+  io::writeMesh(ply.string(), simulation::makePart("clamp").mesh);
   expectRejected(ply, "a PLY file");
   std::vector<uint8_t> magic = bytes;
   magic[0] = 'X';
@@ -216,7 +216,7 @@ TEST_F(ModelCache, RejectsADirectoryAndUnwritablePathsWithBinpickError) {
 TEST_F(ModelCache, LoadOrPrepareReusesOnlyAValidMatchingCache) {
   const fs::path source = dir / "clamp.ply";
   const fs::path cache = dir / "clamp.bpmodel";
-  writeMesh(source.string(), sim::makePart("clamp").mesh);
+  io::writeMesh(source.string(), simulation::makePart("clamp").mesh);
   ModelParams params;
   params.sampling_ratio = 0.08f;
 
@@ -255,9 +255,9 @@ TEST_F(ModelCache, LoadOrPrepareReusesOnlyAValidMatchingCache) {
   EXPECT_TRUE(reused);
 
   // Another source file (same name, other bytes): rebuilt.
-  TriangleMesh moved = sim::makePart("clamp").mesh;
+  io::TriangleMesh moved = simulation::makePart("clamp").mesh;
   for (auto& v : moved.vertices) v.x() += 0.001f;
-  writeMesh(source.string(), moved);
+  io::writeMesh(source.string(), moved);
   loadOrPrepareModel(source.string(), params, cache.string(), &reused);
   EXPECT_FALSE(reused);
 

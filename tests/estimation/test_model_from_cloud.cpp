@@ -8,17 +8,17 @@
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
-#include "evaluation.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 
 namespace binpick::estimation {
 namespace {
 
 // Uniform samples on every triangle in proportion to its area, with the face normal: what a
 // cloud exported from CAD holds.
-PointCloud sampledCloud(const TriangleMesh& mesh, float points_per_mm2, uint64_t seed) {
+io::PointCloud sampledCloud(const io::TriangleMesh& mesh, float points_per_mm2, uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-  PointCloud cloud;
+  io::PointCloud cloud;
   for (const Eigen::Vector3i& t : mesh.triangles) {
     const Eigen::Vector3f a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
     const Eigen::Vector3f cross = (b - a).cross(c - a);
@@ -38,25 +38,25 @@ PointCloud sampledCloud(const TriangleMesh& mesh, float points_per_mm2, uint64_t
 }
 
 TEST(ModelFromCloud, CloudWithNormalsFindsTheHalfVisibleParts) {
-  const sim::Part part = sim::makePart("l_bracket");
-  const PointCloud model_cloud = sampledCloud(part.mesh, 4.0f, 3);  // about 4 points per mm^2
+  const simulation::Part part = simulation::makePart("l_bracket");
+  const io::PointCloud model_cloud = sampledCloud(part.mesh, 4.0f, 3);  // about 4 points per mm^2
   ASSERT_GT(model_cloud.size(), 20000u);
-  const PreparedModel model = prepareModel(ModelGeometry{{}, model_cloud}, ModelParams{});
+  const PreparedModel model = prepareModel(io::ModelGeometry{{}, model_cloud}, ModelParams{});
 
-  sim::PileParams pile;
+  simulation::PileParams pile;
   pile.objects = 10;
   pile.seed = 21;
-  const sim::PileScene scene = sim::generatePile(part.mesh, pile);
+  const simulation::PileScene scene = simulation::generatePile(part.mesh, pile);
   DetectorParams params;
   params.selection.max_objects = pile.objects;
-  params.scene.crop = eval::binInterior(scene, pile);
+  params.scene.crop = evaluation::binInterior(scene, pile);
   const DetectionResult result = Detector(model, params).detect(scene.cloud);
   const DetectionResult from_mesh =
       Detector(estimation::testing::cachedModel("l_bracket"), params).detect(scene.cloud);
 
-  const eval::Score score = eval::scoreDetections(result.detections, scene.objects, part.symmetry,
+  const evaluation::Score score = evaluation::scoreDetections(result.detections, scene.objects, part.symmetry,
                                                   {model.diameter / 10.0, 10.0});
-  const eval::Score mesh_score = eval::scoreDetections(from_mesh.detections, scene.objects,
+  const evaluation::Score mesh_score = evaluation::scoreDetections(from_mesh.detections, scene.objects,
                                                        part.symmetry, {model.diameter / 10.0, 10.0});
   ASSERT_GT(score.findable, 3);
   // A densely sampled cloud with normals is as good a model as the mesh it was sampled from.

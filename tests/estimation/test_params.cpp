@@ -131,14 +131,14 @@ TEST(Params, DetectorRejectsBadParams) {
 }
 
 TEST(Params, PrepareModelRejectsEmptyAndDegenerateGeometry) {
-  EXPECT_NE(errorMessage([] { prepareModel(ModelGeometry{}, ModelParams{}); }), "");
+  EXPECT_NE(errorMessage([] { prepareModel(io::ModelGeometry{}, ModelParams{}); }), "");
   // Every triangle degenerate: collinear corners, and a repeated corner.
-  ModelGeometry flat;
+  io::ModelGeometry flat;
   flat.mesh.vertices = {{0, 0, 0}, {0.05f, 0, 0}, {0.1f, 0, 0}, {0.1f, 0.1f, 0}};
   flat.mesh.triangles = {{0, 1, 2}, {1, 3, 3}, {2, 2, 2}};
   EXPECT_NE(errorMessage([&] { prepareModel(flat, ModelParams{}); }), "");
   // Bad indices and NaN vertices.
-  ModelGeometry broken;
+  io::ModelGeometry broken;
   broken.mesh.vertices = {{0, 0, 0}, {0.05f, 0, 0}, {0, 0.05f, 0}};
   broken.mesh.triangles = {{0, 1, 7}};
   EXPECT_NE(errorMessage([&] { prepareModel(broken, ModelParams{}); }), "");
@@ -146,18 +146,18 @@ TEST(Params, PrepareModelRejectsEmptyAndDegenerateGeometry) {
   broken.mesh.vertices[1].x() = kNaN;
   EXPECT_NE(errorMessage([&] { prepareModel(broken, ModelParams{}); }), "");
   // A cloud of too few points, and nonsense params with a good mesh.
-  ModelGeometry few;
+  io::ModelGeometry few;
   few.cloud.points = {{0, 0, 0}, {0.01f, 0, 0}, {0, 0.01f, 0}};
   EXPECT_NE(errorMessage([&] { prepareModel(few, ModelParams{}); }), "");
   ModelParams bad;
   bad.sampling_ratio = 0.0f;
-  EXPECT_NE(errorMessage([&] { prepareModel(ModelGeometry{sim::makePart("clamp").mesh, {}}, bad); }).find("sampling_ratio"),
+  EXPECT_NE(errorMessage([&] { prepareModel(io::ModelGeometry{simulation::makePart("clamp").mesh, {}}, bad); }).find("sampling_ratio"),
             std::string::npos);
 }
 
 TEST(Params, EmptyScenesAreValuesAndMalformedCloudsThrow) {
   const PreparedModel& model = smallModel();
-  const PointCloud empty;
+  const io::PointCloud empty;
   const PreparedScene scene = prepareScene(empty, model, SceneParams{});
   EXPECT_EQ(scene.size(), 0u);
   EXPECT_EQ(scene.valid_input_points, 0u);
@@ -170,7 +170,7 @@ TEST(Params, EmptyScenesAreValuesAndMalformedCloudsThrow) {
   EXPECT_EQ(result.candidates, 0u);
 
   // An organized cloud of nothing but invalid pixels: also an empty result.
-  PointCloud invalid;
+  io::PointCloud invalid;
   invalid.width = 4;
   invalid.height = 3;
   invalid.points.assign(12, Eigen::Vector3f::Constant(kNaN));
@@ -179,7 +179,7 @@ TEST(Params, EmptyScenesAreValuesAndMalformedCloudsThrow) {
   EXPECT_TRUE(result.detections.empty());
 
   // A cloud entirely outside the crop box: empty as well.
-  PointCloud outside;
+  io::PointCloud outside;
   for (int i = 0; i < 100; ++i) outside.points.emplace_back(0.001f * i, 0.0f, 5.0f);
   SceneParams cropped;
   cropped.crop = CropBox{};
@@ -188,11 +188,11 @@ TEST(Params, EmptyScenesAreValuesAndMalformedCloudsThrow) {
   EXPECT_EQ(prepareScene(outside, model, cropped).valid_input_points, 0u);
 
   // An unorganized cloud with a NaN point, or normals of the wrong count: malformed input.
-  PointCloud nan_cloud = outside;
+  io::PointCloud nan_cloud = outside;
   nan_cloud.points[17].y() = kNaN;
   EXPECT_NE(errorMessage([&] { prepareScene(nan_cloud, model, SceneParams{}); }), "");
   EXPECT_NE(errorMessage([&] { detector.detect(nan_cloud); }), "");
-  PointCloud bad_normals = outside;
+  io::PointCloud bad_normals = outside;
   bad_normals.normals.assign(3, Eigen::Vector3f::UnitZ());
   EXPECT_NE(errorMessage([&] { prepareScene(bad_normals, model, SceneParams{}); }), "");
 }

@@ -78,7 +78,7 @@ TEST_F(SceneVoxelGridDeathTest, InfiniteOrHugeQueriesReturnEmpty) {
 }
 
 TEST_F(SceneVoxelGridDeathTest, NonFiniteScenePointsAreRejectedOrIgnored) {
-  // Not a crash or a std::length_error: a binpick::Error, or a grid that works.
+  // Not a crash or a std::length_error: a core::Error, or a grid that works.
   const float inf = std::numeric_limits<float>::infinity();
   for (const Eigen::Vector3f& bad : {Eigen::Vector3f(inf, 0.2f, 0.8f), Eigen::Vector3f(std::nanf(""), 0.2f, 0.8f)}) {
     for (int position = 0; position < 2; ++position) {
@@ -89,7 +89,7 @@ TEST_F(SceneVoxelGridDeathTest, NonFiniteScenePointsAreRejectedOrIgnored) {
             try {
               const SceneVoxelGrid grid(points, kL);
               std::exit(grid.at(points[1 - position]) == 1 - position ? 0 : 2);
-            } catch (const Error&) {
+            } catch (const core::Error&) {
               std::exit(0);
             }
           },

@@ -16,15 +16,15 @@
 #include <string>
 #include <type_traits>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/point_cloud.hpp"
 #include "temp_directory_test.hpp"
 
 namespace binpick {
 // Readable parameter names in test output instead of "4-byte object <01-00 00-00>".
-inline void PrintTo(Encoding encoding, std::ostream* out) {
-  *out << (encoding == Encoding::Binary ? "Binary" : "Ascii");
+inline void PrintTo(io::Encoding encoding, std::ostream* out) {
+  *out << (encoding == io::Encoding::Binary ? "Binary" : "Ascii");
 }
 }  // namespace binpick
 
@@ -57,14 +57,14 @@ void appendBytes(std::string& out, T value, bool bigEndian = false) {
   out.append(bytes, sizeof(T));
 }
 
-// Passes when `action` throws binpick::Error whose message starts with "PATH: " and contains
+// Passes when `action` throws core::Error whose message starts with "PATH: " and contains
 // `fragment`.
 template <typename Action>
 ::testing::AssertionResult failsWith(Action&& action, const std::string& path,
                                      const std::string& fragment) {
   try {
     action();
-  } catch (const Error& error) {
+  } catch (const core::Error& error) {
     const std::string message = error.what();
     if (message.rfind(path + ": ", 0) != 0) {
       return ::testing::AssertionFailure() << "message does not start with the path: " << message;
@@ -97,8 +97,8 @@ inline bool sameBits(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
 }
 
 // A small organized cloud (4 x 3) with unit normals and two invalid (NaN) pixels.
-inline PointCloud organizedCloudWithHoles() {
-  PointCloud cloud;
+inline io::PointCloud organizedCloudWithHoles() {
+  io::PointCloud cloud;
   cloud.width = 4;
   cloud.height = 3;
   for (int row = 0; row < cloud.height; ++row) {
@@ -126,7 +126,7 @@ inline float nanWithPayload() {
 
 // `cloud` with one intensity per point: values in (0, 1) without a short decimal form on valid
 // points, and NaN (with a payload) on invalid pixels, as a sensor pipeline leaves them.
-inline PointCloud withIntensities(PointCloud cloud) {
+inline io::PointCloud withIntensities(io::PointCloud cloud) {
   cloud.intensities.resize(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     cloud.intensities[i] =
@@ -136,8 +136,8 @@ inline PointCloud withIntensities(PointCloud cloud) {
 }
 
 // An unorganized cloud with awkward values: tiny, huge, negative zero, many digits.
-inline PointCloud awkwardCloud() {
-  PointCloud cloud;
+inline io::PointCloud awkwardCloud() {
+  io::PointCloud cloud;
   cloud.points = {Eigen::Vector3f(0.1f, -0.0f, 3.14159274f), Eigen::Vector3f(1e-30f, 1e30f, -7.0f),
                   Eigen::Vector3f(123456.789f, -0.000123f, 2.0f / 3.0f)};
   return cloud;

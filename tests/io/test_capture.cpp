@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "io_test_support.hpp"
 
 namespace binpick::test {
@@ -24,9 +24,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // Three 64 x 48 images of seeded noise over the full range of the bit depth.
-Capture smallCapture(int bit_depth) {
-  Capture capture;
-  CaptureMetadata& m = capture.metadata;
+io::Capture smallCapture(int bit_depth) {
+  io::Capture capture;
+  io::CaptureMetadata& m = capture.metadata;
   m.source = "test rig \"A\" / serial 0042";
   m.timestamp = "2026-11-22T08:15:02.512Z";
   m.image_width = 64;
@@ -64,7 +64,7 @@ class CaptureTest : public IoTest {
   // Writes the 8-bit sample capture, then lets `edit` change its capture.json.
   void writeSampleWithMetadata(const std::function<void(json&)>& edit) const {
     fs::remove_all(directory_);
-    writeCapture(directory_, smallCapture(8));
+    io::writeCapture(directory_, smallCapture(8));
     json document = json::parse(readFile(metadata_path_));
     edit(document);
     std::ofstream(metadata_path_, std::ios::binary | std::ios::trunc) << document.dump(2);
@@ -79,9 +79,9 @@ class CaptureTest : public IoTest {
 };
 
 TEST_F(CaptureTest, EightBitRoundTripIsBitIdentical) {
-  const Capture written = smallCapture(8);
-  writeCapture(directory_, written);
-  const Capture read = readCapture(directory_);
+  const io::Capture written = smallCapture(8);
+  io::writeCapture(directory_, written);
+  const io::Capture read = io::readCapture(directory_);
   ASSERT_EQ(read.images.size(), written.images.size());
   for (std::size_t i = 0; i < read.images.size(); ++i) {
     EXPECT_EQ(read.images[i].type(), CV_8UC1);
@@ -90,9 +90,9 @@ TEST_F(CaptureTest, EightBitRoundTripIsBitIdentical) {
 }
 
 TEST_F(CaptureTest, SixteenBitRoundTripIsBitIdentical) {
-  const Capture written = smallCapture(16);
-  writeCapture(directory_, written);
-  const Capture read = readCapture(directory_);
+  const io::Capture written = smallCapture(16);
+  io::writeCapture(directory_, written);
+  const io::Capture read = io::readCapture(directory_);
   ASSERT_EQ(read.images.size(), written.images.size());
   for (std::size_t i = 0; i < read.images.size(); ++i) {
     EXPECT_EQ(read.images[i].type(), CV_16UC1);
@@ -101,10 +101,10 @@ TEST_F(CaptureTest, SixteenBitRoundTripIsBitIdentical) {
 }
 
 TEST_F(CaptureTest, MetadataRoundTrips) {
-  const Capture written = smallCapture(16);
-  writeCapture(directory_, written);
-  const CaptureMetadata& a = written.metadata;
-  for (const CaptureMetadata& b : {readCaptureMetadata(directory_), readCapture(directory_).metadata}) {
+  const io::Capture written = smallCapture(16);
+  io::writeCapture(directory_, written);
+  const io::CaptureMetadata& a = written.metadata;
+  for (const io::CaptureMetadata& b : {io::readCaptureMetadata(directory_), io::readCapture(directory_).metadata}) {
     EXPECT_EQ(b.format_version, 1);
     EXPECT_EQ(b.source, a.source);
     EXPECT_EQ(b.timestamp, a.timestamp);
@@ -126,22 +126,22 @@ TEST_F(CaptureTest, MetadataRoundTrips) {
 }
 
 TEST_F(CaptureTest, FrameTimesAreOptionalAndRoundTrip) {
-  writeCapture(directory_, smallCapture(8));
-  EXPECT_TRUE(readCaptureMetadata(directory_).frame_times_ms.empty());  // none recorded, none read
-  Capture written = smallCapture(8);
+  io::writeCapture(directory_, smallCapture(8));
+  EXPECT_TRUE(io::readCaptureMetadata(directory_).frame_times_ms.empty());  // none recorded, none read
+  io::Capture written = smallCapture(8);
   written.metadata.frame_times_ms = {0.5, 41.25, 83.0};
   const std::string timed = pathOf("timed");
-  writeCapture(timed, written);
-  EXPECT_EQ(readCaptureMetadata(timed).frame_times_ms, written.metadata.frame_times_ms);
+  io::writeCapture(timed, written);
+  EXPECT_EQ(io::readCaptureMetadata(timed).frame_times_ms, written.metadata.frame_times_ms);
   writeSampleWithMetadata([](json& d) { d["frame_times_ms"] = {1.0, 2.0}; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "'frame_times_ms' has 2 entries for 3 patterns"));
   writeSampleWithMetadata([](json& d) { d["frame_times_ms"] = {1.0, "late", 3.0}; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "frame_times_ms"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "frame_times_ms"));
 }
 
 TEST_F(CaptureTest, WriterLeavesNoTemporaryFiles) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   std::vector<std::string> names;
   for (const auto& entry : fs::recursive_directory_iterator(directory_)) {
     names.push_back(fs::relative(entry.path(), directory_).string());
@@ -153,42 +153,42 @@ TEST_F(CaptureTest, WriterLeavesNoTemporaryFiles) {
 }
 
 TEST_F(CaptureTest, WriterRejectsImagesThatDoNotMatchTheMetadata) {
-  Capture capture = smallCapture(8);
+  io::Capture capture = smallCapture(8);
   capture.images.pop_back();
-  EXPECT_TRUE(failsWith([&] { writeCapture(directory_, capture); }, directory_,
+  EXPECT_TRUE(failsWith([&] { io::writeCapture(directory_, capture); }, directory_,
                         "2 images for 3 patterns"));
 
   capture = smallCapture(8);
   capture.images[1] = cv::Mat::zeros(48, 64, CV_16UC1);
-  EXPECT_THROW(writeCapture(directory_, capture), Error);
+  EXPECT_THROW(io::writeCapture(directory_, capture), core::Error);
   EXPECT_FALSE(fs::exists(metadata_path_));
 
   capture = smallCapture(8);
   capture.images[2] = cv::Mat::zeros(47, 64, CV_8UC1);
-  EXPECT_THROW(writeCapture(directory_, capture), Error);
+  EXPECT_THROW(io::writeCapture(directory_, capture), core::Error);
   EXPECT_FALSE(fs::exists(metadata_path_));
 }
 
 TEST_F(CaptureTest, AnExistingCaptureIsNeverOverwritten) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   const std::string before = readFile(metadata_path_);
-  EXPECT_TRUE(failsWith([&] { writeCapture(directory_, smallCapture(16)); }, directory_,
+  EXPECT_TRUE(failsWith([&] { io::writeCapture(directory_, smallCapture(16)); }, directory_,
                         "already holds a capture"));
   EXPECT_EQ(readFile(metadata_path_), before);
-  EXPECT_EQ(readCapture(directory_).metadata.bit_depth, 8);
+  EXPECT_EQ(io::readCapture(directory_).metadata.bit_depth, 8);
 }
 
 TEST_F(CaptureTest, MissingMetadataIsAnError) {
   fs::create_directories(directory_);
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "does not exist"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "does not exist"));
 }
 
 TEST_F(CaptureTest, MalformedJsonIsAnError) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   std::ofstream(metadata_path_, std::ios::trunc) << "{\"format_version\": 1, \"source\": ";
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "malformed JSON"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "malformed JSON"));
   std::ofstream(metadata_path_, std::ios::trunc) << "[1, 2, 3]";
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "must be a JSON object"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "must be a JSON object"));
 }
 
 TEST_F(CaptureTest, EachMissingKeyIsNamed) {
@@ -197,135 +197,135 @@ TEST_F(CaptureTest, EachMissingKeyIsNamed) {
                           "images"}) {
     SCOPED_TRACE(key);
     writeSampleWithMetadata([&](json& d) { d.erase(key); });
-    EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+    EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                           std::string("missing key '") + key + "'"));
   }
   writeSampleWithMetadata([&](json& d) { d["pattern_set"].erase("phase_period"); });
   EXPECT_TRUE(
-      failsWith([&] { readCapture(directory_); }, metadata_path_, "missing key 'phase_period'"));
+      failsWith([&] { io::readCapture(directory_); }, metadata_path_, "missing key 'phase_period'"));
 }
 
 TEST_F(CaptureTest, WrongTypesAreNamed) {
   writeSampleWithMetadata([](json& d) { d["image_width"] = "64"; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'image_width' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["patterns"] = "white"; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'patterns' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["images"][1] = 7; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'images' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["pattern_set"]["row_codes"] = 0; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'row_codes' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["pattern_set"] = 3; });
   EXPECT_TRUE(
-      failsWith([&] { readCapture(directory_); }, metadata_path_, "'pattern_set' must be an object"));
+      failsWith([&] { io::readCapture(directory_); }, metadata_path_, "'pattern_set' must be an object"));
   writeSampleWithMetadata([](json& d) { d["exposure_us"] = "8000"; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'exposure_us' has the wrong type"));
 }
 
 TEST_F(CaptureTest, IntegersAreNotSilentlyTruncatedOrTakenFromOtherTypes) {
   writeSampleWithMetadata([](json& d) { d["image_width"] = 64.5; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'image_width' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["image_height"] = true; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'image_height' has the wrong type"));
   // 2^32 + 64 would wrap to 64 in an int.
   writeSampleWithMetadata([](json& d) { d["image_width"] = 4294967360LL; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "'image_width'"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "'image_width'"));
   writeSampleWithMetadata([](json& d) { d["gain_db"] = false; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "key 'gain_db' has the wrong type"));
   // An integral value is a fine number of microseconds.
   writeSampleWithMetadata([](json& d) { d["exposure_us"] = 8000; });
-  EXPECT_EQ(readCapture(directory_).metadata.exposure_us, 8000.0);
+  EXPECT_EQ(io::readCapture(directory_).metadata.exposure_us, 8000.0);
 }
 
 TEST_F(CaptureTest, UnsupportedVersionIsNamed) {
   writeSampleWithMetadata([](json& d) { d["format_version"] = 2; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "format_version 2 is not supported"));
 }
 
 TEST_F(CaptureTest, BadPatternSetIsNamed) {
   writeSampleWithMetadata([](json& d) { d["pattern_set"]["phase_steps"] = 2; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "PatternSetSpec.phase_steps"));
 }
 
 TEST_F(CaptureTest, BadImageGeometryInMetadataIsNamed) {
   writeSampleWithMetadata([](json& d) { d["bit_depth"] = 12; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "bit_depth must be 8 or 16"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "bit_depth must be 8 or 16"));
   writeSampleWithMetadata([](json& d) { d["image_height"] = 0; });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "image_height"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "image_height"));
 }
 
 TEST_F(CaptureTest, PatternAndImageListsMustHaveTheSameLength) {
   writeSampleWithMetadata([](json& d) { d["images"].erase(2); });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                         "'patterns' and 'images' differ in length (3 vs 2)"));
   writeSampleWithMetadata([](json& d) {
     d["patterns"] = json::array();
     d["images"] = json::array();
   });
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_, "'patterns' is empty"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "'patterns' is empty"));
 }
 
 TEST_F(CaptureTest, ListedButMissingImageIsNamed) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   fs::remove(imagePath("001_black.png"));
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, imagePath("001_black.png"),
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, imagePath("001_black.png"),
                         "the image listed in capture.json is missing"));
 }
 
 TEST_F(CaptureTest, CorruptPngIsAnError) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   // A PNG cut short, and one with its pixel data overwritten.
   const std::string path = imagePath("002_gray_col_00.png");
   const std::string bytes = readFile(path);
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(0, 40);
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, path, "not a readable PNG image"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not a readable PNG image"));
   std::ofstream(path, std::ios::binary | std::ios::trunc) << garbageBytes(bytes.size(), 3);
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, path, "not a readable PNG image"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not a readable PNG image"));
 }
 
 TEST_F(CaptureTest, ImageOfTheWrongSizeIsNamed) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   const std::string path = imagePath("000_white.png");
   ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 32, CV_8UC1)));
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, path,
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path,
                         "image is 32x48, capture.json says 64x48"));
 }
 
 TEST_F(CaptureTest, ImageOfTheWrongBitDepthIsNamed) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   const std::string path = imagePath("001_black.png");
   ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 64, CV_16UC1)));
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, path, "not single-channel 8-bit"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not single-channel 8-bit"));
 
   fs::remove_all(directory_);
-  writeCapture(directory_, smallCapture(16));
+  io::writeCapture(directory_, smallCapture(16));
   ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 64, CV_8UC1)));
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, path, "not single-channel 16-bit"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not single-channel 16-bit"));
 
   ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 64, CV_16UC3)));
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, path, "not single-channel 16-bit"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not single-channel 16-bit"));
 }
 
 TEST_F(CaptureTest, UnlistedFileInImagesIsAnError) {
-  writeCapture(directory_, smallCapture(8));
+  io::writeCapture(directory_, smallCapture(8));
   const std::string stray = imagePath("003_extra.png");
   ASSERT_TRUE(cv::imwrite(stray, cv::Mat::zeros(48, 64, CV_8UC1)));
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, stray, "not listed in capture.json"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, stray, "not listed in capture.json"));
   fs::remove(stray);
   const std::string leftover = imagePath("000_white.png.tmp");
   std::ofstream(leftover) << "x";
-  EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, leftover, "not listed in capture.json"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, leftover, "not listed in capture.json"));
   fs::remove(leftover);
-  EXPECT_NO_THROW(readCapture(directory_));
+  EXPECT_NO_THROW(io::readCapture(directory_));
 }
 
 TEST_F(CaptureTest, ImageNamesCannotLeaveTheDirectory) {
@@ -338,13 +338,13 @@ TEST_F(CaptureTest, ImageNamesCannotLeaveTheDirectory) {
         std::string("images/..png"), std::string("images/")}) {
     SCOPED_TRACE(name);
     writeSampleWithMetadata([&](json& d) { d["images"][0] = name; });
-    EXPECT_TRUE(failsWith([&] { readCapture(directory_); }, metadata_path_,
+    EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
                           "must be images/<name>.png"));
   }
 }
 
 TEST(CaptureTimestamp, IsIso8601UtcWithMilliseconds) {
-  const std::string now = utcTimestamp();
+  const std::string now = io::utcTimestamp();
   EXPECT_TRUE(std::regex_match(now, std::regex(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}\.\d{3}Z)")))
       << now;
 }

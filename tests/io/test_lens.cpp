@@ -9,15 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "thrown_message.hpp"
 
 namespace binpick::test {
 namespace {
 
 // A 1280 x 1024 camera with distortion of the size a real industrial lens shows.
-LensIntrinsics distortedLens() {
-  LensIntrinsics lens;
+io::LensIntrinsics distortedLens() {
+  io::LensIntrinsics lens;
   lens.width = 1280;
   lens.height = 1024;
   lens.fx = 1600.0;
@@ -28,14 +28,14 @@ LensIntrinsics distortedLens() {
   return lens;
 }
 
-LensIntrinsics distortedLensWithK3() {
-  LensIntrinsics lens = distortedLens();
+io::LensIntrinsics distortedLensWithK3() {
+  io::LensIntrinsics lens = distortedLens();
   lens.distortion[4] = -0.05;
   return lens;
 }
 
 // Pixels on a grid covering the whole image, corners and edges included.
-std::vector<Eigen::Vector2d> pixelGrid(const LensIntrinsics& lens) {
+std::vector<Eigen::Vector2d> pixelGrid(const io::LensIntrinsics& lens) {
   std::vector<Eigen::Vector2d> pixels;
   for (int i = 0; i <= 16; ++i) {
     for (int j = 0; j <= 16; ++j) {
@@ -45,20 +45,20 @@ std::vector<Eigen::Vector2d> pixelGrid(const LensIntrinsics& lens) {
   return pixels;
 }
 
-cv::Matx33d cameraMatrix(const LensIntrinsics& lens) {
+cv::Matx33d cameraMatrix(const io::LensIntrinsics& lens) {
   return {lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy, 0.0, 0.0, 1.0};
 }
 
-std::vector<double> distortionVector(const LensIntrinsics& lens) {
+std::vector<double> distortionVector(const io::LensIntrinsics& lens) {
   return {lens.distortion.begin(), lens.distortion.end()};
 }
 
-::testing::AssertionResult failsNaming(const LensIntrinsics& lens, const std::string& fragment) {
+::testing::AssertionResult failsNaming(const io::LensIntrinsics& lens, const std::string& fragment) {
   return binpick::test::throwsNaming([&] { lens.validate("camera"); }, fragment);
 }
 
 TEST(Lens, ProjectOfRayThroughPixelReturnsThePixel) {
-  for (const LensIntrinsics& lens : {distortedLens(), distortedLensWithK3()}) {
+  for (const io::LensIntrinsics& lens : {distortedLens(), distortedLensWithK3()}) {
     for (const Eigen::Vector2d& pixel : pixelGrid(lens)) {
       const Eigen::Vector3d ray = lens.rayThroughPixel(pixel);
       EXPECT_NEAR(ray.norm(), 1.0, 1e-12);
@@ -70,7 +70,7 @@ TEST(Lens, ProjectOfRayThroughPixelReturnsThePixel) {
 }
 
 TEST(Lens, RayThroughProjectedPointPointsAtThePoint) {
-  const LensIntrinsics lens = distortedLens();
+  const io::LensIntrinsics lens = distortedLens();
   for (double x = -0.4; x <= 0.4; x += 0.1) {
     for (double y = -0.3; y <= 0.3; y += 0.1) {
       const Eigen::Vector3d point(x * 0.8, y * 0.8, 0.8);
@@ -81,7 +81,7 @@ TEST(Lens, RayThroughProjectedPointPointsAtThePoint) {
 }
 
 TEST(Lens, UndistortInvertsDistort) {
-  const LensIntrinsics lens = distortedLensWithK3();
+  const io::LensIntrinsics lens = distortedLensWithK3();
   for (double x = -0.42; x <= 0.42; x += 0.06) {
     for (double y = -0.34; y <= 0.34; y += 0.04) {
       const Eigen::Vector2d p(x, y);
@@ -92,7 +92,7 @@ TEST(Lens, UndistortInvertsDistort) {
 }
 
 TEST(Lens, WithoutDistortionIsAPlainPinhole) {
-  LensIntrinsics lens = distortedLens();
+  io::LensIntrinsics lens = distortedLens();
   lens.distortion = {};
   EXPECT_FALSE(lens.hasDistortion());
   EXPECT_TRUE(distortedLens().hasDistortion());
@@ -105,7 +105,7 @@ TEST(Lens, WithoutDistortionIsAPlainPinhole) {
 }
 
 TEST(Lens, ProjectAgreesWithOpenCvProjectPoints) {
-  for (const LensIntrinsics& lens : {distortedLens(), distortedLensWithK3()}) {
+  for (const io::LensIntrinsics& lens : {distortedLens(), distortedLensWithK3()}) {
     std::vector<cv::Point3d> points;
     for (double x = -0.45; x <= 0.45; x += 0.05) {
       for (double y = -0.35; y <= 0.35; y += 0.05) points.emplace_back(x * 1.3, y * 1.3, 1.3);
@@ -123,7 +123,7 @@ TEST(Lens, ProjectAgreesWithOpenCvProjectPoints) {
 }
 
 TEST(Lens, UndistortAgreesWithOpenCvUndistortPoints) {
-  const LensIntrinsics lens = distortedLens();
+  const io::LensIntrinsics lens = distortedLens();
   const std::vector<Eigen::Vector2d> pixels = pixelGrid(lens);
   std::vector<cv::Point2d> distorted;
   for (const Eigen::Vector2d& p : pixels) distorted.emplace_back(p.x(), p.y());
@@ -142,7 +142,7 @@ TEST(Lens, UndistortAgreesWithOpenCvUndistortPoints) {
 }
 
 TEST(Lens, UndistortMatchesOpenCvRunToConvergence) {
-  const LensIntrinsics lens = distortedLensWithK3();
+  const io::LensIntrinsics lens = distortedLensWithK3();
   const std::vector<Eigen::Vector2d> pixels = pixelGrid(lens);
   std::vector<cv::Point2d> distorted;
   for (const Eigen::Vector2d& p : pixels) distorted.emplace_back(p.x(), p.y());
@@ -165,7 +165,7 @@ TEST(Lens, ValidateAcceptsARealisticLens) {
 
 TEST(Lens, ValidateRejectsBadFieldsNamingThem) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  LensIntrinsics lens = distortedLens();
+  io::LensIntrinsics lens = distortedLens();
   lens.fx = 0.0;
   EXPECT_TRUE(failsNaming(lens, "camera.fx must be positive"));
   lens = distortedLens();

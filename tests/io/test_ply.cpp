@@ -15,14 +15,14 @@ namespace {
 
 class Ply : public IoTest {};
 
-class PlyRoundTrip : public IoTest, public ::testing::WithParamInterface<Encoding> {};
+class PlyRoundTrip : public IoTest, public ::testing::WithParamInterface<io::Encoding> {};
 
 TEST_P(PlyRoundTrip, OrganizedCloudKeepsGridHolesAndNormals) {
-  const PointCloud written = organizedCloudWithHoles();
+  const io::PointCloud written = organizedCloudWithHoles();
   const std::string path = pathOf("organized.ply");
-  writePointCloud(path, written, GetParam());
+  io::writePointCloud(path, written, GetParam());
 
-  const PointCloud read = readPointCloud(path);
+  const io::PointCloud read = io::readPointCloud(path);
   EXPECT_EQ(read.width, 4);
   EXPECT_EQ(read.height, 3);
   ASSERT_EQ(read.size(), written.size());
@@ -39,11 +39,11 @@ TEST_P(PlyRoundTrip, OrganizedCloudKeepsGridHolesAndNormals) {
 }
 
 TEST_P(PlyRoundTrip, UnorganizedCloudKeepsAwkwardValues) {
-  const PointCloud written = awkwardCloud();
+  const io::PointCloud written = awkwardCloud();
   const std::string path = pathOf("awkward.ply");
-  writePointCloud(path, written, GetParam());
+  io::writePointCloud(path, written, GetParam());
 
-  const PointCloud read = readPointCloud(path);
+  const io::PointCloud read = io::readPointCloud(path);
   EXPECT_FALSE(read.isOrganized());
   EXPECT_FALSE(read.hasNormals());
   ASSERT_EQ(read.size(), written.size());
@@ -57,18 +57,18 @@ TEST_P(PlyRoundTrip, UnorganizedCloudKeepsAwkwardValues) {
 
 // Binary keeps every bit, the NaN payloads of invalid pixels included; ascii writes "nan" there.
 TEST_P(PlyRoundTrip, OrganizedCloudKeepsIntensitiesAfterNormals) {
-  const PointCloud written = withIntensities(organizedCloudWithHoles());
+  const io::PointCloud written = withIntensities(organizedCloudWithHoles());
   const std::string path = pathOf("intensities.ply");
-  writePointCloud(path, written, GetParam());
+  io::writePointCloud(path, written, GetParam());
   EXPECT_NE(readFile(path).find("property float nz\nproperty float intensity\n"),
             std::string::npos);
 
-  const PointCloud read = readPointCloud(path);
+  const io::PointCloud read = io::readPointCloud(path);
   EXPECT_EQ(read.width, 4);
   ASSERT_TRUE(read.hasNormals());
   ASSERT_TRUE(read.hasIntensities());
   for (std::size_t i = 0; i < written.size(); ++i) {
-    if (GetParam() == Encoding::Binary || written.points[i].allFinite()) {
+    if (GetParam() == io::Encoding::Binary || written.points[i].allFinite()) {
       EXPECT_TRUE(sameBits(read.intensities[i], written.intensities[i])) << "pixel " << i;
     } else {
       EXPECT_TRUE(std::isnan(read.intensities[i])) << "pixel " << i;
@@ -80,13 +80,13 @@ TEST_P(PlyRoundTrip, OrganizedCloudKeepsIntensitiesAfterNormals) {
 }
 
 TEST_P(PlyRoundTrip, UnorganizedCloudKeepsIntensitiesWithoutNormals) {
-  const PointCloud written = withIntensities(awkwardCloud());
+  const io::PointCloud written = withIntensities(awkwardCloud());
   const std::string path = pathOf("intensities.ply");
-  writePointCloud(path, written, GetParam());
+  io::writePointCloud(path, written, GetParam());
   EXPECT_NE(readFile(path).find("property float z\nproperty float intensity\n"),
             std::string::npos);
 
-  const PointCloud read = readPointCloud(path);
+  const io::PointCloud read = io::readPointCloud(path);
   EXPECT_FALSE(read.hasNormals());
   ASSERT_TRUE(read.hasIntensities());
   for (std::size_t i = 0; i < written.size(); ++i) {
@@ -95,19 +95,19 @@ TEST_P(PlyRoundTrip, UnorganizedCloudKeepsIntensitiesWithoutNormals) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Ply, PlyRoundTrip, ::testing::Values(Encoding::Binary, Encoding::Ascii),
-                         [](const ::testing::TestParamInfo<Encoding>& encoding) {
-                           return encoding.param == Encoding::Binary ? "Binary" : "Ascii";
+INSTANTIATE_TEST_SUITE_P(Ply, PlyRoundTrip, ::testing::Values(io::Encoding::Binary, io::Encoding::Ascii),
+                         [](const ::testing::TestParamInfo<io::Encoding>& encoding) {
+                           return encoding.param == io::Encoding::Binary ? "Binary" : "Ascii";
                          });
 
 TEST_F(Ply, MeshRoundTripKeepsVerticesAndTriangles) {
-  TriangleMesh written;
+  io::TriangleMesh written;
   written.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.5f}};
   written.triangles = {{0, 1, 2}, {0, 2, 3}};
   const std::string path = pathOf("mesh.ply");
-  writeMesh(path, written);
+  io::writeMesh(path, written);
 
-  const TriangleMesh read = readMesh(path);
+  const io::TriangleMesh read = io::readMesh(path);
   ASSERT_EQ(read.vertices.size(), 4u);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_TRUE(sameBits(read.vertices[i], written.vertices[i]));
   ASSERT_EQ(read.triangles.size(), 2u);
@@ -162,7 +162,7 @@ std::string bigEndianDoublePly() {
 
 TEST_F(Ply, ReadsBigEndianDoublesSkippingOtherPropertiesAndElements) {
   const std::string path = writeFile("big_endian.ply", bigEndianDoublePly());
-  const ModelGeometry geometry = readModelGeometry(path);
+  const io::ModelGeometry geometry = io::readModelGeometry(path);
 
   ASSERT_TRUE(geometry.hasMesh());
   ASSERT_EQ(geometry.mesh.vertices.size(), 4u);
@@ -195,7 +195,7 @@ TEST_F(Ply, ReadsAsciiWithCrLfCommentsQuadsAndNormalisesNormals) {
                 "1 1 0 0 3 4 255\r\n"
                 "+0 1e0 -0.0 0 0 1 255\r\n"
                 "4 0 1 2 3\r\n");
-  const ModelGeometry geometry = readModelGeometry(path);
+  const io::ModelGeometry geometry = io::readModelGeometry(path);
   ASSERT_EQ(geometry.mesh.triangles.size(), 2u);
   ASSERT_TRUE(geometry.cloud.hasNormals());
   EXPECT_TRUE(geometry.cloud.normals[0].isApprox(Eigen::Vector3f(0, 0, 1)));
@@ -218,7 +218,7 @@ TEST_F(Ply, ReadsUcharIntensityAsciiAndBinary) {
   const std::string binary = writeFile("binary.ply", bytes);
 
   for (const std::string& path : {ascii, binary}) {
-    const PointCloud cloud = readPointCloud(path);
+    const io::PointCloud cloud = io::readPointCloud(path);
     EXPECT_EQ(cloud.intensities, (std::vector<float>{0, 255})) << path;
   }
 }
@@ -238,7 +238,7 @@ TEST_F(Ply, ReadsDoubleIntensityBeforeTheCoordinates) {
   const std::string binary = writeFile("binary.ply", bytes);
 
   for (const std::string& path : {ascii, binary}) {
-    const PointCloud cloud = readPointCloud(path);
+    const io::PointCloud cloud = io::readPointCloud(path);
     EXPECT_EQ(cloud.intensities, (std::vector<float>{0.7f, 0.25f})) << path;
     EXPECT_EQ(cloud.points[1], Eigen::Vector3f(1, 2, 3)) << path;
   }
@@ -250,19 +250,19 @@ TEST_F(Ply, RejectsNanIntensityOfAValidPoint) {
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "property float intensity\nend_header\n"
                                      "0 0 0 0.5\n1 0 0 nan\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path,
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path,
                         "intensity of point 1 is not finite (nan)"));
 }
 
 TEST_F(Ply, RefusesToWriteWrongIntensityCountOrNanIntensity) {
-  PointCloud cloud = withIntensities(awkwardCloud());
+  io::PointCloud cloud = withIntensities(awkwardCloud());
   cloud.intensities.pop_back();
   const std::string path = pathOf("bad.ply");
   EXPECT_TRUE(
-      failsWith([&] { writePointCloud(path, cloud); }, path, "2 intensities for 3 points"));
+      failsWith([&] { io::writePointCloud(path, cloud); }, path, "2 intensities for 3 points"));
   cloud = withIntensities(awkwardCloud());
   cloud.intensities[0] = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_TRUE(failsWith([&] { writePointCloud(path, cloud, Encoding::Ascii); }, path,
+  EXPECT_TRUE(failsWith([&] { io::writePointCloud(path, cloud, io::Encoding::Ascii); }, path,
                         "intensity of point 0 is not finite"));
   EXPECT_FALSE(std::filesystem::exists(path));
 }
@@ -281,7 +281,7 @@ TEST_F(Ply, RejectsTruncatedBinaryBody) {
   std::string bytes = binaryCloudPly("", 10);
   bytes.resize(bytes.size() - 5);
   const std::string path = writeFile("truncated.ply", bytes);
-  EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path, "truncated"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "truncated"));
 }
 
 TEST_F(Ply, RejectsAbsurdVertexCountWithoutAllocating) {
@@ -291,7 +291,7 @@ TEST_F(Ply, RejectsAbsurdVertexCountWithoutAllocating) {
                                            " 1.0\nelement vertex 1000000000000\n"
                                            "property float x\nproperty float y\nproperty float z\n"
                                            "end_header\n0 0 0\n");
-    EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path, "1000000000000")) << format;
+    EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "1000000000000")) << format;
   }
 }
 
@@ -300,7 +300,7 @@ TEST_F(Ply, RejectsHugeFaceListWithoutAllocating) {
   bytes.insert(bytes.find("end_header"), "element face 1\nproperty list uint int vertex_indices\n");
   appendBytes<std::uint32_t>(bytes, 4000000000u);
   const std::string path = writeFile("huge_face.ply", bytes);
-  EXPECT_TRUE(failsWith([&] { readMesh(path); }, path, "face 0 has a list of 4000000000 items"));
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path, "face 0 has a list of 4000000000 items"));
 }
 
 TEST_F(Ply, RejectsFaceIndexOutOfRange) {
@@ -309,7 +309,7 @@ TEST_F(Ply, RejectsFaceIndexOutOfRange) {
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "element face 2\nproperty list uchar int vertex_indices\n"
                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 9\n");
-  EXPECT_TRUE(failsWith([&] { readMesh(path); }, path,
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path,
                         "face 1 refers to vertex 9 but the file has 4 vertices"));
 }
 
@@ -318,7 +318,7 @@ TEST_F(Ply, RejectsNanInUnorganizedCloudNamingThePoint) {
                                      "ply\nformat ascii 1.0\nelement vertex 3\n"
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "end_header\n0 0 0\n1 0 0\n1 nan 0\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path, "point 2 is not finite"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "point 2 is not finite"));
 }
 
 TEST_F(Ply, RejectsInfEvenInOrganizedCloud) {
@@ -326,7 +326,7 @@ TEST_F(Ply, RejectsInfEvenInOrganizedCloud) {
   const float inf = std::numeric_limits<float>::infinity();
   std::memcpy(bytes.data() + bytes.size() - sizeof(float), &inf, sizeof(float));
   const std::string path = writeFile("inf.ply", bytes);
-  EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path, "point 1 is not finite"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "point 1 is not finite"));
 }
 
 TEST_F(Ply, RejectsZeroNormalNamingThePoint) {
@@ -335,30 +335,30 @@ TEST_F(Ply, RejectsZeroNormalNamingThePoint) {
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "property float nx\nproperty float ny\nproperty float nz\n"
                                      "end_header\n0 0 0 0 0 1\n1 0 0 0 0 0\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path, "normal of point 1 is zero"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "normal of point 1 is zero"));
 }
 
 TEST_F(Ply, RejectsOrganizedSizeThatDoesNotMatchVertexCount) {
   const std::string path = writeFile("grid.ply", binaryCloudPly("obj_info organized 3 3\n", 4));
-  EXPECT_TRUE(failsWith([&] { readPointCloud(path); }, path, "organized 3 x 3"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "organized 3 x 3"));
 }
 
 TEST_F(Ply, RejectsMalformedHeaders) {
   const std::string unknownType = writeFile(
       "type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\nend_header\n0\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(unknownType); }, unknownType,
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(unknownType); }, unknownType,
                         "unknown property type 'flaot'"));
 
   const std::string noEnd = writeFile("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 1\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(noEnd); }, noEnd, "end_header"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(noEnd); }, noEnd, "end_header"));
 
   const std::string noZ = writeFile("no_z.ply",
                                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty float "
                                     "x\nproperty float y\nend_header\n0 0\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(noZ); }, noZ, "no 'z' property"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(noZ); }, noZ, "no 'z' property"));
 
   const std::string notPly = writeFile("not.ply", "solid cube\nendsolid\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(notPly); }, notPly, "not a PLY file"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(notPly); }, notPly, "not a PLY file"));
 }
 
 TEST_F(Ply, RejectsBadAsciiValueWithItsLine) {
@@ -367,7 +367,7 @@ TEST_F(Ply, RejectsBadAsciiValueWithItsLine) {
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "end_header\n0 0 0\n1 zero 0\n");
   EXPECT_TRUE(
-      failsWith([&] { readPointCloud(path); }, path, "line 9 (vertex 1): 'zero' is not a number"));
+      failsWith([&] { io::readPointCloud(path); }, path, "line 9 (vertex 1): 'zero' is not a number"));
 }
 
 // Token-based reading would silently shift every later value by one.
@@ -376,19 +376,19 @@ TEST_F(Ply, RejectsAsciiRecordsWithTooManyOrTooFewValues) {
       "ply\nformat ascii 1.0\nelement vertex 3\n"
       "property float x\nproperty float y\nproperty float z\nend_header\n";
   const std::string extra = writeFile("extra.ply", header + "0 0 0\n1 0 0 5\n0 1 0\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(extra); }, extra,
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(extra); }, extra,
                         "line 9 (vertex 1): more values than the header declares"));
   const std::string missing = writeFile("missing.ply", header + "0 0 0\n1 0\n0 1 0\n0 0 1\n");
-  EXPECT_TRUE(failsWith([&] { readPointCloud(missing); }, missing,
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(missing); }, missing,
                         "line 9 (vertex 1): fewer values than the header declares"));
 }
 
 TEST_F(Ply, CloudFileHasNoMeshAndReadMeshSaysSo) {
   const std::string path = writeFile("cloud.ply", binaryCloudPly("", 3));
-  const ModelGeometry geometry = readModelGeometry(path);
+  const io::ModelGeometry geometry = io::readModelGeometry(path);
   EXPECT_FALSE(geometry.hasMesh());
   EXPECT_EQ(geometry.cloud.size(), 3u);
-  EXPECT_TRUE(failsWith([&] { readMesh(path); }, path, "no faces"));
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path, "no faces"));
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 #include <opencv2/core/eigen.hpp>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "io_test_support.hpp"
 
 namespace binpick::test {
@@ -26,8 +26,8 @@ using RigCalibrationTest = IoTest;
 // Writes `value` under `key`, or nothing: how a test replaces or drops one key of a file.
 using KeyWriter = std::function<void(cv::FileStorage&, const std::string& key)>;
 
-RigCalibration sampleRig() {
-  RigCalibration rig;
+io::RigCalibration sampleRig() {
+  io::RigCalibration rig;
   rig.camera.width = 1280;
   rig.camera.height = 1024;
   rig.camera.fx = 1603.123456789012;
@@ -50,7 +50,7 @@ RigCalibration sampleRig() {
   return rig;
 }
 
-cv::Mat openCvCameraMatrix(const LensIntrinsics& lens) {
+cv::Mat openCvCameraMatrix(const io::LensIntrinsics& lens) {
   return (cv::Mat_<double>(3, 3) << lens.fx, 0, lens.cx, 0, lens.fy, lens.cy, 0, 0, 1);
 }
 
@@ -59,7 +59,7 @@ cv::Mat openCvCameraMatrix(const LensIntrinsics& lens) {
 // with four values, R as cv::Rodrigues gives it and T as a 3x1 column. `replace` swaps or drops
 // single keys.
 void writeWithOpenCv(const std::string& path, const std::map<std::string, KeyWriter>& replace = {}) {
-  const RigCalibration rig = sampleRig();
+  const io::RigCalibration rig = sampleRig();
   cv::Mat r;
   cv::eigen2cv(Eigen::Matrix3d(rig.T_projector_camera.linear()), r);
   cv::Mat rvec;
@@ -108,7 +108,7 @@ KeyWriter writeMat(cv::Mat value) {
   return [value](cv::FileStorage& fs, const std::string& key) { fs << key << value; };
 }
 
-void expectSameLens(const LensIntrinsics& a, const LensIntrinsics& b) {
+void expectSameLens(const io::LensIntrinsics& a, const io::LensIntrinsics& b) {
   EXPECT_EQ(a.width, b.width);
   EXPECT_EQ(a.height, b.height);
   EXPECT_NEAR(a.fx, b.fx, 1e-12);
@@ -119,46 +119,49 @@ void expectSameLens(const LensIntrinsics& a, const LensIntrinsics& b) {
 }
 
 TEST_F(RigCalibrationTest, WriteThenReadGivesTheSameRig) {
-  const RigCalibration rig = sampleRig();
+  const io::RigCalibration rig = sampleRig();
   const std::string path = pathOf("calib.yaml");
-  writeRigCalibration(path, rig);
-  const RigCalibration back = readRigCalibration(path);
+  io::writeRigCalibration(path, rig);
+  const io::RigCalibration back = io::readRigCalibration(path);
   expectSameLens(back.camera, rig.camera);
   expectSameLens(back.projector, rig.projector);
   EXPECT_LT((back.T_projector_camera.matrix() - rig.T_projector_camera.matrix()).cwiseAbs().maxCoeff(),
             1e-12);
-  EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
+  // Written through a temporary file that is renamed: nothing else is left beside it.
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(path).parent_path())) {
+    EXPECT_EQ(entry.path().filename(), "calib.yaml");
+  }
 }
 
 // A calibration's quality as `binpick calibrate rig` writes it: one used view, one dropped
 // outlier, and one never calibrated (its RMS unknown), with names and problems that need quoting.
-RigCalibrationQuality sampleQuality() {
-  RigCalibrationQuality quality;
+io::RigCalibrationQuality sampleQuality() {
+  io::RigCalibrationQuality quality;
   quality.date = "2026-01-31T12:00:00.123Z";
   quality.camera_rms_px = 0.0891234567890123;
   quality.projector_rms_px = 0.165;
   quality.stereo_rms_px = 0.134;
-  RigViewQuality used;
+  io::RigViewQuality used;
   used.name = "views/pose 000";
   used.camera_corners = 48;
   used.projector_corners = 47;
   used.camera_rms_px = 0.12;
   used.projector_rms_px = 0.21;
   used.used = true;
-  RigViewQuality dropped = used;
+  io::RigViewQuality dropped = used;
   dropped.name = "views/pose_001";
   dropped.camera_rms_px = 2.5;
   dropped.outlier = true;
   dropped.used = false;
   dropped.problem = "outlier, dropped";
-  RigViewQuality missing;
+  io::RigViewQuality missing;
   missing.name = "views/no_board";
   missing.problem = "board not found: no ArUco marker of DICT_5X5_100 in the image";
   quality.views = {used, dropped, missing};
   return quality;
 }
 
-void expectSameView(const RigViewQuality& a, const RigViewQuality& b) {
+void expectSameView(const io::RigViewQuality& a, const io::RigViewQuality& b) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.camera_corners, b.camera_corners);
   EXPECT_EQ(a.projector_corners, b.projector_corners);
@@ -173,17 +176,17 @@ void expectSameView(const RigViewQuality& a, const RigViewQuality& b) {
 
 TEST_F(RigCalibrationTest, QualityIsWrittenBesideTheRigAndReadsBack) {
   const std::string path = pathOf("calib.yaml");
-  writeRigCalibration(path, sampleRig(), sampleQuality());
+  io::writeRigCalibration(path, sampleRig(), sampleQuality());
   // The rig reads as from any other file.
-  const RigCalibration rig = readRigCalibration(path);
+  const io::RigCalibration rig = io::readRigCalibration(path);
   expectSameLens(rig.camera, sampleRig().camera);
   EXPECT_LT((rig.T_projector_camera.matrix() - sampleRig().T_projector_camera.matrix())
                 .cwiseAbs()
                 .maxCoeff(),
             1e-12);
-  const std::optional<RigCalibrationQuality> quality = readRigCalibrationQuality(path);
+  const std::optional<io::RigCalibrationQuality> quality = io::readRigCalibrationQuality(path);
   ASSERT_TRUE(quality.has_value());
-  const RigCalibrationQuality expected = sampleQuality();
+  const io::RigCalibrationQuality expected = sampleQuality();
   EXPECT_EQ(quality->date, expected.date);
   EXPECT_DOUBLE_EQ(quality->camera_rms_px, expected.camera_rms_px);
   EXPECT_DOUBLE_EQ(quality->projector_rms_px, expected.projector_rms_px);
@@ -202,10 +205,10 @@ TEST_F(RigCalibrationTest, QualityIsWrittenBesideTheRigAndReadsBack) {
 
 TEST_F(RigCalibrationTest, FilesWithoutQualityHaveNone) {
   const std::string path = pathOf("calib.yaml");
-  writeRigCalibration(path, sampleRig());
-  EXPECT_FALSE(readRigCalibrationQuality(path).has_value());
+  io::writeRigCalibration(path, sampleRig());
+  EXPECT_FALSE(io::readRigCalibrationQuality(path).has_value());
   writeWithOpenCv(path);
-  EXPECT_FALSE(readRigCalibrationQuality(path).has_value());
+  EXPECT_FALSE(io::readRigCalibrationQuality(path).has_value());
 }
 
 TEST_F(RigCalibrationTest, MalformedQualityIsNamedAndDoesNotStopTheRig) {
@@ -213,38 +216,38 @@ TEST_F(RigCalibrationTest, MalformedQualityIsNamedAndDoesNotStopTheRig) {
   writeWithOpenCv(path);
   std::ofstream(path, std::ios::app) << "quality:\n   date: \"2026-01-31T12:00:00Z\"\n"
                                      << "   views:\n      - { name: a, camera_corners: many }\n";
-  EXPECT_TRUE(failsWith([&] { readRigCalibrationQuality(path); }, path,
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibrationQuality(path); }, path,
                         "quality.views[0].camera_corners must be an integer"));
-  EXPECT_EQ(readRigCalibration(path).camera.width, 1280);
+  EXPECT_EQ(io::readRigCalibration(path).camera.width, 1280);
 }
 
 TEST_F(RigCalibrationTest, WriteReplacesAnExistingFile) {
   const std::string path = pathOf("calib.yaml");
-  RigCalibration rig = sampleRig();
-  writeRigCalibration(path, rig);
+  io::RigCalibration rig = sampleRig();
+  io::writeRigCalibration(path, rig);
   rig.camera.fx = 1234.5;
-  writeRigCalibration(path, rig);
-  EXPECT_EQ(readRigCalibration(path).camera.fx, 1234.5);
+  io::writeRigCalibration(path, rig);
+  EXPECT_EQ(io::readRigCalibration(path).camera.fx, 1234.5);
 }
 
 TEST_F(RigCalibrationTest, WriteRejectsAnInvalidRigAndWritesNothing) {
-  RigCalibration rig = sampleRig();
+  io::RigCalibration rig = sampleRig();
   rig.projector.fy = 0.0;
   const std::string path = pathOf("calib.yaml");
-  EXPECT_THROW(writeRigCalibration(path, rig), Error);
+  EXPECT_THROW(io::writeRigCalibration(path, rig), core::Error);
   EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 TEST_F(RigCalibrationTest, WriteIntoAMissingDirectoryIsAnError) {
   const std::string path = pathOf("no_such_directory/calib.yaml");
-  EXPECT_THROW(writeRigCalibration(path, sampleRig()), Error);
+  EXPECT_THROW(io::writeRigCalibration(path, sampleRig()), core::Error);
 }
 
 TEST_F(RigCalibrationTest, ReadsAFileWrittenByPlainOpenCv) {
   const std::string path = pathOf("calib.yaml");
   writeWithOpenCv(path);
-  const RigCalibration rig = readRigCalibration(path);
-  const RigCalibration expected = sampleRig();
+  const io::RigCalibration rig = io::readRigCalibration(path);
+  const io::RigCalibration expected = sampleRig();
   expectSameLens(rig.camera, expected.camera);
   EXPECT_EQ(rig.projector.width, 1280);
   EXPECT_EQ(rig.projector.height, 800);
@@ -262,7 +265,7 @@ TEST_F(RigCalibrationTest, ReadsSinglePrecisionMatrices) {
   cv::Mat k32;
   openCvCameraMatrix(sampleRig().camera).convertTo(k32, CV_32F);
   writeWithOpenCv(path, {{"camera_matrix", writeMat(k32)}});
-  EXPECT_NEAR(readRigCalibration(path).camera.fx, sampleRig().camera.fx, 1e-3);
+  EXPECT_NEAR(io::readRigCalibration(path).camera.fx, sampleRig().camera.fx, 1e-3);
 }
 
 TEST_F(RigCalibrationTest, ReadsTheDocumentedHandWrittenLayout) {
@@ -303,7 +306,7 @@ T: !!opencv-matrix
    dt: d
    data: [ -0.2, 0., 0.05 ]
 )");
-  const RigCalibration rig = readRigCalibration(path);
+  const io::RigCalibration rig = io::readRigCalibration(path);
   EXPECT_EQ(rig.camera.cx, 641.3);
   EXPECT_EQ(rig.camera.distortion[2], 4e-4);
   EXPECT_EQ(rig.projector.cy, 800.0);
@@ -314,21 +317,21 @@ T: !!opencv-matrix
 
 TEST_F(RigCalibrationTest, MissingFileIsAnError) {
   const std::string path = pathOf("nothing_here.yaml");
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "cannot open"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "cannot open"));
 }
 
 TEST_F(RigCalibrationTest, GarbageIsAnErrorNotACrash) {
   const std::string not_yaml = "not an OpenCV FileStorage YAML file";
   const std::string binary = writeFile("binary.yaml", garbageBytes(3000, 7));
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(binary); }, binary, not_yaml));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(binary); }, binary, not_yaml));
   const std::string json = writeFile("json.yaml", "{\"camera_width\": [1, 2,\n");
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(json); }, json, not_yaml));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(json); }, json, not_yaml));
   const std::string text = writeFile("text.yaml", "this is not a calibration\n");
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(text); }, text, not_yaml));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(text); }, text, not_yaml));
   const std::string empty = writeFile("empty.yaml", "");
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(empty); }, empty, not_yaml));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(empty); }, empty, not_yaml));
   const std::string sequence = writeFile("sequence.yaml", "%YAML:1.0\n---\n- 1\n- 2\n");
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(sequence); }, sequence, not_yaml));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(sequence); }, sequence, not_yaml));
 }
 
 TEST_F(RigCalibrationTest, MalformedMatricesAreNamed) {
@@ -337,25 +340,25 @@ TEST_F(RigCalibrationTest, MalformedMatricesAreNamed) {
     fs << k << "[" << 1 << 2 << 3 << "]";
   };
   writeWithOpenCv(path, {{"camera_matrix", list}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'camera_matrix'"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'camera_matrix'"));
 
   const KeyWriter no_data = [](cv::FileStorage& fs, const std::string& k) {
     fs << k << "{" << "rows" << 3 << "cols" << 1 << "dt" << "d" << "}";
   };
   writeWithOpenCv(path, {{"T", no_data}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'T'"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'T'"));
 
   const KeyWriter too_little_data = [](cv::FileStorage& fs, const std::string& k) {
     fs << k << "{" << "rows" << 3 << "cols" << 1 << "dt" << "d" << "data" << "[" << 1.0 << "]"
        << "}";
   };
   writeWithOpenCv(path, {{"T", too_little_data}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'T'"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'T'"));
 }
 
 TEST_F(RigCalibrationTest, NonYamlTextNamesTheProblem) {
   const std::string path = writeFile("calib.yaml", "\x89PNG\r\n\x1a\n\x00\x00\x00\rIHDR");
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "not an OpenCV FileStorage YAML"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "not an OpenCV FileStorage YAML"));
 }
 
 TEST_F(RigCalibrationTest, EachMissingKeyIsNamed) {
@@ -366,32 +369,32 @@ TEST_F(RigCalibrationTest, EachMissingKeyIsNamed) {
     const std::string path = pathOf(std::string("no_") + key + ".yaml");
     writeWithOpenCv(path, {{key, dropKey()}});
     EXPECT_TRUE(
-        failsWith([&] { readRigCalibration(path); }, path, std::string("missing key '") + key + "'"));
+        failsWith([&] { io::readRigCalibration(path); }, path, std::string("missing key '") + key + "'"));
   }
 }
 
 TEST_F(RigCalibrationTest, WrongMatrixSizesAreNamed) {
   const std::string path = pathOf("calib.yaml");
   writeWithOpenCv(path, {{"camera_matrix", writeMat(cv::Mat::eye(2, 3, CV_64F) * 1000.0)}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'camera_matrix' must be 3x3 (got 2x3)"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'camera_matrix' must be 3x3 (got 2x3)"));
 
   writeWithOpenCv(path, {{"R", writeMat(cv::Mat::eye(4, 4, CV_64F))}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'R' must be 3x3 (got 4x4)"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'R' must be 3x3 (got 4x4)"));
 
   writeWithOpenCv(path, {{"T", writeMat(cv::Mat::zeros(2, 1, CV_64F))}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'T' must hold 3 values"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'T' must hold 3 values"));
 
   writeWithOpenCv(path, {{"T", writeMat(cv::Mat::zeros(3, 3, CV_64F))}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'T' must hold 3 values"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'T' must hold 3 values"));
 }
 
 TEST_F(RigCalibrationTest, UnsupportedDistortionModelsAreRejected) {
   const std::string path = pathOf("calib.yaml");
   writeWithOpenCv(path, {{"camera_distortion", writeMat(cv::Mat::zeros(1, 8, CV_64F))}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path,
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path,
                         "'camera_distortion' must hold 4 or 5 values"));
   writeWithOpenCv(path, {{"projector_distortion", writeMat(cv::Mat::zeros(2, 5, CV_64F))}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path,
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path,
                         "'projector_distortion' must hold 4 or 5 values"));
 }
 
@@ -400,30 +403,30 @@ TEST_F(RigCalibrationTest, CameraMatrixWithSkewIsRejected) {
   cv::Mat k = openCvCameraMatrix(sampleRig().camera);
   k.at<double>(0, 1) = 0.5;
   writeWithOpenCv(path, {{"camera_matrix", writeMat(k)}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'camera_matrix' must be [fx 0 cx"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'camera_matrix' must be [fx 0 cx"));
 }
 
 TEST_F(RigCalibrationTest, NonRotationRIsRejected) {
   const std::string path = pathOf("calib.yaml");
   writeWithOpenCv(path, {{"R", writeMat(cv::Mat::eye(3, 3, CV_64F) * 1.01)}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "R must be a rotation"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "R must be a rotation"));
 
   const cv::Mat reflection = (cv::Mat_<double>(3, 3) << 1, 0, 0, 0, 1, 0, 0, 0, -1);
   writeWithOpenCv(path, {{"R", writeMat(reflection)}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "R must be a rotation"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "R must be a rotation"));
 }
 
 TEST_F(RigCalibrationTest, NonFiniteValuesAreRejected) {
   const std::string path = pathOf("calib.yaml");
   const double nan = std::numeric_limits<double>::quiet_NaN();
   writeWithOpenCv(path, {{"T", writeMat((cv::Mat_<double>(3, 1) << 0.1, nan, 0.0))}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'T' holds a non-finite value"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'T' holds a non-finite value"));
 
   cv::Mat k = openCvCameraMatrix(sampleRig().projector);
   k.at<double>(0, 0) = std::numeric_limits<double>::infinity();
   writeWithOpenCv(path, {{"projector_matrix", writeMat(k)}});
   EXPECT_TRUE(
-      failsWith([&] { readRigCalibration(path); }, path, "'projector_matrix' holds a non-finite value"));
+      failsWith([&] { io::readRigCalibration(path); }, path, "'projector_matrix' holds a non-finite value"));
 }
 
 TEST_F(RigCalibrationTest, BadImageSizesAreNamed) {
@@ -431,18 +434,18 @@ TEST_F(RigCalibrationTest, BadImageSizesAreNamed) {
   writeWithOpenCv(path, {{"camera_width", [](cv::FileStorage& fs, const std::string& k) {
                             fs << k << -1280;
                           }}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "camera.width must be in"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "camera.width must be in"));
 
   writeWithOpenCv(path, {{"projector_height", [](cv::FileStorage& fs, const std::string& k) {
                             fs << k << 800.5;
                           }}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path,
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path,
                         "'projector_height' must be an integer"));
 
   writeWithOpenCv(path, {{"camera_height", [](cv::FileStorage& fs, const std::string& k) {
                             fs << k << "1024";
                           }}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'camera_height' must be an integer"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'camera_height' must be an integer"));
 }
 
 TEST_F(RigCalibrationTest, ZeroFocalLengthIsNamed) {
@@ -450,13 +453,13 @@ TEST_F(RigCalibrationTest, ZeroFocalLengthIsNamed) {
   cv::Mat k = openCvCameraMatrix(sampleRig().projector);
   k.at<double>(1, 1) = 0.0;
   writeWithOpenCv(path, {{"projector_matrix", writeMat(k)}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "projector.fy must be positive"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "projector.fy must be positive"));
 }
 
 TEST_F(RigCalibrationTest, ScalarWhereAMatrixBelongsIsNamed) {
   const std::string path = pathOf("calib.yaml");
   writeWithOpenCv(path, {{"R", [](cv::FileStorage& fs, const std::string& k) { fs << k << 1.0; }}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'R' is not an OpenCV matrix"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'R' is not an OpenCV matrix"));
 }
 
 TEST_F(RigCalibrationTest, MultiChannelMatrixIsRejected) {
@@ -465,7 +468,7 @@ TEST_F(RigCalibrationTest, MultiChannelMatrixIsRejected) {
   for (int i = 0; i < 3; ++i) two_channel.at<cv::Vec2d>(i, i)[0] = 1.0;
   const std::string path = pathOf("calib.yaml");
   writeWithOpenCv(path, {{"R", writeMat(two_channel)}});
-  EXPECT_TRUE(failsWith([&] { readRigCalibration(path); }, path, "'R' must have one channel"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'R' must have one channel"));
 }
 
 }  // namespace

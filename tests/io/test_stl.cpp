@@ -56,7 +56,7 @@ std::string binaryCube(const std::string& header80) {
   return bytes;
 }
 
-double volumeOf(const TriangleMesh& mesh) {
+double volumeOf(const io::TriangleMesh& mesh) {
   double volume = 0;
   for (const auto& t : mesh.triangles) {
     volume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]])) / 6.0;
@@ -65,7 +65,7 @@ double volumeOf(const TriangleMesh& mesh) {
 }
 
 // A closed cube with shared vertices: 8 corners, 12 triangles, volume 1 (so winding is kept).
-void expectSharedVertexCube(const TriangleMesh& mesh) {
+void expectSharedVertexCube(const io::TriangleMesh& mesh) {
   EXPECT_EQ(mesh.vertices.size(), 8u);
   EXPECT_EQ(mesh.triangles.size(), 12u);
   EXPECT_NEAR(volumeOf(mesh), 1.0, 1e-6);
@@ -73,18 +73,18 @@ void expectSharedVertexCube(const TriangleMesh& mesh) {
 
 TEST_F(Stl, AsciiCubeMergesSharedCorners) {
   const std::string path = writeFile("cube.stl", asciiCube());
-  expectSharedVertexCube(readMesh(path));
+  expectSharedVertexCube(io::readMesh(path));
 }
 
 TEST_F(Stl, BinaryCubeMergesSharedCorners) {
   const std::string path = writeFile("cube.stl", binaryCube("binary cube"));
-  expectSharedVertexCube(readMesh(path));
+  expectSharedVertexCube(io::readMesh(path));
 }
 
 TEST_F(Stl, BinaryWhoseHeaderStartsWithSolidIsReadAsBinary) {
   const std::string path =
       writeFile("solid_header.stl", binaryCube("solid exported by a CAD tool"));
-  expectSharedVertexCube(readMesh(path));
+  expectSharedVertexCube(io::readMesh(path));
 }
 
 TEST_F(Stl, UppercaseKeywordsAndModelGeometryCloud) {
@@ -98,18 +98,18 @@ TEST_F(Stl, UppercaseKeywordsAndModelGeometryCloud) {
     }
   }
   const std::string path = writeFile("upper.stl", text);
-  const ModelGeometry geometry = readModelGeometry(path);
+  const io::ModelGeometry geometry = io::readModelGeometry(path);
   expectSharedVertexCube(geometry.mesh);
   EXPECT_EQ(geometry.cloud.points, geometry.mesh.vertices);
 }
 
 TEST_F(Stl, RoundTripKeepsTriangles) {
   const std::string source = writeFile("source.stl", asciiCube());
-  const TriangleMesh written = readMesh(source);
+  const io::TriangleMesh written = io::readMesh(source);
   const std::string path = pathOf("copy.stl");
-  writeMesh(path, written);
+  io::writeMesh(path, written);
   EXPECT_NE(readFile(path).rfind("solid", 0), 0u) << "a binary STL must not start with 'solid'";
-  const TriangleMesh read = readMesh(path);
+  const io::TriangleMesh read = io::readMesh(path);
   ASSERT_EQ(read.triangles.size(), written.triangles.size());
   for (std::size_t t = 0; t < read.triangles.size(); ++t) {
     for (int corner = 0; corner < 3; ++corner) {
@@ -123,28 +123,28 @@ TEST_F(Stl, RejectsTruncatedBinary) {
   std::string bytes = binaryCube("binary cube");
   bytes.resize(bytes.size() - 30);
   const std::string path = writeFile("truncated.stl", bytes);
-  EXPECT_TRUE(failsWith([&] { readMesh(path); }, path, "claims 12 triangles"));
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path, "claims 12 triangles"));
 }
 
 TEST_F(Stl, RejectsTruncatedAscii) {
   std::string text = asciiCube();
   text.resize(text.find("endloop", text.size() / 2));
   const std::string path = writeFile("truncated.stl", text);
-  EXPECT_TRUE(failsWith([&] { readMesh(path); }, path, "truncated"));
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path, "truncated"));
 }
 
 TEST_F(Stl, RejectsMisspeltKeywordWithLine) {
   std::string text = asciiCube();
   text.replace(text.find("outer loop"), 10, "outer lop");
   const std::string path = writeFile("typo.stl", text);
-  EXPECT_TRUE(failsWith([&] { readMesh(path); }, path, "line 3: expected 'loop' but found 'lop'"));
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path, "line 3: expected 'loop' but found 'lop'"));
 }
 
 TEST_F(Stl, RejectsNanCorner) {
   std::string text = asciiCube();
   text.replace(text.find("vertex 0.000000"), 15, "vertex nan");
   const std::string path = writeFile("nan.stl", text);
-  EXPECT_TRUE(failsWith([&] { readMesh(path); }, path, "facet 0 has a non-finite vertex"));
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path, "facet 0 has a non-finite vertex"));
 }
 
 }  // namespace

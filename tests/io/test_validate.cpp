@@ -14,76 +14,76 @@ constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 TEST(Validate, OrganizedCloudMayHoldNanPixels) {
-  EXPECT_NO_THROW(validateCloud(organizedCloudWithHoles(), "scan"));
+  EXPECT_NO_THROW(io::validateCloud(organizedCloudWithHoles(), "scan"));
 }
 
 TEST(Validate, UnorganizedCloudMayNotHoldNan) {
-  PointCloud cloud = awkwardCloud();
+  io::PointCloud cloud = awkwardCloud();
   cloud.points[2].z() = kNan;
-  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "point 2 is not finite"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "point 2 is not finite"));
 }
 
 TEST(Validate, OrganizedCloudMayNotHoldInf) {
-  PointCloud cloud = organizedCloudWithHoles();
+  io::PointCloud cloud = organizedCloudWithHoles();
   cloud.points[7].x() = kInf;
-  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "point 7 is not finite"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "point 7 is not finite"));
 }
 
 TEST(Validate, GridMustMatchPointCount) {
-  PointCloud cloud = organizedCloudWithHoles();
+  io::PointCloud cloud = organizedCloudWithHoles();
   cloud.width = 5;
-  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "width 5 x height 3"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "width 5 x height 3"));
 }
 
 TEST(Validate, NormalsMustMatchAndBeFiniteForValidPoints) {
-  PointCloud cloud = organizedCloudWithHoles();
+  io::PointCloud cloud = organizedCloudWithHoles();
   cloud.normals.pop_back();
-  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "11 normals for 12 points"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "11 normals for 12 points"));
 
   cloud = organizedCloudWithHoles();
   cloud.normals[3] = Eigen::Vector3f(kNan, 0, 1);
   EXPECT_TRUE(
-      failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "normal of point 3 is not finite"));
+      failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "normal of point 3 is not finite"));
 }
 
 TEST(Validate, IntensitiesOfInvalidPixelsMayBeNan) {
-  const PointCloud cloud = withIntensities(organizedCloudWithHoles());
+  const io::PointCloud cloud = withIntensities(organizedCloudWithHoles());
   ASSERT_TRUE(std::isnan(cloud.intensities[5]));
-  EXPECT_NO_THROW(validateCloud(cloud, "scan"));
+  EXPECT_NO_THROW(io::validateCloud(cloud, "scan"));
 }
 
 TEST(Validate, IntensitiesMustMatchAndBeFiniteForValidPoints) {
-  PointCloud cloud = withIntensities(organizedCloudWithHoles());
+  io::PointCloud cloud = withIntensities(organizedCloudWithHoles());
   cloud.intensities.pop_back();
   EXPECT_TRUE(
-      failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "11 intensities for 12 points"));
+      failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "11 intensities for 12 points"));
 
   cloud = withIntensities(awkwardCloud());
   cloud.intensities.push_back(0.5f);
   EXPECT_TRUE(
-      failsWith([&] { validateCloud(cloud, "scan"); }, "scan", "4 intensities for 3 points"));
+      failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "4 intensities for 3 points"));
 
   cloud = withIntensities(organizedCloudWithHoles());
   cloud.intensities[3] = kNan;
-  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan",
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan",
                         "intensity of point 3 is not finite (nan)"));
 
   cloud = withIntensities(awkwardCloud());
   cloud.intensities[1] = -kInf;
-  EXPECT_TRUE(failsWith([&] { validateCloud(cloud, "scan"); }, "scan",
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan",
                         "intensity of point 1 is not finite (-inf)"));
 }
 
 TEST(Validate, MeshIndicesAndVerticesAreChecked) {
-  TriangleMesh mesh;
+  io::TriangleMesh mesh;
   mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   mesh.triangles = {{0, 1, 2}, {2, 1, -1}};
-  EXPECT_TRUE(failsWith([&] { validateMesh(mesh, "part"); }, "part",
+  EXPECT_TRUE(failsWith([&] { io::validateMesh(mesh, "part"); }, "part",
                         "triangle 1 refers to vertex -1 but the mesh has 3 vertices"));
   mesh.triangles.pop_back();
-  EXPECT_NO_THROW(validateMesh(mesh, "part"));
+  EXPECT_NO_THROW(io::validateMesh(mesh, "part"));
   mesh.vertices[1].y() = kNan;
-  EXPECT_TRUE(failsWith([&] { validateMesh(mesh, "part"); }, "part", "vertex 1 is not finite"));
+  EXPECT_TRUE(failsWith([&] { io::validateMesh(mesh, "part"); }, "part", "vertex 1 is not finite"));
 }
 
 }  // namespace

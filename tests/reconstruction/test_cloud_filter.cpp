@@ -9,7 +9,7 @@
 #include <random>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/reconstruction/pixel_status.hpp"
 #include "thrown_message.hpp"
 
@@ -21,7 +21,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // A plane tilted along x seen through a pinhole (f = 100 pixels): z from 0.7 to 0.8 m.
 struct Grid {
-  PointCloud cloud;
+  io::PointCloud cloud;
   cv::Mat status;
   Eigen::Vector3f& at(int x, int y) {
     return cloud.points[static_cast<std::size_t>(y) * cloud.width + x];
@@ -216,12 +216,12 @@ TEST(CloudFilter, SpecklePatchesAcrossThreadBandsAreWholeAndResultsDoNotDependOn
 TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {
   Grid g = tiltedPlane();
   cv::Mat small(10, 10, CV_8UC1, cv::Scalar(0));
-  EXPECT_THROW(filterCloud(g.cloud, small, CloudFilterParams{}), Error);
+  EXPECT_THROW(filterCloud(g.cloud, small, CloudFilterParams{}), core::Error);
   cv::Mat wide_type(80, 100, CV_16UC1, cv::Scalar(0));
-  EXPECT_THROW(filterCloud(g.cloud, wide_type, CloudFilterParams{}), Error);
-  PointCloud unorganized = g.cloud;
+  EXPECT_THROW(filterCloud(g.cloud, wide_type, CloudFilterParams{}), core::Error);
+  io::PointCloud unorganized = g.cloud;
   unorganized.width = unorganized.height = 0;
-  EXPECT_THROW(filterCloud(unorganized, g.status, CloudFilterParams{}), Error);
+  EXPECT_THROW(filterCloud(unorganized, g.status, CloudFilterParams{}), core::Error);
 }
 
 std::string paramsError(const CloudFilterParams& params) {

@@ -133,7 +133,7 @@ TEST(Decoder, MarksBitsThatPatternedInterreflectionWouldFlipInvalidInsteadOfWron
   CaptureOptions options;
   options.camera_scale = 0.5;
   const VirtualCapture& v = virtualCapture(options);
-  Capture reflected = testing::deepCopy(v.capture);
+  io::Capture reflected = testing::deepCopy(v.capture);
   for (cv::Mat& image : reflected.images) {
     cv::Mat blurred;
     cv::GaussianBlur(image, blurred, cv::Size(), 15.0);
@@ -171,7 +171,7 @@ TEST(Decoder, ColumnsOnlyCapturesGiveNoRows) {
 TEST(Decoder, GivesTheSameResultOnAnyNumberOfThreads) {
   CaptureOptions options;
   options.camera_scale = 0.5;
-  const Capture& capture = virtualCapture(options).capture;
+  const io::Capture& capture = virtualCapture(options).capture;
   DecodeParams one;
   one.threads = 1;
   DecodeParams two;
@@ -186,7 +186,7 @@ TEST(Decoder, GivesTheSameResultOnAnyNumberOfThreads) {
 TEST(Decoder, IntensityIsTheWhiteImageOnTheSensorsScale) {
   CaptureOptions options;
   options.camera_scale = 0.5;
-  const Capture& capture = virtualCapture(options).capture;
+  const io::Capture& capture = virtualCapture(options).capture;
   const DecodedCapture decoded = decodeCapture(capture);
   cv::Mat white;
   capture.images[0].convertTo(white, CV_32F, 1.0 / 255.0);

@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/reconstruction/decoder.hpp"
 #include "virtual_capture.hpp"
 #include "thrown_message.hpp"
@@ -14,21 +14,21 @@
 namespace binpick::reconstruction {
 namespace {
 
-Capture smallCapture() {
+io::Capture smallCapture() {
   testing::CaptureOptions options;
   options.camera_scale = 0.5;
   return testing::deepCopy(testing::virtualCapture(options).capture);
 }
 
 // Runs the decoder and returns its error message ("" when it did not throw).
-std::string decodeError(const Capture& capture, const DecodeParams& params = {}) {
+std::string decodeError(const io::Capture& capture, const DecodeParams& params = {}) {
   return binpick::test::thrownMessage([&] { decodeCapture(capture, params); });
 }
 
 constexpr int kGrayCol05 = 12;  // white, black, then gray_col_00 ... (pattern, inverse) pairs
 
 TEST(DecoderErrors, RefusesPatternsInAnotherOrderThanThePatternSet) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   std::swap(capture.metadata.patterns[2], capture.metadata.patterns[3]);
   const std::string message = decodeError(capture);
   EXPECT_NE(message.find("image 2 is 'gray_col_00_inv'"), std::string::npos) << message;
@@ -36,48 +36,48 @@ TEST(DecoderErrors, RefusesPatternsInAnotherOrderThanThePatternSet) {
 }
 
 TEST(DecoderErrors, RefusesAPatternSetThatDoesNotMatchTheImages) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   capture.metadata.pattern_set.phase_steps = 3;
   EXPECT_NE(decodeError(capture).find("patterns listed but the pattern set"), std::string::npos);
 }
 
 TEST(DecoderErrors, RefusesAMissingImage) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   capture.images.pop_back();
   EXPECT_NE(decodeError(capture).find("images for"), std::string::npos);
 }
 
 TEST(DecoderErrors, RefusesImagesOfMixedSizesOrTypes) {
-  Capture resized = smallCapture();
+  io::Capture resized = smallCapture();
   cv::resize(resized.images[5], resized.images[5], cv::Size(100, 80));
   EXPECT_NE(decodeError(resized).find("image 5 (gray_col_01_inv) is 100x80"), std::string::npos);
-  Capture retyped = smallCapture();
+  io::Capture retyped = smallCapture();
   retyped.images[7].convertTo(retyped.images[7], CV_16U);
   EXPECT_NE(decodeError(retyped).find("image 7 (gray_col_02_inv) is not a single-channel 8-bit"),
             std::string::npos);
 }
 
 TEST(DecoderErrors, RefusesACaptureWithoutColumnCodes) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   capture.metadata.pattern_set.column_codes = false;
   capture.metadata.patterns.clear();  // whatever the names, the set itself is refused first
   EXPECT_FALSE(decodeError(capture).empty());
 }
 
 TEST(DecoderErrors, RefusesACaptureTakenWithTheProjectorOff) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   for (cv::Mat& image : capture.images) capture.images[1].copyTo(image);  // everything black
   EXPECT_NE(decodeError(capture).find("projector did not light the scene"), std::string::npos);
 }
 
 TEST(DecoderErrors, RefusesAnOverexposedCapture) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   for (cv::Mat& image : capture.images) image.convertTo(image, -1, 20.0);  // saturates
   EXPECT_NE(decodeError(capture).find("saturated on"), std::string::npos);
 }
 
 TEST(DecoderErrors, NamesTheFrameThatCameOutBlack) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   capture.images[1].copyTo(capture.images[kGrayCol05]);
   const std::string message = decodeError(capture);
   EXPECT_NE(message.find("12 (gray_col_05)"), std::string::npos) << message;
@@ -85,10 +85,10 @@ TEST(DecoderErrors, NamesTheFrameThatCameOutBlack) {
 }
 
 TEST(DecoderErrors, NoticesFramesOutOfOrder) {
-  Capture capture = smallCapture();
+  io::Capture capture = smallCapture();
   std::swap(capture.images[kGrayCol05], capture.images[kGrayCol05 + 2]);  // col_05 <-> col_06
   EXPECT_NE(decodeError(capture).find("out of order"), std::string::npos);
-  Capture phase = smallCapture();
+  io::Capture phase = smallCapture();
   const int first_phase = 2 + 2 * 11;  // after the 11 column bits
   phase.images[1].copyTo(phase.images[first_phase + 1]);
   EXPECT_NE(decodeError(phase).find("phase image 25 (phase_col_1)"), std::string::npos);

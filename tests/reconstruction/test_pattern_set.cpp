@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "thrown_message.hpp"
 
 namespace binpick::reconstruction {
@@ -18,7 +18,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-PatternSetSpec defaultSpec() { return PatternSetSpec{}; }  // 1280 x 800, both axes, 4 steps
+io::PatternSetSpec defaultSpec() { return io::PatternSetSpec{}; }  // 1280 x 800, both axes, 4 steps
 
 std::vector<std::string> expectedNames(const char* axis, int bits, int steps) {
   std::vector<std::string> names;
@@ -33,7 +33,7 @@ std::vector<std::string> expectedNames(const char* axis, int bits, int steps) {
 }
 
 // The column (or row) spelled by the Gray bits of `coordinate` as the patterns show them.
-unsigned decodeFromPatterns(PatternAxis axis, const PatternSetSpec& spec, int coordinate) {
+unsigned decodeFromPatterns(PatternAxis axis, const io::PatternSetSpec& spec, int coordinate) {
   unsigned code = 0;
   int bits = 0;
   for (const Pattern& p : patternSequence(spec)) {
@@ -45,7 +45,7 @@ unsigned decodeFromPatterns(PatternAxis axis, const PatternSetSpec& spec, int co
   return grayDecode(code);
 }
 
-::testing::AssertionResult rejectedNaming(const PatternSetSpec& spec, const std::string& field) {
+::testing::AssertionResult rejectedNaming(const io::PatternSetSpec& spec, const std::string& field) {
   return binpick::test::throwsNaming([&] { patternSequence(spec); }, field);
 }
 
@@ -78,7 +78,7 @@ TEST(PatternSet, SequenceKindsMatchTheirNames) {
 }
 
 TEST(PatternSet, AxesAndPhaseStepsCanBeSwitchedOff) {
-  PatternSetSpec spec = defaultSpec();
+  io::PatternSetSpec spec = defaultSpec();
   spec.row_codes = false;
   std::vector<std::string> expected{"white", "black"};
   for (const auto& n : expectedNames("col", 11, 4)) expected.push_back(n);
@@ -124,7 +124,7 @@ TEST(PatternSet, AdjacentCodesDifferInExactlyOneBit) {
 
 TEST(PatternSet, GrayBitsDecodeToTheirColumnAndRow) {
   for (int width : {1280, 912}) {
-    PatternSetSpec spec = defaultSpec();
+    io::PatternSetSpec spec = defaultSpec();
     spec.projector_width = width;
     spec.projector_height = width == 912 ? 1140 : 800;
     for (int c = 0; c < spec.projector_width; ++c) {
@@ -140,7 +140,7 @@ TEST(PatternSet, GrayBitsDecodeToTheirColumnAndRow) {
 
 TEST(PatternSet, MostSignificantColumnBitSplitsAtAPowerOfTwo) {
   // For 1280 columns (11 bits) the first bit is on from column 1024 on.
-  const PatternSetSpec spec = defaultSpec();
+  const io::PatternSetSpec spec = defaultSpec();
   const Pattern msb{PatternKind::GrayBit, PatternAxis::Columns, 0};
   EXPECT_EQ(patternBrightness(msb, spec, 1023), 0.0);
   EXPECT_EQ(patternBrightness(msb, spec, 1024), 1.0);
@@ -148,7 +148,7 @@ TEST(PatternSet, MostSignificantColumnBitSplitsAtAPowerOfTwo) {
 }
 
 TEST(PatternSet, EachInverseIsTheComplement) {
-  const PatternSetSpec spec = defaultSpec();
+  const io::PatternSetSpec spec = defaultSpec();
   for (const Pattern& p : patternSequence(spec)) {
     if (p.kind != PatternKind::GrayBit) continue;
     const Pattern inverse{PatternKind::GrayBitInverse, p.axis, p.index};
@@ -162,7 +162,7 @@ TEST(PatternSet, EachInverseIsTheComplement) {
 }
 
 TEST(PatternSet, WhiteAndBlackAreUniform) {
-  const PatternSetSpec spec = defaultSpec();
+  const io::PatternSetSpec spec = defaultSpec();
   const Pattern white{PatternKind::White, PatternAxis::None, 0};
   const Pattern black{PatternKind::Black, PatternAxis::None, 0};
   for (int c : {0, 17, 1279}) {
@@ -173,7 +173,7 @@ TEST(PatternSet, WhiteAndBlackAreUniform) {
 
 TEST(PatternSet, PhaseStepsEncodeThePhaseOfEachColumn) {
   for (int steps : {3, 4, 7}) {
-    PatternSetSpec spec = defaultSpec();
+    io::PatternSetSpec spec = defaultSpec();
     spec.phase_steps = steps;
     spec.phase_period = 20;
     double worst = 0.0;
@@ -199,7 +199,7 @@ TEST(PatternSet, PhaseStepsEncodeThePhaseOfEachColumn) {
 }
 
 TEST(PatternSet, RowPhaseFollowsTheRow) {
-  const PatternSetSpec spec = defaultSpec();  // period 16, 4 steps
+  const io::PatternSetSpec spec = defaultSpec();  // period 16, 4 steps
   // Row 4 is a quarter period: phase pi/2, so step 1 (shift pi/2) is at its brightest.
   EXPECT_EQ(patternBrightness({PatternKind::PhaseStep, PatternAxis::Rows, 1}, spec, 4), 1.0);
   EXPECT_EQ(patternBrightness({PatternKind::PhaseStep, PatternAxis::Rows, 3}, spec, 4), 0.0);
@@ -208,7 +208,7 @@ TEST(PatternSet, RowPhaseFollowsTheRow) {
 }
 
 TEST(PatternSet, ImagesHaveTheProjectorSizeAndFollowPatternBrightness) {
-  PatternSetSpec spec = defaultSpec();
+  io::PatternSetSpec spec = defaultSpec();
   spec.projector_width = 96;
   spec.projector_height = 40;
   spec.phase_period = 12;
@@ -229,7 +229,7 @@ TEST(PatternSet, ImagesHaveTheProjectorSizeAndFollowPatternBrightness) {
 }
 
 TEST(PatternSet, ColumnPatternsAreConstantDownEachColumn) {
-  const PatternSetSpec spec = defaultSpec();
+  const io::PatternSetSpec spec = defaultSpec();
   const cv::Mat image = patternImage({PatternKind::GrayBit, PatternAxis::Columns, 10}, spec);
   ASSERT_EQ(image.size(), cv::Size(1280, 800));
   cv::Mat first_row;
@@ -241,7 +241,7 @@ TEST(PatternSet, ColumnPatternsAreConstantDownEachColumn) {
 }
 
 TEST(PatternSet, BadSpecsAreRejectedNamingTheField) {
-  PatternSetSpec spec = defaultSpec();
+  io::PatternSetSpec spec = defaultSpec();
   spec.projector_width = 1;
   EXPECT_TRUE(rejectedNaming(spec, "projector_width"));
   spec = defaultSpec();
@@ -260,7 +260,7 @@ TEST(PatternSet, BadSpecsAreRejectedNamingTheField) {
   spec.column_codes = false;
   spec.row_codes = false;
   EXPECT_TRUE(rejectedNaming(spec, "column_codes"));
-  EXPECT_THROW(patternImage({PatternKind::White, PatternAxis::None, 0}, spec), Error);
+  EXPECT_THROW(patternImage({PatternKind::White, PatternAxis::None, 0}, spec), core::Error);
 }
 
 }  // namespace

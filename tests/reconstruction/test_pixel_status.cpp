@@ -6,7 +6,7 @@
 #include <set>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -41,13 +41,13 @@ TEST(PixelStatus, CountsEveryPixelUnderItsStatus) {
 }
 
 TEST(PixelStatus, RefusesImagesThatAreNoStatusImages) {
-  EXPECT_THROW(countStatuses(cv::Mat(2, 2, CV_16UC1, cv::Scalar(0))), Error);
+  EXPECT_THROW(countStatuses(cv::Mat(2, 2, CV_16UC1, cv::Scalar(0))), core::Error);
   cv::Mat status(2, 2, CV_8UC1, cv::Scalar(0));
   status.at<uint8_t>(1, 1) = static_cast<uint8_t>(kPixelStatusCount);
   try {
     countStatuses(status);
     ADD_FAILURE() << "accepted a value outside the enum";
-  } catch (const Error& error) {
+  } catch (const core::Error& error) {
     EXPECT_NE(std::string(error.what()).find("1 pixels hold 11, which is no PixelStatus"), std::string::npos)
         << error.what();
   }

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "thrown_message.hpp"
 
 namespace binpick::reconstruction {

@@ -11,8 +11,8 @@
 
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/io/error.hpp"
-#include "evaluation.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "virtual_capture.hpp"
 
 namespace binpick::reconstruction {
@@ -30,7 +30,7 @@ struct DepthScore {
   std::size_t points = 0;
 };
 
-DepthScore scoreDepth(const VirtualCapture& v, const PointCloud& cloud) {
+DepthScore scoreDepth(const VirtualCapture& v, const io::PointCloud& cloud) {
   DepthScore s;
   std::vector<double> errors;
   std::size_t measurable = 0, measured = 0;
@@ -106,12 +106,12 @@ TEST(Reconstruction, RefusesACaptureOfAnotherCamera) {
   CaptureOptions options;
   options.camera_scale = 0.5;
   const VirtualCapture& v = virtualCapture(options);
-  RigCalibration other = v.scene.rig;
+  io::RigCalibration other = v.scene.rig;
   other.camera = other.camera.scaled(2.0);
   try {
     Reconstructor(other).reconstruct(v.capture);
     FAIL() << "a 640x512 capture was reconstructed with a 1280x1024 calibration";
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("calibration's camera is 1280x1024"), std::string::npos) << e.what();
   }
 }
@@ -127,17 +127,17 @@ TEST(Reconstruction, DetectionOnTheReconstructedCloudMatchesTheIdealSensor) {
   options.bin_length = 0.24;
   options.bin_width = 0.18;
   const VirtualCapture& v = virtualCapture(options);
-  const sim::Part part = sim::makePart(options.part);
-  const estimation::PreparedModel model = estimation::prepareModel(ModelGeometry{part.mesh, {}}, {});
+  const simulation::Part part = simulation::makePart(options.part);
+  const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, {});
   estimation::DetectorParams params;
   params.selection.max_objects = options.objects;
-  params.scene.crop = eval::binInterior(v.scene, v.params);
+  params.scene.crop = evaluation::binInterior(v.scene, v.params);
   const estimation::Detector detector(model, params);
-  const eval::Thresholds thresholds{model.diameter / 10.0, 10.0};
-  const eval::Score ideal = eval::scoreDetections(detector.detect(v.scene.cloud).detections, v.scene.objects,
+  const evaluation::Thresholds thresholds{model.diameter / 10.0, 10.0};
+  const evaluation::Score ideal = evaluation::scoreDetections(detector.detect(v.scene.cloud).detections, v.scene.objects,
                                                   part.symmetry, thresholds);
-  const PointCloud reconstructed = Reconstructor(v.scene.rig).reconstruct(v.capture).cloud;
-  const eval::Score measured = eval::scoreDetections(detector.detect(reconstructed).detections, v.scene.objects,
+  const io::PointCloud reconstructed = Reconstructor(v.scene.rig).reconstruct(v.capture).cloud;
+  const evaluation::Score measured = evaluation::scoreDetections(detector.detect(reconstructed).detections, v.scene.objects,
                                                      part.symmetry, thresholds);
   SCOPED_TRACE("ideal sensor: found " + std::to_string(ideal.found) + " of " + std::to_string(ideal.findable) +
                ", reconstructed: found " + std::to_string(measured.found));

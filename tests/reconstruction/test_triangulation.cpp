@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "thrown_message.hpp"
@@ -21,7 +21,7 @@ namespace {
 
 constexpr auto kValid = static_cast<uint8_t>(PixelStatus::Valid);
 
-RigCalibration withoutDistortion(RigCalibration rig) {
+io::RigCalibration withoutDistortion(io::RigCalibration rig) {
   rig.camera.distortion = {};
   rig.projector.distortion = {};
   return rig;
@@ -29,25 +29,25 @@ RigCalibration withoutDistortion(RigCalibration rig) {
 
 // A small pile seen by a half-resolution camera (the projector keeps its full resolution):
 // generated once per lens setting and shared by the tests.
-const sim::PileScene& pile(bool distortion) {
-  static std::map<bool, sim::PileScene> cache;
+const simulation::PileScene& pile(bool distortion) {
+  static std::map<bool, simulation::PileScene> cache;
   auto found = cache.find(distortion);
   if (found != cache.end()) return found->second;
-  sim::PileParams params;
+  simulation::PileParams params;
   params.objects = 5;
   params.seed = 11;
   params.rig.camera = params.rig.camera.scaled(0.5);
   if (!distortion) params.rig = withoutDistortion(params.rig);
-  return cache.emplace(distortion, sim::generatePile(sim::makePart("clamp").mesh, params))
+  return cache.emplace(distortion, simulation::generatePile(simulation::makePart("clamp").mesh, params))
       .first->second;
 }
 
-const Eigen::Vector3f& exactPoint(const sim::PileScene& scene, std::size_t pixel) {
+const Eigen::Vector3f& exactPoint(const simulation::PileScene& scene, std::size_t pixel) {
   return scene.exact_cloud.points[pixel];
 }
 
 // Where a camera-frame point lands in the projector image; false behind the projector.
-bool projectorPixel(const RigCalibration& rig, const Eigen::Vector3d& point,
+bool projectorPixel(const io::RigCalibration& rig, const Eigen::Vector3d& point,
                     Eigen::Vector2d& pixel) {
   const Eigen::Vector3d in_projector = rig.T_projector_camera * point;
   if (!(in_projector.z() > 0.0)) return false;
@@ -55,7 +55,7 @@ bool projectorPixel(const RigCalibration& rig, const Eigen::Vector3d& point,
   return true;
 }
 
-bool insideImage(const LensIntrinsics& lens, const Eigen::Vector2d& pixel) {
+bool insideImage(const io::LensIntrinsics& lens, const Eigen::Vector2d& pixel) {
   return pixel.x() >= -0.5 && pixel.x() < lens.width - 0.5 && pixel.y() >= -0.5 &&
          pixel.y() < lens.height - 0.5;
 }
@@ -63,8 +63,8 @@ bool insideImage(const LensIntrinsics& lens, const Eigen::Vector2d& pixel) {
 // What an ideal decoder reports: the exact projector pixel of every surface point that projects
 // into the projector's image (lit or in shadow alike: triangulation does not care), Unlit
 // elsewhere.
-DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows, const RigCalibration& rig) {
-  const LensIntrinsics& camera = rig.camera;
+DecodedCapture perfectDecoding(const simulation::PileScene& scene, bool rows, const io::RigCalibration& rig) {
+  const io::LensIntrinsics& camera = rig.camera;
   DecodedCapture decoded;
   decoded.width = camera.width;
   decoded.height = camera.height;
@@ -86,7 +86,7 @@ DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows, const Rig
   return decoded;
 }
 
-DecodedCapture perfectDecoding(const sim::PileScene& scene, bool rows) {
+DecodedCapture perfectDecoding(const simulation::PileScene& scene, bool rows) {
   return perfectDecoding(scene, rows, scene.rig);
 }
 
@@ -107,7 +107,7 @@ struct Comparison {
   std::size_t others = 0;
 };
 
-Comparison compare(const sim::PileScene& scene, const DecodedCapture& decoded,
+Comparison compare(const simulation::PileScene& scene, const DecodedCapture& decoded,
                    const TriangulatedCloud& result) {
   Comparison c;
   for (std::size_t i = 0; i < scene.exact_cloud.size(); ++i) {
@@ -129,7 +129,7 @@ Comparison compare(const sim::PileScene& scene, const DecodedCapture& decoded,
 void expectExactReconstruction(bool distortion, bool rows) {
   SCOPED_TRACE(std::string(distortion ? "with" : "without") + " distortion, " +
                (rows ? "columns and rows" : "columns only"));
-  const sim::PileScene& scene = pile(distortion);
+  const simulation::PileScene& scene = pile(distortion);
   const DecodedCapture decoded = perfectDecoding(scene, rows);
   const TriangulatedCloud result = Triangulator(scene.rig).triangulate(decoded);
   EXPECT_EQ(result.cloud.width, scene.rig.camera.width);
@@ -156,8 +156,8 @@ TEST(Triangulation, PerfectColumnsAloneGiveTheSurfaceBackThroughCurvedLightPlane
 // Another placement: the projector to the camera's left and above it, rolled, and looking down
 // at the scene; a tilted plane with a bump as the surface (no pile needed).
 TEST(Triangulation, PerfectDecodingWorksForAnyProjectorPlacement) {
-  sim::PileScene scene;
-  scene.rig = sim::makeVirtualRig();
+  simulation::PileScene scene;
+  scene.rig = simulation::makeVirtualRig();
   scene.rig.camera = scene.rig.camera.scaled(0.25);
   scene.rig.projector.distortion = {-0.06, 0.03, 0.001, -0.0005, 0.0};
   Eigen::Isometry3d T_camera_projector = Eigen::Isometry3d::Identity();
@@ -167,7 +167,7 @@ TEST(Triangulation, PerfectDecodingWorksForAnyProjectorPlacement) {
                                  Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ()))
                                     .matrix();
   scene.rig.T_projector_camera = T_camera_projector.inverse();
-  const LensIntrinsics& camera = scene.rig.camera;
+  const io::LensIntrinsics& camera = scene.rig.camera;
   scene.exact_cloud.width = camera.width;
   scene.exact_cloud.height = camera.height;
   for (int y = 0; y < camera.height; ++y) {
@@ -191,7 +191,7 @@ TEST(Triangulation, PerfectDecodingWorksForAnyProjectorPlacement) {
 }
 
 TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
-  const sim::PileScene& scene = pile(true);
+  const simulation::PileScene& scene = pile(true);
   const Triangulator triangulator(scene.rig);
   const DecodedCapture exact = perfectDecoding(scene, true);
   const TriangulatedCloud truth = triangulator.triangulate(exact);
@@ -225,7 +225,7 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
 }
 
 TEST(Triangulation, KeepsTheDecodersVerdictOnPixelsItRejected) {
-  const sim::PileScene& scene = pile(true);
+  const simulation::PileScene& scene = pile(true);
   DecodedCapture decoded = perfectDecoding(scene, true);
   const PixelStatus rejected[] = {PixelStatus::Unlit, PixelStatus::Saturated,
                                   PixelStatus::UncertainCode, PixelStatus::PhaseMismatch,
@@ -245,7 +245,7 @@ TEST(Triangulation, KeepsTheDecodersVerdictOnPixelsItRejected) {
 
 // Depth sensitivity to the column from the lens model alone: how far along the ray the point
 // must move for its projection to move one projector column.
-double depthPerColumn(const RigCalibration& rig, const Eigen::Vector3d& point) {
+double depthPerColumn(const io::RigCalibration& rig, const Eigen::Vector3d& point) {
   const Eigen::Vector3d direction = point / point.z();
   constexpr double kStep = 1e-4;  // metres
   Eigen::Vector2d near_pixel, far_pixel;
@@ -255,7 +255,7 @@ double depthPerColumn(const RigCalibration& rig, const Eigen::Vector3d& point) {
 }
 
 TEST(Triangulation, ColumnNoiseGivesTheDepthErrorTheGeometryPredicts) {
-  const sim::PileScene& scene = pile(true);
+  const simulation::PileScene& scene = pile(true);
   DecodedCapture decoded = perfectDecoding(scene, false);
   constexpr double kNoise = 0.1;  // projector pixels
   std::mt19937 random(3);
@@ -289,8 +289,8 @@ TEST(Triangulation, ColumnNoiseGivesTheDepthErrorTheGeometryPredicts) {
 // Beyond the vanishing point of a camera ray (where its points project from infinitely far),
 // projector columns light the ray only behind the camera.
 TEST(Triangulation, ColumnsBeyondTheRaysVanishingPointGiveNoIntersection) {
-  const sim::PileScene& scene = pile(true);
-  const LensIntrinsics& camera = scene.rig.camera;
+  const simulation::PileScene& scene = pile(true);
+  const io::LensIntrinsics& camera = scene.rig.camera;
   for (bool rows : {true, false}) {
     SCOPED_TRACE(rows ? "columns and rows" : "columns only");
     DecodedCapture decoded = perfectDecoding(scene, rows);
@@ -322,8 +322,8 @@ TEST(Triangulation, ColumnsBeyondTheRaysVanishingPointGiveNoIntersection) {
 // Where a ray's epipolar plane crosses a column's light outside the projector's image (here: a
 // projector whose image is cut to its middle 400 rows), that light cannot reach the ray.
 TEST(Triangulation, ColumnOnlyRaysOutsideTheProjectorsRowsGiveNoIntersection) {
-  const sim::PileScene& scene = pile(true);
-  RigCalibration band = scene.rig;
+  const simulation::PileScene& scene = pile(true);
+  io::RigCalibration band = scene.rig;
   band.projector.height = 400;
   band.projector.cy -= 200.0;
   DecodedCapture decoded = perfectDecoding(scene, false, band);
@@ -347,7 +347,7 @@ TEST(Triangulation, ColumnOnlyRaysOutsideTheProjectorsRowsGiveNoIntersection) {
 }
 
 TEST(Triangulation, CoordinatesOutsideTheProjectorImageAreOutOfRange) {
-  const sim::PileScene& scene = pile(true);
+  const simulation::PileScene& scene = pile(true);
   for (bool rows : {true, false}) {
     SCOPED_TRACE(rows ? "columns and rows" : "columns only");
     DecodedCapture decoded = perfectDecoding(scene, rows);
@@ -376,7 +376,7 @@ TEST(Triangulation, CoordinatesOutsideTheProjectorImageAreOutOfRange) {
 }
 
 TEST(Triangulation, ResultsDoNotDependOnTheThreadCount) {
-  const sim::PileScene& scene = pile(true);
+  const simulation::PileScene& scene = pile(true);
   DecodedCapture decoded = perfectDecoding(scene, true);
   std::mt19937 random(5);
   std::normal_distribution<float> noise(0.0f, 0.5f);
@@ -405,7 +405,7 @@ std::string triangulateError(const Triangulator& triangulator, const DecodedCapt
 }
 
 TEST(Triangulation, RefusesADecodingOfAnotherSizeOrType) {
-  const sim::PileScene& scene = pile(true);
+  const simulation::PileScene& scene = pile(true);
   const Triangulator triangulator(scene.rig);
   const DecodedCapture good = perfectDecoding(scene, true);
   DecodedCapture decoded = good;
@@ -423,21 +423,21 @@ TEST(Triangulation, RefusesADecodingOfAnotherSizeOrType) {
 }
 
 TEST(Triangulation, RefusesBadParamsNamingTheField) {
-  const RigCalibration rig = sim::makeVirtualRig();
+  const io::RigCalibration rig = simulation::makeVirtualRig();
   for (double bad : {0.0, -1.0, std::nan("")}) {
     TriangulationParams params;
     params.max_epipolar_error = bad;
-    EXPECT_THROW(params.validate(), Error);
+    EXPECT_THROW(params.validate(), core::Error);
     try {
       Triangulator(rig, params);
       ADD_FAILURE() << "accepted max_epipolar_error " << bad;
-    } catch (const Error& error) {
+    } catch (const core::Error& error) {
       EXPECT_NE(std::string(error.what()).find("max_epipolar_error"), std::string::npos);
     }
   }
   TriangulationParams params;
   params.threads = -1;
-  EXPECT_THROW(params.validate(), Error);
+  EXPECT_THROW(params.validate(), core::Error);
 }
 
 }  // namespace

@@ -25,19 +25,19 @@ VirtualCapture render(const CaptureOptions& options) {
   v.params.rig.camera = v.params.rig.camera.scaled(options.camera_scale);
   v.params.bin_length = options.bin_length;
   v.params.bin_width = options.bin_width;
-  PatternSetSpec patterns;
+  io::PatternSetSpec patterns;
   patterns.projector_width = v.params.rig.projector.width;
   patterns.projector_height = v.params.rig.projector.height;
   patterns.row_codes = options.row_codes;
   patterns.phase_steps = options.phase_steps;
-  sim::PhotometryParams photometry;
+  simulation::PhotometryParams photometry;
   photometry.seed = options.seed;
   photometry.bit_depth = options.bit_depth;
   photometry.global_light = options.global_light;
   photometry.ambient = options.ambient;
-  sim::PileCapture pile = sim::generatePileCapture(sim::makePart(options.part).mesh, v.params, patterns, photometry);
+  simulation::PileCapture pile = simulation::generatePileCapture(simulation::makePart(options.part).mesh, v.params, patterns, photometry);
   v.scene = std::move(pile.scene);
-  v.capture = sim::recordedCapture(std::move(pile.images), v.params, patterns, photometry, "test");
+  v.capture = simulation::recordedCapture(std::move(pile.images), v.params, patterns, photometry, "test");
   return v;
 }
 
@@ -68,8 +68,8 @@ const VirtualCapture& virtualCapture(const CaptureOptions& options) {
   return found->second;
 }
 
-Capture deepCopy(const Capture& capture) {
-  Capture copy = capture;
+io::Capture deepCopy(const io::Capture& capture) {
+  io::Capture copy = capture;
   for (cv::Mat& image : copy.images) image = image.clone();
   return copy;
 }

@@ -27,9 +27,9 @@ struct CaptureOptions {
 };
 
 struct VirtualCapture {
-  sim::PileParams params;
-  sim::PileScene scene;
-  Capture capture;
+  simulation::PileParams params;
+  simulation::PileScene scene;
+  io::Capture capture;
 
   // Where the surface point seen by `pixel` lands in the projector image (NaN: nothing seen).
   Eigen::Vector2d trueProjectorPixel(std::size_t pixel) const;
@@ -44,6 +44,6 @@ const VirtualCapture& virtualCapture(const CaptureOptions& options);
 
 // A copy whose images own their pixels: cv::Mat copies share them, and the cached captures must
 // stay untouched by tests that damage theirs.
-Capture deepCopy(const Capture& capture);
+io::Capture deepCopy(const io::Capture& capture);
 
 }  // namespace binpick::reconstruction::testing

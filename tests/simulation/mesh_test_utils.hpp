@@ -12,10 +12,10 @@
 
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick::sim::test {
+namespace binpick::simulation::test {
 
 // Empty when every undirected edge is used by exactly two triangles in opposite directions.
-inline std::string closedManifoldProblem(const TriangleMesh& mesh) {
+inline std::string closedManifoldProblem(const io::TriangleMesh& mesh) {
   std::map<std::pair<int, int>, int> directed;
   for (const auto& t : mesh.triangles) {
     for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
@@ -32,7 +32,7 @@ inline std::string closedManifoldProblem(const TriangleMesh& mesh) {
   return {};
 }
 
-inline double signedVolume(const TriangleMesh& mesh) {
+inline double signedVolume(const io::TriangleMesh& mesh) {
   double sum = 0.0;
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
@@ -56,7 +56,7 @@ struct PlacedMesh {
   Eigen::AlignedBox3d box;
 };
 
-inline PlacedMesh place(const TriangleMesh& mesh, const Eigen::Isometry3d& pose) {
+inline PlacedMesh place(const io::TriangleMesh& mesh, const Eigen::Isometry3d& pose) {
   PlacedMesh placed;
   for (const auto& v : mesh.vertices) placed.vertices.push_back(pose * v.cast<double>());
   placed.triangles = mesh.triangles;
@@ -181,4 +181,4 @@ inline double rotationAngleDeg(const Eigen::Matrix3d& r) {
   return Eigen::AngleAxisd(r).angle() * 180.0 / 3.14159265358979323846;
 }
 
-}  // namespace binpick::sim::test
+}  // namespace binpick::simulation::test

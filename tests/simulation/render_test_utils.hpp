@@ -7,11 +7,11 @@
 #include "binpick/io/point_cloud.hpp"
 #include "binpick/io/rig_calibration.hpp"
 
-namespace binpick::sim::test {
+namespace binpick::simulation::test {
 
 // Axis-aligned box centred on the origin of its frame, outward winding, 12 triangles.
-inline TriangleMesh boxMesh(const Eigen::Vector3d& half) {
-  TriangleMesh mesh;
+inline io::TriangleMesh boxMesh(const Eigen::Vector3d& half) {
+  io::TriangleMesh mesh;
   for (int i = 0; i < 8; ++i) {
     mesh.vertices.emplace_back(static_cast<float>((i & 1) ? half.x() : -half.x()),
                                static_cast<float>((i & 2) ? half.y() : -half.y()),
@@ -35,8 +35,8 @@ inline Eigen::Isometry3d pose(const Eigen::Vector3d& translation,
   return T;
 }
 
-inline LensIntrinsics pinholeLens(int width, int height, double f) {
-  LensIntrinsics lens;
+inline io::LensIntrinsics pinholeLens(int width, int height, double f) {
+  io::LensIntrinsics lens;
   lens.width = width;
   lens.height = height;
   lens.fx = lens.fy = f;
@@ -47,9 +47,9 @@ inline LensIntrinsics pinholeLens(int width, int height, double f) {
 
 // The projector `baseline` metres along the camera's +x, turned about y so that its axis crosses
 // the camera's at `working_distance`.
-inline RigCalibration toedInRig(const LensIntrinsics& camera, const LensIntrinsics& projector,
+inline io::RigCalibration toedInRig(const io::LensIntrinsics& camera, const io::LensIntrinsics& projector,
                                 double baseline = 0.25, double working_distance = 0.9) {
-  RigCalibration rig;
+  io::RigCalibration rig;
   rig.camera = camera;
   rig.projector = projector;
   Eigen::Isometry3d T_camera_projector =
@@ -60,13 +60,13 @@ inline RigCalibration toedInRig(const LensIntrinsics& camera, const LensIntrinsi
 }
 
 // Distortion-free quarter-resolution rig (camera 320 x 256, projector 320 x 200).
-inline RigCalibration simpleRig() {
+inline io::RigCalibration simpleRig() {
   return toedInRig(pinholeLens(320, 256, 400.0), pinholeLens(320, 200, 390.0));
 }
 
 // The same with lenses distorting like real ones (barrel camera, slight pincushion projector).
-inline RigCalibration distortingRig() {
-  RigCalibration rig = simpleRig();
+inline io::RigCalibration distortingRig() {
+  io::RigCalibration rig = simpleRig();
   rig.camera.cx = 160.3;
   rig.camera.cy = 127.1;
   rig.camera.distortion = {-0.08, 0.12, 0.0004, -0.0003, 0.0};
@@ -75,8 +75,8 @@ inline RigCalibration distortingRig() {
 }
 
 // The projector centre in the camera frame.
-inline Eigen::Vector3d projectorCentre(const RigCalibration& rig) {
+inline Eigen::Vector3d projectorCentre(const io::RigCalibration& rig) {
   return rig.T_projector_camera.inverse().translation();
 }
 
-}  // namespace binpick::sim::test
+}  // namespace binpick::simulation::test

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
 #include "mesh_test_utils.hpp"
 #include "thrown_message.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -58,7 +58,7 @@ TEST(CalibrationBoard, ChessboardCornersAreRowMajorFromTheFirstInnerCorner) {
 TEST(CalibrationBoard, MeshIsAClosedBoxBehindThePrint) {
   for (const BoardSpec& spec : {BoardSpec(), chessboardSpec()}) {
     const CalibrationBoard board(spec);
-    const TriangleMesh& mesh = board.mesh();
+    const io::TriangleMesh& mesh = board.mesh();
     EXPECT_EQ(test::closedManifoldProblem(mesh), "");
     const Eigen::Vector2d size = board.printedFace().sizes();
     EXPECT_NEAR(size.x(), 9 * 0.03 + 2 * spec.margin, 1e-9);
@@ -190,7 +190,7 @@ TEST(CalibrationBoard, BadSpecsThrowNamingTheField) {
 
 TEST(BoardPoses, BadParamsThrowNamingTheField) {
   const CalibrationBoard board{BoardSpec()};
-  const RigCalibration rig = makeVirtualRig();
+  const io::RigCalibration rig = makeVirtualRig();
   const auto draw = [&](auto change) {
     return [&board, &rig, change] {
       BoardPoseParams params;
@@ -220,7 +220,7 @@ TEST(BoardPoses, BadParamsThrowNamingTheField) {
 
 // The corners of the printed face's outline and its centre, projected independently of the
 // library's own check.
-bool outlineInside(const LensIntrinsics& lens, const Eigen::Isometry3d& T_device_board,
+bool outlineInside(const io::LensIntrinsics& lens, const Eigen::Isometry3d& T_device_board,
                    const Eigen::AlignedBox2d& face) {
   for (int k = 0; k < 4; ++k) {
     const Eigen::Vector2d c = face.corner(static_cast<Eigen::AlignedBox2d::CornerType>(k));
@@ -236,7 +236,7 @@ bool outlineInside(const LensIntrinsics& lens, const Eigen::Isometry3d& T_device
 }
 
 TEST(BoardPoses, EveryPoseKeepsTheWholeBoardInBothImagesFacingBoth) {
-  const RigCalibration rig = makeVirtualRig();
+  const io::RigCalibration rig = makeVirtualRig();
   for (const BoardSpec& spec : {BoardSpec(), chessboardSpec()}) {
     const CalibrationBoard board(spec);
     BoardPoseParams params;
@@ -272,7 +272,7 @@ TEST(BoardPoses, EveryPoseKeepsTheWholeBoardInBothImagesFacingBoth) {
 
 TEST(BoardPoses, SameSeedSamePosesAnotherSeedDiffers) {
   const CalibrationBoard board{BoardSpec()};
-  const RigCalibration rig = makeVirtualRig();
+  const io::RigCalibration rig = makeVirtualRig();
   BoardPoseParams params;
   params.count = 6;
   const auto first = randomBoardPoses(board, rig, params);
@@ -293,7 +293,7 @@ TEST(BoardPoses, SameSeedSamePosesAnotherSeedDiffers) {
 
 TEST(BoardPoses, ObservedCornersAreTheProjectedTruth) {
   const CalibrationBoard board{BoardSpec()};
-  const RigCalibration rig = makeVirtualRig();
+  const io::RigCalibration rig = makeVirtualRig();
   BoardPoseParams params;
   params.count = 1;
   const Eigen::Isometry3d T = randomBoardPoses(board, rig, params)[0];
@@ -310,4 +310,4 @@ TEST(BoardPoses, ObservedCornersAreTheProjectedTruth) {
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

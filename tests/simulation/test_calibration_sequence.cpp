@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 namespace fs = std::filesystem;
@@ -38,7 +38,7 @@ CalibrationSequenceParams fastParams(BoardType type) {
 // same board poses fit, and a render takes a sixteenth of the time. For the tests that check
 // files and seeds rather than image content.
 CalibrationSequenceParams quarterResolution(CalibrationSequenceParams params) {
-  LensIntrinsics& camera = params.rig.camera;
+  io::LensIntrinsics& camera = params.rig.camera;
   camera.width /= 4;
   camera.height /= 4;
   camera.fx /= 4.0;
@@ -50,7 +50,7 @@ CalibrationSequenceParams quarterResolution(CalibrationSequenceParams params) {
 
 // The most tilted of a few drawn poses: the hardest view for a detector. One pose per board type
 // keeps the test fast (each render is a whole pattern sequence at full resolution).
-Eigen::Isometry3d mostTiltedPose(const CalibrationBoard& board, const RigCalibration& rig) {
+Eigen::Isometry3d mostTiltedPose(const CalibrationBoard& board, const io::RigCalibration& rig) {
   BoardPoseParams params;
   params.count = 4;
   const std::vector<Eigen::Isometry3d> poses = randomBoardPoses(board, rig, params);
@@ -59,16 +59,16 @@ Eigen::Isometry3d mostTiltedPose(const CalibrationBoard& board, const RigCalibra
   });
 }
 
-cv::Mat cameraMatrix(const LensIntrinsics& lens) {
+cv::Mat cameraMatrix(const io::LensIntrinsics& lens) {
   return (cv::Mat_<double>(3, 3) << lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy, 0.0, 0.0, 1.0);
 }
 
-cv::Mat distortion(const LensIntrinsics& lens) {
+cv::Mat distortion(const io::LensIntrinsics& lens) {
   return cv::Mat(std::vector<double>(lens.distortion.begin(), lens.distortion.end()), true);
 }
 
 // The white image: the first of every pattern sequence.
-cv::Mat whiteImage(const Capture& capture) {
+cv::Mat whiteImage(const io::Capture& capture) {
   EXPECT_EQ(capture.metadata.patterns.at(0), "white");
   return capture.images.at(0);
 }
@@ -104,7 +104,7 @@ Eigen::Isometry3d poseFrom(const cv::Mat& rvec, const cv::Mat& tvec) {
 TEST(CalibrationSequence, OpenCvFindsTheCharucoCornersAndPoseOfTheTruth) {
   const CalibrationSequenceParams params = fastParams(BoardType::Charuco);
   const CalibrationBoard board(params.board, params.texel_size);
-  const RigCalibration& rig = params.rig;
+  const io::RigCalibration& rig = params.rig;
   const Eigen::Isometry3d T = mostTiltedPose(board, rig);
   const cv::Mat white = whiteImage(renderCalibrationCapture(board, T, params, 7));
   // OpenCV's own board definition, not the library's.
@@ -153,7 +153,7 @@ TEST(CalibrationSequence, OpenCvFindsTheCharucoCornersAndPoseOfTheTruth) {
 TEST(CalibrationSequence, OpenCvFindsTheChessboardCornersAndPoseOfTheTruth) {
   const CalibrationSequenceParams params = fastParams(BoardType::Chessboard);
   const CalibrationBoard board(params.board, params.texel_size);
-  const RigCalibration& rig = params.rig;
+  const io::RigCalibration& rig = params.rig;
   const Eigen::Isometry3d T = mostTiltedPose(board, rig);
   const cv::Mat white = whiteImage(renderCalibrationCapture(board, T, params, 7));
   std::vector<cv::Point2f> corners;
@@ -191,9 +191,9 @@ TEST(CalibrationSequence, SameSeedSameImagesAnotherSeedDiffers) {
   const CalibrationSequenceParams params = quarterResolution(fastParams(BoardType::Charuco));
   const CalibrationBoard board(params.board, params.texel_size);
   const Eigen::Isometry3d T = randomBoardPoses(board, params.rig, params.poses)[0];
-  const Capture first = renderCalibrationCapture(board, T, params, 7);
-  const Capture again = renderCalibrationCapture(board, T, params, 7);
-  const Capture other = renderCalibrationCapture(board, T, params, 8);
+  const io::Capture first = renderCalibrationCapture(board, T, params, 7);
+  const io::Capture again = renderCalibrationCapture(board, T, params, 7);
+  const io::Capture other = renderCalibrationCapture(board, T, params, 8);
   ASSERT_EQ(first.images.size(), reconstruction::patternNames(params.pattern_set).size());
   for (std::size_t i = 0; i < first.images.size(); i += 5) {
     EXPECT_EQ(cv::norm(first.images[i], again.images[i], cv::NORM_INF), 0.0);
@@ -239,14 +239,14 @@ TEST_F(CalibrationSequenceFiles, WrittenSequenceReadsBack) {
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_FALSE(fs::exists(fs::path(directory_) / "pose_000" / "calib.yaml"));
   for (const char* pose : {"pose_000", "pose_001"}) {
-    const Capture capture = readCapture((fs::path(directory_) / pose).string());
+    const io::Capture capture = io::readCapture((fs::path(directory_) / pose).string());
     EXPECT_EQ(capture.metadata.patterns, reconstruction::patternNames(params.pattern_set));
     EXPECT_EQ(capture.metadata.bit_depth, 16);
     EXPECT_EQ(capture.metadata.image_width, params.rig.camera.width);
     EXPECT_NE(capture.metadata.source.find("calibration sequence"), std::string::npos);
     EXPECT_GT(capture.metadata.exposure_us, 0.0);
   }
-  const RigCalibration rig = readRigCalibration(directory_ + "/truth/rig.yaml");
+  const io::RigCalibration rig = io::readRigCalibration(directory_ + "/truth/rig.yaml");
   EXPECT_LT((rig.T_projector_camera.matrix() - params.rig.T_projector_camera.matrix()).norm(),
             1e-12);
   EXPECT_EQ(rig.camera.fx, params.rig.camera.fx);
@@ -270,7 +270,7 @@ TEST_F(CalibrationSequenceFiles, WrittenSequenceReadsBack) {
     }
   }
   // Never mixed with another sequence.
-  EXPECT_THROW(writeCalibrationSequence(directory_, params), Error);
+  EXPECT_THROW(writeCalibrationSequence(directory_, params), core::Error);
 }
 
 TEST(CalibrationSequence, BadParamsThrowNamingTheField) {
@@ -279,7 +279,7 @@ TEST(CalibrationSequence, BadParamsThrowNamingTheField) {
     change(params);
     try {
       params.validate();
-    } catch (const Error& e) {
+    } catch (const core::Error& e) {
       return std::string(e.what()).find(text) != std::string::npos
                  ? ::testing::AssertionSuccess()
                  : ::testing::AssertionFailure() << e.what();
@@ -305,4 +305,4 @@ TEST(CalibrationSequence, BadParamsThrowNamingTheField) {
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

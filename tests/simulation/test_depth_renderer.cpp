@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/depth_renderer.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "mesh_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 PinholeCamera smallCamera() {
@@ -25,8 +25,8 @@ Eigen::Vector3d pixelRay(const PinholeCamera& camera, int u, int v) {
   return {(u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0};
 }
 
-TriangleMesh tiltedTriangle() {
-  TriangleMesh mesh;
+io::TriangleMesh tiltedTriangle() {
+  io::TriangleMesh mesh;
   mesh.vertices = {{-0.2f, -0.2f, 0.5f}, {0.3f, -0.1f, 0.7f}, {0.0f, 0.3f, 0.6f}};
   mesh.triangles = {{0, 1, 2}};
   return mesh;
@@ -38,7 +38,7 @@ std::size_t index(const PinholeCamera& camera, int u, int v) {
 
 TEST(RenderDepth, SingleTriangleGivesExactRayPlaneDepthInsideAndInfOutside) {
   const PinholeCamera camera = smallCamera();
-  const TriangleMesh mesh = tiltedTriangle();
+  const io::TriangleMesh mesh = tiltedTriangle();
   const DepthImage image = renderDepth(camera, {{&mesh, Eigen::Isometry3d::Identity(), 7}});
   ASSERT_EQ(image.width, camera.width);
   ASSERT_EQ(image.height, camera.height);
@@ -74,7 +74,7 @@ TEST(RenderDepth, SingleTriangleGivesExactRayPlaneDepthInsideAndInfOutside) {
 
 TEST(RenderDepth, ObjectPoseIsApplied) {
   const PinholeCamera camera = smallCamera();
-  TriangleMesh square;  // 2 m square at z = 0 of its own frame, facing -z
+  io::TriangleMesh square;  // 2 m square at z = 0 of its own frame, facing -z
   square.vertices = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
   square.triangles = {{0, 2, 1}, {0, 3, 2}};
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
@@ -86,7 +86,7 @@ TEST(RenderDepth, ObjectPoseIsApplied) {
 TEST(RenderDepth, NearestSurfaceWinsAndTriangleFansHaveNoCracks) {
   const PinholeCamera camera = smallCamera();
   // A fan of thin triangles around a centre vertex: shared edges cross many pixel centres.
-  TriangleMesh fan;
+  io::TriangleMesh fan;
   fan.vertices.emplace_back(0.013f, -0.021f, 1.0f);
   const int spokes = 97;
   for (int k = 0; k < spokes; ++k) {
@@ -95,7 +95,7 @@ TEST(RenderDepth, NearestSurfaceWinsAndTriangleFansHaveNoCracks) {
                               static_cast<float>(3.0 * std::sin(angle)), 1.0f);
   }
   for (int k = 0; k < spokes; ++k) fan.triangles.emplace_back(0, 1 + k, 1 + (k + 1) % spokes);
-  TriangleMesh near_triangle = tiltedTriangle();
+  io::TriangleMesh near_triangle = tiltedTriangle();
   for (auto& v : near_triangle.vertices) v.z() *= 0.5f;  // in front of the fan
   const DepthImage image =
       renderDepth(camera, {{&fan, Eigen::Isometry3d::Identity(), 1},
@@ -116,7 +116,7 @@ TEST(RenderDepth, NearestSurfaceWinsAndTriangleFansHaveNoCracks) {
 
 TEST(RenderDepth, TrianglesReachingBehindTheNearPlaneAreSkipped) {
   const PinholeCamera camera = smallCamera();
-  TriangleMesh mesh;
+  io::TriangleMesh mesh;
   mesh.vertices = {{-0.5f, -0.5f, -0.2f}, {0.5f, -0.5f, 1.0f}, {0.0f, 0.5f, 1.0f}};
   mesh.triangles = {{0, 1, 2}};
   const DepthImage image = renderDepth(camera, {{&mesh, Eigen::Isometry3d::Identity(), 0}});
@@ -124,7 +124,7 @@ TEST(RenderDepth, TrianglesReachingBehindTheNearPlaneAreSkipped) {
 }
 
 TEST(RenderDepth, RejectsMissingMesh) {
-  EXPECT_THROW(renderDepth(smallCamera(), {{nullptr, Eigen::Isometry3d::Identity(), 0}}), Error);
+  EXPECT_THROW(renderDepth(smallCamera(), {{nullptr, Eigen::Isometry3d::Identity(), 0}}), core::Error);
 }
 
 TEST(RenderDepth, ClosedPartRendersOnlyItsFrontSurface) {
@@ -159,9 +159,9 @@ TEST(RenderDepth, ClosedPartRendersOnlyItsFrontSurface) {
 
 TEST(DepthToCloud, PointsProjectBackToTheirPixelWithZEqualToDepth) {
   const PinholeCamera camera = smallCamera();
-  const TriangleMesh mesh = tiltedTriangle();
+  const io::TriangleMesh mesh = tiltedTriangle();
   const DepthImage image = renderDepth(camera, {{&mesh, Eigen::Isometry3d::Identity(), 0}});
-  const PointCloud cloud = depthToCloud(camera, image);
+  const io::PointCloud cloud = depthToCloud(camera, image);
   ASSERT_TRUE(cloud.isOrganized());
   ASSERT_EQ(cloud.width, camera.width);
   ASSERT_EQ(cloud.height, camera.height);
@@ -189,8 +189,8 @@ TEST(DepthToCloud, RejectsImageOfAnotherSize) {
   image.height = 2;
   image.depth.assign(4, 1.0f);
   image.instance.assign(4, 0);
-  EXPECT_THROW(depthToCloud(smallCamera(), image), Error);
+  EXPECT_THROW(depthToCloud(smallCamera(), image), core::Error);
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -13,7 +13,7 @@
 #include "temp_directory_test.hpp"
 #include "thrown_message.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 using calibration::HandEyeSetup;
@@ -88,10 +88,10 @@ class HandEyeSessionFiles : public test::TempDirectoryTest {};
 // A quarter-resolution camera renders sixteen times faster; the files are what is checked.
 TEST_F(HandEyeSessionFiles, WritesTheViewsDirectoryAndTheTruth) {
   HandEyeSessionParams params = paramsFor(HandEyeSetup::EyeToHand, 2);
-  LensIntrinsics& camera = params.rig.camera;
+  io::LensIntrinsics& camera = params.rig.camera;
   camera = camera.scaled(0.25);
   params.robot_noise_mm = 0.1;
-  params.orientation = robot::Orientation::Quaternion;
+  params.orientation = core::Orientation::Quaternion;
   const std::string dir = pathOf("session");
   const HandEyeSession s = writeHandEyeSession(dir, params);
   for (const char* file : {"view_00.png", "view_01.png", "calib.yaml", "truth/hand_eye.yaml"}) {
@@ -99,7 +99,7 @@ TEST_F(HandEyeSessionFiles, WritesTheViewsDirectoryAndTheTruth) {
   }
   EXPECT_EQ(cv::imread(dir + "/view_01.png", cv::IMREAD_UNCHANGED).cols, camera.width);
   const calibration::RobotPoseFile poses = calibration::readRobotPoseFile(dir + "/poses.txt");
-  EXPECT_EQ(poses.orientation, robot::Orientation::Quaternion);
+  EXPECT_EQ(poses.orientation, core::Orientation::Quaternion);
   ASSERT_EQ(poses.poses.size(), 2u);
   EXPECT_LT(poseDifference(poses.poses[1].T_base_flange, s.views[1].T_base_flange).translation_mm, 1e-3);
   const calibration::HandEyeFile truth = calibration::readHandEyeFile(dir + "/truth/hand_eye.yaml");
@@ -122,4 +122,4 @@ TEST(HandEyeSession, BadParamsNameTheField) {
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

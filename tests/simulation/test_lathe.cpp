@@ -4,11 +4,11 @@
 #include <limits>
 #include <set>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "mesh_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 using test::closedManifoldProblem;
@@ -19,7 +19,7 @@ constexpr double kPi = 3.14159265358979323846;
 // Area of the regular n-gon inscribed in a circle of radius r: the faceted cross-section.
 double facetedDiscArea(double r, int n) { return 0.5 * n * r * r * std::sin(2.0 * kPi / n); }
 
-double smallestTriangleArea(const TriangleMesh& mesh) {
+double smallestTriangleArea(const io::TriangleMesh& mesh) {
   double smallest = std::numeric_limits<double>::infinity();
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
@@ -31,7 +31,7 @@ double smallestTriangleArea(const TriangleMesh& mesh) {
 }
 
 // For a convex solid of revolution centred on the origin, every face normal points away from it.
-void expectEveryFaceFacesAwayFromTheOrigin(const TriangleMesh& mesh) {
+void expectEveryFaceFacesAwayFromTheOrigin(const io::TriangleMesh& mesh) {
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
                           b = mesh.vertices[t[1]].cast<double>(),
@@ -43,7 +43,7 @@ void expectEveryFaceFacesAwayFromTheOrigin(const TriangleMesh& mesh) {
 TEST(MakeLathe, CylinderIsClosedOutwardWithTheRevolvedVolume) {
   // r = 10 mm, h = 20 mm: the rectangle r in [0, 10], z in [-10, 10] mm, two points on the axis.
   constexpr int kSegments = 48;
-  const TriangleMesh mesh =
+  const io::TriangleMesh mesh =
       makeLathe({{0.0, -0.010}, {0.010, -0.010}, {0.010, 0.010}, {0.0, 0.010}}, kSegments);
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_EQ(mesh.vertices.size(), 2u + 2u * kSegments);  // axis points collapse to one vertex
@@ -61,7 +61,7 @@ TEST(MakeLathe, CylinderIsClosedOutwardWithTheRevolvedVolume) {
 
 TEST(MakeLathe, AnnulusWithoutAxisPointsHasTheRevolvedVolume) {
   constexpr int kSegments = 64;
-  const TriangleMesh mesh =
+  const io::TriangleMesh mesh =
       makeLathe({{0.012, -0.005}, {0.025, -0.005}, {0.025, 0.005}, {0.012, 0.005}}, kSegments);
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_EQ(mesh.vertices.size(), 4u * kSegments);
@@ -76,7 +76,7 @@ TEST(MakeLathe, AnnulusWithoutAxisPointsHasTheRevolvedVolume) {
 TEST(MakeLathe, DoubleConeWithSingleAxisPointsAndClockwiseProfile) {
   // A diamond touching the axis at its two tips, given clockwise: must be reversed.
   constexpr int kSegments = 32;
-  const TriangleMesh mesh = makeLathe({{0.0, 1.0}, {1.0, 0.0}, {0.0, -1.0}}, kSegments);
+  const io::TriangleMesh mesh = makeLathe({{0.0, 1.0}, {1.0, 0.0}, {0.0, -1.0}}, kSegments);
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_EQ(mesh.vertices.size(), 2u + kSegments);
   EXPECT_EQ(mesh.triangles.size(), 2u * kSegments);
@@ -88,7 +88,7 @@ TEST(MakeLathe, DoubleConeWithSingleAxisPointsAndClockwiseProfile) {
 
 TEST(MakeLathe, FirstFacetIsOnPlusXAndRingsAreEvenlySpaced) {
   constexpr int kSegments = 8;
-  const TriangleMesh mesh = makeLathe({{1.0, 0.0}, {2.0, 0.0}, {2.0, 1.0}}, kSegments);
+  const io::TriangleMesh mesh = makeLathe({{1.0, 0.0}, {2.0, 0.0}, {2.0, 1.0}}, kSegments);
   std::set<long> angles;  // in units of 2 pi / segments
   for (const auto& v : mesh.vertices) {
     const double a = std::atan2(v.y(), v.x());
@@ -102,18 +102,18 @@ TEST(MakeLathe, FirstFacetIsOnPlusXAndRingsAreEvenlySpaced) {
 
 TEST(MakeLathe, RejectsInvalidInput) {
   const std::vector<Eigen::Vector2d> square{{1, 0}, {2, 0}, {2, 1}, {1, 1}};
-  EXPECT_THROW(makeLathe(square, 2), Error);
+  EXPECT_THROW(makeLathe(square, 2), core::Error);
   EXPECT_NO_THROW(makeLathe(square, 3));
-  EXPECT_THROW(makeLathe({{-0.5, 0}, {1, 0}, {1, 1}}, 16), Error);  // r < 0
-  EXPECT_THROW(makeLathe({{0, 0}, {1, 0}}, 16), Error);
-  EXPECT_THROW(makeLathe({{0, 0}, {1, 0}, {2, 0}}, 16), Error);  // zero area
-  EXPECT_THROW(makeLathe({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 16), Error);  // self-intersecting
+  EXPECT_THROW(makeLathe({{-0.5, 0}, {1, 0}, {1, 1}}, 16), core::Error);  // r < 0
+  EXPECT_THROW(makeLathe({{0, 0}, {1, 0}}, 16), core::Error);
+  EXPECT_THROW(makeLathe({{0, 0}, {1, 0}, {2, 0}}, 16), core::Error);  // zero area
+  EXPECT_THROW(makeLathe({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 16), core::Error);  // self-intersecting
   try {
     makeLathe({{-0.5, 0}, {1, 0}, {1, 1}}, 16);
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("makeLathe"), std::string::npos);
   }
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -4,24 +4,24 @@
 #include <algorithm>
 #include <set>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "mesh_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 using test::closedManifoldProblem;
 using test::signedVolume;
 
-std::vector<Eigen::Vector3d> verticesOf(const TriangleMesh& mesh) {
+std::vector<Eigen::Vector3d> verticesOf(const io::TriangleMesh& mesh) {
   std::vector<Eigen::Vector3d> out;
   for (const auto& v : mesh.vertices) out.push_back(v.cast<double>());
   return out;
 }
 
 // True when `rotation` maps the vertex set onto itself (every image lands on some vertex).
-bool mapsVerticesOntoThemselves(const TriangleMesh& mesh, const Eigen::Matrix3d& rotation) {
+bool mapsVerticesOntoThemselves(const io::TriangleMesh& mesh, const Eigen::Matrix3d& rotation) {
   const auto vertices = verticesOf(mesh);
   for (const auto& v : vertices) {
     const Eigen::Vector3d image = rotation * v;
@@ -40,7 +40,7 @@ bool mapsVerticesOntoThemselves(const TriangleMesh& mesh, const Eigen::Matrix3d&
 // facets of radius r the turned surface strays at most the sagitta r (1 - cos(pi / n)) from the
 // original, 0.03 mm for the 64-facet, 25 mm ring magnet, so a 0.1 mm tolerance accepts the
 // faceting but rejects any real asymmetry (which moves points by millimetres).
-bool turningAboutAxisKeepsTheSurface(const TriangleMesh& mesh, const Eigen::Vector3d& axis,
+bool turningAboutAxisKeepsTheSurface(const io::TriangleMesh& mesh, const Eigen::Vector3d& axis,
                                      double angle, double tolerance) {
   const test::PlacedMesh placed = test::place(mesh, Eigen::Isometry3d::Identity());
   std::vector<Eigen::Vector3d> points = placed.vertices;
@@ -79,8 +79,8 @@ TEST(Parts, NamesIncludeTheBuiltIns) {
 TEST(Parts, UnknownNameThrowsNamingIt) {
   try {
     makePart("sprocket_xyz");
-    FAIL() << "expected binpick::Error";
-  } catch (const Error& e) {
+    FAIL() << "expected core::Error";
+  } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("sprocket_xyz"), std::string::npos);
   }
 }
@@ -110,7 +110,7 @@ TEST(Parts, EveryBuiltInIsSizedLikeAnIndustrialPartInMetres) {
 TEST(Parts, ModelOriginIsTheVolumeCentroid) {
   for (const auto& name : partNames()) {
     SCOPED_TRACE(name);
-    const TriangleMesh mesh = makePart(name).mesh;
+    const io::TriangleMesh mesh = makePart(name).mesh;
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     double six_volume = 0.0;
     for (const auto& t : mesh.triangles) {
@@ -240,7 +240,7 @@ TEST(MakePrism, ConcaveProfileGivesClosedMeshWithExactVolume) {
   // A comb: several reflex corners for the ear clipper.
   const std::vector<Eigen::Vector2d> comb{{0, 0}, {5, 0}, {5, 3}, {4, 3}, {4, 1}, {3, 1},
                                           {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
-  const TriangleMesh mesh = makePrism(comb, 0.5);
+  const io::TriangleMesh mesh = makePrism(comb, 0.5);
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_NEAR(signedVolume(mesh), 0.5 * twiceArea(comb) / 2.0, 1e-9);
   EXPECT_EQ(mesh.vertices.size(), 2 * comb.size());
@@ -250,7 +250,7 @@ TEST(MakePrism, ConcaveProfileGivesClosedMeshWithExactVolume) {
 TEST(MakePrism, CapsTileTheProfileWithoutOverlap) {
   const std::vector<Eigen::Vector2d> comb{{0, 0}, {5, 0}, {5, 3}, {4, 3}, {4, 1}, {3, 1},
                                           {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
-  const TriangleMesh mesh = makePrism(comb, 2.0);
+  const io::TriangleMesh mesh = makePrism(comb, 2.0);
   double top_area = 0.0;
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3f a = mesh.vertices[t[0]], b = mesh.vertices[t[1]], c = mesh.vertices[t[2]];
@@ -265,37 +265,37 @@ TEST(MakePrism, CapsTileTheProfileWithoutOverlap) {
 }
 
 TEST(MakePrism, CapsSitAtPlusMinusHalfThickness) {
-  const TriangleMesh mesh = makePrism({{0, 0}, {1, 0}, {0, 1}}, 0.2);
+  const io::TriangleMesh mesh = makePrism({{0, 0}, {1, 0}, {0, 1}}, 0.2);
   for (const auto& v : mesh.vertices) EXPECT_NEAR(std::abs(v.z()), 0.1f, 1e-7f);
 }
 
 TEST(MakePrism, ClockwiseProfileStillGetsOutwardNormals) {
-  const TriangleMesh mesh = makePrism({{0, 0}, {0, 1}, {1, 1}, {1, 0}}, 1.0);
+  const io::TriangleMesh mesh = makePrism({{0, 0}, {0, 1}, {1, 1}, {1, 0}}, 1.0);
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_NEAR(signedVolume(mesh), 1.0, 1e-9);
 }
 
 TEST(MakePrism, CollinearPointsAreDroppedAndTheMeshStaysClosed) {
-  const TriangleMesh mesh = makePrism({{0, 0}, {1, 0}, {2, 0}, {2, 2}, {0, 2}, {0, 1}}, 1.0);
+  const io::TriangleMesh mesh = makePrism({{0, 0}, {1, 0}, {2, 0}, {2, 2}, {0, 2}, {0, 1}}, 1.0);
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_NEAR(signedVolume(mesh), 4.0, 1e-9);
 }
 
 TEST(MakePrism, RejectsSelfIntersectingProfile) {
   const std::vector<Eigen::Vector2d> bowtie{{0, 0}, {1, 1}, {1, 0}, {0, 1}};
-  EXPECT_THROW(makePrism(bowtie, 1.0), Error);
+  EXPECT_THROW(makePrism(bowtie, 1.0), core::Error);
   // Edges that only touch at a point are also not a simple polygon.
   const std::vector<Eigen::Vector2d> touching{{0, 0}, {2, 0}, {2, 2}, {1, 0}, {0, 2}};
-  EXPECT_THROW(makePrism(touching, 1.0), Error);
+  EXPECT_THROW(makePrism(touching, 1.0), core::Error);
 }
 
 TEST(MakePrism, RejectsDegenerateInput) {
-  EXPECT_THROW(makePrism({{0, 0}, {1, 0}}, 1.0), Error);
-  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {2, 0}}, 1.0), Error);            // zero area
-  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {0.5, 0}, {0, 1}}, 1.0), Error);  // doubles back
-  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {0, 1}}, 0.0), Error);
-  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {0, std::nan("")}}, 1.0), Error);
+  EXPECT_THROW(makePrism({{0, 0}, {1, 0}}, 1.0), core::Error);
+  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {2, 0}}, 1.0), core::Error);            // zero area
+  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {0.5, 0}, {0, 1}}, 1.0), core::Error);  // doubles back
+  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {0, 1}}, 0.0), core::Error);
+  EXPECT_THROW(makePrism({{0, 0}, {1, 0}, {0, std::nan("")}}, 1.0), core::Error);
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

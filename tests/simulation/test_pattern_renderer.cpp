@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "thrown_message.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 namespace rc = binpick::reconstruction;
@@ -62,7 +62,7 @@ bool grayBit(int coordinate, int bits, int index) {
 }
 
 // Index of a named pattern in the sequence of `spec`.
-std::size_t indexOf(const PatternSetSpec& spec, const std::string& name) {
+std::size_t indexOf(const io::PatternSetSpec& spec, const std::string& name) {
   const std::vector<std::string> names = rc::patternNames(spec);
   const auto it = std::find(names.begin(), names.end(), name);
   if (it == names.end()) ADD_FAILURE() << "no pattern " << name;
@@ -87,13 +87,13 @@ bool identical(const std::vector<cv::Mat>& a, const std::vector<cv::Mat>& b) {
 }
 
 ::testing::AssertionResult throwsNaming(const std::vector<PixelLighting>& pixels, int width,
-                                        int height, const PatternSetSpec& spec,
+                                        int height, const io::PatternSetSpec& spec,
                                         const PhotometryParams& params, const std::string& text) {
   return binpick::test::throwsNaming([&] { renderPatternImages(pixels, width, height, spec, params); }, text);
 }
 
 TEST(PatternRenderer, OneImagePerPatternOfTheRequestedSizeAndDepth) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   PhotometryParams params = noiseless();
   const std::vector<PixelLighting> pixels(5 * 3, lit(10.0f, 10.0f, kSharp, 100.0f, 5.0f));
   std::vector<cv::Mat> images = renderPatternImages(pixels, 5, 3, spec, params);
@@ -108,7 +108,7 @@ TEST(PatternRenderer, OneImagePerPatternOfTheRequestedSizeAndDepth) {
 }
 
 TEST(PatternRenderer, SharpPixelReadsEachGrayBitOfItsColumnAndRow) {
-  const PatternSetSpec spec;  // 1280 x 800: 11 column bits, 10 row bits
+  const io::PatternSetSpec spec;  // 1280 x 800: 11 column bits, 10 row bits
   const std::vector<PixelLighting> pixels{
       lit(100.0f, 37.0f, kSharp, 160.0f, 6.0f), lit(1279.0f, 799.0f, kSharp, 160.0f, 6.0f),
       lit(0.0f, 0.0f, kSharp, 160.0f, 6.0f), lit(682.0f, 341.0f, kSharp, 160.0f, 6.0f)};
@@ -136,7 +136,7 @@ TEST(PatternRenderer, SharpPixelReadsEachGrayBitOfItsColumnAndRow) {
 }
 
 TEST(PatternRenderer, WhiteAndBlackReadAmbientPlusDirectPlusGlobal) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   const float ambient = 6.2f, direct = 150.3f, global = 4.4f;
   const std::vector<PixelLighting> pixels{lit(400.0f, 300.0f, 0.4f, direct, ambient, global)};
   PhotometryParams params = noiseless();
@@ -154,7 +154,7 @@ TEST(PatternRenderer, WhiteAndBlackReadAmbientPlusDirectPlusGlobal) {
 }
 
 TEST(PatternRenderer, PhaseImagesFollowTheProjectedSine) {
-  PatternSetSpec spec;
+  io::PatternSetSpec spec;
   spec.phase_period = 16;
   const float direct = 200.0f, ambient = 10.0f;
   const std::vector<PixelLighting> pixels{lit(4.0f, 8.0f, kSharp, direct, ambient)};
@@ -168,7 +168,7 @@ TEST(PatternRenderer, PhaseImagesFollowTheProjectedSine) {
 }
 
 TEST(PatternRenderer, SameSeedGivesTheSameImagesOnAnyNumberOfThreads) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   const std::vector<PixelLighting> pixels = variedLighting(37, 23, 11);
   PhotometryParams params;
   params.seed = 42;
@@ -184,7 +184,7 @@ TEST(PatternRenderer, SameSeedGivesTheSameImagesOnAnyNumberOfThreads) {
 }
 
 TEST(PatternRenderer, NoiseHasTheModelledMeanAndSpread) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   constexpr int kSide = 64;
   const double signal = 105.0;  // white: ambient 5 + direct 100
   const std::vector<PixelLighting> pixels(kSide * kSide, lit(50.0f, 50.0f, 0.4f, 100.0f, 5.0f));
@@ -202,7 +202,7 @@ TEST(PatternRenderer, NoiseHasTheModelledMeanAndSpread) {
 }
 
 TEST(PatternRenderer, SaturatesAtFullScale) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   const std::vector<PixelLighting> pixels(6, lit(100.0f, 100.0f, 0.4f, 1000.0f, 30.0f));
   PhotometryParams params;  // with noise
   std::vector<cv::Mat> images = renderPatternImages(pixels, 3, 2, spec, params);
@@ -219,7 +219,7 @@ TEST(PatternRenderer, SaturatesAtFullScale) {
 }
 
 TEST(PatternRenderer, DarkPixelsClampAtZeroInsteadOfWrapping) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   const std::vector<PixelLighting> pixels(32 * 32, lit(100.0f, 100.0f, 0.4f, 0.0f, 0.0f));
   PhotometryParams params;
   params.read_noise = 3.0;
@@ -235,7 +235,7 @@ TEST(PatternRenderer, DarkPixelsClampAtZeroInsteadOfWrapping) {
 }
 
 TEST(PatternRenderer, DefocusWashesOutFineBitsBeforeCoarseOnes) {
-  const PatternSetSpec spec;  // 11 column bits; bit 10 has stripes two columns wide
+  const io::PatternSetSpec spec;  // 11 column bits; bit 10 has stripes two columns wide
   const std::vector<PixelLighting> pixels{lit(101.0f, 50.0f, kSharp, 200.0f, 5.0f),
                                           lit(101.0f, 50.0f, 2.5f, 200.0f, 5.0f)};
   const std::vector<cv::Mat> images = renderPatternImages(pixels, 2, 1, spec, noiseless());
@@ -254,7 +254,7 @@ TEST(PatternRenderer, DefocusWashesOutFineBitsBeforeCoarseOnes) {
 }
 
 TEST(PatternRenderer, UnlitPixelReadsTheSameUnderABitAndItsInverse) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   constexpr int kSide = 32;
   const std::vector<PixelLighting> pixels(kSide * kSide, lit(640.0f, 400.0f, 0.4f, 0.0f, 30.0f));
   // Without noise: identical.
@@ -281,7 +281,7 @@ TEST(PatternRenderer, UnlitPixelReadsTheSameUnderABitAndItsInverse) {
 }
 
 TEST(PatternRenderer, IndirectLightFollowsThePatternsMeanBrightness) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   // Not lit directly, yet the bin reflects light of a white projection onto it.
   const std::vector<PixelLighting> pixels{lit(640.0f, 400.0f, 0.4f, 0.0f, 10.0f, 20.0f)};
   const std::vector<cv::Mat> images = renderPatternImages(pixels, 1, 1, spec, noiseless());
@@ -292,7 +292,7 @@ TEST(PatternRenderer, IndirectLightFollowsThePatternsMeanBrightness) {
 TEST(PatternRenderer, CodedPatternsDoNotReachPointsOutsideTheProjectorImage) {
   // Whether a point is lit at all is the lighting's business (direct = 0 when not): here only the
   // striped patterns are checked, which must not light a point beside or far off the image.
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const std::vector<PixelLighting> pixels{
       lit(-3.0f, 10.0f, kSharp, 200.0f, 7.0f), lit(1283.0f, 10.0f, kSharp, 200.0f, 7.0f),
@@ -312,7 +312,7 @@ TEST(PatternRenderer, CodedPatternsDoNotReachPointsOutsideTheProjectorImage) {
 }
 
 TEST(PatternRenderer, WrongPixelCountIsNamed) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   const std::vector<PixelLighting> pixels(5);
   EXPECT_TRUE(throwsNaming(pixels, 2, 3, spec, noiseless(), "5 pixels for a 2x3 image"));
   EXPECT_TRUE(throwsNaming({}, 0, 0, spec, noiseless(), "0 pixels for a 0x0 image"));
@@ -320,7 +320,7 @@ TEST(PatternRenderer, WrongPixelCountIsNamed) {
 }
 
 TEST(PatternRenderer, BadParamsAreNamed) {
-  const PatternSetSpec spec;
+  const io::PatternSetSpec spec;
   const std::vector<PixelLighting> pixels(1);
   PhotometryParams params = noiseless();
   params.bit_depth = 12;
@@ -337,10 +337,10 @@ TEST(PatternRenderer, BadParamsAreNamed) {
   params = noiseless();
   params.threads = -1;
   EXPECT_TRUE(throwsNaming(pixels, 1, 1, spec, params, "PhotometryParams.threads"));
-  PatternSetSpec bad_spec;
+  io::PatternSetSpec bad_spec;
   bad_spec.phase_period = 2;
   EXPECT_TRUE(throwsNaming(pixels, 1, 1, bad_spec, noiseless(), "PatternSetSpec.phase_period"));
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

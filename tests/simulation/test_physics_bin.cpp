@@ -4,29 +4,29 @@
 #include <limits>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/physics_pile.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "mesh_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // A flat box, 40 x 30 x 12 mm: in a bin hardly larger than it, five of them stack.
-TriangleMesh flatBox() {
+io::TriangleMesh flatBox() {
   return makePrism({{-0.020, -0.015}, {0.020, -0.015}, {0.020, 0.015}, {-0.020, 0.015}}, 0.012);
 }
 
 // Hardly wider than the box's diagonal: the boxes stack on each other, some on edge.
 const BinInterior kNarrowBin{0.055, 0.055, 0.15};
 
-double lowestZ(const TriangleMesh& part, const Eigen::Isometry3d& T_bin_object) {
+double lowestZ(const io::TriangleMesh& part, const Eigen::Isometry3d& T_bin_object) {
   return test::place(part, T_bin_object).box.min().z();
 }
 
 // The part highest in the pile, and the part that holds it up: the one its surface comes closest to.
-std::pair<int, int> topAndSupport(const TriangleMesh& part,
+std::pair<int, int> topAndSupport(const io::TriangleMesh& part,
                                   const std::vector<Eigen::Isometry3d>& poses) {
   std::vector<test::PlacedMesh> placed;
   for (const auto& pose : poses) placed.push_back(test::place(part, pose));
@@ -51,7 +51,7 @@ std::pair<int, int> topAndSupport(const TriangleMesh& part,
 }
 
 TEST(PhysicsBin, FirstDropIsSimulatePileBitForBit) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   const BinInterior bin{0.20, 0.16, 0.15};
   const PhysicsParams params;
   const PhysicsPile expected = simulatePile(part, 6, bin, params, 4);
@@ -70,7 +70,7 @@ TEST(PhysicsBin, FirstDropIsSimulatePileBitForBit) {
 
 // Taking out the part that holds another up lets that one fall into a new place.
 TEST(PhysicsBin, PartAboveMovesDownWhenItsSupportIsRemoved) {
-  const TriangleMesh part = flatBox();
+  const io::TriangleMesh part = flatBox();
   PhysicsBin bin(part, kNarrowBin, PhysicsParams{}, 7);
   const PhysicsPile pile = bin.drop(5);
   ASSERT_TRUE(pile.settled);
@@ -94,7 +94,7 @@ TEST(PhysicsBin, PartAboveMovesDownWhenItsSupportIsRemoved) {
 }
 
 TEST(PhysicsBin, RemovingEveryPartEmptiesTheBin) {
-  const TriangleMesh part = flatBox();
+  const io::TriangleMesh part = flatBox();
   PhysicsBin bin(part, kNarrowBin, PhysicsParams{}, 3);
   bin.drop(5);
   int removed = 0;
@@ -113,11 +113,11 @@ TEST(PhysicsBin, RemovingEveryPartEmptiesTheBin) {
   }
   EXPECT_EQ(removed, 5);
   EXPECT_TRUE(bin.poses().empty());
-  EXPECT_THROW(bin.remove(0), Error);
+  EXPECT_THROW(bin.remove(0), core::Error);
 }
 
 TEST(PhysicsBin, SameCallsGiveBitIdenticalPoses) {
-  const TriangleMesh part = flatBox();
+  const io::TriangleMesh part = flatBox();
   PhysicsBin first(part, kNarrowBin, PhysicsParams{}, 11);
   PhysicsBin second(part, kNarrowBin, PhysicsParams{}, 11);
   first.drop(4);
@@ -130,16 +130,16 @@ TEST(PhysicsBin, SameCallsGiveBitIdenticalPoses) {
 }
 
 TEST(PhysicsBin, RejectsBadInput) {
-  const TriangleMesh part = flatBox();
-  EXPECT_THROW(PhysicsBin(part, BinInterior{0.02, 0.02, 0.1}, PhysicsParams{}, 1), Error);
+  const io::TriangleMesh part = flatBox();
+  EXPECT_THROW(PhysicsBin(part, BinInterior{0.02, 0.02, 0.1}, PhysicsParams{}, 1), core::Error);
   PhysicsParams bad;
   bad.max_resettle_time = 0.0;
-  EXPECT_THROW(PhysicsBin(part, kNarrowBin, bad, 1), Error);
+  EXPECT_THROW(PhysicsBin(part, kNarrowBin, bad, 1), core::Error);
   PhysicsBin bin(part, kNarrowBin, PhysicsParams{}, 1);
-  EXPECT_THROW(bin.drop(-1), Error);
+  EXPECT_THROW(bin.drop(-1), core::Error);
   bin.drop(1);
-  EXPECT_THROW(bin.remove(1), Error);
-  EXPECT_THROW(bin.remove(-1), Error);
+  EXPECT_THROW(bin.remove(1), core::Error);
+  EXPECT_THROW(bin.remove(-1), core::Error);
 }
 
 // A quarter-resolution camera keeps the rendering fast; the geometry does not change.
@@ -151,7 +151,7 @@ PileParams smallView(int objects) {
   return params;
 }
 
-bool sameBits(const PointCloud& a, const PointCloud& b) {
+bool sameBits(const io::PointCloud& a, const io::PointCloud& b) {
   if (a.points.size() != b.points.size()) return false;
   for (std::size_t i = 0; i < a.points.size(); ++i) {
     const Eigen::Vector3f &p = a.points[i], &q = b.points[i];
@@ -164,7 +164,7 @@ bool sameBits(const PointCloud& a, const PointCloud& b) {
 
 // The poses a pile settled at, viewed again, give the very scene generatePile gave.
 TEST(PileView, ViewAtThePhysicsPosesIsTheGeneratedPile) {
-  const TriangleMesh part = makePart("clamp").mesh;
+  const io::TriangleMesh part = makePart("clamp").mesh;
   const PileParams params = smallView(6);
   const PileScene generated = generatePile(part, params);
   const PileScene viewed = viewPile(part, params, generated.physics.T_bin_object);
@@ -184,7 +184,7 @@ TEST(PileView, ViewAtThePhysicsPosesIsTheGeneratedPile) {
 TEST(PileView, EmptyBinShowsTheBinOnly) {
   const PileParams params = smallView(0);
   const PileCapture capture = renderPileCaptureAt(makePart("clamp").mesh, params, {},
-                                                  PatternSetSpec{}, PhotometryParams{});
+                                                  io::PatternSetSpec{}, PhotometryParams{});
   EXPECT_TRUE(capture.scene.objects.empty());
   EXPECT_FALSE(capture.images.empty());
   int bin_pixels = 0;
@@ -216,13 +216,13 @@ TEST(PileView, PartAppearsAtItsGivenPose) {
 }
 
 TEST(BinMesh, IsTheClosedBinAroundTheInterior) {
-  const TriangleMesh mesh = binMesh(BinInterior{0.3, 0.2, 0.1});
+  const io::TriangleMesh mesh = binMesh(BinInterior{0.3, 0.2, 0.1});
   EXPECT_EQ(test::closedManifoldProblem(mesh), "");
   const test::PlacedMesh placed = test::place(mesh, Eigen::Isometry3d::Identity());
   EXPECT_NEAR(placed.box.max().z(), 0.1, 1e-6);
   EXPECT_NEAR(placed.box.max().x(), 0.16, 1e-6);  // the 10 mm wall outside the interior
-  EXPECT_THROW(binMesh(BinInterior{0.3, -0.2, 0.1}), Error);
+  EXPECT_THROW(binMesh(BinInterior{0.3, -0.2, 0.1}), core::Error);
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

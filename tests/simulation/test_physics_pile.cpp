@@ -3,12 +3,12 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/physics_pile.hpp"
 #include "mesh_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // What a settled pile must satisfy, measured on the real meshes (not on Bullet's shapes).
@@ -20,13 +20,13 @@ constexpr double kSampleSpacing = 1e-3;    // metres between surface samples of 
 // A closed torus (radii 22 and 7 mm, 32 x 16 facets) tilted, with its model origin 15 mm off its
 // centroid: a mesh as a user loads it from a file, following none of the built-in parts'
 // conventions.
-TriangleMesh userTorus() {
+io::TriangleMesh userTorus() {
   constexpr int kAround = 32, kSection = 16;
   constexpr double kPi = 3.14159265358979323846, kRing = 0.022, kTube = 0.007;
   const Eigen::Matrix3d tilt =
       Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, 2.0, 0.5).normalized()).toRotationMatrix();
   const Eigen::Vector3d origin_offset(0.015, -0.004, 0.002);
-  TriangleMesh mesh;
+  io::TriangleMesh mesh;
   for (int i = 0; i < kAround; ++i) {
     for (int j = 0; j < kSection; ++j) {
       const double u = 2.0 * kPi * i / kAround, v = 2.0 * kPi * j / kSection;
@@ -45,7 +45,7 @@ TriangleMesh userTorus() {
   return mesh;
 }
 
-std::vector<test::PlacedMesh> placeAll(const TriangleMesh& part, const PhysicsPile& pile) {
+std::vector<test::PlacedMesh> placeAll(const io::TriangleMesh& part, const PhysicsPile& pile) {
   std::vector<test::PlacedMesh> placed;
   for (const auto& T_bin_object : pile.T_bin_object) placed.push_back(test::place(part, T_bin_object));
   return placed;
@@ -93,7 +93,7 @@ int expectNoInterpenetration(const std::vector<test::PlacedMesh>& placed) {
 }
 
 // A small bin makes a pile several parts deep, with many contacts.
-void expectSettledPhysicalPile(const TriangleMesh& part, int objects) {
+void expectSettledPhysicalPile(const io::TriangleMesh& part, int objects) {
   const BinInterior bin{0.20, 0.16, 0.15};
   const PhysicsParams params;
   const PhysicsPile pile = simulatePile(part, objects, bin, params, 3);
@@ -114,7 +114,7 @@ void expectSettledPhysicalPile(const TriangleMesh& part, int objects) {
 }
 
 TEST(PhysicsPile, SameSeedGivesBitIdenticalPosesAndOtherSeedsDiffer) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   const BinInterior bin;
   const PhysicsParams params;
   const PhysicsPile first = simulatePile(part, 8, bin, params, 5);
@@ -129,7 +129,7 @@ TEST(PhysicsPile, SameSeedGivesBitIdenticalPosesAndOtherSeedsDiffer) {
 }
 
 TEST(PhysicsPile, LBracketsSettleInsideSupportedAndApart) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   expectSettledPhysicalPile(part, 12);
   // Two legs need two convex pieces: one hull would fill the corner.
   EXPECT_GE(simulatePile(part, 1, BinInterior{}, PhysicsParams{}, 1).convex_pieces, 2);
@@ -145,14 +145,14 @@ TEST(PhysicsPile, UserMeshSettlesInsideSupportedAndApart) {
 
 // A part resting on its own inside the ring's hole proves that the hole is not filled in.
 TEST(PhysicsPile, RingMagnetPiecesLeaveTheHoleOpen) {
-  const TriangleMesh ring = makePart("ring_magnet").mesh;
+  const io::TriangleMesh ring = makePart("ring_magnet").mesh;
   EXPECT_GE(simulatePile(ring, 1, BinInterior{}, PhysicsParams{}, 1).convex_pieces, 4);
 }
 
 // Low walls and a small floor: parts spill over. Whatever went over is dropped again or reported
 // lost, and what comes back lies inside.
 TEST(PhysicsPile, PartsOutsideTheBinAreNeverReturned) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   const BinInterior bin{0.13, 0.13, 0.004};
   PhysicsParams params;
   params.max_simulated_time = 4.0;
@@ -164,7 +164,7 @@ TEST(PhysicsPile, PartsOutsideTheBinAreNeverReturned) {
 
 // The checks themselves must be able to fail.
 TEST(PhysicsPile, ChecksDetectOverlapHoveringAndEscape) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   Eigen::Isometry3d resting = Eigen::Isometry3d::Identity();
   resting.translation() = Eigen::Vector3d(0.0, 0.0, 0.016);  // 30 mm wide along z: on the floor
   Eigen::Isometry3d overlapping = resting;
@@ -189,20 +189,20 @@ TEST(PhysicsPile, EmptyPileIsAValue) {
 }
 
 TEST(PhysicsPile, RejectsBadInput) {
-  const TriangleMesh part = makePart("clamp").mesh;
-  TriangleMesh inside_out = part;
+  const io::TriangleMesh part = makePart("clamp").mesh;
+  io::TriangleMesh inside_out = part;
   for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
-  EXPECT_THROW(simulatePile(inside_out, 1, BinInterior{}, PhysicsParams{}, 1), Error);
-  EXPECT_THROW(simulatePile(TriangleMesh{}, 1, BinInterior{}, PhysicsParams{}, 1), Error);
-  EXPECT_THROW(simulatePile(part, -1, BinInterior{}, PhysicsParams{}, 1), Error);
-  EXPECT_THROW(simulatePile(part, 1, BinInterior{0.4, -0.3, 0.15}, PhysicsParams{}, 1), Error);
-  EXPECT_THROW(simulatePile(part, 1, BinInterior{0.05, 0.05, 0.15}, PhysicsParams{}, 1), Error);
+  EXPECT_THROW(simulatePile(inside_out, 1, BinInterior{}, PhysicsParams{}, 1), core::Error);
+  EXPECT_THROW(simulatePile(io::TriangleMesh{}, 1, BinInterior{}, PhysicsParams{}, 1), core::Error);
+  EXPECT_THROW(simulatePile(part, -1, BinInterior{}, PhysicsParams{}, 1), core::Error);
+  EXPECT_THROW(simulatePile(part, 1, BinInterior{0.4, -0.3, 0.15}, PhysicsParams{}, 1), core::Error);
+  EXPECT_THROW(simulatePile(part, 1, BinInterior{0.05, 0.05, 0.15}, PhysicsParams{}, 1), core::Error);
 }
 
 std::string validationMessage(const PhysicsParams& params, const std::string& name) {
   try {
     params.validate(name);
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     return e.what();
   }
   return "no error";
@@ -240,10 +240,10 @@ TEST(PhysicsParams, ValidateNamesTheBadField) {
   try {
     simulatePile(makePart("clamp").mesh, 1, BinInterior{}, bad, 1);
     ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     EXPECT_NE(std::string(e.what()).find("PhysicsParams.max_simulated_time"), std::string::npos);
   }
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <cstring>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "mesh_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // A quarter-resolution camera keeps the tests fast; the geometry of the pile does not change.
@@ -24,14 +24,14 @@ Eigen::Isometry3d binPose(const PileScene& scene, const ObjectTruth& truth) {
   return scene.T_camera_bin.inverse() * truth.T_camera_object;
 }
 
-bool sameBits(const PointCloud& a, const PointCloud& b) {
+bool sameBits(const io::PointCloud& a, const io::PointCloud& b) {
   return a.points.size() == b.points.size() &&
          std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(Eigen::Vector3f)) ==
              0;
 }
 
 TEST(Pile, SameSeedGivesBitIdenticalSceneAndOtherSeedsDiffer) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   PileParams params = smallPile(42, 12);
   params.dropout = 0.05;
   const PileScene first = generatePile(part, params);
@@ -79,7 +79,7 @@ TEST(Pile, OutputShapesAndCameraConvention) {
 TEST(Pile, PartsLieInsideTheBinAndTheFirstRestsOnTheFloor) {
   for (const auto& name : partNames()) {
     SCOPED_TRACE(name);
-    const TriangleMesh part = makePart(name).mesh;
+    const io::TriangleMesh part = makePart(name).mesh;
     const PileParams params = smallPile(7);
     const PileScene scene = generatePile(part, params);
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -102,7 +102,7 @@ TEST(Pile, PartsDoNotInterpenetrate) {
   // A flat, a toothed and a turned part: the three kinds of collision shape.
   for (const std::string name : {"l_bracket", "gear", "ring_magnet"}) {
     SCOPED_TRACE(name);
-    const TriangleMesh part = makePart(name).mesh;
+    const io::TriangleMesh part = makePart(name).mesh;
     // A small bin makes a tall pile with many contacts.
     PileParams params = smallPile(11, 16);
     params.bin_length = 0.20;
@@ -126,7 +126,7 @@ TEST(Pile, PartsDoNotInterpenetrate) {
 
 // The interpenetration check itself must be able to fail.
 TEST(Pile, PenetrationCheckDetectsOverlappingParts) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   Eigen::Isometry3d shifted = Eigen::Isometry3d::Identity();
   shifted.translation() = Eigen::Vector3d(0.004, 0.003, 0.005);
   const auto a = test::place(part, Eigen::Isometry3d::Identity());
@@ -165,7 +165,7 @@ TEST(Pile, SinglePartIsFullyVisible) {
 }
 
 TEST(Pile, NoiseFreePixelsLieOnTheLabelledSurface) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   PileParams params = smallPile(9, 10);
   params.depth_noise = 0.0;
   const PileScene scene = generatePile(part, params);
@@ -188,7 +188,7 @@ TEST(Pile, NoiseFreePixelsLieOnTheLabelledSurface) {
 }
 
 TEST(Pile, DepthNoiseMovesPointsAlongTheirRays) {
-  const TriangleMesh part = makePart("l_bracket").mesh;
+  const io::TriangleMesh part = makePart("l_bracket").mesh;
   PileParams params = smallPile(4, 5);
   params.depth_noise = 0.0;
   const PileScene clean = generatePile(part, params);
@@ -214,7 +214,7 @@ TEST(Pile, DepthNoiseMovesPointsAlongTheirRays) {
 }
 
 TEST(Pile, DropoutRemovesTheRequestedShareOfPixels) {
-  const TriangleMesh part = makePart("clamp").mesh;
+  const io::TriangleMesh part = makePart("clamp").mesh;
   PileParams params = smallPile(8, 5);
   const PileScene full = generatePile(part, params);
   params.dropout = 0.3;
@@ -238,7 +238,7 @@ TEST(PileParams, ValidateNamesTheBadField) {
   const auto message = [](PileParams params) {
     try {
       params.validate();
-    } catch (const Error& e) {
+    } catch (const core::Error& e) {
       return std::string(e.what());
     }
     return std::string("no error");
@@ -265,8 +265,8 @@ TEST(Pile, RejectsAPartThatCannotFitInTheBin) {
   PileParams params = smallPile(1, 1);
   params.bin_length = 0.05;
   params.bin_width = 0.05;
-  EXPECT_THROW(generatePile(makePart("l_bracket").mesh, params), Error);
+  EXPECT_THROW(generatePile(makePart("l_bracket").mesh, params), core::Error);
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

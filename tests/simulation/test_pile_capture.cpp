@@ -8,7 +8,7 @@
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 namespace rc = binpick::reconstruction;
@@ -16,7 +16,7 @@ namespace rc = binpick::reconstruction;
 struct RenderedPile {
   PileParams params;
   PileScene scene;
-  PatternSetSpec patterns;
+  io::PatternSetSpec patterns;
   std::vector<cv::Mat> images;
 };
 
@@ -31,7 +31,7 @@ const RenderedPile& renderedPile() {
     p.patterns.projector_height = p.params.rig.projector.height;
     p.patterns.row_codes = false;
     p.patterns.phase_steps = 0;
-    const TriangleMesh part = makePart("clamp").mesh;
+    const io::TriangleMesh part = makePart("clamp").mesh;
     p.scene = generatePile(part, p.params);
     PhotometryParams photometry;
     photometry.seed = 5;
@@ -118,4 +118,4 @@ TEST(PileCapture, SameSeedSameImages) {
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -2,7 +2,7 @@
 
 #include "binpick/simulation/parts.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -88,4 +88,4 @@ TEST(PoseError, TranslationIsMeasuredAtTheModelOrigin) {
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -5,12 +5,12 @@
 #include <thread>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 #include "mesh_test_utils.hpp"
 #include "render_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 using test::boxMesh;
@@ -34,14 +34,14 @@ Ray rayBetween(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
 }
 
 TEST(RayCaster, BoxMeshIsClosedWithOutwardWinding) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   EXPECT_EQ(test::closedManifoldProblem(box), "");
   EXPECT_NEAR(test::signedVolume(box), 8.0 * kHalf.prod(), 1e-9);
 }
 
 // Points on every face of a box at a tilted pose, hit from outside along skew directions.
 TEST(RayCaster, HitsOnEveryBoxFaceMatchTheAnalyticGeometry) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   const Eigen::Isometry3d T = tiltedPose();
   const RayCaster caster({{&box, T, 42}});
   int checked = 0;
@@ -83,7 +83,7 @@ TEST(RayCaster, HitsOnEveryBoxFaceMatchTheAnalyticGeometry) {
 }
 
 TEST(RayCaster, RangeLimitsSelectTheFaceAndNormalsStayOutward) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   const RayCaster caster({{&box, pose(Eigen::Vector3d(0, 0, 1.0)), 1}});
   Ray ray;  // from the camera along +z: the -z face at 0.98, the +z face at 1.02
   EXPECT_NEAR(caster.closestHit(ray).t, 0.98, 1e-9);
@@ -105,7 +105,7 @@ TEST(RayCaster, RangeLimitsSelectTheFaceAndNormalsStayOutward) {
 }
 
 TEST(RayCaster, DirectionNeedNotBeUnitAndMissesReportNothing) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   const RayCaster caster({{&box, pose(Eigen::Vector3d(0, 0, 1.0)), 1}});
   Ray ray;
   ray.direction = Eigen::Vector3d(0, 0, 5.0);
@@ -125,7 +125,7 @@ TEST(RayCaster, InstancesOfOneMeshKeepTheirIdsAndTheMeshNeedNotOutliveTheCaster)
   for (int i = 0; i < 5; ++i) poses.push_back(pose(Eigen::Vector3d(0.3 * (i - 2), 0.0, 1.0)));
   std::unique_ptr<RayCaster> caster;
   {
-    const TriangleMesh box = boxMesh(kHalf);
+    const io::TriangleMesh box = boxMesh(kHalf);
     std::vector<RenderObject> objects;
     for (int i = 0; i < 5; ++i) objects.push_back({&box, poses[i], 100 + i});
     caster = std::make_unique<RayCaster>(objects);
@@ -145,7 +145,7 @@ TEST(RayCaster, InstancesOfOneMeshKeepTheirIdsAndTheMeshNeedNotOutliveTheCaster)
 }
 
 TEST(RayCaster, AloneQueriesIgnoreTheOtherObjects) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   const RayCaster caster(
       {{&box, pose(Eigen::Vector3d(0, 0, 0.5)), 7}, {&box, pose(Eigen::Vector3d(0, 0, 1.0)), 8}});
   Ray ray;
@@ -162,9 +162,9 @@ TEST(RayCaster, AloneQueriesIgnoreTheOtherObjects) {
   ray.t_max = 1.5;
   EXPECT_TRUE(caster.occludedAlone(1, ray));
   EXPECT_FALSE(caster.occludedAlone(0, ray));
-  EXPECT_THROW(caster.closestHitAlone(2, ray), Error);
-  EXPECT_THROW(caster.occludedAlone(-1, ray), Error);
-  EXPECT_THROW(caster.objectBounds(2), Error);
+  EXPECT_THROW(caster.closestHitAlone(2, ray), core::Error);
+  EXPECT_THROW(caster.occludedAlone(-1, ray), core::Error);
+  EXPECT_THROW(caster.objectBounds(2), core::Error);
 }
 
 TEST(RayCaster, EmptySceneAndEmptyMeshesAreNeverHit) {
@@ -174,8 +174,8 @@ TEST(RayCaster, EmptySceneAndEmptyMeshesAreNeverHit) {
   EXPECT_FALSE(nothing.closestHit(ray).hit());
   EXPECT_FALSE(nothing.occluded(ray));
 
-  const TriangleMesh empty;
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh empty;
+  const io::TriangleMesh box = boxMesh(kHalf);
   const RayCaster mixed(
       {{&empty, pose(Eigen::Vector3d(0, 0, 0.5)), 1}, {&box, pose(Eigen::Vector3d(0, 0, 1)), 2}});
   EXPECT_EQ(mixed.closestHit(ray).object_index, 1);
@@ -185,7 +185,7 @@ TEST(RayCaster, EmptySceneAndEmptyMeshesAreNeverHit) {
 }
 
 TEST(RayCaster, InvalidRaysMissWithoutCrashing) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   const RayCaster caster({{&box, pose(Eigen::Vector3d(0, 0, 1.0)), 1}});
   std::vector<Ray> rays(8);
   rays[0].origin.x() = kNaN;
@@ -209,10 +209,10 @@ TEST(RayCaster, InvalidRaysMissWithoutCrashing) {
 }
 
 TEST(RayCaster, BadObjectsThrowNamingTheObject) {
-  const TriangleMesh box = boxMesh(kHalf);
-  TriangleMesh nan_vertex = box;
+  const io::TriangleMesh box = boxMesh(kHalf);
+  io::TriangleMesh nan_vertex = box;
   nan_vertex.vertices[3].x() = std::numeric_limits<float>::quiet_NaN();
-  TriangleMesh bad_index = box;
+  io::TriangleMesh bad_index = box;
   bad_index.triangles[5][1] = 8;
   Eigen::Isometry3d scaled = Eigen::Isometry3d::Identity();
   scaled.linear() *= 2.0;
@@ -221,7 +221,7 @@ TEST(RayCaster, BadObjectsThrowNamingTheObject) {
   const auto message = [&](const std::vector<RenderObject>& objects) -> std::string {
     try {
       RayCaster caster(objects);
-    } catch (const Error& e) {
+    } catch (const core::Error& e) {
       return e.what();
     }
     return "no error";
@@ -235,7 +235,7 @@ TEST(RayCaster, BadObjectsThrowNamingTheObject) {
 }
 
 TEST(RayCaster, MovedCasterKeepsItsSceneAndTheMovedFromOneHitsNothing) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   RayCaster first({{&box, pose(Eigen::Vector3d(0, 0, 1.0)), 3}});
   RayCaster second(std::move(first));
   Ray ray;
@@ -248,7 +248,7 @@ TEST(RayCaster, MovedCasterKeepsItsSceneAndTheMovedFromOneHitsNothing) {
 }
 
 // Six boxes at different depths and tilts in front of the camera; `box` must outlive them.
-std::vector<RenderObject> sixTiltedBoxes(const TriangleMesh& box) {
+std::vector<RenderObject> sixTiltedBoxes(const io::TriangleMesh& box) {
   std::vector<RenderObject> objects;
   for (int i = 0; i < 6; ++i) {
     objects.push_back({&box,
@@ -260,7 +260,7 @@ std::vector<RenderObject> sixTiltedBoxes(const TriangleMesh& box) {
 }
 
 TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   const RayCaster caster(sixTiltedBoxes(box));
   std::vector<Ray> rays;
   for (int i = 0; i < 4000; ++i) {
@@ -291,7 +291,7 @@ TEST(RayCaster, ConcurrentQueriesAgreeWithSerialOnes) {
 }
 
 TEST(RayCaster, BatchQueriesAgreeWithSingleOnes) {
-  const TriangleMesh box = boxMesh(kHalf);
+  const io::TriangleMesh box = boxMesh(kHalf);
   const RayCaster caster(sixTiltedBoxes(box));
   std::vector<Ray> rays;
   for (int v = 0; v < 40; ++v) {
@@ -330,9 +330,9 @@ TEST(RayCaster, BatchQueriesAgreeWithSingleOnes) {
   EXPECT_GT(hit_count, 300);
   EXPECT_GT(alone_count, 50);
   EXPECT_TRUE(caster.closestHits({}).empty());
-  EXPECT_THROW(caster.closestHitsAlone(6, rays), Error);
-  EXPECT_THROW(caster.occludedEachAlone(-1, rays), Error);
+  EXPECT_THROW(caster.closestHitsAlone(6, rays), core::Error);
+  EXPECT_THROW(caster.occludedEachAlone(-1, rays), core::Error);
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

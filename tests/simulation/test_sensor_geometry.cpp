@@ -5,14 +5,14 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/depth_renderer.hpp"
 #include "binpick/simulation/object_visibility.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
 #include "render_test_utils.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 using test::boxMesh;
@@ -20,7 +20,7 @@ using test::pose;
 
 // A slab under everything, facing the camera with its top face at `depth`.
 struct Floor {
-  TriangleMesh mesh = boxMesh(Eigen::Vector3d(1.0, 1.0, 0.01));
+  io::TriangleMesh mesh = boxMesh(Eigen::Vector3d(1.0, 1.0, 0.01));
   RenderObject at(double depth, int32_t id = -2) const {
     return {&mesh, pose(Eigen::Vector3d(0.0, 0.0, depth + 0.01)), id};
   }
@@ -80,7 +80,7 @@ int litPixelsOf(const SensorGeometry& g, int object_index) {
 }
 
 TEST(SensorGeometry, DepthAgreesWithTheRasteriserForAPinholeCamera) {
-  const RigCalibration rig = test::simpleRig();
+  const io::RigCalibration rig = test::simpleRig();
   const Part part = makePart("l_bracket");
   const Floor floor;
   const std::vector<RenderObject> objects{{&part.mesh, partPose(), 3}, floor.at(0.6)};
@@ -107,7 +107,7 @@ TEST(SensorGeometry, DepthAgreesWithTheRasteriserForAPinholeCamera) {
 }
 
 TEST(SensorGeometry, WithDistortionEveryHitProjectsBackToItsPixel) {
-  const RigCalibration rig = test::distortingRig();
+  const io::RigCalibration rig = test::distortingRig();
   const Part part = makePart("l_bracket");
   const Floor floor;
   const SensorGeometry g =
@@ -131,10 +131,10 @@ TEST(SensorGeometry, WithDistortionEveryHitProjectsBackToItsPixel) {
 // A plate between the projector and a floor: the floor behind it, seen by the camera, is dark
 // exactly where the segment to the projector centre crosses the plate.
 TEST(SensorGeometry, ShadowOfAPlateMatchesTheAnalyticShadow) {
-  const RigCalibration rig = test::simpleRig();
+  const io::RigCalibration rig = test::simpleRig();
   const Floor floor;
   const Eigen::Vector3d plate_half(0.025, 0.025, 0.002), plate_centre(0.05, 0.0, 0.8);
-  const TriangleMesh plate = boxMesh(plate_half);
+  const io::TriangleMesh plate = boxMesh(plate_half);
   const SensorGeometry g =
       computeSensorGeometry(rig, RayCaster({floor.at(1.0, 0), {&plate, pose(plate_centre), 1}}));
   const Eigen::AlignedBox3d plate_box(plate_centre - plate_half, plate_centre + plate_half);
@@ -164,7 +164,7 @@ TEST(SensorGeometry, ShadowOfAPlateMatchesTheAnalyticShadow) {
 }
 
 TEST(SensorGeometry, ProjectorQuantitiesAgreeWithComputingThemByHand) {
-  const RigCalibration rig = test::distortingRig();
+  const io::RigCalibration rig = test::distortingRig();
   const Part part = makePart("clamp");
   const Floor floor;
   const SensorGeometry g =
@@ -210,12 +210,12 @@ TEST(SensorGeometry, ProjectorQuantitiesAgreeWithComputingThemByHand) {
 // Far off the projector's axis a barrel lens model turns back on itself and maps points into
 // the image again; they are not in its field of view and must stay dark.
 TEST(SensorGeometry, PointsFoldedBackByTheProjectorDistortionAreNotLit) {
-  RigCalibration rig;
+  io::RigCalibration rig;
   rig.camera = test::pinholeLens(320, 256, 80.0);  // very wide: sees far off the projector axis
   rig.projector = test::pinholeLens(320, 200, 400.0);
   rig.projector.distortion = {-0.4, 0.0, 0.0, 0.0, 0.0};
   rig.T_projector_camera = pose(Eigen::Vector3d(-0.25, 0.0, 0.0));
-  const TriangleMesh floor = boxMesh(Eigen::Vector3d(5.0, 5.0, 0.01));
+  const io::TriangleMesh floor = boxMesh(Eigen::Vector3d(5.0, 5.0, 0.01));
   const SensorGeometry g =
       computeSensorGeometry(rig, RayCaster({{&floor, pose(Eigen::Vector3d(0, 0, 1.01)), 0}}));
   int folded = 0, lit = 0;
@@ -237,8 +237,8 @@ TEST(SensorGeometry, PointsFoldedBackByTheProjectorDistortionAreNotLit) {
 }
 
 TEST(ObjectVisibility, ALoneObjectInViewIsFullyVisible) {
-  const RigCalibration rig = test::simpleRig();
-  const TriangleMesh box = boxMesh(Eigen::Vector3d(0.04, 0.03, 0.02));
+  const io::RigCalibration rig = test::simpleRig();
+  const io::TriangleMesh box = boxMesh(Eigen::Vector3d(0.04, 0.03, 0.02));
   const RayCaster scene({{&box,
                           pose(Eigen::Vector3d(0.02, 0.01, 0.6),
                                Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized())),
@@ -252,9 +252,9 @@ TEST(ObjectVisibility, ALoneObjectInViewIsFullyVisible) {
 }
 
 TEST(ObjectVisibility, APlateCoveringHalfAnObjectHalvesItsFraction) {
-  const RigCalibration rig = test::simpleRig();
-  const TriangleMesh box = boxMesh(Eigen::Vector3d(0.05, 0.05, 0.01));
-  const TriangleMesh plate = boxMesh(Eigen::Vector3d(0.1, 0.2, 0.002));
+  const io::RigCalibration rig = test::simpleRig();
+  const io::TriangleMesh box = boxMesh(Eigen::Vector3d(0.05, 0.05, 0.01));
+  const io::TriangleMesh plate = boxMesh(Eigen::Vector3d(0.1, 0.2, 0.002));
   const Floor floor;
   // The plate covers every camera ray with x < 0, so the left half of the box; its projector
   // shadow falls further left, clear of the box.
@@ -280,13 +280,13 @@ TEST(ObjectVisibility, APlateCoveringHalfAnObjectHalvesItsFraction) {
   EXPECT_EQ(subset[1].visible_lit_pixels, visibility[0].visible_lit_pixels);
   EXPECT_EQ(subset[1].visible_fraction, visibility[0].visible_fraction);
   EXPECT_EQ(subset[2].alone_lit_pixels, visibility[2].alone_lit_pixels);
-  EXPECT_THROW(computeObjectVisibilityOf(rig, scene, g, {3}), Error);
+  EXPECT_THROW(computeObjectVisibilityOf(rig, scene, g, {3}), core::Error);
 }
 
 // A heap of parts seen through distorting lenses: each object's alone count equals the lit pixels
 // of a scene holding just that object, which checks that the bounding-box search misses nothing.
 TEST(ObjectVisibility, AloneCountsMatchRenderingEachObjectAloneInAHeap) {
-  const RigCalibration rig = test::distortingRig();
+  const io::RigCalibration rig = test::distortingRig();
   const Part part = makePart("l_bracket");
   const Floor floor;
   std::vector<RenderObject> objects;
@@ -323,7 +323,7 @@ TEST(ObjectVisibility, AloneCountsMatchRenderingEachObjectAloneInAHeap) {
 }
 
 TEST(SensorGeometry, EmptySceneGivesEmptyBuffers) {
-  const RigCalibration rig = test::distortingRig();
+  const io::RigCalibration rig = test::distortingRig();
   const RayCaster scene({});
   const SensorGeometry g = computeSensorGeometry(rig, scene);
   ASSERT_EQ(g.depth.size(), static_cast<std::size_t>(rig.camera.width * rig.camera.height));
@@ -340,12 +340,12 @@ TEST(SensorGeometry, EmptySceneGivesEmptyBuffers) {
 }
 
 TEST(SensorGeometry, BadParamsRigsAndGeometriesThrowNamingTheProblem) {
-  const RigCalibration rig = test::simpleRig();
+  const io::RigCalibration rig = test::simpleRig();
   const RayCaster scene({});
-  const auto message = [&](const RigCalibration& r, const SensorGeometryParams& p) -> std::string {
+  const auto message = [&](const io::RigCalibration& r, const SensorGeometryParams& p) -> std::string {
     try {
       computeSensorGeometry(r, scene, p);
-    } catch (const Error& e) {
+    } catch (const core::Error& e) {
       return e.what();
     }
     return "no error";
@@ -354,14 +354,14 @@ TEST(SensorGeometry, BadParamsRigsAndGeometriesThrowNamingTheProblem) {
   SensorGeometryParams nan_offset;
   nan_offset.shadow_ray_offset = std::nan("");
   EXPECT_NE(message(rig, nan_offset).find("shadow_ray_offset"), std::string::npos);
-  RigCalibration bad_rig = rig;
+  io::RigCalibration bad_rig = rig;
   bad_rig.projector.fx = 0.0;
   EXPECT_NE(message(bad_rig, {}).find("projector"), std::string::npos);
 
   SensorGeometry wrong_size = computeSensorGeometry(rig, scene);
   wrong_size.lit.pop_back();
-  EXPECT_THROW(computeObjectVisibility(rig, scene, wrong_size), Error);
+  EXPECT_THROW(computeObjectVisibility(rig, scene, wrong_size), core::Error);
 }
 
 }  // namespace
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -139,7 +139,7 @@ void AravisCamera::open() {
 void AravisCamera::connect() {
   GErrorSlot error;
   ArvCamera* camera = arv_camera_new(params_.id.empty() ? nullptr : params_.id.c_str(), error.out());
-  if (camera == nullptr && !error.isSet()) throw Error(name_ + ": cannot open: no such camera");
+  if (camera == nullptr && !error.isSet()) throw core::Error(name_ + ": cannot open: no such camera");
   error.throwIfSet(name_ + ": cannot open");
   camera_.reset(camera);
   description_ = readDescription(camera);
@@ -152,7 +152,7 @@ void AravisCamera::connect() {
 void AravisCamera::createStream() {
   GErrorSlot error;
   ArvStream* stream = arv_camera_create_stream(camera_.get(), nullptr, nullptr, error.out());
-  if (stream == nullptr && !error.isSet()) throw Error(name_ + ": cannot create the stream");
+  if (stream == nullptr && !error.isSet()) throw core::Error(name_ + ": cannot create the stream");
   error.throwIfSet(name_ + ": cannot create the stream");
   stream_.reset(stream);
   const guint payload = arv_camera_get_payload(camera_.get(), error.out());
@@ -174,7 +174,7 @@ void AravisCamera::close() {
 }
 
 void AravisCamera::requireOpen(const char* operation) const {
-  if (camera_ == nullptr) throw Error(name_ + ": " + operation + "() before open()");
+  if (camera_ == nullptr) throw core::Error(name_ + ": " + operation + "() before open()");
 }
 
 void AravisCamera::start() {
@@ -210,7 +210,7 @@ void AravisCamera::stop() {
 void AravisCamera::stopStreaming() {
   try {
     stop();
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     log()->warn("{}", e.what());
   }
 }

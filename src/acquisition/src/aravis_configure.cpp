@@ -45,7 +45,7 @@ void setRegion(ArvCamera* camera, const CameraParams& params, const std::string&
   const cv::Rect sensor = fullSensor(camera, name);
   const cv::Rect roi = params.roi.empty() ? sensor : params.roi;
   if ((roi & sensor) != roi) {
-    throw Error(cannotSet(name, "roi", regionText(roi)) + ": outside the " + std::to_string(sensor.width) + "x" +
+    throw core::Error(cannotSet(name, "roi", regionText(roi)) + ": outside the " + std::to_string(sensor.width) + "x" +
                 std::to_string(sensor.height) + " sensor");
   }
   GErrorSlot error;
@@ -54,7 +54,7 @@ void setRegion(ArvCamera* camera, const CameraParams& params, const std::string&
   cv::Rect actual;
   arv_camera_get_region(camera, &actual.x, &actual.y, &actual.width, &actual.height, error.out());
   error.throwIfSet(name + ": cannot read the region back");
-  if (actual != roi) throw Error(cannotSet(name, "roi", regionText(roi)) + ": the camera made it " + regionText(actual));
+  if (actual != roi) throw core::Error(cannotSet(name, "roi", regionText(roi)) + ": the camera made it " + regionText(actual));
 }
 
 // Aravis 0.8 writes a value outside the feature's bounds without complaint (the fake camera
@@ -63,7 +63,7 @@ void requireWithin(double value, double min, double max, const std::string& refu
   if (value >= min && value <= max) return;
   std::ostringstream text;
   text << refusal << ": outside the camera's [" << min << ", " << max << "]";
-  throw Error(text.str());
+  throw core::Error(text.str());
 }
 
 // Automatic exposure and gain would change the images between the patterns of one capture.
@@ -84,7 +84,7 @@ void setExposure(ArvCamera* camera, const CameraParams& params, const std::strin
 void setGain(ArvCamera* camera, const CameraParams& params, const std::string& name) {
   GErrorSlot error;
   if (!arv_camera_is_gain_available(camera, nullptr)) {
-    if (params.gain_db != 0.0) throw Error(cannotSet(name, "gain_db", params.gain_db) + ": the camera has no gain");
+    if (params.gain_db != 0.0) throw core::Error(cannotSet(name, "gain_db", params.gain_db) + ": the camera has no gain");
     return;
   }
   if (arv_camera_is_gain_auto_available(camera, nullptr)) {

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <algorithm>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 // GenICam's Mono10/12/16 are little-endian 16-bit words: copied as they are, they are only right
 // on a little-endian host.
@@ -59,7 +59,7 @@ PixelLayout pixelLayout(const std::string& pixel_format) {
   if (pixel_format == "Mono10") return {ARV_PIXEL_FORMAT_MONO_10, 2, 6};
   if (pixel_format == "Mono12") return {ARV_PIXEL_FORMAT_MONO_12, 2, 4};
   if (pixel_format == "Mono16") return {ARV_PIXEL_FORMAT_MONO_16, 2, 0};
-  throw Error("camera pixel format '" + pixel_format + "' is not one of Mono8, Mono10, Mono12, Mono16");
+  throw core::Error("camera pixel format '" + pixel_format + "' is not one of Mono8, Mono10, Mono12, Mono16");
 }
 
 FrameStatus frameStatus(ArvBufferStatus status) {

@@ -14,7 +14,7 @@ struct PixelLayout {
   int bytes_per_pixel = 1;
   int shift = 0;  // left shift that puts the sensor's bits at the top of 16 (Mono12: 4)
 };
-// Throws binpick::Error for a format we do not take (CameraParams::validate lists them).
+// Throws core::Error for a format we do not take (CameraParams::validate lists them).
 PixelLayout pixelLayout(const std::string& pixel_format);
 
 // What Aravis's buffer status means for the sequencer.

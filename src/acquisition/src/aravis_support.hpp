@@ -1,14 +1,14 @@
 #pragma once
-// Internal: ownership of GLib/Aravis objects and GError -> binpick::Error, shared by the Aravis
+// Internal: ownership of GLib/Aravis objects and GError -> core::Error, shared by the Aravis
 // camera and the fake GigE Vision camera. Aravis reports failures through GError out-parameters;
-// here every one becomes a binpick::Error whose message says what we were doing and what Aravis
+// here every one becomes a core::Error whose message says what we were doing and what Aravis
 // said, and every GObject reference has exactly one owner that unrefs it.
 #include <arv.h>
 
 #include <memory>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::acquisition::detail {
 
@@ -20,7 +20,7 @@ struct GObjectUnref {
 template <typename T>
 using GObjectPtr = std::unique_ptr<T, GObjectUnref>;
 
-// Collects one GError; throw_if_set() turns it into binpick::Error("CONTEXT: MESSAGE"), take()
+// Collects one GError; throw_if_set() turns it into core::Error("CONTEXT: MESSAGE"), take()
 // hands its message over for callers that report instead of throwing. Frees it either way.
 class GErrorSlot {
  public:
@@ -40,7 +40,7 @@ class GErrorSlot {
     return message;
   }
   void throwIfSet(const std::string& context) {
-    if (error_ != nullptr) throw Error(context + ": " + take());
+    if (error_ != nullptr) throw core::Error(context + ": " + take());
   }
 
  private:

@@ -4,13 +4,13 @@
 #include <algorithm>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::acquisition {
 
 Backoff::Backoff(std::chrono::milliseconds initial, std::chrono::milliseconds max) : initial_(initial), max_(max) {
   if (initial.count() <= 0 || max < initial) {
-    throw Error("backoff: needs 0 < initial <= max (got " + std::to_string(initial.count()) + " ms and " +
+    throw core::Error("backoff: needs 0 < initial <= max (got " + std::to_string(initial.count()) + " ms and " +
                 std::to_string(max.count()) + " ms)");
   }
 }

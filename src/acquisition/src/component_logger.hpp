@@ -1,10 +1,10 @@
 #pragma once
 // Internal: the acquisition components' loggers ("sequencer", "replay", ...): see
-// binpick/io/component_logger.hpp.
-#include "binpick/io/component_logger.hpp"
+// binpick/core/component_logger.hpp.
+#include "binpick/core/component_logger.hpp"
 
 namespace binpick::acquisition::detail {
 
-using binpick::componentLogger;
+using binpick::core::componentLogger;
 
 }  // namespace binpick::acquisition::detail

@@ -35,10 +35,10 @@ constexpr double kTriggerPollHz = 1000.0;
 
 void requireFakeParams(const FakeCameraParams& p) {
   const std::string owner = "fake camera params";
-  requireField(!p.address.empty(), owner, "address", "an interface address or name", p.address);
-  requireField(!p.serial.empty() && p.serial.size() < 32, owner, "serial", "1 to 31 characters", p.serial);
-  requireField(p.width > 0 && p.width <= 8192, owner, "width", "in [1, 8192]", p.width);
-  requireField(p.height > 0 && p.height <= 8192, owner, "height", "in [1, 8192]", p.height);
+  core::requireField(!p.address.empty(), owner, "address", "an interface address or name", p.address);
+  core::requireField(!p.serial.empty() && p.serial.size() < 32, owner, "serial", "1 to 31 characters", p.serial);
+  core::requireField(p.width > 0 && p.width <= 8192, owner, "width", "in [1, 8192]", p.width);
+  core::requireField(p.height > 0 && p.height <= 8192, owner, "height", "in [1, 8192]", p.height);
 }
 
 // Aravis 0.8.26's fake only logs a warning when its GVCP port is taken and still reports itself
@@ -55,7 +55,7 @@ void requirePortFree(const std::string& address) {
   const int bind_errno = errno;
   ::close(fd);
   if (result != 0 && bind_errno == EADDRINUSE) {
-    throw Error("fake GigE camera: UDP port 3956 on " + address +
+    throw core::Error("fake GigE camera: UDP port 3956 on " + address +
                 " is taken (another fake camera or GigE Vision tool is running)");
   }
 }
@@ -78,7 +78,7 @@ void FakeGigECamera::State::startServer() {
   requirePortFree(params.address);
   GObjectPtr<ArvGvFakeCamera> fake(arv_gv_fake_camera_new(params.address.c_str(), params.serial.c_str()));
   if (fake == nullptr || !arv_gv_fake_camera_is_running(fake.get())) {
-    throw Error("fake GigE camera: cannot listen on '" + params.address +
+    throw core::Error("fake GigE camera: cannot listen on '" + params.address +
                 "': no network interface with that address or name");
   }
   ArvFakeCamera* camera = arv_gv_fake_camera_get_fake_camera(fake.get());
@@ -114,7 +114,7 @@ std::string FakeGigECamera::id() const { return state_->params.address; }
 // GLib's global random generator: seeding it makes the losses repeatable. The fake does not
 // answer resend requests, so a lost packet means a lost frame.
 void FakeGigECamera::setPacketLoss(double ratio, unsigned seed) {
-  requireField(ratio >= 0.0 && ratio <= 1.0, "fake camera", "packet loss", "in [0, 1]", ratio);
+  core::requireField(ratio >= 0.0 && ratio <= 1.0, "fake camera", "packet loss", "in [0, 1]", ratio);
   const std::lock_guard<std::mutex> lock(state_->control);
   state_->packet_loss = ratio;
   g_random_set_seed(seed);

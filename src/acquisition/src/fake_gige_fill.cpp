@@ -1,7 +1,7 @@
 // The fake GigE camera's frames: a copy of the served image, cut to the client's region.
 #include "fake_gige_fill.hpp"
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::acquisition::detail {
 
@@ -15,7 +15,7 @@ void ServedImage::configure(int width, int height, bool sixteen_bit) {
 void ServedImage::set(const cv::Mat& image) {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (image.size() != size_ || image.type() != type_) {
-    throw Error("fake camera: served image must be " + std::to_string(size_.width) + "x" +
+    throw core::Error("fake camera: served image must be " + std::to_string(size_.width) + "x" +
                 std::to_string(size_.height) + (type_ == CV_8UC1 ? " 8-bit" : " 16-bit") + " grey (got " +
                 std::to_string(image.cols) + "x" + std::to_string(image.rows) + ", OpenCV type " +
                 std::to_string(image.type()) + ")");

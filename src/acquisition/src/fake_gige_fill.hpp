@@ -11,7 +11,7 @@ namespace binpick::acquisition::detail {
 class ServedImage {
  public:
   void configure(int width, int height, bool sixteen_bit);
-  // Throws binpick::Error unless `image` has the camera's size and depth. Copies it.
+  // Throws core::Error unless `image` has the camera's size and depth. Copies it.
   void set(const cv::Mat& image);
   // Writes the `region` of the served image (the client's ROI) into `pixels` as `format` (Mono8
   // or Mono16); parts outside the image, or everything before the first set(), are black.

@@ -9,16 +9,16 @@
 #include <thread>
 
 #include "binpick/acquisition/projector.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "component_logger.hpp"
 
 namespace binpick::acquisition {
 
 void GpioTriggerParams::validate() const {
   const std::string owner = "gpio trigger params";
-  requireField(!chip.empty(), owner, "chip", "a chip name (gpiochip0) or path (/dev/gpiochip0)", "\"\"");
+  core::requireField(!chip.empty(), owner, "chip", "a chip name (gpiochip0) or path (/dev/gpiochip0)", "\"\"");
   // Projectors latch edges of a few microseconds; a second-long pulse is a units mistake.
-  requireField(pulse_us >= 1 && pulse_us <= 1000000, owner, "pulse_us", "in [1, 1000000]", pulse_us);
+  core::requireField(pulse_us >= 1 && pulse_us <= 1000000, owner, "pulse_us", "in [1, 1000000]", pulse_us);
 }
 
 namespace {
@@ -41,9 +41,9 @@ gpiod::chip openChip(const std::string& name) {
   try {
     return gpiod::chip(name, gpiod::chip::OPEN_LOOKUP);
   } catch (const std::system_error& e) {
-    throw Error("GPIO chip '" + name + "': " + openProblem(e.code().value()) + " (" + e.what() + ")");
+    throw core::Error("GPIO chip '" + name + "': " + openProblem(e.code().value()) + " (" + e.what() + ")");
   } catch (const std::exception& e) {
-    throw Error("GPIO chip '" + name + "': cannot open it (" + e.what() + ")");
+    throw core::Error("GPIO chip '" + name + "': cannot open it (" + e.what() + ")");
   }
 }
 
@@ -56,7 +56,7 @@ gpiod::line requestLine(const gpiod::chip& chip, const GpioTriggerParams& params
     line.request({kConsumer, gpiod::line_request::DIRECTION_OUTPUT, flags}, 0);
     return line;
   } catch (const std::exception& e) {
-    throw Error(lineName(params) + ": cannot request it as an output (" + e.what() + ")");
+    throw core::Error(lineName(params) + ": cannot request it as an output (" + e.what() + ")");
   }
 }
 
@@ -82,7 +82,7 @@ class GpioTrigger : public ProjectorTrigger {
       std::this_thread::sleep_for(std::chrono::microseconds(params_.pulse_us));
       line_.set_value(0);
     } catch (const std::exception& e) {
-      throw Error(lineName(params_) + ": cannot pulse it for pattern " + std::to_string(index) + " (" +
+      throw core::Error(lineName(params_) + ": cannot pulse it for pattern " + std::to_string(index) + " (" +
                   e.what() + ")");
     }
   }

@@ -7,7 +7,7 @@
 
 #include "binpick/acquisition/backoff.hpp"
 #include "binpick/acquisition/capture_source.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "component_logger.hpp"
 
 namespace binpick::acquisition {
@@ -17,8 +17,8 @@ using Clock = Backoff::Clock;
 
 void validateLive(const LiveParams& params) {
   const std::string owner = "live params";
-  requireField(params.reopen_backoff_ms >= 1, owner, "reopen_backoff_ms", ">= 1", params.reopen_backoff_ms);
-  requireField(params.max_reopen_backoff_ms >= params.reopen_backoff_ms, owner, "max_reopen_backoff_ms",
+  core::requireField(params.reopen_backoff_ms >= 1, owner, "reopen_backoff_ms", ">= 1", params.reopen_backoff_ms);
+  core::requireField(params.max_reopen_backoff_ms >= params.reopen_backoff_ms, owner, "max_reopen_backoff_ms",
                ">= reopen_backoff_ms", params.max_reopen_backoff_ms);
   params.patterns.validate();
   params.sequencer.validate();
@@ -40,7 +40,7 @@ class LiveSource : public CaptureSource {
 
   ~LiveSource() override { shutDown(); }
 
-  Capture next() override {
+  io::Capture next() override {
     ensureStreaming();
     try {
       return sequencer_.capture(params_.patterns);
@@ -133,8 +133,8 @@ class LiveSource : public CaptureSource {
 std::unique_ptr<CaptureSource> makeLiveSource(std::unique_ptr<Camera> camera,
                                               std::unique_ptr<ProjectorTrigger> projector,
                                               const LiveParams& params) {
-  if (!camera) throw Error("live source: no camera");
-  if (!projector) throw Error("live source: no projector trigger");
+  if (!camera) throw core::Error("live source: no camera");
+  if (!projector) throw core::Error("live source: no projector trigger");
   validateLive(params);
   return std::make_unique<LiveSource>(std::move(camera), std::move(projector), params);
 }

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "binpick/acquisition/capture_source.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "component_logger.hpp"
 
 namespace binpick::acquisition {
@@ -24,25 +24,25 @@ bool isCapture(const fs::path& directory) {
 // shorter replay would hide that.
 std::vector<std::string> listCaptures(const std::string& path) {
   std::error_code error;
-  if (!fs::is_directory(path, error)) throw Error("replay: " + path + " is not a directory");
+  if (!fs::is_directory(path, error)) throw core::Error("replay: " + path + " is not a directory");
   if (isCapture(path)) return {path};
   std::vector<fs::path> directories;
   for (fs::directory_iterator it(path, error), end; !error && it != end; it.increment(error)) {
     std::error_code type_error;
     if (it->is_directory(type_error)) directories.push_back(it->path());  // files (notes, calib) ignored
   }
-  if (error) throw Error("replay: cannot list " + path + ": " + error.message());
+  if (error) throw core::Error("replay: cannot list " + path + ": " + error.message());
   std::sort(directories.begin(), directories.end());
   std::vector<std::string> captures;
   for (const fs::path& directory : directories) {
     if (!isCapture(directory)) {
-      throw Error("replay: " + directory.string() +
+      throw core::Error("replay: " + directory.string() +
                   " has no capture.json (a recording that did not finish?); remove it or replay another directory");
     }
     captures.push_back(directory.string());
   }
   if (captures.empty()) {
-    throw Error("replay: " + path + " holds no capture (no capture.json in it or its subdirectories)");
+    throw core::Error("replay: " + path + " holds no capture (no capture.json in it or its subdirectories)");
   }
   return captures;
 }
@@ -54,15 +54,15 @@ class ReplaySource : public CaptureSource {
                                             params_.loop ? ", looping" : "");
   }
 
-  Capture next() override {
+  io::Capture next() override {
     if (next_ == captures_.size()) {
-      if (!params_.loop) throw Error("replay: no more captures in " + params_.path);
+      if (!params_.loop) throw core::Error("replay: no more captures in " + params_.path);
       next_ = 0;
     }
     // Move on before reading: a damaged capture is reported once and the replay goes on after it.
     const std::string& directory = captures_[next_++];
     detail::componentLogger("replay")->debug("reading {}", directory);
-    return readCapture(directory, params_.threads);
+    return io::readCapture(directory, params_.threads);
   }
 
   std::string description() const override {
@@ -79,8 +79,8 @@ class ReplaySource : public CaptureSource {
 
 std::unique_ptr<CaptureSource> makeReplaySource(const ReplayParams& params) {
   const std::string owner = "replay params";
-  requireField(!params.path.empty(), owner, "path", "a capture directory or a directory of them", "\"\"");
-  requireField(params.threads >= 0, owner, "threads", ">= 0 (0: all cores)", params.threads);
+  core::requireField(!params.path.empty(), owner, "path", "a capture directory or a directory of them", "\"\"");
+  core::requireField(params.threads >= 0, owner, "threads", ">= 0 (0: all cores)", params.threads);
   return std::make_unique<ReplaySource>(params);
 }
 

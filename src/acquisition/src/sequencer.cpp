@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "binpick/acquisition/sequencer.hpp"
+#include "binpick/core/stopwatch.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "component_logger.hpp"
 
@@ -117,15 +118,15 @@ CaptureSequencer::CaptureSequencer(Camera& camera, ProjectorTrigger& projector, 
   params_.validate();
 }
 
-Capture CaptureSequencer::capture(const PatternSetSpec& patterns, SequencerReport* report) {
+io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, SequencerReport* report) {
   patterns.validate();
-  const auto start = std::chrono::steady_clock::now();
+  const core::Stopwatch stopwatch;
   SequencerReport local;
   SequencerReport& out = report != nullptr ? *report : local;
   out = SequencerReport{};
 
-  Capture capture;
-  capture.metadata.timestamp = utcTimestamp();  // when the first pattern was shown
+  io::Capture capture;
+  capture.metadata.timestamp = io::utcTimestamp();  // when the first pattern was shown
   capture.metadata.patterns = reconstruction::patternNames(patterns);
   const std::vector<std::string>& names = capture.metadata.patterns;
   for (std::size_t k = 0; k < names.size(); ++k) {
@@ -137,22 +138,36 @@ Capture CaptureSequencer::capture(const PatternSetSpec& patterns, SequencerRepor
     cv::Mat image = takeFrame(camera_, params_, label, out);
     checkFormat(image, capture.images.empty() ? image : capture.images.front(), label);
     capture.images.push_back(std::move(image));
-    capture.metadata.frame_times_ms.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    capture.metadata.frame_times_ms.push_back(stopwatch.elapsedMs());  // since the capture began, not per frame
   }
 
-  CaptureMetadata& m = capture.metadata;
+  io::CaptureMetadata& m = capture.metadata;
   m.source = camera_.description();
   m.image_width = capture.images.front().cols;
   m.image_height = capture.images.front().rows;
   m.bit_depth = bitDepth(capture.images.front());
   m.pattern_set = patterns;
-  out.milliseconds =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  out.milliseconds = stopwatch.elapsedMs();
   detail::componentLogger("sequencer")
       ->info("captured {} images ({}x{}, {}-bit) from {} in {:.0f} ms, {} retries", capture.images.size(),
              m.image_width, m.image_height, m.bit_depth, m.source, out.milliseconds, out.retries);
   return capture;
+}
+
+}  // namespace binpick::acquisition
+
+// SequencerParams::validate.
+namespace binpick::acquisition {
+
+void SequencerParams::validate() const {
+  const std::string owner = "sequencer params";
+  // Bounds catch unit mistakes (seconds for microseconds) rather than limit real rigs.
+  core::requireField(settle_us >= 0 && settle_us <= 10000000, owner, "settle_us", "in [0, 10000000]", settle_us);
+  core::requireField(frame_timeout_ms >= 1 && frame_timeout_ms <= 600000, owner, "frame_timeout_ms", "in [1, 600000]",
+               frame_timeout_ms);
+  core::requireField(max_retries >= 0 && max_retries <= 100, owner, "max_retries", "in [0, 100]", max_retries);
+  core::requireField(order == TriggerOrder::ProjectorThenCamera || order == TriggerOrder::CameraOnly, owner, "order",
+               "ProjectorThenCamera or CameraOnly", static_cast<int>(order));
 }
 
 }  // namespace binpick::acquisition

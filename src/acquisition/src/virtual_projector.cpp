@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "binpick/acquisition/fake_gige_camera.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::acquisition {
 namespace {
@@ -16,13 +16,13 @@ class VirtualProjector final : public ProjectorTrigger {
 
   void showPattern(int index) override {
     if (index < 0 || index >= static_cast<int>(images_.size())) {
-      throw Error("virtual projector: pattern " + std::to_string(index) + " out of range (it holds " +
+      throw core::Error("virtual projector: pattern " + std::to_string(index) + " out of range (it holds " +
                   std::to_string(images_.size()) + " images)");
     }
     try {
       camera_.serve(images_[static_cast<std::size_t>(index)]);
-    } catch (const Error& e) {
-      throw Error("virtual projector: pattern " + std::to_string(index) + ": " + e.what());
+    } catch (const core::Error& e) {
+      throw core::Error("virtual projector: pattern " + std::to_string(index) + ": " + e.what());
     }
   }
 
@@ -38,7 +38,7 @@ class VirtualProjector final : public ProjectorTrigger {
 }  // namespace
 
 std::unique_ptr<ProjectorTrigger> makeVirtualProjector(FakeGigECamera& camera, std::vector<cv::Mat> pattern_images) {
-  if (pattern_images.empty()) throw Error("virtual projector: no pattern images");
+  if (pattern_images.empty()) throw core::Error("virtual projector: no pattern images");
   return std::make_unique<VirtualProjector>(camera, std::move(pattern_images));
 }
 

@@ -9,7 +9,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::calibration {
 namespace {
@@ -124,10 +124,10 @@ void keepInside(const cv::Mat& image, double margin, const Corners& corners,
 }  // namespace
 
 void BoardDetectionParams::validate() const {
-  requireField(subpixel_half_window >= 2, "BoardDetectionParams", "subpixel_half_window", ">= 2",
+  core::requireField(subpixel_half_window >= 2, "BoardDetectionParams", "subpixel_half_window", ">= 2",
                subpixel_half_window);
-  requireField(min_corners >= 4, "BoardDetectionParams", "min_corners", ">= 4", min_corners);
-  requireField(std::isfinite(border_margin) && border_margin >= 0.0, "BoardDetectionParams",
+  core::requireField(min_corners >= 4, "BoardDetectionParams", "min_corners", ">= 4", min_corners);
+  core::requireField(std::isfinite(border_margin) && border_margin >= 0.0, "BoardDetectionParams",
                "border_margin", ">= 0", border_margin);
 }
 
@@ -137,7 +137,7 @@ BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout,
   layout.validate();
   if (image.empty() || image.channels() != 1 ||
       (image.depth() != CV_8U && image.depth() != CV_16U)) {
-    throw Error("board detection needs a non-empty 8- or 16-bit single-channel image");
+    throw core::Error("board detection needs a non-empty 8- or 16-bit single-channel image");
   }
   BoardDetection detection;
   detection.expected = layout.cornerCount();

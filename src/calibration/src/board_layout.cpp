@@ -6,7 +6,7 @@
 #include <sstream>
 #include <utility>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::calibration {
 namespace {
@@ -39,7 +39,7 @@ const std::pair<const char*, aruco::PREDEFINED_DICTIONARY_NAME> kDictionaries[] 
 
 template <typename T>
 void require(bool ok, const char* field, const char* rule, const T& value) {
-  requireField(ok, "BoardLayout", field, rule, value);
+  core::requireField(ok, "BoardLayout", field, rule, value);
 }
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
@@ -57,7 +57,7 @@ void validateMarkers(const BoardLayout& layout) {
     message << "BoardLayout.dictionary " << layout.dictionary << " holds " << available
             << " markers; a " << layout.squares_x << "x" << layout.squares_y << " board needs "
             << markers;
-    throw Error(message.str());
+    throw core::Error(message.str());
   }
 }
 
@@ -70,7 +70,7 @@ std::string boardTypeName(BoardType type) {
 BoardType boardTypeFromName(const std::string& name) {
   if (name == "chessboard") return BoardType::Chessboard;
   if (name == "charuco") return BoardType::Charuco;
-  throw Error("board type must be 'chessboard' or 'charuco' (got '" + name + "')");
+  throw core::Error("board type must be 'chessboard' or 'charuco' (got '" + name + "')");
 }
 
 int arucoDictionaryId(const std::string& name) {
@@ -103,7 +103,7 @@ void BoardLayout::validate() const {
 
 Eigen::Vector3d BoardLayout::cornerPoint(int id) const {
   if (id < 0 || id >= cornerCount()) {
-    throw Error("board corner id " + std::to_string(id) + " is outside 0.." +
+    throw core::Error("board corner id " + std::to_string(id) + " is outside 0.." +
                 std::to_string(cornerCount() - 1));
   }
   const int columns = squares_x - 1;

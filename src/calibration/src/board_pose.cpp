@@ -8,7 +8,7 @@
 namespace binpick::calibration {
 namespace {
 
-cv::Mat cameraMatrix(const LensIntrinsics& lens) {
+cv::Mat cameraMatrix(const io::LensIntrinsics& lens) {
   return (cv::Mat_<double>(3, 3) << lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy, 0.0, 0.0, 1.0);
 }
 
@@ -22,7 +22,7 @@ Eigen::Isometry3d isometry(const cv::Mat& rvec, const cv::Mat& tvec) {
 
 std::optional<BoardPose> estimateBoardPose(const BoardDetection& detection,
                                            const BoardLayout& layout,
-                                           const LensIntrinsics& camera) {
+                                           const io::LensIntrinsics& camera) {
   if (!detection.found() || detection.ids.size() < 4) return std::nullopt;
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> image;

@@ -29,7 +29,7 @@ struct MountTransforms {
   Eigen::Isometry3d board = Eigen::Isometry3d::Identity();   // T_mount_board
 };
 
-// OpenCV's solution; throws binpick::Error when it is not finite.
+// OpenCV's solution; throws core::Error when it is not finite.
 MountTransforms solveWithOpenCv(const HandEyeProblem& problem, HandEyeMethod method);
 // Gauss-Newton on both transforms from `start`, minimising the pose residuals.
 MountTransforms refineMounts(const HandEyeProblem& problem, const MountTransforms& start);
@@ -53,7 +53,7 @@ Eigen::Matrix3d nearestRotation(const Eigen::Matrix3d& M);
 // views down to OpenCV's minimum does not help.
 std::string blameViews(std::vector<HandEyeView> views, const HandEyeParams& params);
 
-// Throws binpick::Error when the robot motion leaves the rotation unobservable.
+// Throws core::Error when the robot motion leaves the rotation unobservable.
 void requireRotationSpread(const HandEyeProblem& problem, const HandEyeParams& params);
 
 }  // namespace binpick::calibration::detail

@@ -1,9 +1,12 @@
 // solveHandEye: checks the views, solves with OpenCV, rules out inverted poses, judges the fit.
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <opencv2/calib3d.hpp>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "cv_eigen.hpp"
 #include "hand_eye_internal.hpp"
 
 namespace binpick::calibration {
@@ -25,15 +28,15 @@ bool isRigid(const Eigen::Isometry3d& T) {
 
 void requireViews(const std::vector<HandEyeView>& views, const HandEyeParams& params) {
   if (static_cast<int>(views.size()) < params.min_views) {
-    throw Error("hand-eye needs at least " + std::to_string(params.min_views) +
+    throw core::Error("hand-eye needs at least " + std::to_string(params.min_views) +
                 " views, got " + std::to_string(views.size()));
   }
   for (const HandEyeView& view : views) {
     if (!isRigid(view.T_base_flange)) {
-      throw Error("hand-eye: view " + view.name + ": the robot pose is not a finite rigid motion");
+      throw core::Error("hand-eye: view " + view.name + ": the robot pose is not a finite rigid motion");
     }
     if (!isRigid(view.T_camera_board)) {
-      throw Error("hand-eye: view " + view.name + ": the board pose is not a finite rigid motion");
+      throw core::Error("hand-eye: view " + view.name + ": the board pose is not a finite rigid motion");
     }
   }
 }
@@ -58,7 +61,7 @@ void rejectInvertedPoses(const std::vector<HandEyeView>& views, const HandEyePar
   try {
     const HandEyeProblem problem = detail::makeProblem(views, params.setup, true);
     inverted = detail::rmsOf(detail::residualsOf(problem, solve(problem, params)));
-  } catch (const Error&) {
+  } catch (const core::Error&) {
     return;  // no solution inverted: nothing fits better
   }
   const double ratio = params.inverted_fit_ratio;
@@ -68,7 +71,7 @@ void rejectInvertedPoses(const std::vector<HandEyeView>& views, const HandEyePar
   }
   const HandEyeSetup other = params.setup == HandEyeSetup::EyeToHand ? HandEyeSetup::EyeInHand
                                                                      : HandEyeSetup::EyeToHand;
-  throw Error("hand-eye: the robot poses look inverted (flange->base): they fit with " +
+  throw core::Error("hand-eye: the robot poses look inverted (flange->base): they fit with " +
               describe(inverted) + " inverted but " + describe(as_given) +
               " as given. Give T_base_flange, the flange in the base frame as the teach pendant "
               "shows it, or check the setup: the poses also fit " + handEyeSetupName(other));
@@ -140,3 +143,179 @@ HandEyeResult solveHandEye(const std::vector<HandEyeView>& views, const HandEyeP
 }
 
 }  // namespace binpick::calibration
+
+// Whether the robot's motion determines the rotation. AX = XB-type problems need rotations
+// about at least two non-parallel axes (Tsai and Lenz): with one axis, the rotation about the
+// rest and the translation along that axis are free; with little rotation at all, noise
+// decides the answer.
+namespace binpick::calibration::detail {
+namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
+
+struct RotationSpread {
+  double largest_deg = 0.0;      // the largest rotation between two views
+  double second_axis_deg = 0.0;  // RMS rotation about the second principal axis
+  std::string largest_pair;      // the two views of the largest rotation
+};
+
+// Rotation vectors of every pairwise motion G_i^-1 G_j, in the frame where the problem's
+// rotation axes live; their scatter matrix's second eigenvalue measures how much of the motion
+// is about an axis other than the dominant one. The sign of a rotation vector does not matter
+// to the scatter matrix, so the order within a pair does not either.
+RotationSpread rotationSpread(const HandEyeProblem& problem) {
+  RotationSpread spread;
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  int pairs = 0;
+  for (std::size_t i = 0; i < problem.robot.size(); ++i) {
+    for (std::size_t j = i + 1; j < problem.robot.size(); ++j) {
+      const Eigen::AngleAxisd motion(problem.robot[i].linear().transpose() *
+                                     problem.robot[j].linear());
+      const Eigen::Vector3d w = motion.angle() * motion.axis() * kDegreesPerRadian;
+      scatter += w * w.transpose();
+      ++pairs;
+      if (w.norm() > spread.largest_deg) {
+        spread.largest_deg = w.norm();
+        spread.largest_pair = problem.names[i] + " and " + problem.names[j];
+      }
+    }
+  }
+  if (pairs == 0) return spread;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(scatter / pairs);
+  spread.second_axis_deg = std::sqrt(std::max(0.0, eigen.eigenvalues()(1)));  // ascending order
+  return spread;
+}
+
+}  // namespace
+
+void requireRotationSpread(const HandEyeProblem& problem, const HandEyeParams& params) {
+  const RotationSpread spread = rotationSpread(problem);
+  std::ostringstream message;
+  message.precision(3);
+  if (spread.largest_deg < params.min_rotation_deg) {
+    message << "hand-eye: too little rotation between the views: the largest is "
+            << spread.largest_deg << " deg (" << spread.largest_pair << "), needs at least "
+            << params.min_rotation_deg
+            << " deg; tilt and turn the flange between views, the rotation is otherwise"
+               " unobservable";
+    throw core::Error(message.str());
+  }
+  if (spread.second_axis_deg < params.min_axis_spread_deg) {
+    message << "hand-eye: the robot rotates about one axis only (spread about a second axis "
+            << spread.second_axis_deg << " deg RMS, needs " << params.min_axis_spread_deg
+            << "); the rotation about it and the translation along it are unobservable: turn"
+               " the flange about at least two different axes between views";
+    throw core::Error(message.str());
+  }
+}
+
+}  // namespace binpick::calibration::detail
+
+// The hand-eye problem handed to OpenCV in its own conventions.
+//
+// cv::calibrateRobotWorldHandEye solves A_i X = Z B_i with A_i = world2cam (T_cam_world),
+// B_i = base2gripper (T_gripper_base), X = base2world, Z = gripper2cam. With the board as
+// "world" and G_i^-1 as "base2gripper" (hand_eye_internal.hpp), G_i T_mount_camera C_i =
+// T_mount_board reads C_i T_mount_board^-1 = T_mount_camera^-1 G_i^-1: X = T_mount_board^-1 and
+// Z = T_mount_camera^-1, in both setups.
+//
+// cv::calibrateHandEye solves for cam2gripper from gripper2base and target2cam. OpenCV's
+// eye-in-hand input is gripper2base = T_base_flange = G_i; its documented eye-to-hand input is
+// base2gripper = T_flange_base = G_i again, giving cam2base. So gripper2base := G_i and the
+// output is T_mount_camera in both setups; the board's mount transform is then the mean of its
+// per-view predictions.
+namespace binpick::calibration::detail {
+namespace {
+
+struct CvPoses {
+  std::vector<cv::Mat> rotations;
+  std::vector<cv::Mat> translations;
+  void add(const Eigen::Isometry3d& T) {
+    cv::Mat R(3, 3, CV_64F);
+    cv::Mat t(3, 1, CV_64F);
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) R.at<double>(r, c) = T.linear()(r, c);
+      t.at<double>(r) = T.translation()(r);
+    }
+    rotations.push_back(R);
+    translations.push_back(t);
+  }
+};
+
+// OpenCV's rotations are orthonormal only to its solver's precision; Isometry3d::inverse
+// assumes they are exactly.
+Eigen::Isometry3d fromCv(const cv::Mat& R, const cv::Mat& t) {
+  Eigen::Isometry3d T = detail::isometryFromCv(R, t);
+  T.linear() = nearestRotation(T.linear());
+  return T;
+}
+
+bool isRobotWorld(HandEyeMethod method) {
+  return method == HandEyeMethod::Shah || method == HandEyeMethod::Li;
+}
+
+cv::HandEyeCalibrationMethod handEyeFlag(HandEyeMethod method) {
+  switch (method) {
+    case HandEyeMethod::Tsai: return cv::CALIB_HAND_EYE_TSAI;
+    case HandEyeMethod::Park: return cv::CALIB_HAND_EYE_PARK;
+    case HandEyeMethod::Horaud: return cv::CALIB_HAND_EYE_HORAUD;
+    case HandEyeMethod::Andreff: return cv::CALIB_HAND_EYE_ANDREFF;
+    default: return cv::CALIB_HAND_EYE_DANIILIDIS;
+  }
+}
+
+MountTransforms robotWorld(const HandEyeProblem& problem, HandEyeMethod method) {
+  CvPoses world2cam;
+  CvPoses base2gripper;
+  for (std::size_t i = 0; i < problem.robot.size(); ++i) {
+    world2cam.add(problem.camera[i]);
+    base2gripper.add(problem.robot[i].inverse());
+  }
+  cv::Mat R_x, t_x, R_z, t_z;
+  cv::calibrateRobotWorldHandEye(
+      world2cam.rotations, world2cam.translations, base2gripper.rotations,
+      base2gripper.translations, R_x, t_x, R_z, t_z,
+      method == HandEyeMethod::Shah ? cv::CALIB_ROBOT_WORLD_HAND_EYE_SHAH
+                                    : cv::CALIB_ROBOT_WORLD_HAND_EYE_LI);
+  return {fromCv(R_z, t_z).inverse(), fromCv(R_x, t_x).inverse()};
+}
+
+MountTransforms handEye(const HandEyeProblem& problem, HandEyeMethod method) {
+  CvPoses gripper2base;
+  CvPoses target2cam;
+  for (std::size_t i = 0; i < problem.robot.size(); ++i) {
+    gripper2base.add(problem.robot[i]);
+    target2cam.add(problem.camera[i]);
+  }
+  cv::Mat R, t;
+  cv::calibrateHandEye(gripper2base.rotations, gripper2base.translations, target2cam.rotations,
+                       target2cam.translations, R, t, handEyeFlag(method));
+  MountTransforms mounts;
+  mounts.camera = fromCv(R, t);
+  std::vector<Eigen::Isometry3d> boards;
+  for (std::size_t i = 0; i < problem.robot.size(); ++i) {
+    boards.push_back(predictedBoard(problem, i, mounts.camera));
+  }
+  mounts.board = meanPose(boards);
+  return mounts;
+}
+
+bool finite(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
+
+}  // namespace
+
+MountTransforms solveWithOpenCv(const HandEyeProblem& problem, HandEyeMethod method) {
+  MountTransforms mounts;
+  try {
+    mounts = isRobotWorld(method) ? robotWorld(problem, method) : handEye(problem, method);
+  } catch (const cv::Exception& e) {
+    throw core::Error("hand-eye (" + handEyeMethodName(method) + "): OpenCV failed: " + e.what());
+  }
+  if (!finite(mounts.camera) || !finite(mounts.board)) {
+    throw core::Error("hand-eye (" + handEyeMethodName(method) +
+                "): OpenCV's solution is not finite; the views do not determine the transforms");
+  }
+  return mounts;
+}
+
+}  // namespace binpick::calibration::detail

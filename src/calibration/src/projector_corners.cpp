@@ -6,8 +6,8 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 
 namespace binpick::calibration {
 namespace {
@@ -93,16 +93,16 @@ CornerFit fitCorner(const reconstruction::DecodedCapture& decoded, const Eigen::
 
 void ProjectorCornerParams::validate() const {
   const std::string owner = "ProjectorCornerParams";
-  requireField(half_window >= 3 && half_window <= 500, owner, "half_window", "in [3, 500]",
+  core::requireField(half_window >= 3 && half_window <= 500, owner, "half_window", "in [3, 500]",
                half_window);
-  requireField(min_decoded_pixels >= 8, owner, "min_decoded_pixels", ">= 8", min_decoded_pixels);
-  requireField(std::isfinite(ransac_threshold) && ransac_threshold > 0.0, owner,
+  core::requireField(min_decoded_pixels >= 8, owner, "min_decoded_pixels", ">= 8", min_decoded_pixels);
+  core::requireField(std::isfinite(ransac_threshold) && ransac_threshold > 0.0, owner,
                "ransac_threshold", "positive", ransac_threshold);
-  requireField(std::isfinite(min_inlier_share) && min_inlier_share > 0.0 && min_inlier_share <= 1.0,
+  core::requireField(std::isfinite(min_inlier_share) && min_inlier_share > 0.0 && min_inlier_share <= 1.0,
                owner, "min_inlier_share", "in (0, 1]", min_inlier_share);
-  requireField(std::isfinite(min_hull_depth) && min_hull_depth >= 0.0, owner, "min_hull_depth",
+  core::requireField(std::isfinite(min_hull_depth) && min_hull_depth >= 0.0, owner, "min_hull_depth",
                ">= 0", min_hull_depth);
-  requireField(threads >= 0, owner, "threads", ">= 0", threads);
+  core::requireField(threads >= 0, owner, "threads", ">= 0", threads);
 }
 
 ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& decoded,
@@ -110,7 +110,7 @@ ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& deco
                                       const ProjectorCornerParams& params) {
   params.validate();
   if (decoded.column.empty() || decoded.row.empty()) {
-    throw Error(
+    throw core::Error(
         "projector corners need both the projector's columns and rows: capture with column and"
         " row codes (pattern_set.column_codes and row_codes)");
   }
@@ -118,7 +118,7 @@ ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& deco
   // of threads.
   const int count = static_cast<int>(detection.ids.size());
   std::vector<CornerFit> fits(detection.ids.size());
-#pragma omp parallel for num_threads(resolveThreadCount(params.threads)) schedule(dynamic, 1)
+#pragma omp parallel for num_threads(core::resolveThreadCount(params.threads)) schedule(dynamic, 1)
   for (int i = 0; i < count; ++i) {
     try {
       fits[i] = fitCorner(decoded, detection.pixels[i], params);

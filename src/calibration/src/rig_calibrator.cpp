@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "binpick/io/capture.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "rig_solver.hpp"
 #include "rig_view_triage.hpp"
 
@@ -61,9 +61,9 @@ std::string outlierText(const Attempt& attempt, std::size_t k, const std::string
 
 // Writes each view of the attempt into the quality table: its RMS, whether it stands out, and
 // whether it went into the calibration.
-void recordViews(const Attempt& attempt, bool used, RigCalibrationQuality& quality) {
+void recordViews(const Attempt& attempt, bool used, io::RigCalibrationQuality& quality) {
   for (std::size_t k = 0; k < attempt.views.size(); ++k) {
-    RigViewQuality& view = quality.views[attempt.views[k]];
+    io::RigViewQuality& view = quality.views[attempt.views[k]];
     view.camera_rms_px = attempt.solution.view_camera_rms_px[k];
     view.projector_rms_px = attempt.solution.view_projector_rms_px[k];
     view.outlier = attempt.outlier[k];
@@ -83,13 +83,13 @@ std::vector<std::size_t> withoutOutliers(const Attempt& attempt) {
 
 void RigCalibrationParams::validate() const {
   const std::string owner = "RigCalibrationParams";
-  requireField(min_views >= 3, owner, "min_views", ">= 3", min_views);
-  requireField(min_corners >= 6, owner, "min_corners", ">= 6", min_corners);
-  requireField(std::isfinite(outlier_floor_px) && outlier_floor_px >= 0.0, owner,
+  core::requireField(min_views >= 3, owner, "min_views", ">= 3", min_views);
+  core::requireField(min_corners >= 6, owner, "min_corners", ">= 6", min_corners);
+  core::requireField(std::isfinite(outlier_floor_px) && outlier_floor_px >= 0.0, owner,
                "outlier_floor_px", ">= 0", outlier_floor_px);
-  requireField(std::isfinite(outlier_factor) && outlier_factor >= 1.0, owner, "outlier_factor",
+  core::requireField(std::isfinite(outlier_factor) && outlier_factor >= 1.0, owner, "outlier_factor",
                ">= 1", outlier_factor);
-  requireField(std::isfinite(warn_rms_px) && warn_rms_px > 0.0, owner, "warn_rms_px", "positive",
+  core::requireField(std::isfinite(warn_rms_px) && warn_rms_px > 0.0, owner, "warn_rms_px", "positive",
                warn_rms_px);
 }
 
@@ -102,7 +102,7 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
   std::vector<std::size_t> usable;
   for (std::size_t i = 0; i < views.size(); ++i) {
     const RigView& view = views[i];
-    RigViewQuality quality;
+    io::RigViewQuality quality;
     quality.name = view.name;
     quality.camera_corners = static_cast<int>(view.board.ids.size());
     quality.projector_corners = static_cast<int>(view.projector.corners.size());
@@ -117,7 +117,7 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
     result.quality.views.push_back(std::move(quality));
   }
   if (static_cast<int>(usable.size()) < params.min_views) {
-    throw Error(detail::tooFewViewsMessage(views, problems, static_cast<int>(usable.size()),
+    throw core::Error(detail::tooFewViewsMessage(views, problems, static_cast<int>(usable.size()),
                                            params.min_views));
   }
   detail::requireSameSizes(views, usable);
@@ -126,7 +126,7 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
   const std::vector<std::size_t> kept = withoutOutliers(attempt);
   if (params.drop_outliers && kept.size() < usable.size()) {
     if (static_cast<int>(kept.size()) < params.min_views) {
-      throw Error("calibrate rig: dropping the " + std::to_string(usable.size() - kept.size()) +
+      throw core::Error("calibrate rig: dropping the " + std::to_string(usable.size() - kept.size()) +
                   " outlier views would leave " + std::to_string(kept.size()) +
                   " views, fewer than the " + std::to_string(params.min_views) +
                   " needed; capture more views");
@@ -152,7 +152,7 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
   const detail::RigSolution& solution = attempt.solution;
   result.rig = solution.rig;
   result.timings = solution.timings;
-  result.quality.date = utcTimestamp();
+  result.quality.date = io::utcTimestamp();
   result.quality.camera_rms_px = solution.camera_rms_px;
   result.quality.projector_rms_px = solution.projector_rms_px;
   result.quality.stereo_rms_px = solution.stereo_rms_px;

@@ -1,21 +1,15 @@
 // Camera, projector and stereo solves with OpenCV's calibration functions.
 #include "rig_solver.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 #include "cv_eigen.hpp"
 
 namespace binpick::calibration::detail {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 cv::Point3f objectPoint(const BoardLayout& layout, int id) {
   const Eigen::Vector3d p = layout.cornerPoint(id);
@@ -42,14 +36,14 @@ LensFit calibrateLens(const std::vector<std::vector<cv::Point3f>>& objects,
     fit.rms = cv::calibrateCamera(objects, images, size, fit.matrix, fit.distortion, rvecs, tvecs,
                                   flags);
   } catch (const cv::Exception& e) {
-    throw Error(std::string("calibrate rig: OpenCV could not calibrate the ") + device + ": " +
+    throw core::Error(std::string("calibrate rig: OpenCV could not calibrate the ") + device + ": " +
                 e.err);
   }
   return fit;
 }
 
-LensIntrinsics lensFrom(const LensFit& fit, cv::Size size) {
-  LensIntrinsics lens;
+io::LensIntrinsics lensFrom(const LensFit& fit, cv::Size size) {
+  io::LensIntrinsics lens;
   lens.width = size.width;
   lens.height = size.height;
   lens.fx = fit.matrix.at<double>(0, 0);
@@ -88,15 +82,13 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
     shared_projector.push_back(view.shared_projector);
   }
   RigSolution solution;
-  Clock::time_point start = Clock::now();
+  core::Stopwatch stage;
   LensFit camera = calibrateLens(camera_object, camera_image, camera_size, params, "camera");
-  solution.timings.camera = msSince(start);
-  start = Clock::now();
+  solution.timings.camera = stage.lapMs();
   LensFit projector =
       calibrateLens(shared_object, shared_projector, projector_size, params, "projector");
-  solution.timings.projector = msSince(start);
+  solution.timings.projector = stage.lapMs();
 
-  start = Clock::now();
   int flags = cv::CALIB_FIX_INTRINSIC;
   if (params.refine_intrinsics_in_stereo) {
     flags = cv::CALIB_USE_INTRINSIC_GUESS | (params.fix_k3 ? cv::CALIB_FIX_K3 : 0);
@@ -109,9 +101,9 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
         projector.matrix, projector.distortion, camera_size, r, t, essential, fundamental,
         per_view, flags, criteria);
   } catch (const cv::Exception& e) {
-    throw Error("calibrate rig: OpenCV could not solve the camera-projector pose: " + e.err);
+    throw core::Error("calibrate rig: OpenCV could not solve the camera-projector pose: " + e.err);
   }
-  solution.timings.stereo = msSince(start);
+  solution.timings.stereo = stage.lapMs();
 
   solution.camera_rms_px = camera.rms;
   solution.projector_rms_px = projector.rms;
@@ -121,7 +113,7 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
   if (per_view.rows != static_cast<int>(views.size()) || per_view.cols != 2 ||
       !std::isfinite(solution.stereo_rms_px) || !std::isfinite(camera.rms) ||
       !std::isfinite(projector.rms)) {
-    throw Error("calibrate rig: the solve did not converge (no finite reprojection errors)");
+    throw core::Error("calibrate rig: the solve did not converge (no finite reprojection errors)");
   }
   for (int v = 0; v < per_view.rows; ++v) {
     solution.view_camera_rms_px.push_back(per_view.at<double>(v, 0));
@@ -129,8 +121,8 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
   }
   try {
     solution.rig.validate();
-  } catch (const Error& e) {
-    throw Error(std::string("calibrate rig: the solved rig is not valid: ") + e.what());
+  } catch (const core::Error& e) {
+    throw core::Error(std::string("calibrate rig: the solved rig is not valid: ") + e.what());
   }
   return solution;
 }

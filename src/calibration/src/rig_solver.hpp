@@ -21,7 +21,7 @@ struct ViewPoints {
 ViewPoints viewPoints(const RigView& view, const BoardLayout& layout);
 
 struct RigSolution {
-  RigCalibration rig;
+  io::RigCalibration rig;
   double camera_rms_px = 0.0;
   double projector_rms_px = 0.0;
   double stereo_rms_px = 0.0;
@@ -30,7 +30,7 @@ struct RigSolution {
   RigCalibrationTimings timings;
 };
 
-// Throws binpick::Error when OpenCV fails or gives a non-finite or invalid rig.
+// Throws core::Error when OpenCV fails or gives a non-finite or invalid rig.
 RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
                      cv::Size projector_size, const RigCalibrationParams& params);
 

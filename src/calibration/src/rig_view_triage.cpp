@@ -3,7 +3,7 @@
 
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::calibration::detail {
 namespace {
@@ -73,7 +73,7 @@ void requireSameSizes(const std::vector<RigView>& views, const std::vector<std::
          << first.name << " has camera " << first.camera_width << "x" << first.camera_height
          << ", projector " << first.projector_width << "x" << first.projector_height
          << ": all views must come from the same rig";
-    throw Error(text.str());
+    throw core::Error(text.str());
   }
 }
 

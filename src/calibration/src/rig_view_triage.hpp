@@ -14,7 +14,7 @@ std::string viewProblem(const RigView& view, const RigCalibrationParams& params)
 // hidden), or corners without a projector pixel (outside the projector's light, poorly decoded).
 std::vector<std::string> viewWarnings(const RigView& view);
 
-// Throws binpick::Error unless every usable view has the first one's camera and projector size.
+// Throws core::Error unless every usable view has the first one's camera and projector size.
 void requireSameSizes(const std::vector<RigView>& views, const std::vector<std::size_t>& usable);
 
 // The error for too few usable views: how many, and every unusable view with its problem.

@@ -8,8 +8,8 @@
 #include <map>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
-#include "hand_eye_text_file.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/file.hpp"
 
 namespace binpick::calibration {
 namespace {
@@ -34,7 +34,7 @@ struct LineContext {
   const std::string& origin;
   int line = 0;
   [[noreturn]] void fail(const std::string& why) const {
-    throw Error(origin + ":" + std::to_string(line) + ": " + why);
+    throw core::Error(origin + ":" + std::to_string(line) + ": " + why);
   }
 };
 
@@ -48,7 +48,7 @@ double finiteNumber(const std::string& token, const std::string& view, const Lin
   return value;
 }
 
-robot::Orientation orientationLine(const std::string& line, const LineContext& at) {
+core::Orientation orientationLine(const std::string& line, const LineContext& at) {
   const auto colon = line.find(':');
   const std::vector<std::string> key = tokens(line.substr(0, colon));
   const std::vector<std::string> value =
@@ -57,22 +57,22 @@ robot::Orientation orientationLine(const std::string& line, const LineContext& a
     at.fail("the first line must be 'orientation: NAME' (got '" + line + "')");
   }
   try {
-    return robot::orientationFromName(value[0]);
-  } catch (const Error& e) {
+    return core::orientationFromName(value[0]);
+  } catch (const core::Error& e) {
     at.fail(e.what());
   }
 }
 
-RobotPose poseLine(const std::vector<std::string>& fields, robot::Orientation orientation,
+RobotPose poseLine(const std::vector<std::string>& fields, core::Orientation orientation,
                    const LineContext& at) {
   RobotPose pose;
   pose.view = fields[0];
   pose.line = at.line;
   if (!isViewName(pose.view)) at.fail("'" + pose.view + "' is not a view name ([A-Za-z0-9_.-]+)");
-  const int count = robot::orientationValueCount(orientation);
+  const int count = core::orientationValueCount(orientation);
   if (static_cast<int>(fields.size()) != 4 + count) {
     at.fail("view " + pose.view + ": expected x y z (mm) and " + std::to_string(count) + " " +
-            robot::orientationName(orientation) + " values, got " +
+            core::orientationName(orientation) + " values, got " +
             std::to_string(fields.size() - 1) + " numbers");
   }
   std::vector<double> values;
@@ -80,8 +80,8 @@ RobotPose poseLine(const std::vector<std::string>& fields, robot::Orientation or
   pose.T_base_flange.translation() = Eigen::Vector3d(values[0], values[1], values[2]) / 1000.0;
   try {
     pose.T_base_flange.linear() =
-        robot::rotationFromValues({values.begin() + 3, values.end()}, orientation);
-  } catch (const Error& e) {
+        core::rotationFromValues({values.begin() + 3, values.end()}, orientation);
+  } catch (const core::Error& e) {
     at.fail("view " + pose.view + ": " + e.what());
   }
   return pose;
@@ -118,22 +118,22 @@ RobotPoseFile parseRobotPoses(const std::string& text, const std::string& origin
     }
     file.poses.push_back(std::move(pose));
   }
-  if (!have_orientation) throw Error(origin + ": no 'orientation: NAME' line");
+  if (!have_orientation) throw core::Error(origin + ": no 'orientation: NAME' line");
   return file;
 }
 
 RobotPoseFile readRobotPoseFile(const std::string& path) {
-  return parseRobotPoses(detail::readTextFile(path), path);
+  return parseRobotPoses(core::readFile(path), path);
 }
 
 std::string formatRobotPoses(const RobotPoseFile& file) {
   std::string text =
       "# Robot poses T_base_flange (flange in the base frame), one per view: VIEW x y z (mm) and"
-      " the rotation\norientation: " + robot::orientationName(file.orientation) + "\n";
+      " the rotation\norientation: " + core::orientationName(file.orientation) + "\n";
   for (const RobotPose& pose : file.poses) {
     text += pose.view;
     for (int i = 0; i < 3; ++i) appendFixed(text, 1000.0 * pose.T_base_flange.translation()(i), 4);
-    for (const double v : robot::orientationValues(pose.T_base_flange.linear(), file.orientation)) {
+    for (const double v : core::orientationValues(pose.T_base_flange.linear(), file.orientation)) {
       appendFixed(text, v, 9);
     }
     text += "\n";
@@ -142,7 +142,7 @@ std::string formatRobotPoses(const RobotPoseFile& file) {
 }
 
 void writeRobotPoseFile(const std::string& path, const RobotPoseFile& file) {
-  detail::writeTextFileAtomically(path, formatRobotPoses(file));
+  core::writeFileAtomically(path, formatRobotPoses(file), core::ParentDirectory::Create);
 }
 
 }  // namespace binpick::calibration

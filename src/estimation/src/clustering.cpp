@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -48,10 +48,10 @@ float rotationAngle(const Eigen::Matrix3f& a, const Eigen::Matrix3f& b) {
 
 void ClusteringParams::validate() const {
   if (!(max_translation_ratio > 0.0f && max_translation_ratio <= 1.0f)) {
-    throw Error("clustering params: max_translation_ratio must be in (0, 1]");
+    throw core::Error("clustering params: max_translation_ratio must be in (0, 1]");
   }
   if (!(max_rotation_deg > 0.0f && max_rotation_deg <= 180.0f)) {
-    throw Error("clustering params: max_rotation_deg must be in (0, 180]");
+    throw core::Error("clustering params: max_rotation_deg must be in (0, 180]");
   }
 }
 

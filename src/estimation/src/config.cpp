@@ -2,13 +2,13 @@
 
 #include <cmath>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/yaml_section.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/yaml_section.hpp"
 
 namespace binpick::estimation {
 namespace {
 
-using Section = YamlSection;
+using Section = core::YamlSection;
 
 Eigen::Vector3f vector3(Section& section, const char* key) {
   Eigen::Vector3d value = Eigen::Vector3d::Constant(std::nan(""));
@@ -89,14 +89,14 @@ void readDetector(Section s, DetectorParams& p) {
 }  // namespace
 
 EstimationConfig parseEstimationConfig(const std::string& yaml_text, const std::string& origin) {
-  const YAML::Node root = parseYaml(yaml_text, origin);
+  const YAML::Node root = core::parseYaml(yaml_text, origin);
   EstimationConfig config;
   Section top(root, "", origin);
   readModel(top.child("model"), config.model);
   readDetector(top.child("detection"), config.detector);
   top.skip("reconstruction");  // the same cell file configures reconstruction
   top.finish();
-  validateSettings(origin, [&] {
+  core::validateSettings(origin, [&] {
     config.model.validate();
     config.detector.validate();
   });
@@ -104,7 +104,7 @@ EstimationConfig parseEstimationConfig(const std::string& yaml_text, const std::
 }
 
 EstimationConfig loadEstimationConfig(const std::string& path) {
-  return parseEstimationConfig(readConfigFile(path), path);
+  return parseEstimationConfig(core::readConfigFile(path), path);
 }
 
 }  // namespace binpick::estimation

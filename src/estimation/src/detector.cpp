@@ -1,25 +1,12 @@
 #include "binpick/estimation/detector.hpp"
 
-#include <chrono>
 #include <cmath>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 
 namespace binpick::estimation {
 namespace {
-
-class Stopwatch {
- public:
-  double lapMs() {
-    const auto now = std::chrono::steady_clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
-    last_ = now;
-    return ms;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector3f& centre,
                      const PreparedModel& model, float min_distance) {
@@ -43,7 +30,7 @@ Detection refined(const PoseRefiner& refiner, const PreparedModel& model, const 
 // refined by ICP before its scene points stop existing, so that a coarse candidate does not leave
 // half of its object behind for a repeat detection.
 void selectVerified(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, Stopwatch& clock) {
+                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock) {
   const SceneVoxelGrid grid(scene.points, p.verification.voxel_size_ratio * model.step);
   const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification);
   result.timing_ms.verification = clock.lapMs();
@@ -65,9 +52,9 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
                         min_distance)) {
       continue;
     }
-    Stopwatch icp_clock;
+    const core::Stopwatch icp_clock;
     Detection d = refined(refiner, model, verified[pick->candidate].T_camera_model);
-    icp_ms += icp_clock.lapMs();
+    icp_ms += icp_clock.elapsedMs();
     if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
     d.score = static_cast<float>(pick->score) / static_cast<float>(model.size());
     d.votes = verified[pick->candidate].votes;
@@ -84,7 +71,7 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
 
 // Section II-C: clusters of poses, best first, each refined; repeats of an accepted pose skipped.
 void selectClustered(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                     const std::vector<PoseCandidate>& candidates, DetectionResult& result, Stopwatch& clock) {
+                     const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock) {
   const std::vector<PoseCluster> clusters = clusterPoses(candidates, model.diameter, p.clustering);
   result.timing_ms.selection = clock.lapMs();
   const PoseRefiner refiner(scene, model.step, p.icp);
@@ -105,7 +92,7 @@ void selectClustered(const PreparedModel& model, const PreparedScene& scene, con
 Method methodFromName(const std::string& name) {
   if (name == "li_hashimoto") return Method::LiHashimoto;
   if (name == "drost") return Method::Drost;
-  throw Error("detector params: method '" + name + "' is unknown (li_hashimoto or drost)");
+  throw core::Error("detector params: method '" + name + "' is unknown (li_hashimoto or drost)");
 }
 
 std::string methodName(Method method) { return method == Method::Drost ? "drost" : "li_hashimoto"; }
@@ -121,7 +108,7 @@ DetectorParams DetectorParams::drost(float reference_fraction) {
 }
 
 void DetectorParams::validate() const {
-  if (threads < 0) throw Error("detector params: threads must be >= 0");
+  if (threads < 0) throw core::Error("detector params: threads must be >= 0");
   scene.validate();
   voting.validate();
   verification.validate();
@@ -133,16 +120,16 @@ void DetectorParams::validate() const {
 Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::move(model)), params_(params) {
   params_.validate();
   params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.threads;
-  if (model_.size() == 0) throw Error("detector: the model has no points");
+  if (model_.size() == 0) throw core::Error("detector: the model has no points");
 }
 
-DetectionResult Detector::detect(const PointCloud& scene_cloud) const {
+DetectionResult Detector::detect(const io::PointCloud& scene_cloud) const {
   return detect(scene_cloud, params_.scene.crop);
 }
 
-DetectionResult Detector::detect(const PointCloud& scene_cloud, const std::optional<CropBox>& crop) const {
-  Stopwatch total;
-  Stopwatch clock;
+DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop) const {
+  const core::Stopwatch total;
+  core::Stopwatch clock;
   DetectionResult result;
   SceneParams scene_params = params_.scene;
   scene_params.crop = crop;
@@ -160,7 +147,7 @@ DetectionResult Detector::detect(const PointCloud& scene_cloud, const std::optio
       selectClustered(model_, scene, params_, candidates, result, clock);
     }
   }
-  result.timing_ms.total = total.lapMs();
+  result.timing_ms.total = total.elapsedMs();
   return result;
 }
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::estimation {
 
@@ -48,14 +48,14 @@ PpfHashTable::PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry>
                            uint32_t point_count)
     : offsets_(std::move(offsets)), entries_(std::move(entries)) {
   if (offsets_.empty() || offsets_.front() != 0 || offsets_.back() != entries_.size()) {
-    throw Error("PPF table: offsets do not cover the entries");
+    throw core::Error("PPF table: offsets do not cover the entries");
   }
   for (std::size_t k = 1; k < offsets_.size(); ++k) {
-    if (offsets_[k] < offsets_[k - 1]) throw Error("PPF table: offsets decrease at key " + std::to_string(k));
+    if (offsets_[k] < offsets_[k - 1]) throw core::Error("PPF table: offsets decrease at key " + std::to_string(k));
   }
   for (const PairEntry& e : entries_) {
     if (e.reference >= point_count || !std::isfinite(e.reference_angle)) {
-      throw Error("PPF table: an entry refers to model point " + std::to_string(e.reference) +
+      throw core::Error("PPF table: an entry refers to model point " + std::to_string(e.reference) +
                   " of " + std::to_string(point_count) + " or has a non-finite angle");
     }
   }

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "kdtree.hpp"
 
 namespace binpick::estimation {
@@ -56,9 +56,9 @@ Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, fl
 
 void IcpParams::validate() const {
   const auto positive = [](float v, const char* field) {
-    if (!(v > 0.0f) || !std::isfinite(v)) throw Error(std::string("icp params: ") + field + " must be positive");
+    if (!(v > 0.0f) || !std::isfinite(v)) throw core::Error(std::string("icp params: ") + field + " must be positive");
   };
-  if (max_iterations < 0 || max_iterations > 1000) throw Error("icp params: max_iterations must be in [0, 1000]");
+  if (max_iterations < 0 || max_iterations > 1000) throw core::Error("icp params: max_iterations must be in [0, 1000]");
   positive(initial_max_distance_ratio, "initial_max_distance_ratio");
   positive(final_max_distance_ratio, "final_max_distance_ratio");
   positive(huber_ratio, "huber_ratio");

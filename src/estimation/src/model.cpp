@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
 
@@ -19,27 +19,27 @@ struct DenseCloud {
   bool has_exact_normals = false;  // a cloud file's own normals are kept as they are
 };
 
-DenseCloud denseFromMesh(const TriangleMesh& mesh, const ModelParams& params) {
-  validateMesh(mesh, "model mesh");
+DenseCloud denseFromMesh(const io::TriangleMesh& mesh, const ModelParams& params) {
+  io::validateMesh(mesh, "model mesh");
   const double area = surfaceArea(mesh);
   const float diameter = approximateDiameter(mesh.vertices);
-  if (!(area > 0.0) || !(diameter > 0.0f)) throw Error("model mesh has no surface area");
+  if (!(area > 0.0) || !(diameter > 0.0f)) throw core::Error("model mesh has no surface area");
   const double step = params.sampling_ratio * diameter;
   const auto count = static_cast<std::size_t>(
       std::ceil(area / (step * step) * params.dense_samples_per_step2));
-  if (count > 20'000'000) throw Error("model: sampling would need " + std::to_string(count) + " points; raise sampling_ratio");
+  if (count > 20'000'000) throw core::Error("model: sampling would need " + std::to_string(count) + " points; raise sampling_ratio");
   SurfaceSamples samples = sampleSurface(mesh, count, params.seed);
   return {std::move(samples.points), std::move(samples.face_normals), false};
 }
 
-DenseCloud denseFromCloud(const PointCloud& cloud) {
+DenseCloud denseFromCloud(const io::PointCloud& cloud) {
   DenseCloud dense;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     if (!cloud.points[i].allFinite()) continue;  // an organized model scan may hold NaN pixels
     dense.points.push_back(cloud.points[i]);
     if (cloud.hasNormals()) dense.orientation.push_back(cloud.normals[i]);
   }
-  if (dense.points.size() < 10) throw Error("model cloud has fewer than 10 valid points");
+  if (dense.points.size() < 10) throw core::Error("model cloud has fewer than 10 valid points");
   dense.has_exact_normals = cloud.hasNormals();
   if (!dense.has_exact_normals) {
     Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
@@ -68,7 +68,7 @@ std::vector<Eigen::Vector3f> fitNormals(const DenseCloud& dense, const KdTree& t
 
 void ModelParams::validate() const {
   const auto require = [](bool ok, const char* field, const char* rule) {
-    if (!ok) throw Error(std::string("model params: ") + field + " " + rule);
+    if (!ok) throw core::Error(std::string("model params: ") + field + " " + rule);
   };
   require(sampling_ratio > 0.005f && sampling_ratio <= 0.5f, "sampling_ratio", "must be in (0.005, 0.5]");
   require(angle_step_deg >= 1.0f && angle_step_deg <= 90.0f, "angle_step_deg", "must be in [1, 90]");
@@ -83,14 +83,14 @@ PpfQuantizer PreparedModel::quantizer() const {
   return PpfQuantizer(step, params.angle_step_deg * kDegToRad, diameter);
 }
 
-PreparedModel prepareModel(const ModelGeometry& geometry, const ModelParams& params) {
+PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams& params) {
   params.validate();
   const DenseCloud dense = geometry.hasMesh() ? denseFromMesh(geometry.mesh, params)
                                               : denseFromCloud(geometry.cloud);
   PreparedModel model;
   model.params = params;
   model.diameter = approximateDiameter(dense.points);
-  if (!(model.diameter > 0.0f)) throw Error("model has zero extent");
+  if (!(model.diameter > 0.0f)) throw core::Error("model has zero extent");
   model.step = params.sampling_ratio * model.diameter;
 
   const KdTree tree(dense.points);
@@ -104,9 +104,9 @@ PreparedModel prepareModel(const ModelGeometry& geometry, const ModelParams& par
     model.normals.push_back(dense_normals[i]);
     model.centre += dense.points[i];
   }
-  if (model.points.size() < 4) throw Error("model: fewer than 4 points after subsampling");
+  if (model.points.size() < 4) throw core::Error("model: fewer than 4 points after subsampling");
   if (model.points.size() > 20000) {
-    throw Error("model: " + std::to_string(model.points.size()) +
+    throw core::Error("model: " + std::to_string(model.points.size()) +
                 " points after subsampling is too many for the pair table; raise sampling_ratio");
   }
   model.centre /= static_cast<float>(model.points.size());

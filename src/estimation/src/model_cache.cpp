@@ -1,8 +1,5 @@
 #include "binpick/estimation/model_cache.hpp"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -11,7 +8,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/file.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -67,7 +65,7 @@ class Reader {
     return values;
   }
   bool atEnd() const { return at_ == end_; }
-  [[noreturn]] void fail(const std::string& why) const { throw Error(path_ + ": model cache " + why); }
+  [[noreturn]] void fail(const std::string& why) const { throw core::Error(path_ + ": model cache " + why); }
 
  private:
   void take(void* out, std::size_t size, const char* what) {
@@ -83,13 +81,13 @@ class Reader {
 
 std::vector<uint8_t> readAll(const std::string& path) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) throw Error(path + ": not a readable file");
+  if (!std::filesystem::is_regular_file(path, error)) throw core::Error(path + ": not a readable file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open");
+  if (!in) throw core::Error(path + ": cannot open");
   try {
     return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), {});
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot read: " + e.what());
+    throw core::Error(path + ": cannot read: " + e.what());
   }
 }
 
@@ -151,41 +149,32 @@ void saveModelCache(const PreparedModel& model, uint64_t source_fingerprint, con
   w.putArray(model.table.entries());
   const uint64_t checksum = fnv1a(w.bytes.data(), w.bytes.size());
 
-  // Write to a temporary name and rename: a crash never leaves a half-written cache behind. The
-  // name is unique to this writer, so that services sharing a cache never write into one file.
-  static std::atomic<unsigned> writers{0};
-  const std::string temporary = path + ".partial-" + std::to_string(getpid()) + "-" + std::to_string(writers++);
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path + ": cannot write the model cache");
-    out.write(kMagic, sizeof(kMagic));
-    out.write(reinterpret_cast<const char*>(&kModelCacheVersion), sizeof(kModelCacheVersion));
-    out.write(reinterpret_cast<const char*>(w.bytes.data()), static_cast<std::streamsize>(w.bytes.size()));
-    out.write(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
-    if (!out) throw Error(path + ": writing the model cache failed");
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) throw Error(path + ": cannot move the model cache into place: " + error.message());
+  // Atomically: a crash never leaves a half-written cache behind, and services sharing a cache
+  // never write into one file.
+  std::string file(kMagic, sizeof(kMagic));
+  file.append(reinterpret_cast<const char*>(&kModelCacheVersion), sizeof(kModelCacheVersion));
+  file.append(reinterpret_cast<const char*>(w.bytes.data()), w.bytes.size());
+  file.append(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
+  core::writeFileAtomically(path, file);
 }
 
 CachedModel loadModelCache(const std::string& path) {
   const std::vector<uint8_t> bytes = readAll(path);
   const std::size_t header = sizeof(kMagic) + sizeof(uint32_t);
   if (bytes.size() < header + sizeof(uint64_t) || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
-    throw Error(path + ": not a binpick model cache");
+    throw core::Error(path + ": not a binpick model cache");
   }
   uint32_t version = 0;
   std::memcpy(&version, bytes.data() + sizeof(kMagic), sizeof(version));
   if (version != kModelCacheVersion) {
-    throw Error(path + ": model cache version " + std::to_string(version) + ", this build reads " +
+    throw core::Error(path + ": model cache version " + std::to_string(version) + ", this build reads " +
                 std::to_string(kModelCacheVersion) + "; rebuild it");
   }
   const std::size_t payload_end = bytes.size() - sizeof(uint64_t);
   uint64_t stored_checksum = 0;
   std::memcpy(&stored_checksum, bytes.data() + payload_end, sizeof(stored_checksum));
   if (fnv1a(bytes.data() + header, payload_end - header) != stored_checksum) {
-    throw Error(path + ": model cache checksum mismatch (corrupt or truncated)");
+    throw core::Error(path + ": model cache checksum mismatch (corrupt or truncated)");
   }
 
   Reader r(bytes, header, payload_end, path);
@@ -194,7 +183,7 @@ CachedModel loadModelCache(const std::string& path) {
   m.params = getParams(r);
   try {
     m.params.validate();
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     r.fail(std::string("holds invalid ") + e.what());
   }
   cached.source_fingerprint = r.get<uint64_t>("fingerprint");
@@ -210,7 +199,7 @@ CachedModel loadModelCache(const std::string& path) {
   if (static_cast<int64_t>(offsets.size()) != m.quantizer().keyCount() + 1) r.fail("table does not match its parameters");
   try {
     m.table = PpfHashTable(std::move(offsets), std::move(entries), static_cast<uint32_t>(m.points.size()));
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     r.fail(e.what());
   }
   return cached;
@@ -232,11 +221,11 @@ PreparedModel loadOrPrepareModel(const std::string& model_path, const ModelParam
         if (reused) *reused = true;
         return std::move(cached.model);
       }
-    } catch (const Error&) {
+    } catch (const core::Error&) {
       // An unusable cache is rebuilt below; the model file itself is the source of truth.
     }
   }
-  PreparedModel model = prepareModel(readModelGeometry(model_path), params);
+  PreparedModel model = prepareModel(io::readModelGeometry(model_path), params);
   saveModelCache(model, fingerprint, cache_path);
   return model;
 }

@@ -10,7 +10,7 @@
 namespace binpick::estimation {
 namespace {
 
-Eigen::Vector3f triangleNormalTimesTwoArea(const TriangleMesh& mesh, const Eigen::Vector3i& t) {
+Eigen::Vector3f triangleNormalTimesTwoArea(const io::TriangleMesh& mesh, const Eigen::Vector3i& t) {
   const Eigen::Vector3f& a = mesh.vertices[t[0]];
   return (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a);
 }
@@ -100,13 +100,13 @@ uint32_t nearestToCentroid(const std::vector<uint32_t>& members,
 
 }  // namespace
 
-double surfaceArea(const TriangleMesh& mesh) {
+double surfaceArea(const io::TriangleMesh& mesh) {
   double area = 0.0;
   for (const auto& t : mesh.triangles) area += 0.5 * triangleNormalTimesTwoArea(mesh, t).norm();
   return area;
 }
 
-SurfaceSamples sampleSurface(const TriangleMesh& mesh, std::size_t count, uint64_t seed) {
+SurfaceSamples sampleSurface(const io::TriangleMesh& mesh, std::size_t count, uint64_t seed) {
   std::vector<double> cumulative_area;
   cumulative_area.reserve(mesh.triangles.size());
   double total = 0.0;

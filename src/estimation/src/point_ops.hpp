@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "binpick/io/point_cloud.hpp"
 
 namespace binpick::estimation {
@@ -15,8 +15,8 @@ struct SurfaceSamples {
   std::vector<Eigen::Vector3f> points;
   std::vector<Eigen::Vector3f> face_normals;
 };
-SurfaceSamples sampleSurface(const TriangleMesh& mesh, std::size_t count, uint64_t seed);
-double surfaceArea(const TriangleMesh& mesh);
+SurfaceSamples sampleSurface(const io::TriangleMesh& mesh, std::size_t count, uint64_t seed);
+double surfaceArea(const io::TriangleMesh& mesh);
 
 // Largest distance between two points, exact up to ~1% (a coarse grid keeps it O(n) for large
 // clouds before the pairwise search).

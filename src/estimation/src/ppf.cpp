@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -35,10 +35,10 @@ PpfQuantizer::PpfQuantizer(float distance_step, float angle_step, float max_dist
     : distance_step_(distance_step), angle_step_(angle_step), max_distance_(max_distance) {
   if (!(distance_step > 0.0f) || !(angle_step > 0.0f) || !(max_distance > 0.0f) ||
       !std::isfinite(distance_step) || !std::isfinite(max_distance)) {
-    throw Error("PpfQuantizer: distance step, angle step and maximum distance must be positive");
+    throw core::Error("PpfQuantizer: distance step, angle step and maximum distance must be positive");
   }
   if (max_distance / distance_step > 10000.0f || angle_step < 0.01f) {
-    throw Error("PpfQuantizer: steps too fine (more than 10000 distance bins or < 0.01 rad)");
+    throw core::Error("PpfQuantizer: steps too fine (more than 10000 distance bins or < 0.01 rad)");
   }
   distance_bins_ = static_cast<int>(max_distance / distance_step) + 1;
   angle_bins_ = static_cast<int>(std::ceil(static_cast<float>(M_PI) / angle_step));
@@ -46,7 +46,7 @@ PpfQuantizer::PpfQuantizer(float distance_step, float angle_step, float max_dist
   alpha_bins_per_radian_ = static_cast<float>(alpha_bins_) / kTwoPi;
   key_count_ = static_cast<int64_t>(distance_bins_) * angle_bins_ * angle_bins_ * angle_bins_;
   if (key_count_ > (int64_t{1} << 28)) {
-    throw Error("PpfQuantizer: " + std::to_string(key_count_) +
+    throw core::Error("PpfQuantizer: " + std::to_string(key_count_) +
                 " feature bins is too many; use a coarser distance or angle step");
   }
 }

@@ -1,12 +1,12 @@
 #include "binpick/estimation/result_json.hpp"
 
-#include "binpick/io/json_fields.hpp"
+#include "binpick/core/json_fields.hpp"
 
 namespace binpick::estimation {
 nlohmann::json toJson(const DetectionResult& result) {
   nlohmann::json detections = nlohmann::json::array();
   for (const Detection& d : result.detections) {
-    detections.push_back({{"pose", poseRows(d.T_camera_model)},
+    detections.push_back({{"pose", core::poseRows(d.T_camera_model)},
                           {"score", d.score},
                           {"coverage", d.coverage},
                           {"icp_rmse", d.icp_rmse},

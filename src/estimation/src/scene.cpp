@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
 
@@ -16,7 +16,7 @@ namespace {
 // them without a search structure.
 class OrganizedNeighbours {
  public:
-  OrganizedNeighbours(const PointCloud& cloud, const SceneParams& params)
+  OrganizedNeighbours(const io::PointCloud& cloud, const SceneParams& params)
       : cloud_(cloud), max_half_(params.max_window_half_size) {}
 
   PlaneFit fit(uint32_t index, float radius) const {
@@ -56,11 +56,11 @@ class OrganizedNeighbours {
     return cloud_.points[static_cast<std::size_t>(v) * cloud_.width + u];
   }
 
-  const PointCloud& cloud_;
+  const io::PointCloud& cloud_;
   int max_half_;
 };
 
-std::vector<uint32_t> validIndices(const PointCloud& cloud, const SceneParams& params) {
+std::vector<uint32_t> validIndices(const io::PointCloud& cloud, const SceneParams& params) {
   std::vector<uint32_t> valid;
   valid.reserve(cloud.size());
   for (uint32_t i = 0; i < cloud.size(); ++i) {
@@ -84,20 +84,20 @@ bool CropBox::contains(const Eigen::Vector3f& p_camera) const {
 }
 
 void SceneParams::validate() const {
-  if (min_normal_neighbours < 3) throw Error("scene params: min_normal_neighbours must be at least 3");
+  if (min_normal_neighbours < 3) throw core::Error("scene params: min_normal_neighbours must be at least 3");
   if (max_window_half_size < 1 || max_window_half_size > 50) {
-    throw Error("scene params: max_window_half_size must be in [1, 50]");
+    throw core::Error("scene params: max_window_half_size must be in [1, 50]");
   }
-  if (threads < 0) throw Error("scene params: threads must be >= 0");
+  if (threads < 0) throw core::Error("scene params: threads must be >= 0");
   if (crop && !((crop->half_extents.array() > 0.0f).all() && crop->half_extents.allFinite() &&
                 crop->T_camera_box.matrix().allFinite())) {
-    throw Error("scene params: crop box needs finite, positive half extents and a finite pose");
+    throw core::Error("scene params: crop box needs finite, positive half extents and a finite pose");
   }
 }
 
-PreparedScene prepareScene(const PointCloud& cloud, const PreparedModel& model, const SceneParams& params) {
+PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& model, const SceneParams& params) {
   params.validate();
-  if (!cloud.isOrganized()) validateCloud(cloud, "scene cloud");
+  if (!cloud.isOrganized()) io::validateCloud(cloud, "scene cloud");
   const std::vector<uint32_t> valid = validIndices(cloud, params);
   PreparedScene scene;
   scene.valid_input_points = valid.size();
@@ -111,7 +111,7 @@ PreparedScene prepareScene(const PointCloud& cloud, const PreparedModel& model, 
   const float radius = model.params.normal_radius_ratio * model.step;
   std::vector<std::optional<Eigen::Vector3f>> normals(kept.size());
   const auto min_neighbours = static_cast<std::size_t>(params.min_normal_neighbours);
-  const int threads = resolveThreadCount(params.threads);
+  const int threads = core::resolveThreadCount(params.threads);
   if (cloud.isOrganized()) {
     const OrganizedNeighbours neighbours(cloud, params);
 #pragma omp parallel for num_threads(threads) schedule(static)

@@ -2,17 +2,17 @@
 
 #include <algorithm>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::estimation {
 
 void SelectionParams::validate() const {
-  if (max_objects < 1 || max_objects > 10000) throw Error("selection params: max_objects must be in [1, 10000]");
+  if (max_objects < 1 || max_objects > 10000) throw core::Error("selection params: max_objects must be in [1, 10000]");
   if (!(min_score_fraction >= 0.0f && min_score_fraction <= 1.0f)) {
-    throw Error("selection params: min_score_fraction must be in [0, 1]");
+    throw core::Error("selection params: min_score_fraction must be in [0, 1]");
   }
   if (!(min_centre_distance_ratio >= 0.0f && min_centre_distance_ratio <= 10.0f)) {
-    throw Error("selection params: min_centre_distance_ratio must be in [0, 10]");
+    throw core::Error("selection params: min_centre_distance_ratio must be in [0, 10]");
   }
 }
 

@@ -2,19 +2,19 @@
 
 #include <cmath>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "point_ops.hpp"
 
 namespace binpick::estimation {
 
 void VerificationParams::validate() const {
   if (!(voxel_size_ratio >= 0.1f && voxel_size_ratio <= 5.0f)) {
-    throw Error("verification params: voxel_size_ratio must be in [0.1, 5]");
+    throw core::Error("verification params: voxel_size_ratio must be in [0.1, 5]");
   }
   if (!(max_normal_angle_deg > 0.0f && max_normal_angle_deg <= 180.0f)) {
-    throw Error("verification params: max_normal_angle_deg must be in (0, 180]");
+    throw core::Error("verification params: max_normal_angle_deg must be in (0, 180]");
   }
-  if (threads < 0) throw Error("verification params: threads must be >= 0");
+  if (threads < 0) throw core::Error("verification params: threads must be >= 0");
 }
 
 std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const Eigen::Isometry3f& pose,
@@ -41,7 +41,7 @@ std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidat
                                ? -2.0f
                                : std::cos(params.max_normal_angle_deg * static_cast<float>(M_PI / 180.0));
   std::vector<VerifiedCandidate> verified(candidates.size());
-  const int threads = resolveThreadCount(params.threads);
+  const int threads = core::resolveThreadCount(params.threads);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 16)
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     VerifiedCandidate& v = verified[c];

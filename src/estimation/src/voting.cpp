@@ -6,7 +6,7 @@
 #include <numeric>
 #include <random>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "neighbour_grid.hpp"
 #include "point_ops.hpp"
 
@@ -54,18 +54,18 @@ class Accumulator {
 
 void VotingParams::validate() const {
   if (!(reference_fraction > 0.0f && reference_fraction <= 1.0f)) {
-    throw Error("voting params: reference_fraction must be in (0, 1]");
+    throw core::Error("voting params: reference_fraction must be in (0, 1]");
   }
   if (!(referred_fraction > 0.0f && referred_fraction <= 1.0f)) {
-    throw Error("voting params: referred_fraction must be in (0, 1]");
+    throw core::Error("voting params: referred_fraction must be in (0, 1]");
   }
   if (poses_per_reference < 1 || poses_per_reference > 100) {
-    throw Error("voting params: poses_per_reference must be in [1, 100]");
+    throw core::Error("voting params: poses_per_reference must be in [1, 100]");
   }
   if (!(min_relative_votes >= 0.0f && min_relative_votes <= 1.0f)) {
-    throw Error("voting params: min_relative_votes must be in [0, 1]");
+    throw core::Error("voting params: min_relative_votes must be in [0, 1]");
   }
-  if (threads < 0) throw Error("voting params: threads must be >= 0");
+  if (threads < 0) throw core::Error("voting params: threads must be >= 0");
 }
 
 std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t seed) {
@@ -97,7 +97,7 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
   std::vector<PoseCandidate> slots(references.size() * static_cast<std::size_t>(np));
   std::vector<int> filled(references.size(), 0);
   const float max_distance_sq = model.diameter * model.diameter;
-  const int threads = resolveThreadCount(params.threads);
+  const int threads = core::resolveThreadCount(params.threads);
 
 #pragma omp parallel num_threads(threads)
   {

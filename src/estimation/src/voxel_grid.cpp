@@ -3,25 +3,25 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::estimation {
 
 SceneVoxelGrid::SceneVoxelGrid(const std::vector<Eigen::Vector3f>& scene_points, float voxel_size)
     : voxel_size_(voxel_size) {
-  if (!(voxel_size > 0.0f) || !std::isfinite(voxel_size)) throw Error("voxel grid: voxel size must be positive");
+  if (!(voxel_size > 0.0f) || !std::isfinite(voxel_size)) throw core::Error("voxel grid: voxel size must be positive");
   if (scene_points.empty()) return;
   Eigen::Vector3f lo = scene_points[0], hi = scene_points[0];
   for (std::size_t i = 0; i < scene_points.size(); ++i) {
     const Eigen::Vector3f& p = scene_points[i];
-    if (!p.allFinite()) throw Error("voxel grid: scene point " + std::to_string(i) + " is not finite");
+    if (!p.allFinite()) throw core::Error("voxel grid: scene point " + std::to_string(i) + " is not finite");
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
   // One voxel of margin so that the neighbours of boundary points exist (min x of eq. 3 moves).
   origin_ = lo - Eigen::Vector3f::Constant(voxel_size);
   const Eigen::Vector3f extent = (hi - origin_) / voxel_size;
-  if (!(extent.maxCoeff() < 1e7f)) throw Error("voxel grid: the scene spans over 10^7 voxels along an axis; crop it to the bin");
+  if (!(extent.maxCoeff() < 1e7f)) throw core::Error("voxel grid: the scene spans over 10^7 voxels along an axis; crop it to the bin");
   for (int a = 0; a < 3; ++a) {
     dims_[a] = static_cast<int64_t>(std::floor(extent[a])) + 2;
     block_dims_[a] = (dims_[a] + 7) / 8;
@@ -29,7 +29,7 @@ SceneVoxelGrid::SceneVoxelGrid(const std::vector<Eigen::Vector3f>& scene_points,
   }
   const int64_t block_count = block_dims_.prod();
   if (block_count > (int64_t{1} << 26)) {
-    throw Error("voxel grid: the scene spans " + std::to_string(block_count) +
+    throw core::Error("voxel grid: the scene spans " + std::to_string(block_count) +
                 " blocks of voxels; crop the scene to the bin");
   }
   blocks_.assign(static_cast<std::size_t>(block_count), -1);

@@ -8,13 +8,13 @@
 #include <fstream>
 #include <system_error>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace fs = std::filesystem;
 
-void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
+void fail(const std::string& path, const std::string& what) { throw core::Error(path + ": " + what); }
 
 namespace {
 
@@ -60,19 +60,9 @@ void writeFileBytes(const std::string& path, std::string_view bytes) {
   }
 }
 
-void replaceFileAtomically(const std::string& path, std::string_view bytes) {
-  const std::string temporary = path + ".tmp";
-  writeFileBytes(temporary, bytes);
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temporary.c_str());
-    fail(path, "cannot be replaced: " + reason);
-  }
-}
-
 void ByteCursor::failTruncated(std::size_t needed, const std::string& what) const {
   fail(path_, "file is truncated: " + what + " needs " + std::to_string(needed) +
                   " more bytes but only " + std::to_string(remaining()) + " remain");
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

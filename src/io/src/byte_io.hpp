@@ -1,6 +1,6 @@
 #pragma once
 // Internal: file loading and bounds-checked binary decoding shared by the format readers and
-// writers. Every error is a binpick::Error whose message starts with the file path.
+// writers. Every error is a core::Error whose message starts with the file path.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -9,9 +9,9 @@
 #include <string_view>
 #include <type_traits>
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
-// Throws binpick::Error("PATH: what").
+// Throws core::Error("PATH: what").
 [[noreturn]] void fail(const std::string& path, const std::string& what);
 
 // The whole file in one read (one block is much faster than streaming for large binary bodies).
@@ -21,8 +21,6 @@ std::string readFileBytes(const std::string& path);
 std::string readNonEmptyFileBytes(const std::string& path);
 // Replaces the file's contents with `bytes`; throws when the file cannot be written completely.
 void writeFileBytes(const std::string& path, std::string_view bytes);
-// writeFileBytes to PATH.tmp, then a rename: readers see the old file or the whole new one.
-void replaceFileAtomically(const std::string& path, std::string_view bytes);
 
 constexpr bool kHostIsLittleEndian = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
 
@@ -84,4 +82,4 @@ class ByteCursor {
   std::size_t position_ = 0;
 };
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

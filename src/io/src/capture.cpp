@@ -8,14 +8,15 @@
 #include <opencv2/imgcodecs.hpp>
 #include <set>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
+#include "binpick/core/file.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
 
-namespace binpick {
+namespace binpick::io {
 namespace fs = std::filesystem;
-using io_detail::fail;
+using detail::fail;
 
 namespace capture_detail {
 
@@ -54,7 +55,7 @@ int expectedType(int bit_depth) { return bit_depth == 16 ? CV_16UC1 : CV_8UC1; }
 cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   if (!fs::exists(path)) fail(path, "the image listed in capture.json is missing");
   // Decoded from memory: cv::imread logs its own warning for unreadable files, our error says it.
-  const std::string bytes = io_detail::readFileBytes(path);
+  const std::string bytes = detail::readFileBytes(path);
   cv::Mat image;
   try {
     image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
@@ -101,7 +102,7 @@ std::string encodePng(const cv::Mat& image, const std::string& path) {
 template <typename Task>
 void forEachInParallel(std::size_t count, int threads, const Task& task) {
   std::vector<std::string> errors(count);
-#pragma omp parallel for num_threads(resolveThreadCount(threads)) schedule(dynamic, 1)
+#pragma omp parallel for num_threads(core::resolveThreadCount(threads)) schedule(dynamic, 1)
   for (long i = 0; i < static_cast<long>(count); ++i) {
     try {
       task(static_cast<std::size_t>(i));
@@ -110,7 +111,7 @@ void forEachInParallel(std::size_t count, int threads, const Task& task) {
     }
   }
   for (const std::string& error : errors) {
-    if (!error.empty()) throw Error(error);
+    if (!error.empty()) throw core::Error(error);
   }
 }
 
@@ -158,7 +159,7 @@ void writeCapture(const std::string& directory, Capture capture, int threads) {
   // PNG encoding dominates writing: one image per thread; capture.json only after all of them.
   forEachInParallel(capture.images.size(), threads, [&](std::size_t i) {
     const std::string path = (fs::path(directory) / m.images[i]).string();
-    io_detail::replaceFileAtomically(path, encodePng(capture.images[i], path));
+    core::writeFileAtomically(path, encodePng(capture.images[i], path));
   });
   capture_detail::writeCaptureMetadata(directory, m);
 }
@@ -177,4 +178,4 @@ std::string utcTimestamp() {
   return full;
 }
 
-}  // namespace binpick
+}  // namespace binpick::io

@@ -3,35 +3,36 @@
 #include <cmath>
 
 #include "binpick/io/capture.hpp"
-#include "binpick/io/error.hpp"
-#include "binpick/io/json_fields.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/json_fields.hpp"
+#include "binpick/core/file.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
 
-namespace binpick {
+namespace binpick::io {
 namespace {
 
 using nlohmann::json;
-using io_detail::fail;
+using detail::fail;
 
 constexpr int kFormatVersion = 1;
 
 void require(bool ok, const char* field, const char* rule, int value) {
-  requireField(ok, "PatternSetSpec", field, rule, value);
+  core::requireField(ok, "PatternSetSpec", field, rule, value);
 }
 
 PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
   if (!object.is_object()) fail(path, "'pattern_set' must be an object");
   PatternSetSpec spec;
-  spec.projector_width = jsonField<int>(object, "projector_width", path);
-  spec.projector_height = jsonField<int>(object, "projector_height", path);
-  spec.column_codes = jsonField<bool>(object, "column_codes", path);
-  spec.row_codes = jsonField<bool>(object, "row_codes", path);
-  spec.phase_steps = jsonField<int>(object, "phase_steps", path);
-  spec.phase_period = jsonField<int>(object, "phase_period", path);
+  spec.projector_width = core::jsonField<int>(object, "projector_width", path);
+  spec.projector_height = core::jsonField<int>(object, "projector_height", path);
+  spec.column_codes = core::jsonField<bool>(object, "column_codes", path);
+  spec.row_codes = core::jsonField<bool>(object, "row_codes", path);
+  spec.phase_steps = core::jsonField<int>(object, "phase_steps", path);
+  spec.phase_period = core::jsonField<int>(object, "phase_period", path);
   try {
     spec.validate();
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     fail(path, e.what());
   }
   return spec;
@@ -84,26 +85,26 @@ void PatternSetSpec::validate() const {
 
 CaptureMetadata readCaptureMetadata(const std::string& directory) {
   const std::string path = capture_detail::metadataPath(directory);
-  const json document = readJsonFile(path);
+  const json document = core::readJsonFile(path);
   if (!document.is_object()) fail(path, "the document must be a JSON object");
   CaptureMetadata m;
-  m.format_version = jsonField<int>(document, "format_version", path);
+  m.format_version = core::jsonField<int>(document, "format_version", path);
   if (m.format_version != kFormatVersion) {
     fail(path, "format_version " + std::to_string(m.format_version) + " is not supported (this "
                "build reads version " + std::to_string(kFormatVersion) + ")");
   }
-  m.source = jsonField<std::string>(document, "source", path);
-  m.timestamp = jsonField<std::string>(document, "timestamp", path);
-  m.image_width = jsonField<int>(document, "image_width", path);
-  m.image_height = jsonField<int>(document, "image_height", path);
-  m.bit_depth = jsonField<int>(document, "bit_depth", path);
-  m.exposure_us = jsonField<double>(document, "exposure_us", path);
-  m.gain_db = jsonField<double>(document, "gain_db", path);
-  m.pattern_set = patternSetFrom(jsonField<json>(document, "pattern_set", path), path);
-  m.patterns = jsonField<std::vector<std::string>>(document, "patterns", path);
-  m.images = jsonField<std::vector<std::string>>(document, "images", path);
+  m.source = core::jsonField<std::string>(document, "source", path);
+  m.timestamp = core::jsonField<std::string>(document, "timestamp", path);
+  m.image_width = core::jsonField<int>(document, "image_width", path);
+  m.image_height = core::jsonField<int>(document, "image_height", path);
+  m.bit_depth = core::jsonField<int>(document, "bit_depth", path);
+  m.exposure_us = core::jsonField<double>(document, "exposure_us", path);
+  m.gain_db = core::jsonField<double>(document, "gain_db", path);
+  m.pattern_set = patternSetFrom(core::jsonField<json>(document, "pattern_set", path), path);
+  m.patterns = core::jsonField<std::vector<std::string>>(document, "patterns", path);
+  m.images = core::jsonField<std::vector<std::string>>(document, "images", path);
   if (document.contains("frame_times_ms")) {  // optional: recordings only
-    m.frame_times_ms = jsonField<std::vector<double>>(document, "frame_times_ms", path);
+    m.frame_times_ms = core::jsonField<std::vector<double>>(document, "frame_times_ms", path);
   }
   checkConsistent(m, path);
   return m;
@@ -114,7 +115,7 @@ namespace capture_detail {
 void checkMetadata(const CaptureMetadata& m, const std::string& path) {
   try {
     m.pattern_set.validate();
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     fail(path, e.what());
   }
   checkConsistent(m, path);
@@ -135,9 +136,9 @@ void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& m
                          {"patterns", m.patterns},
                          {"images", m.images}};
   if (!m.frame_times_ms.empty()) document["frame_times_ms"] = m.frame_times_ms;
-  io_detail::replaceFileAtomically(path, document.dump(2) + "\n");
+  core::writeFileAtomically(path, document.dump(2) + "\n");
 }
 
 }  // namespace capture_detail
 
-}  // namespace binpick
+}  // namespace binpick::io

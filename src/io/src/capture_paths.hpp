@@ -4,7 +4,7 @@
 
 #include "binpick/io/capture.hpp"
 
-namespace binpick::capture_detail {
+namespace binpick::io::capture_detail {
 
 std::string metadataPath(const std::string& directory);  // DIR/capture.json
 std::string imagesDirectory(const std::string& directory);  // DIR/images
@@ -14,8 +14,8 @@ std::string imageName(std::size_t index, const std::string& pattern);
 // outside its capture.
 bool isPlainImageName(const std::string& name);
 
-// Throws binpick::Error "PATH: ..." when the metadata is incomplete or inconsistent.
+// Throws core::Error "PATH: ..." when the metadata is incomplete or inconsistent.
 void checkMetadata(const CaptureMetadata& metadata, const std::string& path);
 void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& metadata);
 
-}  // namespace binpick::capture_detail
+}  // namespace binpick::io::capture_detail

@@ -7,7 +7,7 @@
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 enum class FileFormat { Ply, Pcd, Stl, Obj };
 
@@ -35,4 +35,4 @@ void requireDirectedNormals(const PointCloud& cloud, const std::string& path);
 // Throws when every triangle of a non-empty mesh is degenerate (nothing to render or match).
 void requireSomeArea(const TriangleMesh& mesh, const std::string& path);
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

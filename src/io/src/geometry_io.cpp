@@ -10,9 +10,9 @@
 #include "byte_io.hpp"
 #include "formats.hpp"
 
-namespace binpick {
+namespace binpick::io {
 
-namespace io_detail {
+namespace detail {
 
 FileFormat formatOf(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
@@ -41,24 +41,24 @@ const char* extensionName(FileFormat format) {
   return "?";
 }
 
-}  // namespace io_detail
+}  // namespace detail
 
 namespace {
 
-using io_detail::extensionName;
-using io_detail::fail;
-using io_detail::FileFormat;
+using detail::extensionName;
+using detail::fail;
+using detail::FileFormat;
 
 ModelGeometry load(const std::string& path, FileFormat format) {
   switch (format) {
     case FileFormat::Ply:
-      return io_detail::loadPly(path);
+      return detail::loadPly(path);
     case FileFormat::Pcd:
-      return io_detail::loadPcd(path);
+      return detail::loadPcd(path);
     case FileFormat::Stl:
-      return io_detail::loadStl(path);
+      return detail::loadStl(path);
     case FileFormat::Obj:
-      return io_detail::loadObj(path);
+      return detail::loadObj(path);
   }
   fail(path, "unsupported format");
 }
@@ -68,22 +68,22 @@ void checkGeometry(ModelGeometry& geometry, const std::string& path) {
   if (geometry.cloud.empty()) fail(path, "the file has no points");
   if (geometry.hasMesh()) {
     validateMesh(geometry.mesh, path);
-    io_detail::requireSomeArea(geometry.mesh, path);
+    detail::requireSomeArea(geometry.mesh, path);
   }
   validateCloud(geometry.cloud, path);
-  io_detail::normaliseNormals(geometry.cloud, path);
+  detail::normaliseNormals(geometry.cloud, path);
 }
 
 }  // namespace
 
 ModelGeometry readModelGeometry(const std::string& path) {
-  ModelGeometry geometry = load(path, io_detail::formatOf(path));
+  ModelGeometry geometry = load(path, detail::formatOf(path));
   checkGeometry(geometry, path);
   return geometry;
 }
 
 TriangleMesh readMesh(const std::string& path) {
-  const FileFormat format = io_detail::formatOf(path);
+  const FileFormat format = detail::formatOf(path);
   if (format == FileFormat::Pcd) {
     fail(path, "a .pcd file holds no faces; readMesh reads .ply, .stl and .obj");
   }
@@ -94,7 +94,7 @@ TriangleMesh readMesh(const std::string& path) {
 }
 
 PointCloud readPointCloud(const std::string& path) {
-  const FileFormat format = io_detail::formatOf(path);
+  const FileFormat format = detail::formatOf(path);
   if (format == FileFormat::Stl || format == FileFormat::Obj) {
     fail(path, std::string("readPointCloud reads .ply and .pcd, not ") + extensionName(format) +
                    "; use readModelGeometry for mesh files");
@@ -105,40 +105,40 @@ PointCloud readPointCloud(const std::string& path) {
 }
 
 void writePointCloud(const std::string& path, const PointCloud& cloud, Encoding encoding) {
-  const FileFormat format = io_detail::formatOf(path);
+  const FileFormat format = detail::formatOf(path);
   if (format != FileFormat::Ply && format != FileFormat::Pcd) {
     fail(path, std::string("writePointCloud writes .ply and .pcd, not ") + extensionName(format));
   }
   // Refuse what the readers would refuse, so every file we write can be read back.
   if (cloud.empty()) fail(path, "refusing to write a cloud with no points");
   validateCloud(cloud, path);
-  io_detail::requireDirectedNormals(cloud, path);
+  detail::requireDirectedNormals(cloud, path);
   if (format == FileFormat::Ply) {
-    io_detail::writePlyCloud(path, cloud, encoding);
+    detail::writePlyCloud(path, cloud, encoding);
   } else {
-    io_detail::writePcd(path, cloud, encoding);
+    detail::writePcd(path, cloud, encoding);
   }
 }
 
 void writeMesh(const std::string& path, const TriangleMesh& mesh) {
-  const FileFormat format = io_detail::formatOf(path);
+  const FileFormat format = detail::formatOf(path);
   if (format == FileFormat::Pcd) fail(path, "writeMesh writes .ply, .stl and .obj, not .pcd");
   if (mesh.empty()) fail(path, "refusing to write a mesh with no triangles");
   validateMesh(mesh, path);
-  io_detail::requireSomeArea(mesh, path);
+  detail::requireSomeArea(mesh, path);
   switch (format) {
     case FileFormat::Ply:
-      io_detail::writePlyMesh(path, mesh);
+      detail::writePlyMesh(path, mesh);
       break;
     case FileFormat::Stl:
-      io_detail::writeStl(path, mesh);
+      detail::writeStl(path, mesh);
       break;
     case FileFormat::Obj:
-      io_detail::writeObj(path, mesh);
+      detail::writeObj(path, mesh);
       break;
     case FileFormat::Pcd:
       break;
   }
 }
 
-}  // namespace binpick
+}  // namespace binpick::io

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <limits>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
-namespace binpick {
+namespace binpick::io {
 namespace {
 
 void require(bool ok, const std::string& what, const char* field, const char* rule, double value) {
-  requireField(ok, what, field, rule, value);
+  core::requireField(ok, what, field, rule, value);
 }
 
 constexpr int kMaxImageSide = 65536;
@@ -61,7 +61,7 @@ bool LensIntrinsics::hasDistortion() const {
 
 LensIntrinsics LensIntrinsics::scaled(double factor) const {
   if (!std::isfinite(factor) || factor <= 0.0) {
-    throw Error("LensIntrinsics::scaled: factor must be positive (got " + std::to_string(factor) +
+    throw core::Error("LensIntrinsics::scaled: factor must be positive (got " + std::to_string(factor) +
                 ")");
   }
   LensIntrinsics lens = *this;
@@ -109,4 +109,4 @@ Eigen::Vector3d LensIntrinsics::rayThroughPixel(const Eigen::Vector2d& pixel) co
   return Eigen::Vector3d(p.x(), p.y(), 1.0).normalized();
 }
 
-}  // namespace binpick
+}  // namespace binpick::io

@@ -9,7 +9,7 @@
 #include "formats.hpp"
 #include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -149,4 +149,4 @@ void writeObj(const std::string& path, const TriangleMesh& mesh) {
   writeFileBytes(path, text);
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -1,145 +1,138 @@
-// PCD through PCL, the only file that includes PCL headers (they are slow to compile): PCL
-// decompresses binary_compressed bodies and writes files. Header checks and the other bodies are
-// ours (pcd_header.cpp, pcd_reader.cpp, pcd_ascii.cpp): see pcd_format.hpp for why.
-#include <pcl/PCLPointCloud2.h>
-#include <pcl/io/pcd_io.h>
-
+// PCD bodies that are neither parsed nor copied record by record (pcd_reader.cpp): decompressing
+// binary_compressed data, and writing files. The format is PCL's (pointclouds.org, "The PCD file
+// format"), version 0.7; files written here read in PCL and the other way round (tests/io).
 #include <cstring>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "byte_io.hpp"
 #include "formats.hpp"
 #include "pcd_format.hpp"
+#include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
-std::uint8_t pclDatatype(const PcdField& field) {
-  using Field = pcl::PCLPointField;
-  if (field.type == 'F') return field.size == 8 ? Field::FLOAT64 : Field::FLOAT32;
-  const bool isSigned = field.type == 'I';
-  switch (field.size) {
-    case 1:
-      return isSigned ? Field::INT8 : Field::UINT8;
-    case 2:
-      return isSigned ? Field::INT16 : Field::UINT16;
-    case 4:
-      return isSigned ? Field::INT32 : Field::UINT32;
-    default:
-      return isSigned ? Field::INT64 : Field::UINT64;
-  }
+[[noreturn]] void failCorrupt(const std::string& path, const std::string& why) {
+  fail(path, "corrupt binary_compressed data: " + why);
 }
 
-// What PCL's own readHeader would have produced, built from our checked header: field layout,
-// grid, and a data buffer of the size the header check accepted.
-pcl::PCLPointCloud2 emptyBlobFor(const PcdHeader& header) {
-  pcl::PCLPointCloud2 blob;
-  std::uint32_t offset = 0;
+// LZF (Marc Lehmann's liblzf, the compressor PCL uses), decoded into exactly `size` bytes. Each
+// control byte c starts either a literal run (c < 32: the next c + 1 bytes) or a back reference
+// (length c >> 5, plus the next byte when that is 7, plus 2; distance ((c & 31) << 8) + the byte
+// after, plus 1). Every read and copy is bounds-checked: corrupt input fails, never overruns.
+std::vector<std::uint8_t> lzfDecompress(const std::uint8_t* in, std::size_t in_size, std::size_t size,
+                                        const std::string& path) {
+  std::vector<std::uint8_t> out(size);
+  std::size_t ip = 0, op = 0;
+  while (ip < in_size) {
+    const unsigned control = in[ip++];
+    if (control < 32) {
+      const std::size_t run = control + 1;
+      if (ip + run > in_size || op + run > size) failCorrupt(path, "a literal run overruns the data");
+      std::memcpy(out.data() + op, in + ip, run);
+      ip += run;
+      op += run;
+      continue;
+    }
+    std::size_t length = control >> 5;
+    if (length == 7) {
+      if (ip >= in_size) failCorrupt(path, "a back reference is cut off");
+      length += in[ip++];
+    }
+    if (ip >= in_size) failCorrupt(path, "a back reference is cut off");
+    const std::size_t distance = ((control & 0x1fu) << 8) + in[ip++] + 1;
+    length += 2;
+    if (distance > op || op + length > size) failCorrupt(path, "a back reference points outside the data");
+    for (std::size_t i = 0; i < length; ++i, ++op) out[op] = out[op - distance];  // may overlap
+  }
+  if (op != size) failCorrupt(path, "it does not decompress to the declared points");
+  return out;
+}
+
+// A binary_compressed body stores each field for all points, then the next field; the binary
+// records hold all fields of one point, then the next point.
+std::vector<std::uint8_t> pointMajor(const std::vector<std::uint8_t>& fields, const PcdHeader& header) {
+  std::vector<std::uint8_t> records(fields.size());
+  std::size_t field_start = 0, record_offset = 0;
   for (const PcdField& field : header.fields) {
-    pcl::PCLPointField pclField;
-    pclField.name = field.name;
-    pclField.offset = offset;
-    pclField.datatype = pclDatatype(field);
-    pclField.count = static_cast<std::uint32_t>(field.count);
-    blob.fields.push_back(pclField);
-    offset += static_cast<std::uint32_t>(field.size * field.count);
+    const std::size_t bytes = field.size * field.count;
+    for (std::uint64_t point = 0; point < header.points; ++point) {
+      std::memcpy(records.data() + point * header.pointBytes + record_offset,
+                  fields.data() + field_start + point * bytes, bytes);
+    }
+    field_start += bytes * header.points;
+    record_offset += bytes;
   }
-  blob.width = static_cast<std::uint32_t>(header.width);
-  blob.height = static_cast<std::uint32_t>(header.height);
-  blob.point_step = offset;
-  blob.row_step = offset * blob.width;
-  blob.data.resize(header.points * header.pointBytes);
-  return blob;
+  return records;
 }
 
-void appendFloatField(pcl::PCLPointCloud2& blob, const char* name) {
-  pcl::PCLPointField field;
-  field.name = name;
-  field.offset = blob.point_step;
-  field.datatype = pcl::PCLPointField::FLOAT32;
-  field.count = 1;
-  blob.fields.push_back(field);
-  blob.point_step += sizeof(float);
-}
-
-// The fields of a cloud, in record order: x y z, then normal_x/y/z and intensity when present
-// (the fields of pcl::PointXYZ, PointNormal, PointXYZI or PointXYZINormal, which PCL matches by
-// name), all float.
-pcl::PCLPointCloud2 blobLayoutFor(const PointCloud& cloud) {
-  pcl::PCLPointCloud2 blob;
+// x y z, then normal_x/y/z and intensity when present (the fields of PCL's PointXYZ,
+// PointNormal, PointXYZI or PointXYZINormal, which PCL matches by name), all float.
+std::string pcdHeaderFor(const PointCloud& cloud, Encoding encoding) {
+  std::string fields = "x y z";
+  int count = 3;
+  if (cloud.hasNormals()) fields += " normal_x normal_y normal_z", count += 3;
+  if (cloud.hasIntensities()) fields += " intensity", count += 1;
+  std::string sizes, types, counts;
+  for (int i = 0; i < count; ++i) sizes += " 4", types += " F", counts += " 1";
   const bool organized = cloud.isOrganized();
-  blob.width = organized ? cloud.width : static_cast<std::uint32_t>(cloud.size());
-  blob.height = organized ? cloud.height : 1;
-  for (const char* name : {"x", "y", "z"}) appendFloatField(blob, name);
-  if (cloud.hasNormals()) {
-    for (const char* name : {"normal_x", "normal_y", "normal_z"}) appendFloatField(blob, name);
-  }
-  if (cloud.hasIntensities()) appendFloatField(blob, "intensity");
-  blob.row_step = blob.point_step * blob.width;
-  return blob;
+  const std::size_t width = organized ? static_cast<std::size_t>(cloud.width) : cloud.size();
+  const std::size_t height = organized ? static_cast<std::size_t>(cloud.height) : 1;
+  return "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS " + fields + "\nSIZE" + sizes +
+         "\nTYPE" + types + "\nCOUNT" + counts + "\nWIDTH " + std::to_string(width) + "\nHEIGHT " +
+         std::to_string(height) + "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(cloud.size()) + "\nDATA " +
+         (encoding == Encoding::Ascii ? "ascii" : "binary") + "\n";
 }
 
-std::uint8_t* copyFloats(std::uint8_t* out, const float* values, std::size_t count) {
-  std::memcpy(out, values, count * sizeof(float));
-  return out + count * sizeof(float);
+// One point's values in field order.
+std::vector<float> valuesOf(const PointCloud& cloud, std::size_t i) {
+  std::vector<float> values(cloud.points[i].data(), cloud.points[i].data() + 3);
+  if (cloud.hasNormals()) values.insert(values.end(), cloud.normals[i].data(), cloud.normals[i].data() + 3);
+  if (cloud.hasIntensities()) values.push_back(cloud.intensities[i]);
+  return values;
 }
 
-pcl::PCLPointCloud2 toBlob(const PointCloud& cloud) {
-  pcl::PCLPointCloud2 blob = blobLayoutFor(cloud);
-  blob.is_dense = true;
-  blob.data.resize(std::size_t{blob.point_step} * cloud.size());
-  std::uint8_t* out = blob.data.data();
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    out = copyFloats(out, cloud.points[i].data(), 3);
-    if (cloud.hasNormals()) out = copyFloats(out, cloud.normals[i].data(), 3);
-    if (cloud.hasIntensities()) out = copyFloats(out, &cloud.intensities[i], 1);
-    blob.is_dense = blob.is_dense && cloud.points[i].allFinite();
+bool hasInvalidPoint(const PointCloud& cloud) {
+  for (const Eigen::Vector3f& point : cloud.points) {
+    if (!point.allFinite()) return true;
   }
-  return blob;
+  return false;
 }
 
 }  // namespace
 
 std::vector<std::uint8_t> decompressPcdBody(std::string_view bytes, const PcdHeader& header,
                                             const std::string& path) {
-  pcl::PCLPointCloud2 blob = emptyBlobFor(header);
-  int status = -1;
-  try {
-    status = pcl::PCDReader().readBodyBinary(reinterpret_cast<const unsigned char*>(bytes.data()),
-                                             blob, pcl::PCDReader::PCD_V7, true,
-                                             static_cast<unsigned int>(header.bodyOffset));
-  } catch (const std::exception& error) {
-    fail(path, std::string("PCL failed to decompress the data: ") + error.what());
-  }
-  if (status < 0 || blob.data.size() != header.points * header.pointBytes) {
-    fail(path, "corrupt binary_compressed data: it does not decompress to the declared points");
-  }
-  return std::move(blob.data);
+  // checkPcdHeader has read and bounded the two size words after the header.
+  const auto* body = reinterpret_cast<const std::uint8_t*>(bytes.data()) + header.bodyOffset;
+  const auto compressed = loadScalar<std::uint32_t>(reinterpret_cast<const char*>(body), !kHostIsLittleEndian);
+  const std::vector<std::uint8_t> fields =
+      lzfDecompress(body + 8, compressed, static_cast<std::size_t>(header.points * header.pointBytes), path);
+  return pointMajor(fields, header);
 }
 
 void writePcd(const std::string& path, const PointCloud& cloud, Encoding encoding) {
-  const pcl::PCLPointCloud2 blob = toBlob(cloud);
-  if (cloud.isOrganized() && cloud.height == 1 && !blob.is_dense) {
+  if (cloud.isOrganized() && cloud.height == 1 && hasInvalidPoint(cloud)) {
     fail(path,
          "a PCD file cannot keep a one-row organized cloud with NaN points (it would read "
          "back as unorganized); write .ply instead");
   }
-  int status = -1;
-  try {
-    pcl::PCDWriter writer;
-    // 9 significant digits make every float round-trip through ascii.
-    status = encoding == Encoding::Ascii ? writer.writeASCII(path, blob, Eigen::Vector4f::Zero(),
-                                                             Eigen::Quaternionf::Identity(), 9)
-                                         : writer.writeBinary(path, blob);
-  } catch (const std::exception& error) {
-    fail(path, std::string("PCL failed to write the file: ") + error.what());
+  std::string bytes = pcdHeaderFor(cloud, encoding);
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const std::vector<float> values = valuesOf(cloud, i);
+    for (std::size_t v = 0; v < values.size(); ++v) {
+      if (encoding == Encoding::Binary) {
+        bytes.append(reinterpret_cast<const char*>(&values[v]), sizeof(float));  // host order, as PCL
+        continue;
+      }
+      if (v > 0) bytes += ' ';
+      appendNumber(bytes, values[v]);  // the shortest text that reads back to the same float
+    }
+    if (encoding == Encoding::Ascii) bytes += '\n';
   }
-  if (status < 0) {
-    fail(path, "PCL could not write the file (does the directory exist and is it writable?)");
-  }
+  writeFileBytes(path, bytes);
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

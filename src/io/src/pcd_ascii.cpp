@@ -7,7 +7,7 @@
 #include "pcd_format.hpp"
 #include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -120,4 +120,4 @@ PointCloud readPcdAsciiBody(std::string_view body, const PcdHeader& header,
   return AsciiBodyParser(body, header, path).parse();
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -3,8 +3,9 @@
 // header, honours repeated POINTS lines and even keeps parsing "header lines" inside binary data,
 // so a corrupt file can make it allocate gigabytes; its ascii parser turns unparseable values into
 // 0 and skips malformed lines with only a warning. So we parse and check the header and the ascii
-// body ourselves, copy binary records straight from the file, and use PCL (pcd.cpp, the only file
-// including PCL) to decompress binary_compressed bodies and to write files.
+// body ourselves, copy binary records straight from the file, and decompress binary_compressed
+// bodies (LZF) and write files in pcd.cpp. No PCL: its io library loads VTK, which the daemon
+// that reads models must not carry.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -13,7 +14,7 @@
 
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 struct PcdField {
   std::string name;
@@ -55,9 +56,9 @@ PointCloud readPcdAsciiBody(std::string_view body, const PcdHeader& header,
 // decompressed.
 PointCloud readPcdBinaryRecords(const char* records, const PcdHeader& header);
 
-// A binary_compressed body (LZF, stored field by field) decompressed by PCL into point-major
+// A binary_compressed body (LZF, stored field by field) decompressed into point-major
 // records; the header check has bounded its sizes. Throws naming `path` when it is corrupt.
 std::vector<std::uint8_t> decompressPcdBody(std::string_view bytes, const PcdHeader& header,
                                             const std::string& path);
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

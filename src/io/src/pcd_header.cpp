@@ -6,7 +6,7 @@
 #include "pcd_format.hpp"
 #include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -289,4 +289,4 @@ PcdHeader checkPcdHeader(std::string_view bytes, const std::string& path) {
   return header;
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

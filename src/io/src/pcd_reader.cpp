@@ -1,4 +1,4 @@
-// PCD reading: our checked header, then the body by its DATA kind. Only decompression needs PCL.
+// PCD reading: our checked header, then the body by its DATA kind.
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -8,7 +8,7 @@
 #include "formats.hpp"
 #include "pcd_format.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -126,4 +126,4 @@ ModelGeometry loadPcd(const std::string& path) {
   return geometry;
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

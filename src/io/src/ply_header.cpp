@@ -6,7 +6,7 @@
 #include "byte_io.hpp"
 #include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 std::size_t byteSize(PlyType type) {
   switch (type) {
@@ -235,4 +235,4 @@ PlyHeader parsePlyHeader(std::string_view bytes, const std::string& path) {
   return header;
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 enum class PlyType { Int8, Uint8, Int16, Uint16, Int32, Uint32, Float32, Float64 };
 
@@ -50,4 +50,4 @@ struct PlyHeader {
 // in the bytes that follow it, so callers may allocate from the counts.
 PlyHeader parsePlyHeader(std::string_view bytes, const std::string& path);
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -13,7 +13,7 @@
 #include "ply_header.hpp"
 #include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -442,4 +442,4 @@ ModelGeometry loadPly(const std::string& path) {
   return readBody(header, source, location, path);
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -7,7 +7,7 @@
 #include "formats.hpp"
 #include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -106,4 +106,4 @@ void writePlyMesh(const std::string& path, const TriangleMesh& mesh) {
   writeFileBytes(path, bytes);
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -10,14 +10,15 @@
 #include <opencv2/core.hpp>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/file.hpp"
 #include "rig_calibration_quality.hpp"
 
-namespace binpick {
+namespace binpick::io {
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(path + ": " + what);
+  throw core::Error(path + ": " + what);
 }
 
 cv::Mat readMatrix(const cv::FileStorage& fs, const std::string& path, const std::string& key) {
@@ -80,7 +81,7 @@ LensIntrinsics readLens(const cv::FileStorage& fs, const std::string& path,
   for (int i = 0; i < count; ++i) lens.distortion[i] = d.at<double>(i);
   try {
     lens.validate(device);
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     fail(path, e.what());
   }
   return lens;
@@ -98,10 +99,9 @@ void writeLens(cv::FileStorage& fs, const std::string& device, const LensIntrins
 void writeRig(const std::string& path, const RigCalibration& rig,
               const RigCalibrationQuality* quality) {
   rig.validate();
-  const std::string temporary = path + ".tmp";
-  {
+  core::replaceFileAtomically(path, [&](const std::string& temporary) {
     cv::FileStorage fs(temporary, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
-    if (!fs.isOpened()) fail(temporary, "cannot write the calibration file");
+    if (!fs.isOpened()) fail(path, "cannot write the calibration file");
     writeLens(fs, "camera", rig.camera);
     writeLens(fs, "projector", rig.projector);
     cv::Mat r(3, 3, CV_64F), t(3, 1, CV_64F);
@@ -111,11 +111,7 @@ void writeRig(const std::string& path, const RigCalibration& rig,
     }
     fs << "R" << r << "T" << t;
     if (quality) detail::writeQuality(fs, *quality);
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    fail(path, "cannot replace the calibration file");
-  }
+  });
 }
 
 }  // namespace
@@ -143,11 +139,11 @@ void RigCalibration::validate() const {
   projector.validate("projector");
   const Eigen::Matrix3d r = T_projector_camera.linear();
   if (!r.allFinite() || !T_projector_camera.translation().allFinite()) {
-    throw Error("rig R and T must be finite");
+    throw core::Error("rig R and T must be finite");
   }
   if ((r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
       r.determinant() < 0.0) {
-    throw Error("rig R must be a rotation (orthonormal, determinant +1)");
+    throw core::Error("rig R must be a rotation (orthonormal, determinant +1)");
   }
 }
 
@@ -170,7 +166,7 @@ RigCalibration readRigCalibration(const std::string& path) {
   }
   try {
     rig.validate();
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     fail(path, e.what());
   }
   return rig;
@@ -185,4 +181,4 @@ void writeRigCalibration(const std::string& path, const RigCalibration& rig,
   writeRig(path, rig, &quality);
 }
 
-}  // namespace binpick
+}  // namespace binpick::io

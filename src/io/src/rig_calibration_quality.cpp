@@ -6,26 +6,26 @@
 #include <fstream>
 #include <limits>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
-namespace binpick {
+namespace binpick::io {
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(path + ": " + what);
+  throw core::Error(path + ": " + what);
 }
 
 // A key of the `quality` map (or of one of its views); `where` names it in errors.
 double qualityReal(const cv::FileNode& map, const std::string& key, const std::string& where) {
   const cv::FileNode node = map[key];
   if (node.empty()) return std::numeric_limits<double>::quiet_NaN();
-  if (!node.isReal() && !node.isInt()) throw Error(where + "." + key + " must be a number");
+  if (!node.isReal() && !node.isInt()) throw core::Error(where + "." + key + " must be a number");
   return static_cast<double>(node);
 }
 
 int qualityInt(const cv::FileNode& map, const std::string& key, const std::string& where) {
   const cv::FileNode node = map[key];
-  if (!node.isInt()) throw Error(where + "." + key + " must be an integer");
+  if (!node.isInt()) throw core::Error(where + "." + key + " must be an integer");
   return static_cast<int>(node);
 }
 
@@ -33,12 +33,12 @@ std::string qualityString(const cv::FileNode& map, const std::string& key, const
                           bool required) {
   const cv::FileNode node = map[key];
   if (node.empty() && !required) return "";
-  if (!node.isString()) throw Error(where + "." + key + " must be a string");
+  if (!node.isString()) throw core::Error(where + "." + key + " must be a string");
   return static_cast<std::string>(node);
 }
 
 RigViewQuality readViewQuality(const cv::FileNode& node, const std::string& where) {
-  if (!node.isMap()) throw Error(where + " must be a map");
+  if (!node.isMap()) throw core::Error(where + " must be a map");
   RigViewQuality view;
   view.name = qualityString(node, "name", where, true);
   view.camera_corners = qualityInt(node, "camera_corners", where);
@@ -61,14 +61,14 @@ void writeFinite(cv::FileStorage& fs, const std::string& key, double value) {
 namespace detail {
 
 RigCalibrationQuality readQuality(const cv::FileNode& node) {
-  if (!node.isMap()) throw Error("'quality' must be a map");
+  if (!node.isMap()) throw core::Error("'quality' must be a map");
   RigCalibrationQuality quality;
   quality.date = qualityString(node, "date", "quality", true);
   quality.camera_rms_px = qualityReal(node, "camera_rms_px", "quality");
   quality.projector_rms_px = qualityReal(node, "projector_rms_px", "quality");
   quality.stereo_rms_px = qualityReal(node, "stereo_rms_px", "quality");
   const cv::FileNode views = node["views"];
-  if (!views.isSeq()) throw Error("quality.views must be a list");
+  if (!views.isSeq()) throw core::Error("quality.views must be a list");
   for (int i = 0; i < static_cast<int>(views.size()); ++i) {
     quality.views.push_back(readViewQuality(views[i], "quality.views[" + std::to_string(i) + "]"));
   }
@@ -109,11 +109,11 @@ std::optional<RigCalibrationQuality> readRigCalibrationQuality(const std::string
     const cv::FileNode node = fs["quality"];
     if (node.empty()) return std::nullopt;
     return detail::readQuality(node);
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     fail(path, e.what());
   } catch (const cv::Exception& e) {
     fail(path, "malformed OpenCV FileStorage content: " + e.err);
   }
 }
 
-}  // namespace binpick
+}  // namespace binpick::io

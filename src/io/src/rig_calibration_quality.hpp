@@ -5,12 +5,12 @@
 
 #include "binpick/io/rig_calibration.hpp"
 
-namespace binpick::detail {
+namespace binpick::io::detail {
 
-// Opens PATH as a FileStorage YAML map; throws binpick::Error "PATH: ..." otherwise.
+// Opens PATH as a FileStorage YAML map; throws core::Error "PATH: ..." otherwise.
 cv::FileStorage openForReading(const std::string& path);
-// Throws binpick::Error naming the key ("quality.views[2].used must be an integer").
+// Throws core::Error naming the key ("quality.views[2].used must be an integer").
 RigCalibrationQuality readQuality(const cv::FileNode& node);
 void writeQuality(cv::FileStorage& fs, const RigCalibrationQuality& quality);
 
-}  // namespace binpick::detail
+}  // namespace binpick::io::detail

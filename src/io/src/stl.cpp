@@ -12,7 +12,7 @@
 #include "formats.hpp"
 #include "text_io.hpp"
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -230,4 +230,4 @@ void writeStl(const std::string& path, const TriangleMesh& mesh) {
   writeFileBytes(path, bytes);
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -3,7 +3,7 @@
 #include <cctype>
 #include <charconv>
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 namespace {
 
@@ -87,4 +87,4 @@ std::string describePoint(const Eigen::Vector3f& point) {
   return text + ")";
 }
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace binpick::io_detail {
+namespace binpick::io::detail {
 
 // Whitespace-separated tokens of a text, with the line number of the last token for messages.
 class TextCursor {
@@ -47,4 +47,4 @@ void appendNumber(std::string& out, float value);
 // "(x, y, z)" for error messages.
 std::string describePoint(const Eigen::Vector3f& point);
 
-}  // namespace binpick::io_detail
+}  // namespace binpick::io::detail

@@ -3,17 +3,17 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/io/point_cloud.hpp"
 #include "byte_io.hpp"
 #include "formats.hpp"
 #include "text_io.hpp"
 
-namespace binpick {
+namespace binpick::io {
 
-using io_detail::appendNumber;
-using io_detail::describePoint;
-using io_detail::fail;
+using detail::appendNumber;
+using detail::describePoint;
+using detail::fail;
 
 namespace {
 
@@ -102,7 +102,7 @@ void validateMesh(const TriangleMesh& mesh, const std::string& what) {
   }
 }
 
-namespace io_detail {
+namespace detail {
 
 namespace {
 
@@ -148,5 +148,5 @@ void requireSomeArea(const TriangleMesh& mesh, const std::string& path) {
   fail(path, "all " + std::to_string(mesh.triangles.size()) + " faces have zero area");
 }
 
-}  // namespace io_detail
-}  // namespace binpick
+}  // namespace detail
+}  // namespace binpick::io

@@ -3,13 +3,13 @@
 
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
 
 namespace binpick::reconstruction::detail {
 namespace {
 
-std::string describe(const PatternSetSpec& spec) {
+std::string describe(const io::PatternSetSpec& spec) {
   std::string text = std::to_string(spec.projector_width) + "x" +
                      std::to_string(spec.projector_height) + " projector";
   if (spec.column_codes) text += ", column codes";
@@ -17,48 +17,48 @@ std::string describe(const PatternSetSpec& spec) {
   return text + ", " + std::to_string(spec.phase_steps) + " phase steps";
 }
 
-void checkNames(const CaptureMetadata& metadata, const std::vector<Pattern>& sequence) {
+void checkNames(const io::CaptureMetadata& metadata, const std::vector<Pattern>& sequence) {
   const std::string set = "the pattern set (" + describe(metadata.pattern_set) + ")";
   if (metadata.patterns.size() != sequence.size()) {
-    throw Error("capture: " + std::to_string(metadata.patterns.size()) + " patterns listed but " +
+    throw core::Error("capture: " + std::to_string(metadata.patterns.size()) + " patterns listed but " +
                 set + " has " + std::to_string(sequence.size()));
   }
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     if (metadata.patterns[i] == sequence[i].name()) continue;
-    throw Error("capture: image " + std::to_string(i) + " is '" + metadata.patterns[i] + "' but " +
+    throw core::Error("capture: image " + std::to_string(i) + " is '" + metadata.patterns[i] + "' but " +
                 set + " expects '" + sequence[i].name() + "' there");
   }
 }
 
-void checkImages(const Capture& capture) {
-  const CaptureMetadata& metadata = capture.metadata;
+void checkImages(const io::Capture& capture) {
+  const io::CaptureMetadata& metadata = capture.metadata;
   if (capture.images.size() != metadata.patterns.size()) {
-    throw Error("capture: " + std::to_string(capture.images.size()) + " images for " +
+    throw core::Error("capture: " + std::to_string(capture.images.size()) + " images for " +
                 std::to_string(metadata.patterns.size()) + " patterns");
   }
   if (metadata.bit_depth != 8 && metadata.bit_depth != 16) {
-    throw Error("capture: bit depth must be 8 or 16 (got " + std::to_string(metadata.bit_depth) + ")");
+    throw core::Error("capture: bit depth must be 8 or 16 (got " + std::to_string(metadata.bit_depth) + ")");
   }
   const int type = metadata.bit_depth == 8 ? CV_8UC1 : CV_16UC1;
   for (std::size_t i = 0; i < capture.images.size(); ++i) {
     const cv::Mat& image = capture.images[i];
     const std::string name = "capture: image " + std::to_string(i) + " (" + metadata.patterns[i] + ")";
     if (image.cols != metadata.image_width || image.rows != metadata.image_height) {
-      throw Error(name + " is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+      throw core::Error(name + " is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
                   ", the metadata says " + std::to_string(metadata.image_width) + "x" +
                   std::to_string(metadata.image_height));
     }
     if (image.type() != type) {
-      throw Error(name + " is not a single-channel " + std::to_string(metadata.bit_depth) +
+      throw core::Error(name + " is not a single-channel " + std::to_string(metadata.bit_depth) +
                   "-bit image");
     }
   }
   if (metadata.image_width <= 0 || metadata.image_height <= 0) {
-    throw Error("capture: empty images");
+    throw core::Error("capture: empty images");
   }
 }
 
-void addPattern(CaptureLayout& layout, const Pattern& pattern, const PatternSetSpec& spec, int image) {
+void addPattern(CaptureLayout& layout, const Pattern& pattern, const io::PatternSetSpec& spec, int image) {
   if (pattern.kind == PatternKind::White) layout.white = image;
   if (pattern.kind == PatternKind::Black) layout.black = image;
   if (pattern.axis == PatternAxis::None) return;
@@ -73,13 +73,13 @@ void addPattern(CaptureLayout& layout, const Pattern& pattern, const PatternSetS
 
 }  // namespace
 
-CaptureLayout captureLayout(const Capture& capture) {
-  const CaptureMetadata& metadata = capture.metadata;
+CaptureLayout captureLayout(const io::Capture& capture) {
+  const io::CaptureMetadata& metadata = capture.metadata;
   const std::vector<Pattern> sequence = patternSequence(metadata.pattern_set);  // validates the spec
   checkNames(metadata, sequence);
   checkImages(capture);
   if (!metadata.pattern_set.column_codes) {
-    throw Error("capture: the pattern set has no column codes; triangulation needs the projector column");
+    throw core::Error("capture: the pattern set has no column codes; triangulation needs the projector column");
   }
   CaptureLayout layout;
   layout.width = metadata.image_width;

@@ -31,9 +31,9 @@ struct CaptureLayout {
   int bit_depth = 8;
 };
 
-// Throws binpick::Error naming the first mismatch: the pattern names are not the sequence the
+// Throws core::Error naming the first mismatch: the pattern names are not the sequence the
 // pattern set defines, the image count, size or type disagrees with the metadata, or the set has
 // no column codes (triangulation needs the projector column).
-CaptureLayout captureLayout(const Capture& capture);
+CaptureLayout captureLayout(const io::Capture& capture);
 
 }  // namespace binpick::reconstruction::detail

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::reconstruction::detail {
 namespace {
@@ -24,12 +24,12 @@ struct PixelSample {
 };
 
 template <typename Pixel>
-float valueAt(const Capture& capture, int image, const PixelSample& at) {
+float valueAt(const io::Capture& capture, int image, const PixelSample& at) {
   return static_cast<float>(capture.images[static_cast<std::size_t>(image)].at<Pixel>(at.y, at.x));
 }
 
 template <typename Pixel>
-std::vector<PixelSample> samplePixels(const Capture& capture, const CaptureLayout& layout) {
+std::vector<PixelSample> samplePixels(const io::Capture& capture, const CaptureLayout& layout) {
   std::vector<PixelSample> samples;
   for (int y = kSampleStep / 2; y < layout.height; y += kSampleStep) {
     for (int x = kSampleStep / 2; x < layout.width; x += kSampleStep) {
@@ -42,7 +42,7 @@ std::vector<PixelSample> samplePixels(const Capture& capture, const CaptureLayou
   return samples;
 }
 
-std::string imageName(const Capture& capture, int image) {
+std::string imageName(const io::Capture& capture, int image) {
   return std::to_string(image) + " (" + capture.metadata.patterns[static_cast<std::size_t>(image)] + ")";
 }
 
@@ -59,7 +59,7 @@ std::string decimal(double value) {
 }
 
 // Returns the well-lit, unclipped samples that the frame checks may rely on.
-std::vector<PixelSample> checkExposure(const Capture& capture, const std::vector<PixelSample>& samples,
+std::vector<PixelSample> checkExposure(const io::Capture& capture, const std::vector<PixelSample>& samples,
                                        const DecodePlan& plan, const DecodeParams& params) {
   const DecodeThresholds& t = plan.thresholds;
   std::size_t lit = 0;
@@ -72,14 +72,14 @@ std::vector<PixelSample> checkExposure(const Capture& capture, const std::vector
     else if (s.white - s.black >= 4.0f * t.min_contrast) strong.push_back(s);
   }
   if (lit == 0) {
-    throw Error("capture: the white image " + imageName(capture, plan.layout.white) +
+    throw core::Error("capture: the white image " + imageName(capture, plan.layout.white) +
                 " is nowhere brighter than the black one by min_contrast (" +
                 decimal(params.min_contrast) +
                 " counts): the projector did not light the scene, or the exposure is far too short");
   }
   const double clipped_fraction = static_cast<double>(clipped) / static_cast<double>(lit);
   if (clipped_fraction > params.max_saturated_fraction) {
-    throw Error("capture: the white image is saturated on " + percent(clipped_fraction) +
+    throw core::Error("capture: the white image is saturated on " + percent(clipped_fraction) +
                 " of the lit pixels (max_saturated_fraction " + percent(params.max_saturated_fraction) +
                 "): shorten the exposure or lower the gain");
   }
@@ -89,7 +89,7 @@ std::vector<PixelSample> checkExposure(const Capture& capture, const std::vector
 // A pattern and its inverse add up to white + black wherever the pixel sees the projector; a
 // lost, black or shuffled frame breaks that on most pixels.
 template <typename Pixel>
-void checkPair(const Capture& capture, const std::vector<PixelSample>& strong, int pattern, int inverse,
+void checkPair(const io::Capture& capture, const std::vector<PixelSample>& strong, int pattern, int inverse,
                const DecodeParams& params) {
   double deviation = 0.0;
   for (const PixelSample& s : strong) {
@@ -98,7 +98,7 @@ void checkPair(const Capture& capture, const std::vector<PixelSample>& strong, i
   }
   deviation /= static_cast<double>(strong.size());
   if (deviation <= params.max_pair_sum_error) return;
-  throw Error("capture: images " + imageName(capture, pattern) + " and " + imageName(capture, inverse) +
+  throw core::Error("capture: images " + imageName(capture, pattern) + " and " + imageName(capture, inverse) +
               " do not add up to white + black (mean deviation " + decimal(deviation) +
               " of white - black, max_pair_sum_error " + decimal(params.max_pair_sum_error) +
               "): a frame is missing, black or out of order");
@@ -107,7 +107,7 @@ void checkPair(const Capture& capture, const std::vector<PixelSample>& strong, i
 // Over many pixels (many phases), every phase step averages to half of white above black; a
 // lost or black frame does not.
 template <typename Pixel>
-void checkPhaseStep(const Capture& capture, const std::vector<PixelSample>& strong, int image,
+void checkPhaseStep(const io::Capture& capture, const std::vector<PixelSample>& strong, int image,
                     const DecodeParams& params) {
   double share = 0.0;
   for (const PixelSample& s : strong) {
@@ -115,14 +115,14 @@ void checkPhaseStep(const Capture& capture, const std::vector<PixelSample>& stro
   }
   const double deviation = std::fabs(2.0 * share / static_cast<double>(strong.size()) - 1.0);
   if (deviation <= params.max_pair_sum_error) return;
-  throw Error("capture: phase image " + imageName(capture, image) +
+  throw core::Error("capture: phase image " + imageName(capture, image) +
               " does not average to half of white above black (deviation " + decimal(deviation) +
               ", max_pair_sum_error " + decimal(params.max_pair_sum_error) +
               "): a frame is missing, black or out of order");
 }
 
 template <typename Pixel>
-void checkFrames(const Capture& capture, const std::vector<PixelSample>& strong, const AxisLayout& axis,
+void checkFrames(const io::Capture& capture, const std::vector<PixelSample>& strong, const AxisLayout& axis,
                  const DecodeParams& params) {
   if (!axis.present) return;
   for (int bit = 0; bit < axis.bits(); ++bit) {
@@ -132,7 +132,7 @@ void checkFrames(const Capture& capture, const std::vector<PixelSample>& strong,
 }
 
 template <typename Pixel>
-void checkAll(const Capture& capture, const DecodePlan& plan, const DecodeParams& params) {
+void checkAll(const io::Capture& capture, const DecodePlan& plan, const DecodeParams& params) {
   const std::vector<PixelSample> samples = samplePixels<Pixel>(capture, plan.layout);
   const std::vector<PixelSample> strong = checkExposure(capture, samples, plan, params);
   if (strong.size() < kMinSamples) return;
@@ -142,7 +142,7 @@ void checkAll(const Capture& capture, const DecodePlan& plan, const DecodeParams
 
 }  // namespace
 
-void checkCaptureLight(const Capture& capture, const DecodePlan& plan, const DecodeParams& params) {
+void checkCaptureLight(const io::Capture& capture, const DecodePlan& plan, const DecodeParams& params) {
   if (plan.layout.bit_depth == 8) {
     checkAll<uint8_t>(capture, plan, params);
   } else {

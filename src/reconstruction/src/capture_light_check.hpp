@@ -7,7 +7,7 @@
 
 namespace binpick::reconstruction::detail {
 
-// Throws binpick::Error naming the images and what is wrong with them.
-void checkCaptureLight(const Capture& capture, const DecodePlan& plan, const DecodeParams& params);
+// Throws core::Error naming the images and what is wrong with them.
+void checkCaptureLight(const io::Capture& capture, const DecodePlan& plan, const DecodeParams& params);
 
 }  // namespace binpick::reconstruction::detail

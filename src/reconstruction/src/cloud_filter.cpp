@@ -5,8 +5,8 @@
 #include <limits>
 #include <string>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "binpick/reconstruction/pixel_status.hpp"
 #include "speckle.hpp"
 
@@ -14,31 +14,31 @@ namespace binpick::reconstruction {
 namespace {
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  requireField(ok, "CloudFilterParams", field, rule, value);
+  core::requireField(ok, "CloudFilterParams", field, rule, value);
 }
 
 bool hasNaN(const Eigen::Vector3d& v) { return v.array().isNaN().any(); }
 
-void checkInputs(const PointCloud& cloud, const cv::Mat& status) {
+void checkInputs(const io::PointCloud& cloud, const cv::Mat& status) {
   if (!cloud.isOrganized()) {
-    throw Error("filterCloud: the cloud must be organized (got " + std::to_string(cloud.width) +
+    throw core::Error("filterCloud: the cloud must be organized (got " + std::to_string(cloud.width) +
                 "x" + std::to_string(cloud.height) + " for " + std::to_string(cloud.size()) +
                 " points)");
   }
   if (status.type() != CV_8UC1 || status.cols != cloud.width || status.rows != cloud.height) {
-    throw Error("filterCloud: the status image must be CV_8UC1 of the cloud's size " +
+    throw core::Error("filterCloud: the status image must be CV_8UC1 of the cloud's size " +
                 std::to_string(cloud.width) + "x" + std::to_string(cloud.height) + " (got " +
                 std::to_string(status.cols) + "x" + std::to_string(status.rows) + " of type " +
                 std::to_string(status.type()) + ")");
   }
 }
 
-void removePoint(PointCloud& cloud, std::size_t i, uint8_t& status, PixelStatus reason) {
+void removePoint(io::PointCloud& cloud, std::size_t i, uint8_t& status, PixelStatus reason) {
   cloud.points[i] = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
   status = static_cast<uint8_t>(reason);
 }
 
-void applyDepthAndCrop(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const bool crop = !params.crop.isEmpty();
   const double min_depth = params.min_depth, max_depth = params.max_depth;
   for (int y = 0; y < cloud.height; ++y) {
@@ -56,9 +56,9 @@ void applyDepthAndCrop(PointCloud& cloud, cv::Mat& status, const CloudFilterPara
   }
 }
 
-void applySpeckle(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+void applySpeckle(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const std::vector<uint8_t> speckle = detail::findSpeckles(
-      cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels, resolveThreadCount(params.threads));
+      cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels, core::resolveThreadCount(params.threads));
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
@@ -75,7 +75,7 @@ void CloudFilterParams::validate() const {
   require(!std::isnan(max_depth) && max_depth > min_depth, "max_depth", "above min_depth",
           max_depth);
   // A NaN corner would make the box non-empty yet contain nothing: every point would go.
-  requireField(!hasNaN(crop.min()) && !hasNaN(crop.max()), "CloudFilterParams", "crop",
+  core::requireField(!hasNaN(crop.min()) && !hasNaN(crop.max()), "CloudFilterParams", "crop",
                "free of NaN", "a NaN corner");
   require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step",
           "positive and finite", speckle_max_step);
@@ -83,7 +83,7 @@ void CloudFilterParams::validate() const {
   require(threads >= 0, "threads", ">= 0", threads);
 }
 
-void filterCloud(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   params.validate();
   checkInputs(cloud, status);
   // Triangulated points lie in front of the camera: the default range and no crop remove nothing.

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::reconstruction::detail {
 namespace {
@@ -42,7 +42,7 @@ void checkUnwrappable(const AxisLayout& axis, const DecodeParams& params) {
   if (!axis.hasPhase()) return;
   const double window = params.max_code_run_with_phase + 2.0 * params.max_phase_gray_disagreement;
   if (window < axis.phase_period) return;
-  throw Error("decode: phase period " + std::to_string(axis.phase_period) +
+  throw core::Error("decode: phase period " + std::to_string(axis.phase_period) +
               " px is too short to unwrap with max_code_run_with_phase " +
               std::to_string(params.max_code_run_with_phase) + " and max_phase_gray_disagreement " +
               std::to_string(params.max_phase_gray_disagreement));

@@ -37,7 +37,7 @@ struct DecodePlan {
   PhaseWeights phase;
 };
 
-// Throws binpick::Error when a phase period is too short to be unwrapped by the Gray-code run
+// Throws core::Error when a phase period is too short to be unwrapped by the Gray-code run
 // the params allow.
 DecodePlan makeDecodePlan(const CaptureLayout& layout, const DecodeParams& params);
 

@@ -1,9 +1,10 @@
 // decodeCapture: checks, then every row in parallel.
-#include "binpick/reconstruction/decoder.hpp"
-
 #include <algorithm>
+#include <cmath>
 
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
+#include "binpick/reconstruction/decoder.hpp"
 #include "capture_layout.hpp"
 #include "capture_light_check.hpp"
 #include "decode_plan.hpp"
@@ -34,8 +35,8 @@ detail::RowOutput outputOf(DecodedCapture& decoded) {
 }
 
 // The tile loops run over consecutive pixels across rows: every image must be one block.
-Capture withContinuousImages(const Capture& capture) {
-  Capture continuous = capture;
+io::Capture withContinuousImages(const io::Capture& capture) {
+  io::Capture continuous = capture;
   for (cv::Mat& image : continuous.images) {
     if (!image.isContinuous()) image = image.clone();
   }
@@ -44,7 +45,7 @@ Capture withContinuousImages(const Capture& capture) {
 
 // Tiles are independent: the result does not depend on the thread count.
 template <typename Pixel>
-void decodeTiles(const Capture& capture, const detail::DecodePlan& plan, int threads, DecodedCapture& decoded) {
+void decodeTiles(const io::Capture& capture, const detail::DecodePlan& plan, int threads, DecodedCapture& decoded) {
   const std::size_t pixels = static_cast<std::size_t>(plan.layout.width) * static_cast<std::size_t>(plan.layout.height);
   const auto tiles = static_cast<long>((pixels + detail::kTilePixels - 1) / detail::kTilePixels);
   const detail::RowOutput out = outputOf(decoded);
@@ -62,19 +63,59 @@ void decodeTiles(const Capture& capture, const detail::DecodePlan& plan, int thr
 
 }  // namespace
 
-DecodedCapture decodeCapture(const Capture& capture, const DecodeParams& params) {
+DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& params) {
   params.validate();
   const detail::DecodePlan plan = detail::makeDecodePlan(detail::captureLayout(capture), params);
   detail::checkCaptureLight(capture, plan, params);
   DecodedCapture decoded = allocate(plan.layout);
-  const int threads = resolveThreadCount(params.threads);
-  const Capture continuous = withContinuousImages(capture);
+  const int threads = core::resolveThreadCount(params.threads);
+  const io::Capture continuous = withContinuousImages(capture);
   if (plan.layout.bit_depth == 8) {
     decodeTiles<uint8_t>(continuous, plan, threads, decoded);
   } else {
     decodeTiles<uint16_t>(continuous, plan, threads, decoded);
   }
   return decoded;
+}
+
+}  // namespace binpick::reconstruction
+
+// DecodeParams::validate.
+namespace binpick::reconstruction {
+namespace {
+
+bool nonNegative(double value) { return std::isfinite(value) && value >= 0.0; }
+
+}  // namespace
+
+void DecodeParams::validate() const {
+  const std::string owner = "decode params";
+  core::requireField(nonNegative(min_contrast), owner, "min_contrast", "finite and >= 0", min_contrast);
+  core::requireField(nonNegative(min_direct), owner, "min_direct", "finite and >= 0", min_direct);
+  core::requireField(std::isfinite(projector_black_level) && projector_black_level >= 0.0 &&
+                   projector_black_level < 0.5,
+               owner, "projector_black_level", "in [0, 0.5)", projector_black_level);
+  core::requireField(separation_min_stripe >= 1, owner, "separation_min_stripe", ">= 1", separation_min_stripe);
+  core::requireField(separation_max_stripe >= separation_min_stripe, owner, "separation_max_stripe",
+               ">= separation_min_stripe", separation_max_stripe);
+  core::requireField(nonNegative(min_bit_difference), owner, "min_bit_difference", "finite and >= 0",
+               min_bit_difference);
+  core::requireField(std::isfinite(bit_margin) && bit_margin >= 0.0 && bit_margin < 1.0, owner, "bit_margin",
+               "in [0, 1)", bit_margin);
+  core::requireField(max_code_run_without_phase >= 1 && max_code_run_without_phase <= 64, owner,
+               "max_code_run_without_phase", "in [1, 64]", max_code_run_without_phase);
+  core::requireField(max_code_run_with_phase >= 1 && max_code_run_with_phase <= 64, owner,
+               "max_code_run_with_phase", "in [1, 64]", max_code_run_with_phase);
+  core::requireField(nonNegative(min_phase_amplitude), owner, "min_phase_amplitude", "finite and >= 0",
+               min_phase_amplitude);
+  core::requireField(nonNegative(max_phase_gray_disagreement), owner, "max_phase_gray_disagreement",
+               "finite and >= 0", max_phase_gray_disagreement);
+  core::requireField(std::isfinite(max_saturated_fraction) && max_saturated_fraction >= 0.0 &&
+                   max_saturated_fraction <= 1.0,
+               owner, "max_saturated_fraction", "in [0, 1]", max_saturated_fraction);
+  core::requireField(std::isfinite(max_pair_sum_error) && max_pair_sum_error > 0.0, owner,
+               "max_pair_sum_error", "positive", max_pair_sum_error);
+  core::requireField(threads >= 0, owner, "threads", ">= 0", threads);
 }
 
 }  // namespace binpick::reconstruction

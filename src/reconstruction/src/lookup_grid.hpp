@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "float4.hpp"
 
 namespace binpick::reconstruction::detail {
@@ -37,7 +37,7 @@ class LookupGrid {
         step_y_(step_y),
         values_(static_cast<std::size_t>(nx) * ny * Channels, 0.0f) {
     // locate() computes node indices in float arithmetic.
-    if (static_cast<double>(nx) * ny >= (1 << 24)) throw Error("LookupGrid: too many nodes");
+    if (static_cast<double>(nx) * ny >= (1 << 24)) throw core::Error("LookupGrid: too many nodes");
   }
 
   int nx() const { return nx_; }

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <cstdio>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::reconstruction {
 namespace {
 
 void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, int size,
-                const PatternSetSpec& spec) {
+                const io::PatternSetSpec& spec) {
   for (int bit = 0; bit < grayCodeBits(size); ++bit) {
     sequence.push_back({PatternKind::GrayBit, axis, bit});
     sequence.push_back({PatternKind::GrayBitInverse, axis, bit});
@@ -20,7 +20,7 @@ void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, int size,
   }
 }
 
-int axisSize(PatternAxis axis, const PatternSetSpec& spec) {
+int axisSize(PatternAxis axis, const io::PatternSetSpec& spec) {
   return axis == PatternAxis::Rows ? spec.projector_height : spec.projector_width;
 }
 
@@ -43,7 +43,7 @@ std::string Pattern::name() const {
   return text;
 }
 
-std::vector<Pattern> patternSequence(const PatternSetSpec& spec) {
+std::vector<Pattern> patternSequence(const io::PatternSetSpec& spec) {
   spec.validate();
   std::vector<Pattern> sequence{{PatternKind::White, PatternAxis::None, 0},
                                 {PatternKind::Black, PatternAxis::None, 0}};
@@ -52,7 +52,7 @@ std::vector<Pattern> patternSequence(const PatternSetSpec& spec) {
   return sequence;
 }
 
-std::vector<std::string> patternNames(const PatternSetSpec& spec) {
+std::vector<std::string> patternNames(const io::PatternSetSpec& spec) {
   std::vector<std::string> names;
   for (const Pattern& p : patternSequence(spec)) names.push_back(p.name());
   return names;
@@ -64,7 +64,7 @@ int grayCodeBits(int size) {
   return bits;
 }
 
-double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int coordinate) {
+double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int coordinate) {
   switch (pattern.kind) {
     case PatternKind::White:
       return 1.0;
@@ -74,7 +74,7 @@ double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int
     case PatternKind::GrayBitInverse: {
       const int bits = grayCodeBits(axisSize(pattern.axis, spec));
       if (pattern.index < 0 || pattern.index >= bits) {
-        throw Error("patternBrightness: Gray-code bit " + std::to_string(pattern.index) +
+        throw core::Error("patternBrightness: Gray-code bit " + std::to_string(pattern.index) +
                     " of " + pattern.name() + " is outside [0, " + std::to_string(bits) + ")");
       }
       const unsigned bit =
@@ -89,10 +89,10 @@ double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int
       return eightBit(0.5 + 0.5 * std::cos(phase - shift));
     }
   }
-  throw Error("patternBrightness: unknown pattern kind");
+  throw core::Error("patternBrightness: unknown pattern kind");
 }
 
-cv::Mat patternImage(const Pattern& pattern, const PatternSetSpec& spec) {
+cv::Mat patternImage(const Pattern& pattern, const io::PatternSetSpec& spec) {
   spec.validate();
   cv::Mat image(spec.projector_height, spec.projector_width, CV_8UC1);
   const bool by_row = pattern.axis == PatternAxis::Rows;

@@ -3,7 +3,7 @@
 
 #include <array>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -28,7 +28,7 @@ const char* statusName(PixelStatus status) {
 
 StatusCounts countStatuses(const cv::Mat& status) {
   if (status.type() != CV_8UC1) {
-    throw Error("countStatuses: the status image must be CV_8UC1 (got type " +
+    throw core::Error("countStatuses: the status image must be CV_8UC1 (got type " +
                 std::to_string(status.type()) + ")");
   }
   // A full byte histogram without a check per pixel, in four interleaved copies so that
@@ -50,7 +50,7 @@ StatusCounts countStatuses(const cv::Mat& status) {
     const std::size_t count = histograms[0][value] + histograms[1][value] + histograms[2][value] + histograms[3][value];
     if (count == 0) continue;
     if (value >= kPixelStatusCount) {
-      throw Error("countStatuses: " + std::to_string(count) + " pixels hold " + std::to_string(value) +
+      throw core::Error("countStatuses: " + std::to_string(count) + " pixels hold " + std::to_string(value) +
                   ", which is no PixelStatus");
     }
     counts[value] = count;

@@ -1,24 +1,18 @@
 // Reconstructor: the stages in order, timed.
 #include "binpick/reconstruction/reconstruction.hpp"
 
-#include <chrono>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 
 namespace binpick::reconstruction {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double millisecondsBetween(Clock::time_point start, Clock::time_point end) {
-  return std::chrono::duration<double, std::milli>(end - start).count();
-}
-
-void requireCameraSize(const Capture& capture, const RigCalibration& rig) {
-  const CaptureMetadata& m = capture.metadata;
+void requireCameraSize(const io::Capture& capture, const io::RigCalibration& rig) {
+  const io::CaptureMetadata& m = capture.metadata;
   if (m.image_width == rig.camera.width && m.image_height == rig.camera.height) return;
-  throw Error("capture: images are " + std::to_string(m.image_width) + "x" + std::to_string(m.image_height) +
+  throw core::Error("capture: images are " + std::to_string(m.image_width) + "x" + std::to_string(m.image_height) +
               " but the calibration's camera is " + std::to_string(rig.camera.width) + "x" +
               std::to_string(rig.camera.height));
 }
@@ -49,28 +43,26 @@ void ReconstructionParams::validate() const {
   filter.validate();
 }
 
-Reconstructor::Reconstructor(const RigCalibration& rig, const ReconstructionParams& params)
+Reconstructor::Reconstructor(const io::RigCalibration& rig, const ReconstructionParams& params)
     : params_(validated(params)), triangulator_(rig, params_.triangulation) {}
 
-Reconstruction Reconstructor::reconstruct(const Capture& capture) const {
+Reconstruction Reconstructor::reconstruct(const io::Capture& capture) const {
   requireCameraSize(capture, rig());
-  const Clock::time_point start = Clock::now();
-  const DecodedCapture decoded = decodeCapture(capture, params_.decode);
-  const Clock::time_point decoded_at = Clock::now();
-  TriangulatedCloud triangulated = triangulator_.triangulate(decoded);
-  const Clock::time_point triangulated_at = Clock::now();
-  filterCloud(triangulated.cloud, triangulated.status, params_.filter);
-  const Clock::time_point filtered_at = Clock::now();
-
   Reconstruction result;
+  core::Stopwatch stage;
+  const DecodedCapture decoded = decodeCapture(capture, params_.decode);
+  result.timings.decode = stage.lapMs();
+  TriangulatedCloud triangulated = triangulator_.triangulate(decoded);
+  result.timings.triangulate = stage.lapMs();
+  filterCloud(triangulated.cloud, triangulated.status, params_.filter);
+  result.timings.filter = stage.lapMs();
+  // The three stages end to end; the copying into the result below is not part of it.
+  result.timings.total = result.timings.decode + result.timings.triangulate + result.timings.filter;
+
   result.cloud = std::move(triangulated.cloud);
   result.cloud.intensities = intensitiesOf(decoded.intensity);
   result.status = triangulated.status;
   result.counts = countStatuses(result.status);
-  result.timings.decode = millisecondsBetween(start, decoded_at);
-  result.timings.triangulate = millisecondsBetween(decoded_at, triangulated_at);
-  result.timings.filter = millisecondsBetween(triangulated_at, filtered_at);
-  result.timings.total = millisecondsBetween(start, filtered_at);
   return result;
 }
 

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <limits>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/yaml_section.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/yaml_section.hpp"
 
 namespace binpick::reconstruction {
 namespace {
 
-void readDecode(YamlSection s, DecodeParams& p) {
+void readDecode(core::YamlSection s, DecodeParams& p) {
   s.read("min_contrast", p.min_contrast);
   s.read("min_direct", p.min_direct);
   s.read("projector_black_level", p.projector_black_level);
@@ -27,7 +27,7 @@ void readDecode(YamlSection s, DecodeParams& p) {
   s.finish();
 }
 
-void readCrop(YamlSection s, CloudFilterParams& p) {
+void readCrop(core::YamlSection s, CloudFilterParams& p) {
   if (s.isNull()) return;
   Eigen::Vector3d min = Eigen::Vector3d::Constant(std::nan(""));
   Eigen::Vector3d max = min;
@@ -40,7 +40,7 @@ void readCrop(YamlSection s, CloudFilterParams& p) {
   p.crop = Eigen::AlignedBox3d(min, max);
 }
 
-void readFilter(YamlSection s, CloudFilterParams& p) {
+void readFilter(core::YamlSection s, CloudFilterParams& p) {
   s.read("min_depth", p.min_depth);
   s.read("max_depth", p.max_depth);
   readCrop(s.child("crop"), p);
@@ -49,12 +49,12 @@ void readFilter(YamlSection s, CloudFilterParams& p) {
   s.finish();
 }
 
-void readReconstruction(YamlSection s, ReconstructionParams& p) {
+void readReconstruction(core::YamlSection s, ReconstructionParams& p) {
   int threads = 0;
   s.read("threads", threads);
   p.setThreads(threads);
   readDecode(s.child("decode"), p.decode);
-  YamlSection triangulation = s.child("triangulation");
+  core::YamlSection triangulation = s.child("triangulation");
   triangulation.read("max_epipolar_error", p.triangulation.max_epipolar_error);
   triangulation.finish();
   readFilter(s.child("filter"), p.filter);
@@ -64,25 +64,25 @@ void readReconstruction(YamlSection s, ReconstructionParams& p) {
 }  // namespace
 
 ReconstructionParams parseReconstructionParams(const std::string& yaml_text, const std::string& origin) {
-  YamlSection top(parseYaml(yaml_text, origin), "", origin);
+  core::YamlSection top(core::parseYaml(yaml_text, origin), "", origin);
   ReconstructionParams params;
   readReconstruction(top.child("reconstruction"), params);
   top.skip("model");  // estimation's sections of the same file
   top.skip("detection");
   top.finish();
-  validateSettings(origin, [&] { params.validate(); });
+  core::validateSettings(origin, [&] { params.validate(); });
   return params;
 }
 
-ReconstructionParams readReconstructionSection(YamlSection section, const std::string& origin) {
+ReconstructionParams readReconstructionSection(core::YamlSection section, const std::string& origin) {
   ReconstructionParams params;
   readReconstruction(std::move(section), params);
-  validateSettings(origin, [&] { params.validate(); });
+  core::validateSettings(origin, [&] { params.validate(); });
   return params;
 }
 
 ReconstructionParams loadReconstructionParams(const std::string& path) {
-  return parseReconstructionParams(readConfigFile(path), path);
+  return parseReconstructionParams(core::readConfigFile(path), path);
 }
 
 }  // namespace binpick::reconstruction

@@ -19,14 +19,14 @@ struct Tile {
 };
 
 template <typename Pixel>
-const Pixel* imageRow(const Capture& capture, int image, const Tile& tile) {
+const Pixel* imageRow(const io::Capture& capture, int image, const Tile& tile) {
   return capture.images[static_cast<std::size_t>(image)].ptr<Pixel>(0) + tile.offset;
 }
 
 // L_max and L_min over the high-frequency images, then direct and global light (above black):
 // L_d = (L_max - L_min) / (1 - b), L_g = 2 (L_min - b L_max) / (1 - b^2).
 template <typename Pixel, typename Work>
-void estimateLight(const Capture& capture, const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s,
+void estimateLight(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s,
                    const RowOutput& out) {
   const int width = tile.width;
   float* high = s.brightest.data();  // L_max, then L_d
@@ -55,7 +55,7 @@ void estimateLight(const Capture& capture, const DecodePlan& plan, const Tile& t
 }
 
 template <typename Pixel, typename Work>
-void classifyBits(const Capture& capture, const AxisLayout& axis, const Tile& tile, const Work clip,
+void classifyBits(const io::Capture& capture, const AxisLayout& axis, const Tile& tile, const Work clip,
                   RowScratch<Work>& s, AxisRow& row) {
   std::fill(row.code.begin(), row.code.begin() + tile.width, uint16_t{0});
   std::fill(row.uncertain.begin(), row.uncertain.begin() + tile.width, uint16_t{0});
@@ -75,7 +75,7 @@ void classifyBits(const Capture& capture, const AxisLayout& axis, const Tile& ti
 // N-step phase shift, I_k = A + B cos(phi - 2 pi k / N):
 // phi = atan2(sum I_k sin(2 pi k/N), sum I_k cos(2 pi k/N)), B = 2/N |sum I_k e^(2 pi i k/N)|.
 template <typename Pixel, typename Work>
-void measurePhase(const Capture& capture, const DecodePlan& plan, const AxisLayout& axis, const Tile& tile,
+void measurePhase(const io::Capture& capture, const DecodePlan& plan, const AxisLayout& axis, const Tile& tile,
                   RowScratch<Work>& s, AxisRow& row) {
   const int width = tile.width;
   float* sine_sum = row.phase_offset.data();  // the sums first, then the offset and amplitude
@@ -95,7 +95,7 @@ void measurePhase(const Capture& capture, const DecodePlan& plan, const AxisLayo
 }
 
 template <typename Pixel, typename Work>
-void readAxis(const Capture& capture, const DecodePlan& plan, const AxisLayout& axis, const Tile& tile,
+void readAxis(const io::Capture& capture, const DecodePlan& plan, const AxisLayout& axis, const Tile& tile,
               RowScratch<Work>& s, AxisRow& row) {
   classifyBits<Pixel, Work>(capture, axis, tile, ceilingLevel<Work>(plan.thresholds.saturation), s, row);
   if (axis.hasPhase()) measurePhase<Pixel, Work>(capture, plan, axis, tile, s, row);
@@ -185,7 +185,7 @@ RowScratch<Work>::RowScratch() {
 }
 
 template <typename Pixel>
-void decodeTile(const Capture& capture, const DecodePlan& plan, std::size_t offset, int count,
+void decodeTile(const io::Capture& capture, const DecodePlan& plan, std::size_t offset, int count,
                 RowScratch<WorkType<Pixel>>& scratch, const RowOutput& out) {
   using Work = WorkType<Pixel>;
   const Tile tile{offset, count};
@@ -202,9 +202,9 @@ void decodeTile(const Capture& capture, const DecodePlan& plan, std::size_t offs
 
 template struct RowScratch<int16_t>;
 template struct RowScratch<float>;
-template void decodeTile<uint8_t>(const Capture&, const DecodePlan&, std::size_t, int, RowScratch<int16_t>&,
+template void decodeTile<uint8_t>(const io::Capture&, const DecodePlan&, std::size_t, int, RowScratch<int16_t>&,
                                   const RowOutput&);
-template void decodeTile<uint16_t>(const Capture&, const DecodePlan&, std::size_t, int, RowScratch<float>&,
+template void decodeTile<uint16_t>(const io::Capture&, const DecodePlan&, std::size_t, int, RowScratch<float>&,
                                    const RowOutput&);
 
 }  // namespace binpick::reconstruction::detail

@@ -60,7 +60,7 @@ struct RowOutput {  // pixel 0 of each output image
 // uint16_t, matching the capture's bit depth; every image must be continuous. `out` points at
 // pixel 0 of the output images.
 template <typename Pixel>
-void decodeTile(const Capture& capture, const DecodePlan& plan, std::size_t offset, int count,
+void decodeTile(const io::Capture& capture, const DecodePlan& plan, std::size_t offset, int count,
                 RowScratch<WorkType<Pixel>>& scratch, const RowOutput& out);
 
 }  // namespace binpick::reconstruction::detail

@@ -54,7 +54,7 @@ bool connected(float z0, float z1, float max_step) { return std::abs(z0 - z1) <=
 
 // Labels one row's runs: consecutive points (organized clouds mark missing ones with NaN), each
 // within max_step of its left neighbour.
-void labelRow(const PointCloud& cloud, int y, float max_step, RunSets& sets, int32_t* labels) {
+void labelRow(const io::PointCloud& cloud, int y, float max_step, RunSets& sets, int32_t* labels) {
   const int width = cloud.width;
   const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * width;
   int x = 0;
@@ -70,7 +70,7 @@ void labelRow(const PointCloud& cloud, int y, float max_step, RunSets& sets, int
 }
 
 // Joins the runs of row y with those of row y - 1 wherever vertical neighbours connect.
-void joinRows(const PointCloud& cloud, int y, float max_step, RunSets& sets, const int32_t* above,
+void joinRows(const io::PointCloud& cloud, int y, float max_step, RunSets& sets, const int32_t* above,
               const int32_t* labels) {
   const int width = cloud.width;
   const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * width;
@@ -88,7 +88,7 @@ void joinRows(const PointCloud& cloud, int y, float max_step, RunSets& sets, con
 
 }  // namespace
 
-std::vector<uint8_t> findSpeckles(const PointCloud& cloud, float max_step, int min_pixels, int threads) {
+std::vector<uint8_t> findSpeckles(const io::PointCloud& cloud, float max_step, int min_pixels, int threads) {
   const std::size_t count = cloud.points.size();
   const int width = cloud.width;
   std::vector<int32_t> labels(count, -1);

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "triangulation_rows.hpp"
 #include "triangulation_tables.hpp"
 
@@ -21,15 +21,15 @@ namespace {
 
 void requireImage(const cv::Mat& image, int type, const DecodedCapture& decoded, const char* name) {
   if (image.rows == decoded.height && image.cols == decoded.width && image.type() == type) return;
-  throw Error(std::string("Triangulator::triangulate: decoded.") + name + " must be " +
+  throw core::Error(std::string("Triangulator::triangulate: decoded.") + name + " must be " +
               std::to_string(decoded.width) + "x" + std::to_string(decoded.height) + " of type " +
               std::to_string(type) + " (got " + std::to_string(image.cols) + "x" +
               std::to_string(image.rows) + " of type " + std::to_string(image.type()) + ")");
 }
 
-void checkDecoded(const DecodedCapture& decoded, const LensIntrinsics& camera) {
+void checkDecoded(const DecodedCapture& decoded, const io::LensIntrinsics& camera) {
   if (decoded.width != camera.width || decoded.height != camera.height) {
-    throw Error("Triangulator::triangulate: the decoded capture is " +
+    throw core::Error("Triangulator::triangulate: the decoded capture is " +
                 std::to_string(decoded.width) + "x" + std::to_string(decoded.height) +
                 " but the camera is " + std::to_string(camera.width) + "x" +
                 std::to_string(camera.height));
@@ -42,16 +42,16 @@ void checkDecoded(const DecodedCapture& decoded, const LensIntrinsics& camera) {
 }  // namespace
 
 void TriangulationParams::validate() const {
-  requireField(std::isfinite(max_epipolar_error) && max_epipolar_error > 0.0, "TriangulationParams",
+  core::requireField(std::isfinite(max_epipolar_error) && max_epipolar_error > 0.0, "TriangulationParams",
                "max_epipolar_error", "positive and finite", max_epipolar_error);
-  requireField(threads >= 0, "TriangulationParams", "threads", ">= 0", threads);
+  core::requireField(threads >= 0, "TriangulationParams", "threads", ">= 0", threads);
 }
 
-Triangulator::Triangulator(const RigCalibration& rig, const TriangulationParams& params)
+Triangulator::Triangulator(const io::RigCalibration& rig, const TriangulationParams& params)
     : rig_(rig), params_(params) {
   rig_.validate();
   params_.validate();
-  const int threads = resolveThreadCount(params_.threads);
+  const int threads = core::resolveThreadCount(params_.threads);
   auto tables = std::make_unique<Tables>();
   tables->rays = detail::buildCameraRays(rig_.camera, threads);
   const Eigen::Vector3d camera_centre = rig_.T_projector_camera.translation();
@@ -65,7 +65,7 @@ Triangulator::~Triangulator() = default;
 Triangulator::Triangulator(Triangulator&&) noexcept = default;
 Triangulator& Triangulator::operator=(Triangulator&&) noexcept = default;
 
-const RigCalibration& Triangulator::rig() const { return rig_; }
+const io::RigCalibration& Triangulator::rig() const { return rig_; }
 
 TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const {
   checkDecoded(decoded, rig_.camera);
@@ -78,7 +78,7 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
   result.status.create(height, width, CV_8UC1);
   const Tables& tables = *tables_;
   const bool with_rows = !decoded.row.empty();
-#pragma omp parallel num_threads(resolveThreadCount(params_.threads))
+#pragma omp parallel num_threads(core::resolveThreadCount(params_.threads))
   {
     detail::TriangulationScratch scratch(width);
 #pragma omp for schedule(static)

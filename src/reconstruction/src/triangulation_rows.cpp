@@ -210,7 +210,7 @@ void writeRow(const TriangulationRowInput& in, const TriangulationScratch& s,
 
 }  // namespace
 
-RigGeometry makeRigGeometry(const RigCalibration& rig, const EpipolarPencil& pencil,
+RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil,
                             double max_epipolar_error) {
   RigGeometry g;
   const Eigen::Matrix3d r = rig.T_projector_camera.linear();

@@ -24,7 +24,7 @@ struct RigGeometry {
   float q2[3] = {}, q3[3] = {};
   float max_depth = 0.0f;  // camera z beyond which rays count as parallel, metres
 };
-RigGeometry makeRigGeometry(const RigCalibration& rig, const EpipolarPencil& pencil,
+RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil,
                             double max_epipolar_error);
 
 struct TriangulationRowInput {

@@ -20,7 +20,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 int nodeCount(double span) { return static_cast<int>(std::ceil(span / kStepPixels)) + 1; }
 
-LookupGrid<2> buildUndistortGrid(const LensIntrinsics& lens, int threads) {
+LookupGrid<2> buildUndistortGrid(const io::LensIntrinsics& lens, int threads) {
   LookupGrid<2> grid(-kMarginPixels, -kMarginPixels, kStepPixels, kStepPixels,
                      nodeCount(lens.width - 1 + 2 * kMarginPixels),
                      nodeCount(lens.height - 1 + 2 * kMarginPixels));
@@ -51,7 +51,7 @@ struct LabelRange {
 
 // The labels of the planes that cross the margin-extended image, from a grid of samples: the
 // label is monotonic across the image, so the border decides the range and the grid the step.
-LabelRange labelRange(const LensIntrinsics& lens, const EpipolarPencil& pencil,
+LabelRange labelRange(const io::LensIntrinsics& lens, const EpipolarPencil& pencil,
                       const Eigen::Vector3d& centre) {
   constexpr int kSamples = 64;
   // Planes more than 89.9 degrees from the axis plane, or finer tables than this, mean the
@@ -92,7 +92,7 @@ LabelRange labelRange(const LensIntrinsics& lens, const EpipolarPencil& pencil,
 // Where the light of the column at distorted normalised x `target_x` crosses the plane with
 // normal n: the point of the plane's image line whose distorted x is target_x, by Newton along
 // the line. NaN where the line runs (almost) along the column or the lens model folds over.
-Eigen::Vector2d crossColumn(const LensIntrinsics& lens, const Eigen::Vector3d& n, double target_x) {
+Eigen::Vector2d crossColumn(const io::LensIntrinsics& lens, const Eigen::Vector3d& n, double target_x) {
   constexpr double kMinCrossing = 1e-3;  // sine of the angle between line and column
   constexpr double kH = 1e-7;
   const Eigen::Vector2d nan = Eigen::Vector2d::Constant(kNaN);
@@ -116,7 +116,7 @@ Eigen::Vector2d crossColumn(const LensIntrinsics& lens, const Eigen::Vector3d& n
   return std::abs(lens.distort(p).x() - target_x) < 1e-12 ? p : nan;
 }
 
-LookupGrid<4> buildEpipolarGrid(const LensIntrinsics& lens, const EpipolarPencil& pencil,
+LookupGrid<4> buildEpipolarGrid(const io::LensIntrinsics& lens, const EpipolarPencil& pencil,
                                 const Eigen::Vector3d& centre, int threads) {
   if (!pencil.valid) return {};
   const LabelRange range = labelRange(lens, pencil, centre);
@@ -140,7 +140,7 @@ LookupGrid<4> buildEpipolarGrid(const LensIntrinsics& lens, const EpipolarPencil
 }
 }  // namespace
 
-CameraRays buildCameraRays(const LensIntrinsics& camera, int threads) {
+CameraRays buildCameraRays(const io::LensIntrinsics& camera, int threads) {
   CameraRays rays;
   rays.width = camera.width;
   rays.height = camera.height;
@@ -172,7 +172,7 @@ EpipolarPencil makeEpipolarPencil(const Eigen::Vector3d& camera_centre_in_projec
   return pencil;
 }
 
-ProjectorTables buildProjectorTables(const LensIntrinsics& projector, const EpipolarPencil& pencil,
+ProjectorTables buildProjectorTables(const io::LensIntrinsics& projector, const EpipolarPencil& pencil,
                                      const Eigen::Vector3d& camera_centre_in_projector,
                                      int threads) {
   ProjectorTables tables;

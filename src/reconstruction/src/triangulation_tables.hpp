@@ -47,8 +47,8 @@ struct ProjectorTables {
   float min_row = 0.0f, max_row = 0.0f;
 };
 
-CameraRays buildCameraRays(const LensIntrinsics& camera, int threads);
-ProjectorTables buildProjectorTables(const LensIntrinsics& projector, const EpipolarPencil& pencil,
+CameraRays buildCameraRays(const io::LensIntrinsics& camera, int threads);
+ProjectorTables buildProjectorTables(const io::LensIntrinsics& projector, const EpipolarPencil& pencil,
                                      const Eigen::Vector3d& camera_centre_in_projector,
                                      int threads);
 

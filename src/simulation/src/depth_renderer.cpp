@@ -6,10 +6,10 @@
 #include <limits>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "rasterizer.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 void requireValidCamera(const PinholeCamera& camera, const char* caller) {
@@ -17,7 +17,7 @@ void requireValidCamera(const PinholeCamera& camera, const char* caller) {
                   camera.fx > 0.0 && std::isfinite(camera.fy) && camera.fy > 0.0 &&
                   std::isfinite(camera.cx) && std::isfinite(camera.cy);
   if (!ok) {
-    throw Error(std::string(caller) +
+    throw core::Error(std::string(caller) +
                 ": invalid PinholeCamera (width, height, fx, fy must be positive, cx, cy finite)");
   }
 }
@@ -41,13 +41,13 @@ DepthImage renderDepth(const PinholeCamera& camera, const std::vector<RenderObje
   return image;
 }
 
-PointCloud depthToCloud(const PinholeCamera& camera, const DepthImage& image) {
+io::PointCloud depthToCloud(const PinholeCamera& camera, const DepthImage& image) {
   requireValidCamera(camera, "depthToCloud");
   const std::size_t size = static_cast<std::size_t>(image.width) * image.height;
   if (image.width != camera.width || image.height != camera.height || image.depth.size() != size) {
-    throw Error("depthToCloud: the depth image does not match the camera size");
+    throw core::Error("depthToCloud: the depth image does not match the camera size");
   }
-  PointCloud cloud;
+  io::PointCloud cloud;
   cloud.width = image.width;
   cloud.height = image.height;
   cloud.points.resize(size);
@@ -70,4 +70,4 @@ PointCloud depthToCloud(const PinholeCamera& camera, const DepthImage& image) {
   return cloud;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

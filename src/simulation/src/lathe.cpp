@@ -3,42 +3,42 @@
 #include <cmath>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "polygon.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
 detail::Polygon validatedProfile(const std::vector<Eigen::Vector2d>& profile, int segments) {
   if (segments < 3) {
-    throw Error("makeLathe: needs at least 3 segments, got " + std::to_string(segments));
+    throw core::Error("makeLathe: needs at least 3 segments, got " + std::to_string(segments));
   }
   for (const auto& p : profile) {
     if (p.allFinite() && p.x() < 0.0) {
-      throw Error("makeLathe: the profile has a point with r < 0 (r = " + std::to_string(p.x()) +
+      throw core::Error("makeLathe: the profile has a point with r < 0 (r = " + std::to_string(p.x()) +
                   ")");
     }
   }
   try {
     return detail::cleanSimplePolygon(profile);  // counter-clockwise in (r, z) from here on
-  } catch (const Error& e) {
-    throw Error(std::string("makeLathe: invalid profile: ") + e.what());
+  } catch (const core::Error& e) {
+    throw core::Error(std::string("makeLathe: invalid profile: ") + e.what());
   }
 }
 
 }  // namespace
 
-TriangleMesh makeLathe(const std::vector<Eigen::Vector2d>& profile, int segments) {
+io::TriangleMesh makeLathe(const std::vector<Eigen::Vector2d>& profile, int segments) {
   const detail::Polygon polygon = validatedProfile(profile, segments);
   const int n = static_cast<int>(polygon.size());
   // Vertex layout: for each profile point, one vertex if it is on the axis, else a ring of
   // `segments` vertices at angles 2 pi k / segments. first[i] is the index of point i's first.
   std::vector<int> first(n);
   std::vector<bool> on_axis(n);
-  TriangleMesh mesh;
+  io::TriangleMesh mesh;
   for (int i = 0; i < n; ++i) {
     const double r = polygon[i].x(), z = polygon[i].y();
     first[i] = static_cast<int>(mesh.vertices.size());
@@ -65,4 +65,4 @@ TriangleMesh makeLathe(const std::vector<Eigen::Vector2d>& profile, int segments
   return mesh;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

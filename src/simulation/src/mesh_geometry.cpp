@@ -4,14 +4,14 @@
 #include <array>
 #include <cmath>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 struct Corners {
   Eigen::Vector3d a, b, c;
 };
 
-Corners corners(const TriangleMesh& mesh, const Eigen::Vector3i& triangle) {
+Corners corners(const io::TriangleMesh& mesh, const Eigen::Vector3i& triangle) {
   return {mesh.vertices[triangle[0]].cast<double>(), mesh.vertices[triangle[1]].cast<double>(),
           mesh.vertices[triangle[2]].cast<double>()};
 }
@@ -49,7 +49,7 @@ void appendTriangleSamples(const Corners& t, double step, std::vector<Eigen::Vec
 
 }  // namespace
 
-double signedVolume(const TriangleMesh& mesh) {
+double signedVolume(const io::TriangleMesh& mesh) {
   double six_volume = 0.0;
   for (const auto& triangle : mesh.triangles) {
     const Corners t = corners(mesh, triangle);
@@ -58,7 +58,7 @@ double signedVolume(const TriangleMesh& mesh) {
   return six_volume / 6.0;
 }
 
-Eigen::Vector3d volumeCentroid(const TriangleMesh& mesh) {
+Eigen::Vector3d volumeCentroid(const io::TriangleMesh& mesh) {
   // Each tetrahedron (origin, a, b, c) has its centroid at (a + b + c) / 4.
   double six_volume = 0.0;
   Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
@@ -71,13 +71,13 @@ Eigen::Vector3d volumeCentroid(const TriangleMesh& mesh) {
   return six_volume != 0.0 ? Eigen::Vector3d(weighted / six_volume) : Eigen::Vector3d::Zero();
 }
 
-TriangleMesh translated(const TriangleMesh& mesh, const Eigen::Vector3d& offset) {
-  TriangleMesh moved = mesh;
+io::TriangleMesh translated(const io::TriangleMesh& mesh, const Eigen::Vector3d& offset) {
+  io::TriangleMesh moved = mesh;
   for (auto& v : moved.vertices) v = (v.cast<double>() + offset).cast<float>();
   return moved;
 }
 
-void appendBox(TriangleMesh& mesh, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi) {
+void appendBox(io::TriangleMesh& mesh, const Eigen::Vector3f& lo, const Eigen::Vector3f& hi) {
   const int base = static_cast<int>(mesh.vertices.size());
   // Corner k has x from bit 0, y from bit 1, z from bit 2 (0 = lo, 1 = hi).
   for (int k = 0; k < 8; ++k) {
@@ -99,7 +99,7 @@ void appendBox(TriangleMesh& mesh, const Eigen::Vector3f& lo, const Eigen::Vecto
   }
 }
 
-std::vector<Eigen::Vector3f> surfaceSamples(const TriangleMesh& mesh, double coverage_radius) {
+std::vector<Eigen::Vector3f> surfaceSamples(const io::TriangleMesh& mesh, double coverage_radius) {
   // Rows and samples `step` apart leave every point within sqrt(step^2 + (step/2)^2) of a sample.
   const double step = coverage_radius / std::sqrt(1.25);
   std::vector<Eigen::Vector3f> samples;
@@ -108,4 +108,4 @@ std::vector<Eigen::Vector3f> surfaceSamples(const TriangleMesh& mesh, double cov
   return samples;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

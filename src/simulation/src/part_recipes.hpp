@@ -7,14 +7,14 @@
 
 #include "binpick/simulation/parts.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // Profiles are easier to read and check in millimetres; meshes are in metres.
 std::vector<Eigen::Vector2d> millimetres(std::initializer_list<std::array<double, 2>> points);
 
 // The model frame of every part is at its volume centroid, so that poses (and the rotations of
 // their symmetries) are about a point that does not depend on how the profile was drawn.
-TriangleMesh centredOnVolumeCentroid(const TriangleMesh& mesh);
+io::TriangleMesh centredOnVolumeCentroid(const io::TriangleMesh& mesh);
 
 // Prismatic parts (parts_prismatic.cpp).
 Part makeLBracket();
@@ -27,4 +27,4 @@ Part makeBulge();
 // Turned parts (parts_turned.cpp).
 Part makeRingMagnet();
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

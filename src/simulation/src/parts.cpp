@@ -6,11 +6,11 @@
 
 #include <array>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "mesh_geometry.hpp"
 #include "part_recipes.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace detail {
 
 std::vector<Eigen::Vector2d> millimetres(std::initializer_list<std::array<double, 2>> points) {
@@ -19,7 +19,7 @@ std::vector<Eigen::Vector2d> millimetres(std::initializer_list<std::array<double
   return profile;
 }
 
-TriangleMesh centredOnVolumeCentroid(const TriangleMesh& mesh) {
+io::TriangleMesh centredOnVolumeCentroid(const io::TriangleMesh& mesh) {
   return translated(mesh, -volumeCentroid(mesh));
 }
 
@@ -56,7 +56,7 @@ Part makePart(const std::string& name) {
   }
   std::string known;
   for (const auto& recipe : kRecipes) known += std::string(known.empty() ? "" : ", ") + recipe.name;
-  throw Error("makePart: unknown part '" + name + "' (known: " + known + ")");
+  throw core::Error("makePart: unknown part '" + name + "' (known: " + known + ")");
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -3,7 +3,7 @@
 
 #include "part_recipes.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -119,4 +119,4 @@ Part makeBulge() {
           centredOnVolumeCentroid(makePrism(profile, 0.015)), Symmetry{}};
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -1,7 +1,7 @@
 // The turned built-in parts: a profile drawn in millimetres (r, z), revolved about z.
 #include "part_recipes.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // A ring magnet: the rectangle r in [12, 25] mm, z in [-5, 5] mm revolved with 64 segments
 // (outer diameter 50 mm, bore 24 mm, 10 mm thick). Symmetry: the continuous axis z and the flip
@@ -18,4 +18,4 @@ Part makeRingMagnet() {
           centredOnVolumeCentroid(makeLathe(profile, kSegments)), symmetry};
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -1,18 +1,18 @@
 // generatePile and viewPile: a pile in the bin, dropped or at given poses, seen by the rig, with its
 // ground truth.
-#include "binpick/simulation/pile.hpp"
-
+#include <cmath>
 #include <string>
 #include <utility>
 
 #include "bin.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "binpick/simulation/object_visibility.hpp"
+#include "binpick/simulation/pile.hpp"
 #include "pile_view.hpp"
 #include "sensor_noise.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Independent random streams under one seed: changing the sensor model never moves a part.
@@ -52,9 +52,9 @@ void recordTruth(PileScene& scene, const SensorGeometry& geometry,
 }
 
 // The pile as the rig sees it: what every camera pixel hits, lit or not.
-SensorGeometry castRays(const TriangleMesh& part, const PileScene& scene, const PileParams& params,
+SensorGeometry castRays(const io::TriangleMesh& part, const PileScene& scene, const PileParams& params,
                         std::vector<ObjectVisibility>* visibility = nullptr) {
-  const TriangleMesh bin_mesh =
+  const io::TriangleMesh bin_mesh =
       detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
   const RayCaster caster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin));
   SensorGeometry geometry = computeSensorGeometry(scene.rig, caster, geometryParams(params));
@@ -66,14 +66,14 @@ SensorGeometry castRays(const TriangleMesh& part, const PileScene& scene, const 
   return geometry;
 }
 
-void requireValidPart(const TriangleMesh& part, const char* caller) {
-  if (part.empty()) throw Error(std::string(caller) + ": the part mesh has no triangles");
-  validateMesh(part, std::string(caller) + " part");
+void requireValidPart(const io::TriangleMesh& part, const char* caller) {
+  if (part.empty()) throw core::Error(std::string(caller) + ": the part mesh has no triangles");
+  io::validateMesh(part, std::string(caller) + " part");
 }
 
 // The scene at the given poses, handing out the sensor geometry it cast so that images need not
 // cast it again. Inputs already validated.
-PileScene sceneAt(const TriangleMesh& part, const PileParams& params,
+PileScene sceneAt(const io::TriangleMesh& part, const PileParams& params,
                   const std::vector<Eigen::Isometry3d>& T_bin_objects, SensorGeometry& geometry) {
   PileScene scene;
   scene.rig = params.rig;
@@ -91,7 +91,7 @@ PileScene sceneAt(const TriangleMesh& part, const PileParams& params,
 }
 
 // generatePile: the physics, then the view of the poses it gives.
-PileScene generatePileWithGeometry(const TriangleMesh& part, const PileParams& params,
+PileScene generatePileWithGeometry(const io::TriangleMesh& part, const PileParams& params,
                                    SensorGeometry& geometry) {
   params.validate();
   requireValidPart(part, "generatePile");
@@ -102,7 +102,7 @@ PileScene generatePileWithGeometry(const TriangleMesh& part, const PileParams& p
   return scene;
 }
 
-PileScene viewPileWithGeometry(const TriangleMesh& part, const PileParams& params,
+PileScene viewPileWithGeometry(const io::TriangleMesh& part, const PileParams& params,
                                const std::vector<Eigen::Isometry3d>& T_bin_objects,
                                SensorGeometry& geometry) {
   params.validate();
@@ -114,7 +114,7 @@ PileScene viewPileWithGeometry(const TriangleMesh& part, const PileParams& param
 }
 
 std::vector<cv::Mat> imagesOf(const SensorGeometry& geometry, const PileScene& scene,
-                              const PileParams& params, const PatternSetSpec& patterns,
+                              const PileParams& params, const io::PatternSetSpec& patterns,
                               const PhotometryParams& photometry) {
   const std::vector<PixelLighting> lighting =
       computePixelLighting(geometry, scene.rig, photometry, detail::pileAlbedo(params));
@@ -123,20 +123,20 @@ std::vector<cv::Mat> imagesOf(const SensorGeometry& geometry, const PileScene& s
 
 }  // namespace
 
-PileScene generatePile(const TriangleMesh& part, const PileParams& params) {
+PileScene generatePile(const io::TriangleMesh& part, const PileParams& params) {
   SensorGeometry geometry;
   return generatePileWithGeometry(part, params, geometry);
 }
 
-std::vector<cv::Mat> renderPileImages(const TriangleMesh& part, const PileScene& scene,
-                                      const PileParams& params, const PatternSetSpec& patterns,
+std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileScene& scene,
+                                      const PileParams& params, const io::PatternSetSpec& patterns,
                                       const PhotometryParams& photometry) {
   params.validate();
   return imagesOf(castRays(part, scene, params), scene, params, patterns, photometry);
 }
 
-PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& params,
-                                const PatternSetSpec& patterns,
+PileCapture generatePileCapture(const io::TriangleMesh& part, const PileParams& params,
+                                const io::PatternSetSpec& patterns,
                                 const PhotometryParams& photometry) {
   SensorGeometry geometry;
   PileCapture capture;
@@ -145,15 +145,15 @@ PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& para
   return capture;
 }
 
-PileScene viewPile(const TriangleMesh& part, const PileParams& params,
+PileScene viewPile(const io::TriangleMesh& part, const PileParams& params,
                    const std::vector<Eigen::Isometry3d>& T_bin_objects) {
   SensorGeometry geometry;
   return viewPileWithGeometry(part, params, T_bin_objects, geometry);
 }
 
-PileCapture renderPileCaptureAt(const TriangleMesh& part, const PileParams& params,
+PileCapture renderPileCaptureAt(const io::TriangleMesh& part, const PileParams& params,
                                 const std::vector<Eigen::Isometry3d>& T_bin_objects,
-                                const PatternSetSpec& patterns,
+                                const io::PatternSetSpec& patterns,
                                 const PhotometryParams& photometry) {
   SensorGeometry geometry;
   PileCapture capture;
@@ -162,13 +162,13 @@ PileCapture renderPileCaptureAt(const TriangleMesh& part, const PileParams& para
   return capture;
 }
 
-Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
-                        const PatternSetSpec& patterns, const PhotometryParams& photometry,
+io::Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
+                        const io::PatternSetSpec& patterns, const PhotometryParams& photometry,
                         const std::string& source) {
-  Capture capture;
-  CaptureMetadata& m = capture.metadata;
+  io::Capture capture;
+  io::CaptureMetadata& m = capture.metadata;
   m.source = source;
-  m.timestamp = utcTimestamp();
+  m.timestamp = io::utcTimestamp();
   m.image_width = params.rig.camera.width;
   m.image_height = params.rig.camera.height;
   m.bit_depth = photometry.bit_depth;
@@ -179,4 +179,42 @@ Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
   return capture;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation
+
+// PileParams::validate: every field checked, the message names the first bad one.
+namespace binpick::simulation {
+namespace {
+
+void require(bool ok, const char* field, const char* rule, double value) {
+  core::requireField(ok, "PileParams", field, rule, value);
+}
+
+bool positive(double value) { return std::isfinite(value) && value > 0.0; }
+
+constexpr int kMaxObjects = 10000;
+
+}  // namespace
+
+void PileParams::validate() const {
+  require(objects >= 0 && objects <= kMaxObjects, "objects", "in [0, 10000]", objects);
+  require(positive(bin_length), "bin_length", "positive", bin_length);
+  require(positive(bin_width), "bin_width", "positive", bin_width);
+  require(positive(bin_wall_height), "bin_wall_height", "positive", bin_wall_height);
+  require(std::isfinite(camera_height) && camera_height > bin_wall_height, "camera_height",
+          "finite and above the bin walls", camera_height);
+  require(std::isfinite(depth_noise) && depth_noise >= 0.0, "depth_noise", ">= 0", depth_noise);
+  require(std::isfinite(dropout) && dropout >= 0.0 && dropout < 1.0, "dropout", "in [0, 1)",
+          dropout);
+  require(std::isfinite(max_view_angle_deg) && max_view_angle_deg > 0.0 &&
+              max_view_angle_deg <= 90.0,
+          "max_view_angle_deg", "in (0, 90]", max_view_angle_deg);
+  require(std::isfinite(part_albedo) && part_albedo >= 0.0 && part_albedo <= 1.0, "part_albedo",
+          "in [0, 1]", part_albedo);
+  require(std::isfinite(bin_albedo) && bin_albedo >= 0.0 && bin_albedo <= 1.0, "bin_albedo",
+          "in [0, 1]", bin_albedo);
+  require(threads >= 0, "threads", ">= 0", threads);
+  rig.validate();
+  physics.validate("PileParams.physics");
+}
+
+}  // namespace binpick::simulation

@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/io/geometry_io.hpp"
-#include "binpick/io/json_fields.hpp"
+#include "binpick/core/json_fields.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 namespace fs = std::filesystem;
@@ -21,12 +21,12 @@ json objectsJson(const PileScene& scene, const std::string& part_name) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectTruth& o = scene.objects[i];
     objects.push_back({{"id", i},
-                       {"pose", poseRows(o.T_camera_object)},
+                       {"pose", core::poseRows(o.T_camera_object)},
                        {"visible_pixels", o.visible_pixels},
                        {"unoccluded_pixels", o.unoccluded_pixels},
                        {"visible_fraction", o.visible_fraction}});
   }
-  return {{"part", part_name}, {"units", "m"}, {"T_camera_bin", poseRows(scene.T_camera_bin)},
+  return {{"part", part_name}, {"units", "m"}, {"T_camera_bin", core::poseRows(scene.T_camera_bin)},
           {"objects", objects}};
 }
 
@@ -37,7 +37,7 @@ void writeImage(const fs::path& path, const cv::Mat& image) {
   } catch (const cv::Exception&) {
     written = false;
   }
-  if (!written) throw Error(path.string() + ": cannot write the image");
+  if (!written) throw core::Error(path.string() + ": cannot write the image");
 }
 
 // 16-bit labels: 0 nothing, 1 the bin, 2 + i object i (instance ids: -1, -2, i).
@@ -56,41 +56,41 @@ cv::Mat maskImage(const PileScene& scene) {
 }  // namespace
 
 void writePileTruth(const std::string& capture_directory, const PileScene& scene,
-                    const std::string& part_name, const TriangleMesh& part) {
+                    const std::string& part_name, const io::TriangleMesh& part) {
   const fs::path truth = fs::path(capture_directory) / "truth";
   std::error_code error;
   fs::create_directories(truth, error);
-  if (error) throw Error(truth.string() + ": cannot create: " + error.message());
+  if (error) throw core::Error(truth.string() + ": cannot create: " + error.message());
   std::ofstream objects(truth / "objects.json");
   objects << objectsJson(scene, part_name).dump(2) << "\n";
-  if (!objects) throw Error((truth / "objects.json").string() + ": cannot write");
+  if (!objects) throw core::Error((truth / "objects.json").string() + ": cannot write");
   cv::Mat depth(scene.cloud.height, scene.cloud.width, CV_32FC1,
                 const_cast<float*>(scene.depth.data()));
   writeImage(truth / "depth.tiff", depth);
   writeImage(truth / "mask.png", maskImage(scene));
-  writePointCloud((truth / "cloud.ply").string(), scene.exact_cloud);
-  writeMesh((truth / "part.ply").string(), part);
+  io::writePointCloud((truth / "cloud.ply").string(), scene.exact_cloud);
+  io::writeMesh((truth / "part.ply").string(), part);
 }
 
 PileTruth readPileTruth(const std::string& path) {
   const fs::path file = fs::is_directory(path) ? fs::path(path) / "truth" / "objects.json" : fs::path(path);
-  const json document = readJsonFile(file.string());
+  const json document = core::readJsonFile(file.string());
   PileTruth truth;
   try {
     truth.part = document.at("part").get<std::string>();
-    truth.T_camera_bin = poseFromRows(document.at("T_camera_bin"), file.string(), "T_camera_bin");
+    truth.T_camera_bin = core::poseFromRows(document.at("T_camera_bin"), file.string(), "T_camera_bin");
     for (const json& o : document.at("objects")) {
       ObjectTruth object;
-      object.T_camera_object = poseFromRows(o.at("pose"), file.string(), "pose");
+      object.T_camera_object = core::poseFromRows(o.at("pose"), file.string(), "pose");
       object.visible_pixels = o.at("visible_pixels").get<int>();
       object.unoccluded_pixels = o.at("unoccluded_pixels").get<int>();
       object.visible_fraction = o.at("visible_fraction").get<double>();
       truth.objects.push_back(object);
     }
   } catch (const json::exception& e) {
-    throw Error(file.string() + ": malformed truth: " + e.what());
+    throw core::Error(file.string() + ": malformed truth: " + e.what());
   }
   return truth;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

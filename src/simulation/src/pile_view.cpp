@@ -3,12 +3,12 @@
 #include <cmath>
 #include <limits>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
-PointCloud emptyOrganized(const SensorGeometry& geometry) {
+io::PointCloud emptyOrganized(const SensorGeometry& geometry) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  PointCloud cloud;
+  io::PointCloud cloud;
   cloud.width = geometry.width;
   cloud.height = geometry.height;
   cloud.points.assign(static_cast<std::size_t>(geometry.width) * geometry.height,
@@ -18,7 +18,7 @@ PointCloud emptyOrganized(const SensorGeometry& geometry) {
 
 }  // namespace
 
-std::vector<RenderObject> pileObjects(const TriangleMesh& part, const TriangleMesh& bin,
+std::vector<RenderObject> pileObjects(const io::TriangleMesh& part, const io::TriangleMesh& bin,
                                       const std::vector<Eigen::Isometry3d>& T_camera_object,
                                       const Eigen::Isometry3d& T_camera_bin) {
   std::vector<RenderObject> objects;
@@ -29,8 +29,8 @@ std::vector<RenderObject> pileObjects(const TriangleMesh& part, const TriangleMe
   return objects;
 }
 
-PointCloud exactCloud(const SensorGeometry& geometry) {
-  PointCloud cloud = emptyOrganized(geometry);
+io::PointCloud exactCloud(const SensorGeometry& geometry) {
+  io::PointCloud cloud = emptyOrganized(geometry);
   cloud.normals = cloud.points;
   for (std::size_t i = 0; i < cloud.points.size(); ++i) {
     if (geometry.object_index[i] < 0) continue;
@@ -40,9 +40,9 @@ PointCloud exactCloud(const SensorGeometry& geometry) {
   return cloud;
 }
 
-PointCloud measurableCloud(const SensorGeometry& geometry, double max_view_angle_deg) {
+io::PointCloud measurableCloud(const SensorGeometry& geometry, double max_view_angle_deg) {
   const float min_cosine = static_cast<float>(std::cos(max_view_angle_deg * M_PI / 180.0));
-  PointCloud cloud = emptyOrganized(geometry);
+  io::PointCloud cloud = emptyOrganized(geometry);
   for (std::size_t i = 0; i < cloud.points.size(); ++i) {
     if (geometry.lit[i] && geometry.camera_cosine[i] >= min_cosine) {
       cloud.points[i] = geometry.point[i];
@@ -57,4 +57,4 @@ AlbedoFunction pileAlbedo(const PileParams& params) {
   return [part, bin](int32_t id, const Eigen::Vector3f&) { return id == kBinId ? bin : part; };
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

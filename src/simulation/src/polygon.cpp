@@ -4,9 +4,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -92,7 +92,7 @@ void requireNoCrossingEdges(const Polygon& polygon, double area_tolerance) {
             std::abs(orientation(far_of_first, shared, far_of_second)) <= area_tolerance;
         const bool doubles_back = (far_of_first - shared).dot(far_of_second - shared) > 0.0;
         if (collinear && doubles_back) {
-          throw Error("makePrism: the profile doubles back on itself at vertex " +
+          throw core::Error("makePrism: the profile doubles back on itself at vertex " +
                       std::to_string((j == i + 1) ? j : i));
         }
         continue;
@@ -101,7 +101,7 @@ void requireNoCrossingEdges(const Polygon& polygon, double area_tolerance) {
         std::ostringstream message;
         message << "makePrism: the profile is self-intersecting (edge " << i << " crosses edge "
                 << j << ")";
-        throw Error(message.str());
+        throw core::Error(message.str());
       }
     }
   }
@@ -136,18 +136,18 @@ double twiceSignedArea(const Polygon& polygon) {
 
 Polygon cleanSimplePolygon(const Polygon& profile) {
   if (profile.size() < 3) {
-    throw Error("makePrism: the profile needs at least 3 points, got " +
+    throw core::Error("makePrism: the profile needs at least 3 points, got " +
                 std::to_string(profile.size()));
   }
   for (const auto& p : profile) {
-    if (!p.allFinite()) throw Error("makePrism: the profile has a non-finite coordinate");
+    if (!p.allFinite()) throw core::Error("makePrism: the profile has a non-finite coordinate");
   }
   const double scale = polygonScale(profile);
   const double length_tolerance = 1e-9 * scale;
   const double area_tolerance = 1e-9 * scale * scale;
   Polygon polygon = withoutRepeatedAndCollinearVertices(profile, length_tolerance);
   if (polygon.size() < 3 || std::abs(twiceSignedArea(polygon)) <= area_tolerance) {
-    throw Error("makePrism: the profile has zero area");
+    throw core::Error("makePrism: the profile has zero area");
   }
   requireNoCrossingEdges(polygon, area_tolerance);
   if (twiceSignedArea(polygon) < 0.0) std::reverse(polygon.begin(), polygon.end());
@@ -169,7 +169,7 @@ std::vector<std::array<int, 3>> triangulateByEarClipping(const Polygon& polygon)
     }
     // A simple polygon always has an ear (two-ears theorem); only rounding can defeat that.
     if (ear == ring.size()) {
-      throw Error("makePrism: could not triangulate the profile (nearly degenerate)");
+      throw core::Error("makePrism: could not triangulate the profile (nearly degenerate)");
     }
     const std::size_t n = ring.size();
     triangles.push_back({ring[(ear + n - 1) % n], ring[ear], ring[(ear + 1) % n]});
@@ -179,4 +179,4 @@ std::vector<std::array<int, 3>> triangulateByEarClipping(const Polygon& polygon)
   return triangles;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -5,7 +5,7 @@
 #include <array>
 #include <vector>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 using Polygon = std::vector<Eigen::Vector2d>;
 
@@ -13,7 +13,7 @@ using Polygon = std::vector<Eigen::Vector2d>;
 double twiceSignedArea(const Polygon& polygon);
 
 // The profile made ready for triangulation: repeated and collinear vertices removed (they would
-// create zero-area triangles) and the winding made counter-clockwise. Throws binpick::Error when
+// create zero-area triangles) and the winding made counter-clockwise. Throws core::Error when
 // fewer than 3 corners remain, the area is zero, a coordinate is not finite, or two edges cross.
 Polygon cleanSimplePolygon(const Polygon& profile);
 
@@ -21,4 +21,4 @@ Polygon cleanSimplePolygon(const Polygon& profile);
 // counter-clockwise triangles as indices into `polygon`; n - 2 of them.
 std::vector<std::array<int, 3>> triangulateByEarClipping(const Polygon& polygon);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

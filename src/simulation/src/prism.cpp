@@ -1,11 +1,11 @@
 // makePrism: a profile polygon extruded along z into a closed, outward-oriented triangle mesh.
 #include <cmath>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "polygon.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Vertex layout: the n profile corners at z = -thickness/2 (indices 0..n-1), then the same
@@ -42,12 +42,12 @@ void addSides(int n, std::vector<Eigen::Vector3i>& triangles) {
 
 }  // namespace
 
-TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thickness) {
+io::TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thickness) {
   if (!std::isfinite(thickness) || thickness <= 0.0) {
-    throw Error("makePrism: thickness must be positive, got " + std::to_string(thickness));
+    throw core::Error("makePrism: thickness must be positive, got " + std::to_string(thickness));
   }
   const detail::Polygon polygon = detail::cleanSimplePolygon(profile);
-  TriangleMesh mesh;
+  io::TriangleMesh mesh;
   mesh.vertices = extrudedVertices(polygon, thickness);
   mesh.triangles.reserve(4 * polygon.size());
   addCaps(polygon, mesh.triangles);
@@ -55,4 +55,4 @@ TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thick
   return mesh;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

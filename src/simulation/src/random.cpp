@@ -3,7 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 constexpr double kTwoPi = 6.28318530717958647692;
 constexpr uint64_t kGoldenGamma = 0x9E3779B97F4A7C15ULL;  // SplitMix64's counter step
@@ -52,4 +52,4 @@ Eigen::Matrix3d uniformRotation(Rng& rng) {
   return q.normalized().toRotationMatrix();
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

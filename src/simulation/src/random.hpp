@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <random>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 using Rng = std::mt19937_64;
 
@@ -47,4 +47,4 @@ double standardNormal(SplitMix64& rng);  // Box-Muller: one value from two unifo
 // A rotation drawn uniformly from SO(3) (Shoemake's random unit quaternion).
 Eigen::Matrix3d uniformRotation(Rng& rng);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

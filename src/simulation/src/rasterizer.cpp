@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 struct ProjectedVertex {
@@ -136,9 +136,9 @@ std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera,
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const RenderObject& object = objects[i];
     if (object.mesh == nullptr) {
-      throw Error("renderDepth: object " + std::to_string(i) + " has no mesh");
+      throw core::Error("renderDepth: object " + std::to_string(i) + " has no mesh");
     }
-    validateMesh(*object.mesh, "renderDepth object " + std::to_string(i));
+    io::validateMesh(*object.mesh, "renderDepth object " + std::to_string(i));
     const std::vector<ProjectedVertex> projected = projectVertices(camera, object);
     for (const auto& tri : object.mesh->triangles) {
       ScreenTriangle screen;
@@ -160,4 +160,4 @@ void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& t
   }
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -7,7 +7,7 @@
 
 #include "binpick/simulation/depth_renderer.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // A triangle ready for scan conversion. Pixel centres sit at integer (u, v).
 struct ScreenTriangle {
@@ -26,7 +26,7 @@ struct ScreenTriangle {
 constexpr double kNearPlane = 1e-3;
 
 // Triangles of all objects in their order, skipping those that touch the near plane, are edge-on
-// or fall outside the image. Throws binpick::Error on a missing or invalid mesh.
+// or fall outside the image. Throws core::Error on a missing or invalid mesh.
 std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera,
                                            const std::vector<RenderObject>& objects);
 
@@ -42,4 +42,4 @@ struct PixelWindow {
 void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& triangles,
                const PixelWindow& window, float* depth, int32_t* instance);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

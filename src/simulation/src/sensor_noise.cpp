@@ -5,7 +5,7 @@
 
 #include "random.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 void applyToPoint(Eigen::Vector3f& point, double sigma, double dropout, SplitMix64& rng) {
@@ -23,7 +23,7 @@ void applyToPoint(Eigen::Vector3f& point, double sigma, double dropout, SplitMix
 
 }  // namespace
 
-void applySensorNoise(PointCloud& cloud, double sigma, double dropout, uint64_t seed,
+void applySensorNoise(io::PointCloud& cloud, double sigma, double dropout, uint64_t seed,
                       uint32_t stream) {
   if (sigma <= 0.0 && dropout <= 0.0) return;
   const KeyedStreams streams(seed, stream);
@@ -36,4 +36,4 @@ void applySensorNoise(PointCloud& cloud, double sigma, double dropout, uint64_t 
   }
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

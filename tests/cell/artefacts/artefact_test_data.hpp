@@ -12,11 +12,11 @@
 
 namespace binpick::test {
 
-inline Capture tinyCapture() {
-  Capture capture;
-  CaptureMetadata& m = capture.metadata;
+inline io::Capture tinyCapture() {
+  io::Capture capture;
+  io::CaptureMetadata& m = capture.metadata;
   m.source = "test";
-  m.timestamp = utcTimestamp();
+  m.timestamp = io::utcTimestamp();
   m.image_width = 8;
   m.image_height = 6;
   m.bit_depth = 8;
@@ -29,8 +29,8 @@ inline Capture tinyCapture() {
   return capture;
 }
 
-inline PointCloud tinyCloud() {
-  PointCloud cloud;
+inline io::PointCloud tinyCloud() {
+  io::PointCloud cloud;
   cloud.points = {{0.f, 0.f, 0.5f}, {0.01f, 0.f, 0.5f}, {0.f, 0.01f, 0.51f}};
   return cloud;
 }

@@ -54,8 +54,8 @@ TEST_F(artefacts_failures, DirectoryReplacedByAFileFailsTheSaveNamingTheCycle) {
 TEST_F(artefacts_failures, AFailingArtefactLeavesNoPartialDirectory) {
   const std::string directory = pathOf("cycles");
   ArtefactStore store(paramsIn(directory));
-  const Capture capture = tinyCapture();  // written before the cloud fails
-  PointCloud nan_cloud = tinyCloud();     // the PLY writer refuses NaN in an unorganized cloud
+  const io::Capture capture = tinyCapture();  // written before the cloud fails
+  io::PointCloud nan_cloud = tinyCloud();     // the PLY writer refuses NaN in an unorganized cloud
   nan_cloud.points[1].x() = std::nanf("");
   CycleArtefacts cycle;
   cycle.cycle = 8;

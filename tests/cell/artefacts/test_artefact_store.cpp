@@ -49,8 +49,8 @@ class artefacts_store : public TempDirectoryTest {
 
 TEST_F(artefacts_store, SavesEveryArtefactOfACycle) {
   ArtefactStore store(paramsIn("cycles"));
-  const Capture capture = tinyCapture();
-  const PointCloud cloud = tinyCloud();
+  const io::Capture capture = tinyCapture();
+  const io::PointCloud cloud = tinyCloud();
   const cv::Mat overlay(6, 8, CV_8UC3, cv::Scalar(0, 255, 0));
   CycleArtefacts cycle;
   cycle.cycle = 42;
@@ -65,8 +65,8 @@ TEST_F(artefacts_store, SavesEveryArtefactOfACycle) {
   EXPECT_EQ(fs::path(directory).parent_path(), fs::path(pathOf("cycles")));
   EXPECT_EQ(entriesOf(directory),
             (std::set<std::string>{"capture", "cloud.ply", "detections.json", "overlay.png"}));
-  EXPECT_EQ(readCapture(directory + "/capture").images.size(), 2u);
-  EXPECT_EQ(readPointCloud(directory + "/cloud.ply").size(), 3u);
+  EXPECT_EQ(io::readCapture(directory + "/capture").images.size(), 2u);
+  EXPECT_EQ(io::readPointCloud(directory + "/cloud.ply").size(), 3u);
   EXPECT_EQ(fileText(directory + "/detections.json"), cycle.detections_json);
   const cv::Mat overlay_read = cv::imread(directory + "/overlay.png", cv::IMREAD_UNCHANGED);
   EXPECT_EQ(cv::norm(overlay_read, overlay, cv::NORM_INF), 0.0);
@@ -78,7 +78,7 @@ TEST_F(artefacts_store, SavesOnlyWhatIsEnabledAndProvided) {
   params.capture = false;
   params.overlay = false;
   ArtefactStore store(params);
-  const Capture capture = tinyCapture();
+  const io::Capture capture = tinyCapture();
   const cv::Mat overlay(6, 8, CV_8UC3);
   CycleArtefacts cycle = textCycle(7);
   cycle.capture = &capture;
@@ -88,8 +88,8 @@ TEST_F(artefacts_store, SavesOnlyWhatIsEnabledAndProvided) {
 
 TEST_F(artefacts_store, SkipsEmptyArtefactsButKeepsTheCycle) {
   ArtefactStore store(paramsIn("cycles"));
-  const Capture no_images;
-  const PointCloud no_points;
+  const io::Capture no_images;
+  const io::PointCloud no_points;
   const cv::Mat no_overlay;
   CycleArtefacts cycle;
   cycle.cycle = 5;

@@ -17,8 +17,8 @@ using cell::renderOverlay;
 
 const cv::Vec3b kGreen(0, 255, 0), kYellow(0, 255, 255), kRed(0, 0, 255);
 
-LensIntrinsics pinhole() {
-  LensIntrinsics lens;
+io::LensIntrinsics pinhole() {
+  io::LensIntrinsics lens;
   lens.width = 640;
   lens.height = 480;
   lens.fx = lens.fy = 500.0;
@@ -60,7 +60,7 @@ TEST(artefacts_overlay, ColoursPicksGreenToYellowAndTheRestRed) {
 }
 
 TEST(artefacts_overlay, IncludesTheLensDistortion) {
-  LensIntrinsics lens = pinhole();
+  io::LensIntrinsics lens = pinhole();
   lens.distortion = {-0.2, 0.05, 0.001, -0.001, 0.0};
   const Eigen::Vector3d origin(0.2, 0.15, 0.5);
   const Eigen::Vector2d expected = lens.project(origin);
@@ -95,7 +95,7 @@ TEST(artefacts_overlay, ScalesSixteenBitImagesToEightBit) {
 }
 
 TEST(artefacts_overlay, RefusesImagesItCannotDrawOn) {
-  const LensIntrinsics lens = pinhole();
+  const io::LensIntrinsics lens = pinhole();
   EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(), lens, kModel, {}); }, "empty"));
   EXPECT_TRUE(
       throwsNaming([&] { renderOverlay(cv::Mat(480, 640, CV_8UC3), lens, kModel, {}); }, "grey"));

@@ -25,15 +25,15 @@ Eigen::Isometry3d baseFromBin() {
   return T_base_bin;
 }
 
-sim::PileScene writePile(sim::PileParams params, int objects, const TriangleMesh& part, const std::string& directory) {
+simulation::PileScene writePile(simulation::PileParams params, int objects, const io::TriangleMesh& part, const std::string& directory) {
   params.objects = objects;
-  PatternSetSpec patterns;
+  io::PatternSetSpec patterns;
   patterns.projector_width = params.rig.projector.width;
   patterns.projector_height = params.rig.projector.height;
-  const sim::PhotometryParams photometry;
-  sim::PileCapture pile = sim::generatePileCapture(part, params, patterns, photometry);
-  writeCapture(directory, sim::recordedCapture(std::move(pile.images), params, patterns, photometry, "test bin"));
-  writeRigCalibration(directory + "/calib.yaml", params.rig);
+  const simulation::PhotometryParams photometry;
+  simulation::PileCapture pile = simulation::generatePileCapture(part, params, patterns, photometry);
+  io::writeCapture(directory, simulation::recordedCapture(std::move(pile.images), params, patterns, photometry, "test bin"));
+  io::writeRigCalibration(directory + "/calib.yaml", params.rig);
   return std::move(pile.scene);
 }
 
@@ -58,15 +58,15 @@ std::vector<Eigen::Isometry3d> readPoses(std::istream& in) {
 // the truth of every part in the base frame).
 void renderScene(const std::string& directory) {
   fs::create_directories(directory);
-  const sim::Part part = sim::makePart("l_bracket");
-  writeMesh(directory + "/part.ply", part.mesh);
-  sim::PileParams params;
+  const simulation::Part part = simulation::makePart("l_bracket");
+  io::writeMesh(directory + "/part.ply", part.mesh);
+  simulation::PileParams params;
   params.seed = 5;
-  const sim::PileScene pile = writePile(params, 12, part.mesh, directory + "/capture");
+  const simulation::PileScene pile = writePile(params, 12, part.mesh, directory + "/capture");
   writePile(params, 0, part.mesh, directory + "/empty");
   const Eigen::Isometry3d T_base_camera = baseFromBin() * pile.T_camera_bin.inverse();
   std::vector<Eigen::Isometry3d> poses{T_base_camera};
-  for (const sim::ObjectTruth& object : pile.objects) poses.push_back(T_base_camera * object.T_camera_object);
+  for (const simulation::ObjectTruth& object : pile.objects) poses.push_back(T_base_camera * object.T_camera_object);
   std::ofstream file(directory + "/poses.txt");
   writePoses(file, poses);
 }

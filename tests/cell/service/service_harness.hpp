@@ -15,14 +15,14 @@ namespace binpick::cell::testing {
 class ReplyCollector {
  public:
   ReplySink sink() {
-    return [this](ClientId client, const robot::Reply& reply) {
+    return [this](robot::ClientId client, const robot::Reply& reply) {
       std::lock_guard lock(mutex_);
       replies_.push_back({client, reply});
       arrived_.notify_all();
     };
   }
   // The next reply to `client`; nullopt after `timeout`.
-  std::optional<robot::Reply> next(ClientId client, std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
+  std::optional<robot::Reply> next(robot::ClientId client, std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
     std::unique_lock lock(mutex_);
     std::optional<robot::Reply> found;
     arrived_.wait_for(lock, timeout, [&] {
@@ -40,7 +40,7 @@ class ReplyCollector {
  private:
   std::mutex mutex_;
   std::condition_variable arrived_;
-  std::deque<std::pair<ClientId, robot::Reply>> replies_;
+  std::deque<std::pair<robot::ClientId, robot::Reply>> replies_;
 };
 
 inline robot::Request request(robot::Command command, std::optional<std::string> argument = std::nullopt) {

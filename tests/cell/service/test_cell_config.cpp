@@ -50,21 +50,21 @@ TEST(CellConfig, PickingReadsEveryGripperKeyAndTheRankingWeights) {
                                   "  cover_radius: 0.05\n"
                                   "  cover_height: 0.006\n"
                                   "  order: highest_first\n");
-  const PickParams& p = config.picking;
-  const GripperParams& g = p.gripper;
-  EXPECT_EQ(g.type, GripperType::Parallel);
+  const picking::PickParams& p = config.picking;
+  const picking::GripperParams& g = p.gripper;
+  EXPECT_EQ(g.type, picking::GripperType::Parallel);
   EXPECT_EQ(std::vector<double>({g.cup_diameter, g.cup_length, g.seal_tolerance, g.stroke, g.finger_width,
                                  g.finger_depth, g.finger_thickness, g.tool_radius, g.tool_length}),
             std::vector<double>({0.02, 0.03, 0.001, 0.06, 0.01, 0.025, 0.006, 0.03, 0.2}));
-  const RankWeights& w = p.ranking;
+  const picking::RankWeights& w = p.ranking;
   EXPECT_EQ(std::vector<double>({w.free, w.height, w.coverage, w.upright, w.clearance, w.quality}),
             std::vector<double>({3, 0.5, 2, 0.25, 0, 4}));
   EXPECT_EQ(std::vector<double>({p.collision_margin, p.finger_clearance, p.clearance_cap, p.cover_radius,
                                  p.cover_height}),
             std::vector<double>({0.003, 0.004, 0.03, 0.05, 0.006}));
-  EXPECT_EQ(p.order, PickOrder::HighestFirst);
-  EXPECT_EQ(parse(kMinimal).picking.order, PickOrder::BestRank);  // absent: the ranking decides
-  EXPECT_EQ(loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml").picking.order, PickOrder::BestRank);
+  EXPECT_EQ(p.order, picking::PickOrder::HighestFirst);
+  EXPECT_EQ(parse(kMinimal).picking.order, picking::PickOrder::BestRank);  // absent: the ranking decides
+  EXPECT_EQ(loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml").picking.order, picking::PickOrder::BestRank);
 }
 
 TEST(CellConfig, RelativePathsAreRelativeToTheFile) {

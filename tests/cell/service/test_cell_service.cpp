@@ -22,7 +22,7 @@ using testing::cellScene;
 using testing::ReplyCollector;
 using testing::request;
 
-constexpr ClientId kRobot = 1;
+constexpr robot::ClientId kRobot = 1;
 
 std::shared_ptr<const CellSetup> setupFor(const std::string& yaml) {
   return prepareCell(parseCellConfig(yaml, "cell.yaml", cellScene().directory));
@@ -34,7 +34,7 @@ struct Cell {
   Cell(const std::string& yaml, std::unique_ptr<acquisition::CaptureSource> source)
       : setup(setupFor(yaml)), service(setup, std::move(source), collector.sink()) {}
 
-  robot::Reply ask(const robot::Request& r, ClientId client = kRobot) {
+  robot::Reply ask(const robot::Request& r, robot::ClientId client = kRobot) {
     service.handle(client, r);
     const auto reply = collector.next(client);
     if (!reply) throw std::runtime_error("no reply");
@@ -58,7 +58,7 @@ struct Cell {
 // here 9.6 mm, and 10 degrees).
 bool onSomeTruePart(const Eigen::Isometry3d& T_base_grasp, const Recipe& recipe) {
   for (const Eigen::Isometry3d& T_base_object : cellScene().T_base_objects) {
-    for (const Grasp& grasp : recipe.picking.grasps) {
+    for (const picking::Grasp& grasp : recipe.picking.grasps) {
       const Eigen::Isometry3d expected = T_base_object * grasp.T_model_grasp;
       const double mm = (expected.translation() - T_base_grasp.translation()).norm() * 1000;
       const double deg = Eigen::AngleAxisd(expected.linear().transpose() * T_base_grasp.linear()).angle() * 180 / M_PI;
@@ -188,9 +188,9 @@ TEST_F(CellServiceFiles, ACorruptRecordingIsNoImageAndTheNextCycleWorks) {
 class SlowSource : public acquisition::CaptureSource {
  public:
   explicit SlowSource(std::chrono::milliseconds delay) : delay_(delay) {}
-  Capture next() override {
+  io::Capture next() override {
     std::this_thread::sleep_for(delay_);
-    return readCapture(cellScene().capture);
+    return io::readCapture(cellScene().capture);
   }
   std::string description() const override { return "slow"; }
  private:

@@ -25,21 +25,21 @@ class RecipeGrasps : public test::TempDirectoryTest {
   }
 };
 
-std::vector<Grasp> someGrasps() {
-  Grasp top{"suction 1 (face +z)", Eigen::Isometry3d::Identity(), 0.875};
+std::vector<picking::Grasp> someGrasps() {
+  picking::Grasp top{"suction 1 (face +z)", Eigen::Isometry3d::Identity(), 0.875};
   top.T_model_grasp.translation() = Eigen::Vector3d(0.001, -0.002, 0.015);
   top.T_model_grasp.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  Grasp side{"suction 2 (face \"-y\")", Eigen::Isometry3d::Identity(), 0.25};
+  picking::Grasp side{"suction 2 (face \"-y\")", Eigen::Isometry3d::Identity(), 0.25};
   side.T_model_grasp.translation() = Eigen::Vector3d(0.02, -0.0125, 0);
   side.T_model_grasp.linear() = Eigen::AngleAxisd(-M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
   return {top, side};
 }
 
 TEST_F(RecipeGrasps, AGraspsFileRoundTripsThroughTheRecipeReader) {
-  const std::vector<Grasp> written = someGrasps();
+  const std::vector<picking::Grasp> written = someGrasps();
   writeGraspsFile(pathOf("part.grasps.yaml"), written, "generated for a test\nsecond line");
   const CellConfig config = parse("{name: part, model: part.ply, grasps: part.grasps.yaml}");
-  const std::vector<Grasp>& read = config.recipes[0].grasps;
+  const std::vector<picking::Grasp>& read = config.recipes[0].grasps;
   ASSERT_EQ(read.size(), written.size());
   for (std::size_t i = 0; i < read.size(); ++i) {
     EXPECT_EQ(read[i].name, written[i].name);
@@ -64,15 +64,15 @@ TEST_F(RecipeGrasps, AMissingOrBrokenGraspsFileNamesTheRecipeAndTheFile) {
 }
 
 TEST_F(RecipeGrasps, ARecipeWithoutGraspsGetsThemGeneratedFromItsModel) {
-  writeMesh(pathOf("part.ply"), sim::makePart("l_bracket").mesh);
+  io::writeMesh(pathOf("part.ply"), simulation::makePart("l_bracket").mesh);
   writeGraspsFile(pathOf("taught.yaml"), someGrasps());
   const CellConfig config = parse(
       "{name: generated, model: part.ply}, {name: taught, model: part.ply, grasps: taught.yaml}");
   EXPECT_TRUE(config.recipes[0].grasps.empty());
   const auto setup = prepareCell(config);
-  const std::vector<Grasp>& generated = setup->recipes[0].picking.grasps;
+  const std::vector<picking::Grasp>& generated = setup->recipes[0].picking.grasps;
   ASSERT_FALSE(generated.empty());
-  for (const Grasp& grasp : generated) {
+  for (const picking::Grasp& grasp : generated) {
     EXPECT_NE(grasp.name.find("suction"), std::string::npos) << grasp.name;  // the default gripper
     EXPECT_GT(grasp.quality, 0.0);
   }
@@ -82,7 +82,7 @@ TEST_F(RecipeGrasps, ARecipeWithoutGraspsGetsThemGeneratedFromItsModel) {
 }
 
 TEST_F(RecipeGrasps, AGripperThatFitsNowhereStopsTheCellNamingTheRecipe) {
-  writeMesh(pathOf("magnet.ply"), sim::makePart("ring_magnet").mesh);  // 13 mm wide: no 16 mm cup seals
+  io::writeMesh(pathOf("magnet.ply"), simulation::makePart("ring_magnet").mesh);  // 13 mm wide: no 16 mm cup seals
   const CellConfig config = parse("{name: magnet, model: magnet.ply}", "picking: {gripper: {cup_diameter: 0.016}}\n");
   EXPECT_TRUE(throwsNaming([&] { prepareCell(config); }, "recipe magnet"));
 }

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Points closer than this to z = 0 are on the print (the other faces are at least the board's
@@ -15,7 +15,7 @@ constexpr double kJacobianStep = 1e-5;  // metres
 
 // Board metres per camera pixel at `xy` on the print: columns are the board displacement of a
 // one-pixel step in u and in v.
-Eigen::Matrix2d pixelFootprint(const LensIntrinsics& camera, const Eigen::Isometry3d& T,
+Eigen::Matrix2d pixelFootprint(const io::LensIntrinsics& camera, const Eigen::Isometry3d& T,
                                const Eigen::Vector2d& xy) {
   const Eigen::Vector3d p(xy.x(), xy.y(), 0.0);
   const Eigen::Vector2d pixel = camera.project(T * p);
@@ -29,7 +29,7 @@ Eigen::Matrix2d pixelFootprint(const LensIntrinsics& camera, const Eigen::Isomet
 
 }  // namespace
 
-AlbedoFunction boardPixelAlbedo(const CalibrationBoard& board, const LensIntrinsics& camera,
+AlbedoFunction boardPixelAlbedo(const CalibrationBoard& board, const io::LensIntrinsics& camera,
                                 const Eigen::Isometry3d& T_camera_board, int32_t board_id,
                                 int samples, float other_albedo) {
   const auto white = static_cast<float>(board.spec().white_albedo);
@@ -44,4 +44,4 @@ AlbedoFunction boardPixelAlbedo(const CalibrationBoard& board, const LensIntrins
   };
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -7,7 +7,7 @@
 #include "binpick/simulation/calibration_board.hpp"
 #include "binpick/simulation/pixel_lighting.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // An AlbedoFunction for a scene of the board (object `board_id`, at T_camera_board) and other
 // objects of uniform `other_albedo`. On the print, it returns the print's mean over the camera
@@ -16,8 +16,8 @@ namespace binpick::sim::detail {
 // them. The footprint is the inverse of the projection's Jacobian on the board plane, from
 // `samples` x `samples` points. The board's sides and back are plain white. The function keeps
 // references to `board` and `camera`, which must outlive it; it is thread-safe.
-AlbedoFunction boardPixelAlbedo(const CalibrationBoard& board, const LensIntrinsics& camera,
+AlbedoFunction boardPixelAlbedo(const CalibrationBoard& board, const io::LensIntrinsics& camera,
                                 const Eigen::Isometry3d& T_camera_board, int32_t board_id,
                                 int samples, float other_albedo);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

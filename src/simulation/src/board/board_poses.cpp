@@ -2,11 +2,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/calibration_board.hpp"
 #include "random.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Own random stream under the seed (see random.hpp), apart from piles and image noise.
@@ -15,7 +15,7 @@ constexpr double kTwoPi = 6.28318530717958647692;
 constexpr double kHalfPi = 1.57079632679489661923;
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  requireField(ok, "BoardPoseParams", field, rule, value);
+  core::requireField(ok, "BoardPoseParams", field, rule, value);
 }
 
 bool finite(double v) { return std::isfinite(v); }
@@ -65,7 +65,7 @@ void BoardPoseParams::validate() const {
 }
 
 std::vector<Eigen::Isometry3d> randomBoardPoses(const CalibrationBoard& board,
-                                                const RigCalibration& rig,
+                                                const io::RigCalibration& rig,
                                                 const BoardPoseParams& params) {
   params.validate();
   rig.validate();
@@ -85,10 +85,10 @@ std::vector<Eigen::Isometry3d> randomBoardPoses(const CalibrationBoard& board,
       message << "randomBoardPoses: no board pose in " << params.max_attempts
               << " draws keeps the whole board inside the camera and projector images; make"
                  " the board smaller or the working volume (BoardPoseParams) narrower";
-      throw Error(message.str());
+      throw core::Error(message.str());
     }
   }
   return poses;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

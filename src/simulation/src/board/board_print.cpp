@@ -5,7 +5,7 @@
 #include <opencv2/aruco/charuco.hpp>
 
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 cv::Ptr<cv::aruco::CharucoBoard> charucoBoard(const BoardSpec& spec) {
@@ -73,4 +73,4 @@ Eigen::Vector2d squaresOrigin(const BoardSpec& spec) {
   return Eigen::Vector2d::Constant(-spec.square_size);
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -7,7 +7,7 @@
 
 #include "binpick/simulation/calibration_board.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // The squares area of the board (margin excluded) as an 8-bit image, 0 black and 255 white,
 // `texels_per_square` texels per square side: squares_x * t wide, squares_y * t high. Texel
@@ -22,4 +22,4 @@ std::vector<BoardCorner> boardCornerPoints(const BoardSpec& spec);
 // chessboard, whose origin is its first inner corner.
 Eigen::Vector2d squaresOrigin(const BoardSpec& spec);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

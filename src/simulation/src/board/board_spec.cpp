@@ -1,15 +1,15 @@
 // BoardSpec: its geometry is a calibration::BoardLayout; the rest is how it renders.
 #include <cmath>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/calibration_board.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 template <typename T>
 void require(bool ok, const char* field, const char* rule, const T& value) {
-  requireField(ok, "BoardSpec", field, rule, value);
+  core::requireField(ok, "BoardSpec", field, rule, value);
 }
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
@@ -30,4 +30,4 @@ void BoardSpec::validate() const {
           "black_albedo", "in [0, white_albedo)", black_albedo);
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -4,7 +4,7 @@
 #include "binpick/simulation/calibration_board.hpp"
 #include "render/lens_bounds.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Points along the outline of the printed face, corners included: lens distortion bends the
@@ -30,11 +30,11 @@ std::vector<Eigen::Vector3d> outline(const Eigen::AlignedBox2d& face) {
 
 // A device (camera or projector) as seen from the camera frame.
 struct Device {
-  const LensIntrinsics& lens;
+  const io::LensIntrinsics& lens;
   Eigen::Isometry3d T_device_camera;
   Eigen::AlignedBox2d field;  // normalised coordinates the lens maps one-to-one
 
-  Device(const LensIntrinsics& l, const Eigen::Isometry3d& T)
+  Device(const io::LensIntrinsics& l, const Eigen::Isometry3d& T)
       : lens(l), T_device_camera(T), field(detail::normalisedImageBounds(l, kFieldMargin)) {}
 
   Eigen::Vector3d centreInCamera() const { return T_device_camera.inverse().translation(); }
@@ -62,7 +62,7 @@ double facingCosine(const Eigen::Isometry3d& T_camera_board, const Eigen::Vector
 }  // namespace
 
 std::vector<CornerObservation> observeCorners(const CalibrationBoard& board,
-                                              const RigCalibration& rig,
+                                              const io::RigCalibration& rig,
                                               const Eigen::Isometry3d& T_camera_board) {
   const Device camera(rig.camera, Eigen::Isometry3d::Identity());
   const Device projector(rig.projector, rig.T_projector_camera);
@@ -80,7 +80,7 @@ std::vector<CornerObservation> observeCorners(const CalibrationBoard& board,
   return seen;
 }
 
-bool boardInView(const CalibrationBoard& board, const RigCalibration& rig,
+bool boardInView(const CalibrationBoard& board, const io::RigCalibration& rig,
                  const Eigen::Isometry3d& T_camera_board, double image_margin,
                  double min_facing_cosine) {
   const Device camera(rig.camera, Eigen::Isometry3d::Identity());
@@ -99,4 +99,4 @@ bool boardInView(const CalibrationBoard& board, const RigCalibration& rig,
   return true;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

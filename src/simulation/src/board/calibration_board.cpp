@@ -5,16 +5,16 @@
 #include <cmath>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "board_print.hpp"
 #include "mesh_geometry.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // A box over `face` from z = 0 (the print, normal -z) to z = thickness, outward winding.
-TriangleMesh boardBox(const Eigen::AlignedBox2d& face, double thickness) {
-  TriangleMesh mesh;
+io::TriangleMesh boardBox(const Eigen::AlignedBox2d& face, double thickness) {
+  io::TriangleMesh mesh;
   detail::appendBox(mesh, Eigen::Vector3d(face.min().x(), face.min().y(), 0.0).cast<float>(),
                     Eigen::Vector3d(face.max().x(), face.max().y(), thickness).cast<float>());
   return mesh;
@@ -27,7 +27,7 @@ CalibrationBoard::CalibrationBoard(const BoardSpec& spec, double texel_size) : s
   if (!std::isfinite(texel_size) || texel_size <= 0.0) {
     std::ostringstream message;
     message << "CalibrationBoard texel_size must be positive (got " << texel_size << ")";
-    throw Error(message.str());
+    throw core::Error(message.str());
   }
   squares_origin_ = detail::squaresOrigin(spec_);
   const Eigen::Vector2d squares(spec_.squares_x * spec_.square_size,
@@ -85,4 +85,4 @@ float CalibrationBoard::meanAlbedo(const Eigen::Vector2d& centre, const Eigen::M
   return static_cast<float>(sum / (samples * samples));
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -7,7 +7,7 @@
 #include "binpick/simulation/ray_caster.hpp"
 #include "board_albedo.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 constexpr int32_t kBoardId = 0;
@@ -15,9 +15,9 @@ constexpr int32_t kBackgroundId = 1;
 
 // A square facing the camera (normal -z of its frame, which is the camera's), large enough to
 // fill any usable field of view at its distance.
-TriangleMesh wallMesh(double distance) {
+io::TriangleMesh wallMesh(double distance) {
   const auto half = static_cast<float>(2.0 * distance);
-  TriangleMesh mesh;
+  io::TriangleMesh mesh;
   mesh.vertices = {
       {-half, -half, 0.0f}, {half, -half, 0.0f}, {half, half, 0.0f}, {-half, half, 0.0f}};
   mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
@@ -60,14 +60,14 @@ LitBoard lightBoard(const CalibrationBoard& board, const Eigen::Isometry3d& T_ca
                     const CalibrationSequenceParams& params) {
   params.validate();
   std::vector<RenderObject> objects{{&board.mesh(), T_camera_board, kBoardId}};
-  const TriangleMesh wall = wallMesh(params.background_distance);
+  const io::TriangleMesh wall = wallMesh(params.background_distance);
   if (params.background_distance > 0.0) {
     Eigen::Isometry3d T_camera_wall = Eigen::Isometry3d::Identity();
     T_camera_wall.translation().z() = params.background_distance;
     objects.push_back({&wall, T_camera_wall, kBackgroundId});
   }
   const RayCaster scene(objects);
-  const RigCalibration& rig = params.rig;
+  const io::RigCalibration& rig = params.rig;
   const SensorGeometry geometry = computeSensorGeometry(rig, scene, params.geometry);
   const AlbedoFunction albedo =
       detail::boardPixelAlbedo(board, rig.camera, T_camera_board, kBoardId, params.pixel_samples,
@@ -86,17 +86,17 @@ PhotometryParams seeded(PhotometryParams photometry, uint64_t noise_seed) {
 
 }  // namespace
 
-Capture renderCalibrationCapture(const CalibrationBoard& board,
+io::Capture renderCalibrationCapture(const CalibrationBoard& board,
                                  const Eigen::Isometry3d& T_camera_board,
                                  const CalibrationSequenceParams& params, uint64_t noise_seed) {
   const LitBoard lit = lightBoard(board, T_camera_board, params);
   const PhotometryParams photometry = seeded(params.photometry, noise_seed);
-  Capture capture;
+  io::Capture capture;
   capture.images =
       renderPatternImages(lit.lighting, lit.width, lit.height, params.pattern_set, photometry);
-  CaptureMetadata& m = capture.metadata;
+  io::CaptureMetadata& m = capture.metadata;
   m.source = params.source;
-  m.timestamp = utcTimestamp();
+  m.timestamp = io::utcTimestamp();
   m.image_width = lit.width;
   m.image_height = lit.height;
   m.bit_depth = photometry.bit_depth;
@@ -114,4 +114,4 @@ cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board,
                           seeded(params.photometry, noise_seed));
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

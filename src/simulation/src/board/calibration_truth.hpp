@@ -4,15 +4,15 @@
 
 #include "binpick/simulation/calibration_sequence.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 constexpr int kBoardTruthVersion = 1;
 
 // The board file's path in a sequence directory.
 std::string boardTruthPath(const std::string& directory);
 
-// Written through a temporary file and a rename. Throws binpick::Error naming the file when it
+// Written through a temporary file and a rename. Throws core::Error naming the file when it
 // cannot be written.
 void writeBoardTruth(const std::string& path, const CalibrationTruth& truth);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -2,21 +2,21 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/json_fields.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/json_fields.hpp"
 #include "calibration_truth.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 using nlohmann::json;
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(path + ": " + what);
+  throw core::Error(path + ": " + what);
 }
 
 json arrayField(const json& object, const char* key, const std::string& path) {
-  json value = jsonField<json>(object, key, path);
+  json value = core::jsonField<json>(object, key, path);
   if (!value.is_array()) fail(path, std::string("key '") + key + "' must be an array");
   return value;
 }
@@ -24,7 +24,7 @@ json arrayField(const json& object, const char* key, const std::string& path) {
 template <int N>
 Eigen::Matrix<double, N, 1> vectorField(const json& object, const char* key,
                                         const std::string& path) {
-  const auto values = jsonField<std::vector<double>>(object, key, path);
+  const auto values = core::jsonField<std::vector<double>>(object, key, path);
   if (values.size() != N)
     fail(path, std::string("key '") + key + "' must hold " + std::to_string(N) + " numbers");
   return Eigen::Map<const Eigen::Matrix<double, N, 1>>(values.data());
@@ -33,22 +33,22 @@ Eigen::Matrix<double, N, 1> vectorField(const json& object, const char* key,
 BoardSpec specFrom(const json& o, const std::string& path) {
   BoardSpec spec;
   try {
-    spec.type = boardTypeFromName(jsonField<std::string>(o, "type", path));
-  } catch (const Error& e) {
+    spec.type = boardTypeFromName(core::jsonField<std::string>(o, "type", path));
+  } catch (const core::Error& e) {
     fail(path, e.what());
   }
-  spec.squares_x = jsonField<int>(o, "squares_x", path);
-  spec.squares_y = jsonField<int>(o, "squares_y", path);
-  spec.square_size = jsonField<double>(o, "square_size", path);
-  spec.marker_size = jsonField<double>(o, "marker_size", path);
-  spec.dictionary = jsonField<std::string>(o, "dictionary", path);
-  spec.margin = jsonField<double>(o, "margin", path);
-  spec.thickness = jsonField<double>(o, "thickness", path);
-  spec.white_albedo = jsonField<double>(o, "white_albedo", path);
-  spec.black_albedo = jsonField<double>(o, "black_albedo", path);
+  spec.squares_x = core::jsonField<int>(o, "squares_x", path);
+  spec.squares_y = core::jsonField<int>(o, "squares_y", path);
+  spec.square_size = core::jsonField<double>(o, "square_size", path);
+  spec.marker_size = core::jsonField<double>(o, "marker_size", path);
+  spec.dictionary = core::jsonField<std::string>(o, "dictionary", path);
+  spec.margin = core::jsonField<double>(o, "margin", path);
+  spec.thickness = core::jsonField<double>(o, "thickness", path);
+  spec.white_albedo = core::jsonField<double>(o, "white_albedo", path);
+  spec.black_albedo = core::jsonField<double>(o, "black_albedo", path);
   try {
     spec.validate();
-  } catch (const Error& e) {
+  } catch (const core::Error& e) {
     fail(path, e.what());
   }
   return spec;
@@ -56,11 +56,11 @@ BoardSpec specFrom(const json& o, const std::string& path) {
 
 CalibrationTruthPose poseFrom(const json& o, const std::string& path) {
   CalibrationTruthPose pose;
-  pose.capture = jsonField<std::string>(o, "capture", path);
+  pose.capture = core::jsonField<std::string>(o, "capture", path);
   pose.T_camera_board =
-      poseFromRows(jsonField<json>(o, "T_camera_board", path), path, "T_camera_board");
+      core::poseFromRows(core::jsonField<json>(o, "T_camera_board", path), path, "T_camera_board");
   for (const json& c : arrayField(o, "corners", path)) {
-    pose.corners.push_back({jsonField<int>(c, "id", path), vectorField<2>(c, "camera", path),
+    pose.corners.push_back({core::jsonField<int>(c, "id", path), vectorField<2>(c, "camera", path),
                             vectorField<2>(c, "projector", path)});
   }
   return pose;
@@ -70,14 +70,14 @@ CalibrationTruthPose poseFrom(const json& o, const std::string& path) {
 
 CalibrationTruth readCalibrationTruth(const std::string& directory) {
   const std::string path = detail::boardTruthPath(directory);
-  const json document = readJsonFile(path);
-  if (jsonField<int>(document, "format_version", path) != detail::kBoardTruthVersion) {
+  const json document = core::readJsonFile(path);
+  if (core::jsonField<int>(document, "format_version", path) != detail::kBoardTruthVersion) {
     fail(path, "unsupported format_version");
   }
   CalibrationTruth truth;
-  truth.board = specFrom(jsonField<json>(document, "board", path), path);
+  truth.board = specFrom(core::jsonField<json>(document, "board", path), path);
   for (const json& c : arrayField(document, "corners", path)) {
-    truth.corners.push_back({jsonField<int>(c, "id", path), vectorField<3>(c, "point", path)});
+    truth.corners.push_back({core::jsonField<int>(c, "id", path), vectorField<3>(c, "point", path)});
   }
   for (const json& p : arrayField(document, "poses", path)) {
     truth.poses.push_back(poseFrom(p, path));
@@ -85,4 +85,4 @@ CalibrationTruth readCalibrationTruth(const std::string& directory) {
   return truth;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -5,11 +5,12 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/json_fields.hpp"
+#include "binpick/core/file.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/json_fields.hpp"
 #include "calibration_truth.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 using nlohmann::json;
@@ -35,7 +36,7 @@ json poseJson(const CalibrationTruthPose& pose) {
                        {"projector", {c.projector_pixel.x(), c.projector_pixel.y()}}});
   }
   return {{"capture", pose.capture},
-          {"T_camera_board", poseRows(pose.T_camera_board)},
+          {"T_camera_board", core::poseRows(pose.T_camera_board)},
           {"corners", corners}};
 }
 
@@ -57,16 +58,7 @@ void writeBoardTruth(const std::string& path, const CalibrationTruth& truth) {
                          {"board", specJson(truth.board)},
                          {"corners", corners},
                          {"poses", poses}};
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << document.dump(1) << '\n';
-    if (!out) throw Error(path + ": cannot write the board truth file");
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw Error(path + ": cannot write the board truth file");
-  }
+  core::writeFileAtomically(path, document.dump(1) + "\n");
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -3,7 +3,7 @@
 #include "binpick/simulation/calibration_sequence.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 CalibrationSequenceParams renderParams(const HandEyeSessionParams& params) {
@@ -23,4 +23,4 @@ cv::Mat renderHandEyeImage(const CalibrationBoard& board, const Eigen::Isometry3
   return renderCalibrationWhiteImage(board, T_camera_board, renderParams(params), noise_seed);
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

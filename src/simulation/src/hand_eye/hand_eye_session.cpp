@@ -6,7 +6,7 @@
 #include "binpick/simulation/hand_eye_session.hpp"
 #include "random.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Own random stream under the seed (random.hpp), apart from the board poses (10).
@@ -80,4 +80,4 @@ HandEyeSession simulateHandEyeSession(const HandEyeSessionParams& params) {
   return session;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -1,10 +1,10 @@
 // The virtual cell's hand-eye truth and HandEyeSessionParams::validate.
 #include <cmath>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
@@ -33,7 +33,7 @@ bool rigid(const Eigen::Isometry3d& T) {
 }
 
 void require(bool ok, const char* field, const char* rule, double value) {
-  requireField(ok, "HandEyeSessionParams", field, rule, value);
+  core::requireField(ok, "HandEyeSessionParams", field, rule, value);
 }
 
 }  // namespace
@@ -85,4 +85,4 @@ void HandEyeSessionParams::validate() const {
   require(rigid(T_base_board), "T_base_board", "a rigid motion", 0);
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -5,11 +5,11 @@
 #include "binpick/calibration/hand_eye_file.hpp"
 #include "binpick/calibration/robot_pose_file.hpp"
 #include "binpick/io/capture.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 #include "random.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 namespace fs = std::filesystem;
@@ -21,11 +21,11 @@ constexpr uint32_t kImageNoiseStream = 21;
 void createFreshDirectory(const std::string& directory) {
   std::error_code error;
   if (fs::exists(directory, error) && !fs::is_empty(directory, error)) {
-    throw Error(directory + ": already exists and is not empty; write each hand-eye session to a"
+    throw core::Error(directory + ": already exists and is not empty; write each hand-eye session to a"
                             " new directory");
   }
   fs::create_directories(directory, error);
-  if (error) throw Error(directory + ": cannot create the directory: " + error.message());
+  if (error) throw core::Error(directory + ": cannot create the directory: " + error.message());
 }
 
 calibration::HandEyeFile truthFile(const HandEyeSession& session) {
@@ -34,7 +34,7 @@ calibration::HandEyeFile truthFile(const HandEyeSession& session) {
   truth.T_mount_camera = session.T_mount_camera;
   truth.T_mount_board = session.T_mount_board;
   truth.method = "truth";
-  truth.date = utcTimestamp();
+  truth.date = io::utcTimestamp();
   truth.views = static_cast<int>(session.views.size());
   return truth;
 }
@@ -52,15 +52,15 @@ HandEyeSession writeHandEyeSession(const std::string& directory,
   for (const HandEyeSessionView& view : session.views) {
     const std::string image = (fs::path(directory) / (view.name + ".png")).string();
     if (!cv::imwrite(image, renderHandEyeImage(board, view.T_camera_board, params, noise_seeds()))) {
-      throw Error(image + ": cannot write the image");
+      throw core::Error(image + ": cannot write the image");
     }
     poses.poses.push_back({view.name, view.T_base_flange, 0});
   }
   calibration::writeRobotPoseFile((fs::path(directory) / "poses.txt").string(), poses);
-  writeRigCalibration((fs::path(directory) / "calib.yaml").string(), params.rig);
+  io::writeRigCalibration((fs::path(directory) / "calib.yaml").string(), params.rig);
   calibration::writeHandEyeFile((fs::path(directory) / "truth" / "hand_eye.yaml").string(),
                                 truthFile(session));
   return session;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Sutherland-Hodgman against one plane, both sides at once. Points on the plane go to both.
@@ -57,7 +57,7 @@ CellBox sideBox(const CellBox& box, int axis, int index, bool below) {
 
 }  // namespace
 
-std::vector<SurfacePolygon> meshPolygons(const TriangleMesh& mesh) {
+std::vector<SurfacePolygon> meshPolygons(const io::TriangleMesh& mesh) {
   std::vector<SurfacePolygon> polygons;
   polygons.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
@@ -127,4 +127,4 @@ SplitVolumes estimateSplitVolumes(const BoxPiece& piece, int axis, int index,
   return {below.hullVolume(max_points), above.hullVolume(max_points)};
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -12,7 +12,7 @@
 #include "convex_hull.hpp"
 #include "mesh_columns.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 using SurfacePolygon = std::vector<Eigen::Vector3d>;
 
@@ -23,7 +23,7 @@ struct BoxPiece {
   ConvexHull hull;                       // of the solid within the box
 };
 
-std::vector<SurfacePolygon> meshPolygons(const TriangleMesh& mesh);
+std::vector<SurfacePolygon> meshPolygons(const io::TriangleMesh& mesh);
 
 // Builds the piece of `polygons` (already within `box`) and its hull.
 BoxPiece makeBoxPiece(const CellBox& box, std::vector<SurfacePolygon> polygons,
@@ -46,4 +46,4 @@ SplitVolumes estimateSplitVolumes(const BoxPiece& piece, int axis, int index,
                                   const CellGrid& grid, const MeshColumns& columns,
                                   std::size_t max_points);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -13,7 +13,7 @@
 
 #include <Eigen/Geometry>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 constexpr double kWorldScale = 100.0;  // Bullet length units per metre
 
@@ -45,4 +45,4 @@ inline Eigen::Isometry3d toMetres(const btTransform& world) {
   return pose;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

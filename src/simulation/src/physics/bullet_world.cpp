@@ -5,7 +5,7 @@
 #include "../bin.hpp"
 #include "bullet_units.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 constexpr double kGravity = 9.81;  // m/s^2
@@ -99,4 +99,4 @@ void BulletWorld::step(double seconds) {
   world_->stepSimulation(static_cast<btScalar>(seconds), 0);
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -12,7 +12,7 @@
 #include "binpick/simulation/physics_pile.hpp"
 #include "part_shape.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 class BulletWorld {
  public:
@@ -41,4 +41,4 @@ class BulletWorld {
   std::vector<std::unique_ptr<btRigidBody>> bodies_;  // static boxes, then parts
 };
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

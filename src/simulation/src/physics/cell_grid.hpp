@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // Cell (i, j, k) spans origin + [i, i + 1) * cell_size along x, and so on; its centre is the
 // sample the grid's flags describe.
@@ -47,4 +47,4 @@ struct CellBox {
   }
 };
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -7,7 +7,7 @@
 #include "hull_fit.hpp"
 #include "piece_merging.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // The grid's cells are half the tolerance, up to this many: beyond it the cells grow with the
@@ -16,7 +16,7 @@ constexpr double kMaxCells = 4.0e6;
 // Cutting may go this far beyond max_pieces before joining brings the count back down.
 constexpr int kCutBudgetFactor = 2;
 
-double cellSizeFor(const TriangleMesh& mesh, double tolerance) {
+double cellSizeFor(const io::TriangleMesh& mesh, double tolerance) {
   Eigen::AlignedBox3d box;
   for (const auto& v : mesh.vertices) box.extend(v.cast<double>());
   const Eigen::Vector3d padded = box.sizes().array() + 2.0 * tolerance;
@@ -31,7 +31,7 @@ struct OpenPiece {
 
 }  // namespace
 
-ConvexDecomposition convexDecomposition(const TriangleMesh& mesh, double tolerance,
+ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tolerance,
                                         int max_pieces) {
   ConvexDecomposition result;
   result.cell_size = cellSizeFor(mesh, tolerance);
@@ -76,4 +76,4 @@ ConvexDecomposition convexDecomposition(const TriangleMesh& mesh, double toleran
   return result;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -8,7 +8,7 @@
 #include "binpick/io/point_cloud.hpp"
 #include "convex_hull.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 struct ConvexDecomposition {
   std::vector<ConvexHull> pieces;  // model frame of the mesh
@@ -17,7 +17,7 @@ struct ConvexDecomposition {
   bool fits = false;  // every piece met the tolerance (false when max_pieces was too few)
 };
 
-ConvexDecomposition convexDecomposition(const TriangleMesh& mesh, double tolerance,
+ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tolerance,
                                         int max_pieces);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <limits>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Newell's normal of a planar polygon: robust for the many-sided faces of a hull.
@@ -65,4 +65,4 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points) {
   return hull;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -4,7 +4,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 struct HullPlane {
   Eigen::Vector3d normal;  // unit, outward
@@ -20,4 +20,4 @@ struct ConvexHull {
 
 ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <limits>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 constexpr int kCoarseCutsPerAxis = 8;
@@ -115,4 +115,4 @@ std::optional<BoxSplit> bestSplit(const BoxPiece& piece, const SolidGrid& solid,
   return splitBoxPiece(piece, longest, middle, solid.grid(), columns);
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -7,11 +7,11 @@
 #include "box_piece.hpp"
 #include "solid_grid.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // The best split found by a coarse scan of every axis refined around the best candidate, or none
 // when no border has solid on both sides (the piece is a single cell thick along every axis).
 std::optional<BoxSplit> bestSplit(const BoxPiece& piece, const SolidGrid& solid,
                                   const MeshColumns& columns);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

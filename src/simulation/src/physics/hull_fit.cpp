@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // The first and last cell (along z) of column (x, y) whose centre lies inside the hull; first >
@@ -50,4 +50,4 @@ bool hullFits(const SolidGrid& solid, const ConvexHull& hull) {
   return true;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -5,11 +5,11 @@
 #include "convex_hull.hpp"
 #include "solid_grid.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // Whether no far cell's centre lies inside the hull. Visits each grid column under the hull once,
 // cutting it with the hull's planes to an interval of heights, and counts that interval's far
 // cells from the summed-volume table; stops at the first.
 bool hullFits(const SolidGrid& solid, const ConvexHull& hull);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -4,7 +4,7 @@
 #include <array>
 #include <limits>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // The vertices farthest along the 26 directions to the faces, edges and corners of a cube: a
@@ -64,4 +64,4 @@ std::vector<Eigen::Vector3d> simplifiedHullVertices(const ConvexHull& hull, doub
   return kept;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

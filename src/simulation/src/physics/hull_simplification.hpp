@@ -8,7 +8,7 @@
 
 #include "convex_hull.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // A hull with more than `max_vertices` vertices comes back as a subset of them whose hull leaves
 // no vertex more than `tolerance` outside it, found greedily: the farthest vertex outside joins
@@ -16,4 +16,4 @@ namespace binpick::sim::detail {
 std::vector<Eigen::Vector3d> simplifiedHullVertices(const ConvexHull& hull, double tolerance,
                                                     std::size_t max_vertices);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

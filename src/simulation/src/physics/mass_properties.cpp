@@ -2,9 +2,9 @@
 
 #include <Eigen/Eigenvalues>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
-MassProperties massProperties(const TriangleMesh& mesh) {
+MassProperties massProperties(const io::TriangleMesh& mesh) {
   // Sum over the tetrahedra spanned by each triangle and a reference point (a vertex, so that the
   // sums stay small and lose no precision to a far-away origin). For the tetrahedron
   // (0, a, b, c) of signed volume v: integral of x x^T = v / 20 (a a^T + b b^T + c c^T + s s^T),
@@ -50,4 +50,4 @@ PrincipalFrame principalFrame(const MassProperties& mass) {
   return frame;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -7,7 +7,7 @@
 
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 struct MassProperties {
   double volume = 0.0;                                      // m^3, positive for outward normals
@@ -15,7 +15,7 @@ struct MassProperties {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();        // about the centroid, per unit density
 };
 
-MassProperties massProperties(const TriangleMesh& mesh);
+MassProperties massProperties(const io::TriangleMesh& mesh);
 
 struct PrincipalFrame {
   Eigen::Isometry3d T_model_body = Eigen::Isometry3d::Identity();  // proper rotation, at centroid
@@ -25,4 +25,4 @@ struct PrincipalFrame {
 
 PrincipalFrame principalFrame(const MassProperties& mass);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -4,7 +4,7 @@
 #include <array>
 #include <optional>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 using Point2 = Eigen::Vector2d;
@@ -47,7 +47,7 @@ int clampedCell(const CellGrid& grid, int axis, double position) {
 
 }  // namespace
 
-MeshColumns::MeshColumns(const TriangleMesh& mesh, const CellGrid& grid)
+MeshColumns::MeshColumns(const io::TriangleMesh& mesh, const CellGrid& grid)
     : mesh_(mesh), grid_(grid) {
   const int buckets = grid.size.x() * grid.size.y();
   std::vector<Eigen::Vector4i> footprint;  // per triangle: x0, x1, y0, y1 (inclusive)
@@ -103,4 +103,4 @@ bool MeshColumns::contains(const Eigen::Vector3d& point) const {
   return above % 2 == 1;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -9,12 +9,12 @@
 #include "binpick/io/point_cloud.hpp"
 #include "cell_grid.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 class MeshColumns {
  public:
   // Buckets over the x, y cells of `grid` (which must cover the mesh). Keeps a reference to `mesh`.
-  MeshColumns(const TriangleMesh& mesh, const CellGrid& grid);
+  MeshColumns(const io::TriangleMesh& mesh, const CellGrid& grid);
 
   // Heights at which the vertical line through (x, y) crosses the surface, ascending. A line
   // through a shared edge counts the crossing once (the edge belongs to one of its triangles).
@@ -26,10 +26,10 @@ class MeshColumns {
  private:
   int bucketOf(double x, double y) const;
 
-  const TriangleMesh& mesh_;
+  const io::TriangleMesh& mesh_;
   CellGrid grid_;
   std::vector<int> bucket_start_;  // triangles of bucket b: triangles_[start[b], start[b + 1])
   std::vector<int> triangles_;
 };
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

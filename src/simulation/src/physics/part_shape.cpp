@@ -5,7 +5,7 @@
 #include "hull_simplification.hpp"
 #include "mass_properties.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Steel. Every part in a pile is a copy of the same one, so the density only scales all masses
@@ -20,7 +20,7 @@ constexpr std::size_t kMaxVertices = 48;
 // The decomposition cuts along the axes of its frame: the model's own axes when the part is drawn
 // along them (a prism extruded along z), else its principal axes, whichever box is tighter. A part
 // drawn at a slant would otherwise be cut into needlessly many pieces.
-Eigen::Isometry3d decompositionFrame(const TriangleMesh& mesh,
+Eigen::Isometry3d decompositionFrame(const io::TriangleMesh& mesh,
                                      const Eigen::Isometry3d& T_model_body) {
   const auto boxVolume = [&](const Eigen::Isometry3d& T_frame_model) {
     Eigen::AlignedBox3d box;
@@ -32,14 +32,14 @@ Eigen::Isometry3d decompositionFrame(const TriangleMesh& mesh,
   return principal_is_tighter ? T_model_body : Eigen::Isometry3d::Identity();
 }
 
-TriangleMesh transformed(TriangleMesh mesh, const Eigen::Isometry3d& T_frame_model) {
+io::TriangleMesh transformed(io::TriangleMesh mesh, const Eigen::Isometry3d& T_frame_model) {
   for (auto& v : mesh.vertices) v = (T_frame_model * v.cast<double>()).cast<float>();
   return mesh;
 }
 
 }  // namespace
 
-PartShape::PartShape(const TriangleMesh& mesh, const PhysicsParams& params) {
+PartShape::PartShape(const io::TriangleMesh& mesh, const PhysicsParams& params) {
   const PrincipalFrame frame = principalFrame(massProperties(mesh));
   T_model_body_ = frame.T_model_body;
   mass_ = kDensity * frame.volume;
@@ -70,4 +70,4 @@ PartShape::PartShape(const TriangleMesh& mesh, const PhysicsParams& params) {
   extreme_points_ = convexHull(corners).vertices;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -13,12 +13,12 @@
 #include "binpick/io/point_cloud.hpp"
 #include "binpick/simulation/physics_pile.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 class PartShape {
  public:
   // `mesh` must be closed with outward normals (positive volume).
-  PartShape(const TriangleMesh& mesh, const PhysicsParams& params);
+  PartShape(const io::TriangleMesh& mesh, const PhysicsParams& params);
   PartShape(const PartShape&) = delete;
   PartShape& operator=(const PartShape&) = delete;
 
@@ -39,4 +39,4 @@ class PartShape {
   std::vector<Eigen::Vector3d> extreme_points_;
 };
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -5,7 +5,7 @@
 
 #include "hull_fit.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 struct JoinCandidate {
@@ -114,4 +114,4 @@ std::vector<ConvexHull> mergePieces(std::vector<ConvexHull> pieces, const SolidG
   return std::move(merger).pieces();
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -8,9 +8,9 @@
 #include "convex_hull.hpp"
 #include "solid_grid.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 std::vector<ConvexHull> mergePieces(std::vector<ConvexHull> pieces, const SolidGrid& solid,
                                     int max_pieces);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

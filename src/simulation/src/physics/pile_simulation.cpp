@@ -5,7 +5,7 @@
 
 #include "bullet_units.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // How far a part may reach beyond the inner walls or below the floor and still count as inside:
@@ -142,4 +142,4 @@ std::vector<int> PileSimulation::serials() const {
   return out;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -9,7 +9,7 @@
 #include "bullet_world.hpp"
 #include "part_shape.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 class PileSimulation {
  public:
@@ -55,4 +55,4 @@ class PileSimulation {
   std::vector<int> fallen_;           // serials taken out while falling off the world
 };
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

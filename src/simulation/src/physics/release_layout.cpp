@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Random places tried for a part before the layer is closed: enough to fill most of the free
@@ -58,4 +58,4 @@ std::vector<Eigen::Isometry3d> releaseLayer(int wanted, double pile_top,
   return poses;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -8,7 +8,7 @@
 #include "../random.hpp"
 #include "binpick/simulation/physics_pile.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // Up to `wanted` poses T_bin_model (at least one): each part's lowest point is drop_height_min to
 // drop_height_max above `pile_top`, its footprint at least `wall_clearance` inside the walls.
@@ -19,4 +19,4 @@ std::vector<Eigen::Isometry3d> releaseLayer(int wanted, double pile_top,
                                             const BinInterior& bin, const PhysicsParams& params,
                                             double wall_clearance, Rng& rng);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

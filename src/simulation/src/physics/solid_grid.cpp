@@ -6,7 +6,7 @@
 
 #include "../mesh_geometry.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // 2 - golden ratio: far from every simple fraction, so no round-number coordinate of a part lands
@@ -15,7 +15,7 @@ constexpr double kGridShift = 0.3819660112501051;
 
 }  // namespace
 
-CellGrid gridAroundMesh(const TriangleMesh& mesh, double cell_size, double far_distance) {
+CellGrid gridAroundMesh(const io::TriangleMesh& mesh, double cell_size, double far_distance) {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   for (const auto& v : mesh.vertices) {
@@ -34,7 +34,7 @@ CellGrid gridAroundMesh(const TriangleMesh& mesh, double cell_size, double far_d
   return grid;
 }
 
-SolidGrid::SolidGrid(const TriangleMesh& mesh, const MeshColumns& columns, const CellGrid& grid,
+SolidGrid::SolidGrid(const io::TriangleMesh& mesh, const MeshColumns& columns, const CellGrid& grid,
                      double far_distance)
     : grid_(grid), flags_(static_cast<std::size_t>(grid.cellCount()), 0) {
   markInside(columns);
@@ -64,7 +64,7 @@ void SolidGrid::markInside(const MeshColumns& columns) {
 // A centre within far_distance of a surface sample is within far_distance of the surface, so a
 // centre marked near is never farther than that. Samples a cell apart leave only centres nearly
 // that far unmarked: the test errs on the strict side.
-void SolidGrid::markNearSurface(const TriangleMesh& mesh, double far_distance) {
+void SolidGrid::markNearSurface(const io::TriangleMesh& mesh, double far_distance) {
   const double squared = far_distance * far_distance;
   const double h = grid_.cell_size;
   for (const Eigen::Vector3f& sample : surfaceSamples(mesh, h)) {
@@ -123,4 +123,4 @@ long SolidGrid::SummedVolume::sum(const CellBox& box) const {
          at(b.x(), a.y(), a.z()) - at(a.x(), a.y(), a.z());
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -11,16 +11,16 @@
 #include "cell_grid.hpp"
 #include "mesh_columns.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // Cells of `cell_size` over the mesh's bounding box with a margin of at least the far distance,
 // shifted by an irrational share of a cell so that cell borders and centres practically never
 // coincide with a mesh vertex's coordinate of a part drawn on a round grid.
-CellGrid gridAroundMesh(const TriangleMesh& mesh, double cell_size, double far_distance);
+CellGrid gridAroundMesh(const io::TriangleMesh& mesh, double cell_size, double far_distance);
 
 class SolidGrid {
  public:
-  SolidGrid(const TriangleMesh& mesh, const MeshColumns& columns, const CellGrid& grid,
+  SolidGrid(const io::TriangleMesh& mesh, const MeshColumns& columns, const CellGrid& grid,
             double far_distance);
 
   const CellGrid& grid() const { return grid_; }
@@ -47,11 +47,11 @@ class SolidGrid {
   static constexpr uint8_t kInside = 1, kOccupied = 2, kNear = 4, kFar = 8;
 
   void markInside(const MeshColumns& columns);
-  void markNearSurface(const TriangleMesh& mesh, double far_distance);
+  void markNearSurface(const io::TriangleMesh& mesh, double far_distance);
 
   CellGrid grid_;
   std::vector<uint8_t> flags_;
   SummedVolume far_, inside_;
 };
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -1,9 +1,9 @@
 // EmbreeDevice: device lifetime and error reporting.
 #include "embree_device.hpp"
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 const char* errorName(RTCError code) {
@@ -33,7 +33,7 @@ EmbreeDevice::EmbreeDevice() {
   // configuration string ("threads=N") would limit every TBB user in the process.
   device_ = rtcNewDevice(nullptr);
   if (device_ == nullptr) {
-    throw Error(std::string("RayCaster: Embree could not create a device (") +
+    throw core::Error(std::string("RayCaster: Embree could not create a device (") +
                 errorName(rtcGetDeviceError(nullptr)) + ")");
   }
   rtcSetDeviceErrorFunction(device_, &EmbreeDevice::recordError, this);
@@ -58,13 +58,13 @@ void EmbreeDevice::throwIfFailed(const std::string& context) const {
     message.swap(last_message_);
   }
   if (message.empty()) message = errorName(code);
-  throw Error(context + ": Embree error: " + message);
+  throw core::Error(context + ": Embree error: " + message);
 }
 
 SceneHandle newScene(const EmbreeDevice& device) {
   SceneHandle scene(rtcNewScene(device.get()));
   device.throwIfFailed("RayCaster: creating a scene");
-  if (!scene) throw Error("RayCaster: Embree could not create a scene");
+  if (!scene) throw core::Error("RayCaster: Embree could not create a scene");
   // Robust traversal: no cracks along shared edges, at a small cost in speed. High build
   // quality: the scenes are small, so a better tree costs little to build and saves traversal.
   rtcSetSceneFlags(scene.get(), RTC_SCENE_FLAG_ROBUST);
@@ -73,4 +73,4 @@ SceneHandle newScene(const EmbreeDevice& device) {
   return scene;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

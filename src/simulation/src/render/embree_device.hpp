@@ -1,5 +1,5 @@
 #pragma once
-// RAII ownership of Embree handles, and Embree's errors turned into binpick::Error.
+// RAII ownership of Embree handles, and Embree's errors turned into core::Error.
 // Internal to binpick::simulation. An EmbreeDevice may be used from several threads; the handles
 // are plain owners (move-only, not synchronised).
 #include <embree3/rtcore.h>
@@ -8,11 +8,11 @@
 #include <mutex>
 #include <string>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 class EmbreeDevice {
  public:
-  // Throws binpick::Error when Embree cannot create a device (e.g. an unsupported CPU).
+  // Throws core::Error when Embree cannot create a device (e.g. an unsupported CPU).
   EmbreeDevice();
   ~EmbreeDevice();
   // Embree's error callback keeps a pointer to this object: it must not move.
@@ -21,7 +21,7 @@ class EmbreeDevice {
 
   RTCDevice get() const { return device_; }
 
-  // Throws binpick::Error "<context>: Embree error: <message>" when an Embree call made by this
+  // Throws core::Error "<context>: Embree error: <message>" when an Embree call made by this
   // thread on this device failed since the last check.
   void throwIfFailed(const std::string& context) const;
 
@@ -42,7 +42,7 @@ struct GeometryReleaser {
 using SceneHandle = std::unique_ptr<RTCSceneTy, SceneReleaser>;
 using GeometryHandle = std::unique_ptr<RTCGeometryTy, GeometryReleaser>;
 
-// A new, empty scene tuned for accurate single-ray queries. Throws binpick::Error on failure.
+// A new, empty scene tuned for accurate single-ray queries. Throws core::Error on failure.
 SceneHandle newScene(const EmbreeDevice& device);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -7,7 +7,7 @@
 
 #include "hit_refinement.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 RTCRay embreeRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, float t_min,
@@ -65,4 +65,4 @@ RayHit resolveHit(const CasterScene& scene, const RTCRayHit& query, int alone_in
                    ray.origin, unit_direction, query.ray.tfar);
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

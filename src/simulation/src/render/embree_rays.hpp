@@ -8,7 +8,7 @@
 #include "binpick/simulation/ray_caster.hpp"
 #include "ray_caster_impl.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // A ray ready for Embree. An invalid ray (non-finite or zero direction, non-finite origin, NaN
 // limits, an empty range) becomes an inactive Embree ray (tnear > tfar), which never hits.
@@ -30,4 +30,4 @@ RayHit resolveHit(const CasterScene& scene, const RTCRayHit& query, int alone_in
 // Embree marks an occluded ray by setting its tfar to -inf.
 inline bool wasOccluded(const RTCRay& ray) { return ray.tfar < 0.0f; }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

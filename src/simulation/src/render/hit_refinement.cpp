@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Below this |cos| between the ray and the plane, the double recomputation is no better than
@@ -16,7 +16,7 @@ constexpr double kMaxRelativeCorrection = 1e-3;
 
 }  // namespace
 
-RayHit refineHit(const PlacedObject& object, const TriangleMesh& mesh, int object_index,
+RayHit refineHit(const PlacedObject& object, const io::TriangleMesh& mesh, int object_index,
                  int triangle, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                  double t_embree) {
   const Eigen::Vector3i& corners = mesh.triangles[triangle];
@@ -46,4 +46,4 @@ RayHit refineHit(const PlacedObject& object, const TriangleMesh& mesh, int objec
   return hit;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Samples per side of a rectangle mapped through the distortion; the curve between samples
@@ -14,12 +14,12 @@ constexpr double kPaddingPixels = 2.0;
 // Nearer than this (metres) the box counts as reaching the camera plane.
 constexpr double kMinDepth = 1e-6;
 
-Eigen::Vector2d toPixel(const LensIntrinsics& lens, const Eigen::Vector2d& normalised) {
+Eigen::Vector2d toPixel(const io::LensIntrinsics& lens, const Eigen::Vector2d& normalised) {
   const Eigen::Vector2d d = lens.distort(normalised);
   return {lens.fx * d.x() + lens.cx, lens.fy * d.y() + lens.cy};
 }
 
-Eigen::Vector2d fromPixel(const LensIntrinsics& lens, const Eigen::Vector2d& pixel) {
+Eigen::Vector2d fromPixel(const io::LensIntrinsics& lens, const Eigen::Vector2d& pixel) {
   return lens.undistort({(pixel.x() - lens.cx) / lens.fx, (pixel.y() - lens.cy) / lens.fy});
 }
 
@@ -38,11 +38,11 @@ Eigen::Vector2d alongBorder(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi
   }
 }
 
-PixelRange wholeImage(const LensIntrinsics& lens) { return {0, lens.width, 0, lens.height}; }
+PixelRange wholeImage(const io::LensIntrinsics& lens) { return {0, lens.width, 0, lens.height}; }
 
 }  // namespace
 
-Eigen::AlignedBox2d normalisedImageBounds(const LensIntrinsics& lens, double margin) {
+Eigen::AlignedBox2d normalisedImageBounds(const io::LensIntrinsics& lens, double margin) {
   const Eigen::Vector2d lo(-0.5, -0.5), hi(lens.width - 0.5, lens.height - 0.5);
   // Pixel steps along the border: one sample per pixel edge is plenty for a smooth lens.
   const int steps = std::max(lens.width, lens.height);
@@ -56,7 +56,7 @@ Eigen::AlignedBox2d normalisedImageBounds(const LensIntrinsics& lens, double mar
   return {bounds.min() - grow, bounds.max() + grow};
 }
 
-PixelRange pixelsSeeing(const LensIntrinsics& lens, const Eigen::AlignedBox2d& field,
+PixelRange pixelsSeeing(const io::LensIntrinsics& lens, const Eigen::AlignedBox2d& field,
                         const Eigen::AlignedBox3d& box) {
   if (box.isEmpty() || box.max().z() <= 0.0) return {};
   if (box.min().z() <= kMinDepth) return wholeImage(lens);
@@ -88,4 +88,4 @@ PixelRange pixelsSeeing(const LensIntrinsics& lens, const Eigen::AlignedBox2d& f
   return range;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

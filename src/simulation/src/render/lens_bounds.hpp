@@ -5,13 +5,13 @@
 
 #include "binpick/io/lens.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // Bounds of the undistorted normalised coordinates (x/z, y/z) of the rays through the image
 // area, sampled along its border (pixel edges, half a pixel outside the outer centres), grown by
 // `margin` times its size on every side. Outside it, the distortion polynomial may fold points
 // from far off-axis back into the image; inside, it is one-to-one for any usable lens.
-Eigen::AlignedBox2d normalisedImageBounds(const LensIntrinsics& lens, double margin);
+Eigen::AlignedBox2d normalisedImageBounds(const io::LensIntrinsics& lens, double margin);
 
 // Pixels [u_begin, u_end) x [v_begin, v_end) of an image.
 struct PixelRange {
@@ -22,7 +22,7 @@ struct PixelRange {
 // A range holding every pixel whose ray (through its centre) can meet `box` (camera frame),
 // clipped to the image; `field` is normalisedImageBounds of the same lens. A box reaching the
 // camera plane (z <= 0) may be seen anywhere: the whole image.
-PixelRange pixelsSeeing(const LensIntrinsics& lens, const Eigen::AlignedBox2d& field,
+PixelRange pixelsSeeing(const io::LensIntrinsics& lens, const Eigen::AlignedBox2d& field,
                         const Eigen::AlignedBox3d& box);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -1,24 +1,24 @@
 // computeObjectVisibility: measured pixels per object in the pile, and alone at the same pose.
 #include "binpick/simulation/object_visibility.hpp"
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "lens_bounds.hpp"
 #include "projector_view.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Margin on the camera's field of view when bounding an object's footprint: pixels are only
 // ever searched inside the image, so this merely keeps the distortion map one-to-one.
 constexpr double kFieldMargin = 0.05;
 
-void requireMatchingGeometry(const RigCalibration& rig, const SensorGeometry& geometry) {
+void requireMatchingGeometry(const io::RigCalibration& rig, const SensorGeometry& geometry) {
   const std::size_t n = static_cast<std::size_t>(rig.camera.width) * rig.camera.height;
   if (geometry.width != rig.camera.width || geometry.height != rig.camera.height ||
       geometry.object_index.size() != n || geometry.lit.size() != n ||
       geometry.in_projector_image.size() != n || geometry.projector_cosine.size() != n) {
-    throw Error("computeObjectVisibility: the sensor geometry does not match the camera size");
+    throw core::Error("computeObjectVisibility: the sensor geometry does not match the camera size");
   }
 }
 
@@ -45,7 +45,7 @@ AloneAnswer answerFromGeometry(const SensorGeometry& geometry, std::size_t i, in
 }
 
 // Pixels of row v within `pixels` that would see `object`, lit, were it alone.
-int countAloneLitInRow(const RigCalibration& rig, const RayCaster& scene,
+int countAloneLitInRow(const io::RigCalibration& rig, const RayCaster& scene,
                        const detail::ProjectorView& projector, const SensorGeometry& geometry,
                        const detail::PixelRange& pixels, int v, int object,
                        double shadow_ray_offset) {
@@ -73,7 +73,7 @@ struct RowTask {
   detail::PixelRange pixels;
 };
 
-std::vector<RowTask> rowTasks(const RigCalibration& rig, const RayCaster& scene,
+std::vector<RowTask> rowTasks(const io::RigCalibration& rig, const RayCaster& scene,
                               const std::vector<int>& object_indices) {
   const Eigen::AlignedBox2d field = detail::normalisedImageBounds(rig.camera, kFieldMargin);
   std::vector<RowTask> tasks;
@@ -90,14 +90,14 @@ std::vector<RowTask> rowTasks(const RigCalibration& rig, const RayCaster& scene,
 }
 
 // Per object of `object_indices`, the pixels that would see it, lit, were it alone.
-std::vector<int> countAloneLit(const RigCalibration& rig, const RayCaster& scene,
+std::vector<int> countAloneLit(const io::RigCalibration& rig, const RayCaster& scene,
                                const SensorGeometry& geometry,
                                const std::vector<int>& object_indices,
                                const SensorGeometryParams& params) {
   const detail::ProjectorView projector(rig);
   const std::vector<RowTask> tasks = rowTasks(rig, scene, object_indices);
   std::vector<int> row_counts(tasks.size(), 0);
-  const int threads = resolveThreadCount(params.threads);
+  const int threads = core::resolveThreadCount(params.threads);
   // All objects' rows in one loop: a single barrier, however many objects. Each row is batched
   // the same way whichever thread takes it, so the counts do not depend on the split.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
@@ -113,7 +113,7 @@ std::vector<int> countAloneLit(const RigCalibration& rig, const RayCaster& scene
 
 }  // namespace
 
-std::vector<ObjectVisibility> computeObjectVisibilityOf(const RigCalibration& rig,
+std::vector<ObjectVisibility> computeObjectVisibilityOf(const io::RigCalibration& rig,
                                                         const RayCaster& scene,
                                                         const SensorGeometry& geometry,
                                                         const std::vector<int>& object_indices,
@@ -138,7 +138,7 @@ std::vector<ObjectVisibility> computeObjectVisibilityOf(const RigCalibration& ri
   return result;
 }
 
-std::vector<ObjectVisibility> computeObjectVisibility(const RigCalibration& rig,
+std::vector<ObjectVisibility> computeObjectVisibility(const io::RigCalibration& rig,
                                                       const RayCaster& scene,
                                                       const SensorGeometry& geometry,
                                                       const SensorGeometryParams& params) {
@@ -147,4 +147,4 @@ std::vector<ObjectVisibility> computeObjectVisibility(const RigCalibration& rig,
   return computeObjectVisibilityOf(rig, scene, geometry, all, params);
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -5,7 +5,7 @@
 
 #include "lens_bounds.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 // Margin on the projector's field of view for telling real image points from points that the
@@ -14,7 +14,7 @@ constexpr double kFieldMargin = 0.05;
 
 }  // namespace
 
-ProjectorView::ProjectorView(const RigCalibration& rig)
+ProjectorView::ProjectorView(const io::RigCalibration& rig)
     : lens_(rig.projector),
       T_projector_camera_(rig.T_projector_camera),
       centre_camera_(rig.T_projector_camera.inverse(Eigen::Isometry).translation()),
@@ -69,4 +69,4 @@ std::vector<ProjectorSample> lightHits(const ProjectorView& projector,
   return samples;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

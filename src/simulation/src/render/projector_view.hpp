@@ -9,7 +9,7 @@
 #include "binpick/io/rig_calibration.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 struct ProjectorSample {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -25,7 +25,7 @@ struct ProjectorSample {
 
 class ProjectorView {
  public:
-  explicit ProjectorView(const RigCalibration& rig);
+  explicit ProjectorView(const io::RigCalibration& rig);
 
   // Everything but the shadow test (lit stays false); `point` and unit outward `normal` in the
   // camera frame.
@@ -37,7 +37,7 @@ class ProjectorView {
  private:
   bool inImage(const Eigen::Vector3d& point_projector, Eigen::Vector2d* pixel) const;
 
-  LensIntrinsics lens_;
+  io::LensIntrinsics lens_;
   Eigen::Isometry3d T_projector_camera_;
   Eigen::Vector3d centre_camera_;     // the projector's centre of projection, camera frame
   Eigen::AlignedBox2d field_bounds_;  // normalised directions the projector can light
@@ -50,4 +50,4 @@ std::vector<ProjectorSample> lightHits(const ProjectorView& projector,
                                        const std::vector<RayHit>& hits, const RayCaster& scene,
                                        int alone_object, double shadow_ray_offset);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -3,11 +3,11 @@
 
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "embree_rays.hpp"
 #include "ray_caster_impl.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Closest hit in `scene`; `alone_index` >= 0 names the object of a single-object scene.
@@ -35,7 +35,7 @@ bool anyHit(RTCScene scene, const Ray& ray) {
 void RayCaster::Impl::requireIndex(int object_index, const char* caller) const {
   const std::size_t size = data.objects.size();
   if (object_index < 0 || object_index >= static_cast<int>(size)) {
-    throw Error(std::string("RayCaster::") + caller + ": object index " +
+    throw core::Error(std::string("RayCaster::") + caller + ": object index " +
                 std::to_string(object_index) + " is outside [0, " + std::to_string(size) + ")");
   }
 }
@@ -52,19 +52,19 @@ int RayCaster::objectCount() const {
 }
 
 int32_t RayCaster::objectId(int object_index) const {
-  if (!impl_) throw Error("RayCaster::objectId: the caster was moved from");
+  if (!impl_) throw core::Error("RayCaster::objectId: the caster was moved from");
   impl_->requireIndex(object_index, "objectId");
   return impl_->data.objects[object_index].id;
 }
 
 const Eigen::Isometry3d& RayCaster::objectPose(int object_index) const {
-  if (!impl_) throw Error("RayCaster::objectPose: the caster was moved from");
+  if (!impl_) throw core::Error("RayCaster::objectPose: the caster was moved from");
   impl_->requireIndex(object_index, "objectPose");
   return impl_->data.objects[object_index].T_camera_object;
 }
 
 Eigen::AlignedBox3d RayCaster::objectBounds(int object_index) const {
-  if (!impl_) throw Error("RayCaster::objectBounds: the caster was moved from");
+  if (!impl_) throw core::Error("RayCaster::objectBounds: the caster was moved from");
   impl_->requireIndex(object_index, "objectBounds");
   return impl_->data.objects[object_index].bounds;
 }
@@ -79,15 +79,15 @@ bool RayCaster::occluded(const Ray& ray) const {
 }
 
 RayHit RayCaster::closestHitAlone(int object_index, const Ray& ray) const {
-  if (!impl_) throw Error("RayCaster::closestHitAlone: the caster was moved from");
+  if (!impl_) throw core::Error("RayCaster::closestHitAlone: the caster was moved from");
   impl_->requireIndex(object_index, "closestHitAlone");
   return intersect(impl_->data, impl_->data.alone_scenes[object_index].get(), object_index, ray);
 }
 
 bool RayCaster::occludedAlone(int object_index, const Ray& ray) const {
-  if (!impl_) throw Error("RayCaster::occludedAlone: the caster was moved from");
+  if (!impl_) throw core::Error("RayCaster::occludedAlone: the caster was moved from");
   impl_->requireIndex(object_index, "occludedAlone");
   return anyHit(impl_->data.alone_scenes[object_index].get(), ray);
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -2,12 +2,12 @@
 #include <algorithm>
 #include <array>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 #include "embree_rays.hpp"
 #include "ray_caster_impl.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // Batches go to Embree in chunks of this many rays, held on the stack: large enough for
@@ -77,7 +77,7 @@ std::vector<uint8_t> RayCaster::occludedEach(const std::vector<Ray>& rays) const
 
 std::vector<RayHit> RayCaster::closestHitsAlone(int object_index,
                                                 const std::vector<Ray>& rays) const {
-  if (!impl_) throw Error("RayCaster::closestHitsAlone: the caster was moved from");
+  if (!impl_) throw core::Error("RayCaster::closestHitsAlone: the caster was moved from");
   impl_->requireIndex(object_index, "closestHitsAlone");
   return intersectAll(impl_->data, impl_->data.alone_scenes[object_index].get(), object_index,
                       rays);
@@ -85,9 +85,9 @@ std::vector<RayHit> RayCaster::closestHitsAlone(int object_index,
 
 std::vector<uint8_t> RayCaster::occludedEachAlone(int object_index,
                                                   const std::vector<Ray>& rays) const {
-  if (!impl_) throw Error("RayCaster::occludedEachAlone: the caster was moved from");
+  if (!impl_) throw core::Error("RayCaster::occludedEachAlone: the caster was moved from");
   impl_->requireIndex(object_index, "occludedEachAlone");
   return occludedAll(impl_->data.alone_scenes[object_index].get(), rays);
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -3,10 +3,10 @@
 #include <map>
 #include <string>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 #include "ray_caster_impl.hpp"
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 std::string describe(std::size_t index, const RenderObject& object) {
@@ -15,16 +15,16 @@ std::string describe(std::size_t index, const RenderObject& object) {
 
 // Normals and object-frame points are carried through the pose as a rotation, so it must be one.
 void requireRigidPose(const Eigen::Isometry3d& pose, const std::string& what) {
-  if (!pose.matrix().allFinite()) throw Error(what + ": the pose has non-finite entries");
+  if (!pose.matrix().allFinite()) throw core::Error(what + ": the pose has non-finite entries");
   const Eigen::Matrix3d r = pose.linear();
   const double orthonormality = (r.transpose() * r - Eigen::Matrix3d::Identity()).norm();
   if (orthonormality > 1e-6 || r.determinant() < 0.0) {
-    throw Error(what + ": the pose is not a rigid transform (rotation + translation)");
+    throw core::Error(what + ": the pose is not a rigid transform (rotation + translation)");
   }
 }
 
 // Float camera-frame vertices cost ~1e-7 m at a metre; hits are refined in double afterwards.
-GeometryHandle bakeGeometry(const EmbreeDevice& device, const TriangleMesh& mesh,
+GeometryHandle bakeGeometry(const EmbreeDevice& device, const io::TriangleMesh& mesh,
                             const Eigen::Isometry3d& T_camera_object, const std::string& what) {
   GeometryHandle geometry(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
   device.throwIfFailed(what);
@@ -35,7 +35,7 @@ GeometryHandle bakeGeometry(const EmbreeDevice& device, const TriangleMesh& mesh
       rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                               3 * sizeof(unsigned), mesh.triangles.size()));
   device.throwIfFailed(what);
-  if (vertices == nullptr || indices == nullptr) throw Error(what + ": Embree returned no buffer");
+  if (vertices == nullptr || indices == nullptr) throw core::Error(what + ": Embree returned no buffer");
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     const Eigen::Vector3f p = (T_camera_object * mesh.vertices[i].cast<double>()).cast<float>();
     for (int k = 0; k < 3; ++k) vertices[3 * i + k] = p[k];
@@ -48,7 +48,7 @@ GeometryHandle bakeGeometry(const EmbreeDevice& device, const TriangleMesh& mesh
   return geometry;
 }
 
-Eigen::AlignedBox3d placedBounds(const TriangleMesh& mesh, const Eigen::Isometry3d& pose) {
+Eigen::AlignedBox3d placedBounds(const io::TriangleMesh& mesh, const Eigen::Isometry3d& pose) {
   Eigen::AlignedBox3d box;
   for (const auto& v : mesh.vertices) box.extend(pose * v.cast<double>());
   return box;
@@ -56,11 +56,11 @@ Eigen::AlignedBox3d placedBounds(const TriangleMesh& mesh, const Eigen::Isometry
 
 // Copies the meshes (once each) and records where every object is.
 void placeObjects(const std::vector<RenderObject>& objects, CasterScene& built) {
-  std::map<const TriangleMesh*, int> mesh_index;
+  std::map<const io::TriangleMesh*, int> mesh_index;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const RenderObject& object = objects[i];
     const std::string what = describe(i, object);
-    if (object.mesh == nullptr) throw Error(what + ": the mesh pointer is null");
+    if (object.mesh == nullptr) throw core::Error(what + ": the mesh pointer is null");
     requireRigidPose(object.T_camera_object, what);
     PlacedObject placed;
     placed.T_camera_object = object.T_camera_object;
@@ -69,7 +69,7 @@ void placeObjects(const std::vector<RenderObject>& objects, CasterScene& built) 
     if (!object.mesh->empty()) {
       auto [it, inserted] = mesh_index.emplace(object.mesh, static_cast<int>(built.meshes.size()));
       if (inserted) {
-        validateMesh(*object.mesh, what + " mesh");
+        io::validateMesh(*object.mesh, what + " mesh");
         built.meshes.push_back(*object.mesh);
       }
       placed.mesh = it->second;
@@ -111,4 +111,4 @@ CasterScene buildCasterScene(const std::vector<RenderObject>& objects) {
   return built;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -10,7 +10,7 @@
 #include "binpick/simulation/ray_caster.hpp"
 #include "embree_device.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 namespace detail {
 
@@ -25,7 +25,7 @@ struct PlacedObject {
 // Everything a RayCaster holds.
 struct CasterScene {
   // One copy per distinct mesh: a part placed twenty times is stored once.
-  std::vector<TriangleMesh> meshes;
+  std::vector<io::TriangleMesh> meshes;
   std::vector<PlacedObject> objects;
   // Declared before the scenes, so destroyed after them.
   std::unique_ptr<EmbreeDevice> device;
@@ -46,4 +46,4 @@ struct RayCaster::Impl {
   void requireIndex(int object_index, const char* caller) const;
 };
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

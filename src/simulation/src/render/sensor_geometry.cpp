@@ -1,14 +1,15 @@
 // computeSensorGeometry: one camera ray per pixel, then the projector's view of the point hit.
-#include "binpick/simulation/sensor_geometry.hpp"
-
 #include <array>
+#include <cmath>
 #include <functional>
 #include <limits>
 
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
+#include "binpick/simulation/sensor_geometry.hpp"
 #include "projector_view.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -60,7 +61,7 @@ void storeProjectorSample(const detail::ProjectorSample& s, std::size_t i, Senso
 
 // One image row: its rays, and then the shadow rays of its lit-able points, each as one batch
 // (neighbouring rays are alike, which Embree's packets exploit).
-void renderRow(const LensIntrinsics& camera, const detail::ProjectorView& projector,
+void renderRow(const io::LensIntrinsics& camera, const detail::ProjectorView& projector,
                const RayCaster& scene, double shadow_ray_offset, int v, SensorGeometry& g) {
   std::vector<Ray> rays(camera.width);
   for (int u = 0; u < camera.width; ++u) {
@@ -79,11 +80,11 @@ void renderRow(const LensIntrinsics& camera, const detail::ProjectorView& projec
 
 }  // namespace
 
-SensorGeometry computeSensorGeometry(const RigCalibration& rig, const RayCaster& scene,
+SensorGeometry computeSensorGeometry(const io::RigCalibration& rig, const RayCaster& scene,
                                      const SensorGeometryParams& params) {
   rig.validate();
   params.validate();
-  const int threads = resolveThreadCount(params.threads);
+  const int threads = core::resolveThreadCount(params.threads);
   SensorGeometry g = emptyGeometry(rig.camera.width, rig.camera.height, threads);
   const detail::ProjectorView projector(rig);
   // Each row is traced the same way whichever thread takes it, so the split among threads
@@ -95,4 +96,27 @@ SensorGeometry computeSensorGeometry(const RigCalibration& rig, const RayCaster&
   return g;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation
+
+// SensorGeometryParams::validate: every field checked, the message names the first bad one.
+namespace binpick::simulation {
+namespace {
+
+void require(bool ok, const char* field, const char* rule, double value) {
+  core::requireField(ok, "SensorGeometryParams", field, rule, value);
+}
+
+constexpr int kMaxThreads = 1024;
+// An offset this large would visibly move shadow edges; anything beyond it is a unit mistake.
+constexpr double kMaxShadowRayOffset = 0.01;
+
+}  // namespace
+
+void SensorGeometryParams::validate() const {
+  require(threads >= 0 && threads <= kMaxThreads, "threads", "in [0, 1024]", threads);
+  require(std::isfinite(shadow_ray_offset) && shadow_ray_offset >= 0.0 &&
+              shadow_ray_offset <= kMaxShadowRayOffset,
+          "shadow_ray_offset", "in [0, 0.01] metres", shadow_ray_offset);
+}
+
+}  // namespace binpick::simulation

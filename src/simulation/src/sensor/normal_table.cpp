@@ -4,7 +4,7 @@
 #include <cmath>
 #include <memory>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 constexpr int kTableBits = 16;
@@ -40,4 +40,4 @@ double tabulatedStandardNormal(uint64_t bits) {
   return (*table)[bits >> (64 - kTableBits)];
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

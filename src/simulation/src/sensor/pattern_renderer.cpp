@@ -1,18 +1,17 @@
 // renderPatternImages: pattern-independent pixel lighting -> one camera image per pattern.
-#include "binpick/simulation/pattern_renderer.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
+#include "binpick/simulation/pattern_renderer.hpp"
 #include "normal_table.hpp"
 #include "projector_blur.hpp"
 #include "random.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 namespace rc = binpick::reconstruction;
@@ -26,7 +25,7 @@ struct EmittedPattern {
   float mean = 0.0f;
 };
 
-std::vector<EmittedPattern> emittedPatterns(const PatternSetSpec& spec, double black_level) {
+std::vector<EmittedPattern> emittedPatterns(const io::PatternSetSpec& spec, double black_level) {
   std::vector<EmittedPattern> emitted;
   for (const rc::Pattern& pattern : rc::patternSequence(spec)) {
     EmittedPattern e;
@@ -78,13 +77,13 @@ Pixel sensorValue(double signal, const PhotometryParams& params, double scale, d
 
 template <typename Pixel>
 void renderRows(const std::vector<PixelLighting>& pixels, int width, int height,
-                const PatternSetSpec& spec, const PhotometryParams& params,
+                const io::PatternSetSpec& spec, const PhotometryParams& params,
                 const std::vector<EmittedPattern>& patterns, std::vector<cv::Mat>& images) {
   const double scale = params.bit_depth == 16 ? 257.0 : 1.0;
   const double full_scale = params.bit_depth == 16 ? 65535.0 : 255.0;
   const detail::KeyedStreams noise(params.seed, kImageNoiseStream);
   const uint64_t pixel_count = static_cast<uint64_t>(width) * height;
-#pragma omp parallel for schedule(dynamic, 8) num_threads(resolveThreadCount(params.threads))
+#pragma omp parallel for schedule(dynamic, 8) num_threads(core::resolveThreadCount(params.threads))
   for (int row = 0; row < height; ++row) {
     for (int col = 0; col < width; ++col) {
       const std::size_t index = static_cast<std::size_t>(row) * width + col;
@@ -110,13 +109,13 @@ namespace {
 // The first `count` images of the pattern sequence (all of them when count exceeds it). Noise is
 // keyed by pattern index, so a prefix renders exactly as it does within the whole set.
 std::vector<cv::Mat> renderFirstPatterns(const std::vector<PixelLighting>& pixels, int width,
-                                         int height, const PatternSetSpec& spec,
+                                         int height, const io::PatternSetSpec& spec,
                                          const PhotometryParams& params, std::size_t count) {
   params.validate();
   spec.validate();
   if (width <= 0 || height <= 0 ||
       pixels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
-    throw Error("renderPatternImages: " + std::to_string(pixels.size()) + " pixels for a " +
+    throw core::Error("renderPatternImages: " + std::to_string(pixels.size()) + " pixels for a " +
                 std::to_string(width) + "x" + std::to_string(height) + " image");
   }
   std::vector<EmittedPattern> patterns = emittedPatterns(spec, params.projector_black_level);
@@ -135,15 +134,49 @@ std::vector<cv::Mat> renderFirstPatterns(const std::vector<PixelLighting>& pixel
 }  // namespace
 
 std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width,
-                                         int height, const PatternSetSpec& spec,
+                                         int height, const io::PatternSetSpec& spec,
                                          const PhotometryParams& params) {
   return renderFirstPatterns(pixels, width, height, spec, params, SIZE_MAX);
 }
 
 cv::Mat renderWhiteImage(const std::vector<PixelLighting>& pixels, int width, int height,
-                         const PatternSetSpec& spec, const PhotometryParams& params) {
+                         const io::PatternSetSpec& spec, const PhotometryParams& params) {
   // Every pattern sequence starts with the white image (reconstruction::patternSequence).
   return renderFirstPatterns(pixels, width, height, spec, params, 1).front();
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation
+
+// PhotometryParams::validate: every field checked, the message names the first bad one.
+namespace binpick::simulation {
+namespace {
+
+void require(bool ok, const char* field, const char* rule, double value) {
+  core::requireField(ok, "PhotometryParams", field, rule, value);
+}
+
+bool nonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
+bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+
+}  // namespace
+
+void PhotometryParams::validate() const {
+  require(nonNegative(projector_white), "projector_white", ">= 0", projector_white);
+  require(positive(reference_distance), "reference_distance", "positive", reference_distance);
+  require(nonNegative(projector_black_level) && projector_black_level < 1.0,
+          "projector_black_level", "in [0, 1)", projector_black_level);
+  require(nonNegative(ambient), "ambient", ">= 0", ambient);
+  require(nonNegative(global_light) && global_light <= 1.0, "global_light", "in [0, 1]",
+          global_light);
+  require(nonNegative(specular), "specular", ">= 0", specular);
+  require(positive(shininess), "shininess", "positive", shininess);
+  require(positive(focus_distance), "focus_distance", "positive", focus_distance);
+  require(nonNegative(defocus_per_dioptre), "defocus_per_dioptre", ">= 0", defocus_per_dioptre);
+  require(nonNegative(min_blur_sigma), "min_blur_sigma", ">= 0", min_blur_sigma);
+  require(nonNegative(read_noise), "read_noise", ">= 0", read_noise);
+  require(nonNegative(shot_noise_gain), "shot_noise_gain", ">= 0", shot_noise_gain);
+  require(bit_depth == 8 || bit_depth == 16, "bit_depth", "8 or 16", bit_depth);
+  require(threads >= 0, "threads", ">= 0", threads);
+}
+
+}  // namespace binpick::simulation

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "binpick/io/error.hpp"
-#include "binpick/io/thread_count.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 struct Surface {
@@ -55,19 +55,19 @@ PixelLighting lightPixel(const SensorGeometry& g, std::size_t i, float albedo,
 }  // namespace
 
 std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry,
-                                                const RigCalibration& rig,
+                                                const io::RigCalibration& rig,
                                                 const PhotometryParams& params,
                                                 const AlbedoFunction& albedo) {
   params.validate();
-  if (!albedo) throw Error("computePixelLighting: no albedo function");
+  if (!albedo) throw core::Error("computePixelLighting: no albedo function");
   const std::size_t count = static_cast<std::size_t>(geometry.width) * geometry.height;
   if (geometry.object_id.size() != count || geometry.lit.size() != count) {
-    throw Error("computePixelLighting: the sensor geometry's buffers do not match its size");
+    throw core::Error("computePixelLighting: the sensor geometry's buffers do not match its size");
   }
   const Eigen::Vector3f projector_centre =
       rig.T_projector_camera.inverse().translation().cast<float>();
   std::vector<PixelLighting> lighting(count);
-#pragma omp parallel for schedule(dynamic, 4096) num_threads(resolveThreadCount(params.threads))
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(core::resolveThreadCount(params.threads))
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {
     const auto i = static_cast<std::size_t>(k);
     if (geometry.object_index[i] < 0) continue;
@@ -77,4 +77,4 @@ std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry,
   return lighting;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 namespace {
 
 constexpr float kSigmaFloor = 1e-3f;  // below this the blur is a box: one pixel's light
@@ -36,4 +36,4 @@ BlurTaps blurTaps(float x, float sigma, int size) {
   return taps;
 }
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -2,7 +2,7 @@
 // Internal: how a defocused projector spreads its pixels over a surface point. Pure: thread-safe.
 #include <array>
 
-namespace binpick::sim::detail {
+namespace binpick::simulation::detail {
 
 // Sigmas are capped here; wider blur would wash out every Gray-code bit anyway.
 constexpr float kMaxBlurSigma = 2.5f;
@@ -19,4 +19,4 @@ struct BlurTaps {
 
 BlurTaps blurTaps(float x, float sigma, int size);
 
-}  // namespace binpick::sim::detail
+}  // namespace binpick::simulation::detail

@@ -3,15 +3,15 @@
 #include <cmath>
 #include <sstream>
 
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 // A 1.3 MP machine-vision camera whose lens frames 0.72 x 0.58 m at 0.9 m, with a little barrel
 // distortion and an off-centre principal point, as real ones have.
-LensIntrinsics cameraLens() {
-  LensIntrinsics lens;
+io::LensIntrinsics cameraLens() {
+  io::LensIntrinsics lens;
   lens.width = 1280;
   lens.height = 1024;
   lens.fx = lens.fy = 1600.0;
@@ -22,8 +22,8 @@ LensIntrinsics cameraLens() {
 }
 
 // A DLP light engine: it frames a 0.74 x 0.46 m field at 0.9 m; its distortion is small.
-LensIntrinsics projectorLens() {
-  LensIntrinsics lens;
+io::LensIntrinsics projectorLens() {
+  io::LensIntrinsics lens;
   lens.width = 1280;
   lens.height = 800;
   lens.fx = lens.fy = 1560.0;
@@ -39,18 +39,18 @@ void VirtualRigParams::validate() const {
   if (!std::isfinite(working_distance) || working_distance <= 0.0) {
     std::ostringstream m;
     m << "VirtualRigParams.working_distance must be positive (got " << working_distance << ")";
-    throw Error(m.str());
+    throw core::Error(m.str());
   }
   if (!std::isfinite(baseline) || baseline <= 0.0) {
     std::ostringstream m;
     m << "VirtualRigParams.baseline must be positive (got " << baseline << ")";
-    throw Error(m.str());
+    throw core::Error(m.str());
   }
 }
 
-RigCalibration makeVirtualRig(const VirtualRigParams& params) {
+io::RigCalibration makeVirtualRig(const VirtualRigParams& params) {
   params.validate();
-  RigCalibration rig;
+  io::RigCalibration rig;
   rig.camera = cameraLens();
   rig.projector = projectorLens();
   // The projector sits at (baseline, 0, 0) in the camera frame and is turned about the camera's
@@ -63,4 +63,4 @@ RigCalibration makeVirtualRig(const VirtualRigParams& params) {
   return rig;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -6,7 +6,7 @@
 
 #include "binpick/simulation/parts.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 namespace {
 
 constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
@@ -55,4 +55,4 @@ PoseError poseError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& 
   return error;
 }
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

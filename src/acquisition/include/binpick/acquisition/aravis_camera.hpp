@@ -6,7 +6,7 @@
 
 namespace binpick::acquisition {
 
-// Does not connect yet: open() does. Throws binpick::Error on invalid params.
+// Does not connect yet: open() does. Throws core::Error on invalid params.
 std::unique_ptr<Camera> makeAravisCamera(const CameraParams& params);
 
 }  // namespace binpick::acquisition

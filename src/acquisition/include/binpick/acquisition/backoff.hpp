@@ -11,7 +11,7 @@ namespace binpick::acquisition {
 class Backoff {
  public:
   using Clock = std::chrono::steady_clock;
-  // Throws binpick::Error unless 0 < initial <= max.
+  // Throws core::Error unless 0 < initial <= max.
   Backoff(std::chrono::milliseconds initial, std::chrono::milliseconds max);
 
   void failed(Clock::time_point now);

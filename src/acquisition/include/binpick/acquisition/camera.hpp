@@ -28,7 +28,7 @@ struct CameraParams {
   TriggerSource trigger = TriggerSource::Software;
   std::string hardware_trigger_line = "Line1";  // for TriggerSource::Hardware
   int buffers = 8;                     // stream buffers, allocated once and reused
-  void validate() const;               // throws binpick::Error naming the field
+  void validate() const;               // throws core::Error naming the field
 };
 
 enum class FrameStatus {
@@ -61,11 +61,11 @@ struct StreamStatistics {
 class Camera {
  public:
   virtual ~Camera() = default;
-  // Connects and applies the params. Throws binpick::Error naming the camera on failure.
+  // Connects and applies the params. Throws core::Error naming the camera on failure.
   virtual void open() = 0;
   virtual void close() = 0;
   virtual bool isOpen() const = 0;
-  // Streams frames into the reused buffers; stop() ends it. Throws binpick::Error on failure.
+  // Streams frames into the reused buffers; stop() ends it. Throws core::Error on failure.
   virtual void start() = 0;
   virtual void stop() = 0;
   // Software trigger (a no-op for hardware and free-running triggers).

@@ -17,9 +17,9 @@ namespace binpick::acquisition {
 class CaptureSource {
  public:
   virtual ~CaptureSource() = default;
-  // The next capture. Throws binpick::Error (CaptureError for camera faults) naming the reason;
+  // The next capture. Throws core::Error (CaptureError for camera faults) naming the reason;
   // the source stays usable for the next call.
-  virtual Capture next() = 0;
+  virtual io::Capture next() = 0;
   virtual std::string description() const = 0;
 };
 
@@ -30,11 +30,11 @@ struct ReplayParams {
 };
 
 // Replays capture directories in name order, bit-identical to what was recorded. Throws
-// binpick::Error when `path` holds no capture.
+// core::Error when `path` holds no capture.
 std::unique_ptr<CaptureSource> makeReplaySource(const ReplayParams& params);
 
 struct LiveParams {
-  PatternSetSpec patterns;
+  io::PatternSetSpec patterns;
   SequencerParams sequencer;
   // After a lost connection, reopening is tried at most every reopen_backoff_ms, doubling up to
   // max_reopen_backoff_ms while it keeps failing.

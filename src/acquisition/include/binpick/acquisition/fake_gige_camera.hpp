@@ -26,7 +26,7 @@ struct FakeCameraParams {
 
 class FakeGigECamera {
  public:
-  // Starts serving. Throws binpick::Error when the address cannot be bound (another fake camera
+  // Starts serving. Throws core::Error when the address cannot be bound (another fake camera
   // or GigE Vision tool on it).
   explicit FakeGigECamera(const FakeCameraParams& params);
   ~FakeGigECamera();

@@ -13,7 +13,7 @@ namespace binpick::acquisition {
 class ProjectorTrigger {
  public:
   virtual ~ProjectorTrigger() = default;
-  // Called with 0, 1, 2, ... in order for every capture. Throws binpick::Error when the trigger
+  // Called with 0, 1, 2, ... in order for every capture. Throws core::Error when the trigger
   // line cannot be driven.
   virtual void showPattern(int index) = 0;
   virtual std::string description() const = 0;
@@ -24,10 +24,10 @@ struct GpioTriggerParams {
   unsigned line = 0;               // line offset on the chip
   bool active_high = true;
   int pulse_us = 100;              // pulse width, microseconds
-  void validate() const;           // throws binpick::Error naming the field
+  void validate() const;           // throws core::Error naming the field
 };
 
-// A pulse on a GPIO line (libgpiod) per pattern. Throws binpick::Error naming the chip and line
+// A pulse on a GPIO line (libgpiod) per pattern. Throws core::Error naming the chip and line
 // when the chip does not exist or the line cannot be requested.
 std::unique_ptr<ProjectorTrigger> makeGpioTrigger(const GpioTriggerParams& params);
 

@@ -11,7 +11,7 @@
 #include "binpick/acquisition/camera.hpp"
 #include "binpick/acquisition/projector.hpp"
 #include "binpick/io/capture.hpp"
-#include "binpick/io/error.hpp"
+#include "binpick/core/error.hpp"
 
 namespace binpick::acquisition {
 
@@ -25,7 +25,7 @@ struct SequencerParams {
   int frame_timeout_ms = 1000;   // per frame
   int max_retries = 2;           // extra triggers for one pattern's lost frame
   TriggerOrder order = TriggerOrder::ProjectorThenCamera;
-  void validate() const;         // throws binpick::Error naming the field
+  void validate() const;         // throws core::Error naming the field
 };
 
 struct SequencerReport {
@@ -35,10 +35,10 @@ struct SequencerReport {
 };
 
 // Thrown when a capture cannot be completed: names the pattern and what the camera said.
-class CaptureError : public Error {
+class CaptureError : public core::Error {
  public:
   CaptureError(const std::string& message, bool connection_lost)
-      : Error(message), connection_lost_(connection_lost) {}
+      : core::Error(message), connection_lost_(connection_lost) {}
   bool connectionLost() const { return connection_lost_; }
 
  private:
@@ -47,12 +47,12 @@ class CaptureError : public Error {
 
 class CaptureSequencer {
  public:
-  // Throws binpick::Error on invalid params.
+  // Throws core::Error on invalid params.
   CaptureSequencer(Camera& camera, ProjectorTrigger& projector, const SequencerParams& params);
   // Captures every pattern of `patterns` (the camera must be open and started). Throws
   // CaptureError naming the pattern when a frame stays lost after the retries, or the camera is
   // gone; the images have the camera's size and depth, the metadata says what was projected.
-  Capture capture(const PatternSetSpec& patterns, SequencerReport* report = nullptr);
+  io::Capture capture(const io::PatternSetSpec& patterns, SequencerReport* report = nullptr);
 
  private:
   Camera& camera_;

@@ -30,7 +30,7 @@ struct BoardDetectionParams {
   // Corners closer than this to the image border are dropped: the sub-pixel refinement's window
   // would leave the image.
   double border_margin = 6.0;  // pixels
-  void validate() const;       // throws binpick::Error naming the field
+  void validate() const;       // throws core::Error naming the field
 };
 
 struct BoardDetection {
@@ -44,7 +44,7 @@ struct BoardDetection {
 
 // `image`: 8-bit or 16-bit, one channel (16-bit is scaled to 8 bits for the detectors, the
 // refinement runs on it too). Never throws for a board that is not there: the detection says
-// why. Throws binpick::Error for an empty or multi-channel image or bad params/layout.
+// why. Throws core::Error for an empty or multi-channel image or bad params/layout.
 BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout,
                            const BoardDetectionParams& params = {});
 
@@ -56,6 +56,6 @@ struct BoardPose {
   double rms_px = 0.0;
 };
 std::optional<BoardPose> estimateBoardPose(const BoardDetection& detection,
-                                           const BoardLayout& layout, const LensIntrinsics& camera);
+                                           const BoardLayout& layout, const io::LensIntrinsics& camera);
 
 }  // namespace binpick::calibration

@@ -16,7 +16,7 @@ namespace binpick::calibration {
 
 enum class BoardType { Chessboard, Charuco };
 
-// "chessboard" or "charuco"; boardTypeFromName throws binpick::Error on another name.
+// "chessboard" or "charuco"; boardTypeFromName throws core::Error on another name.
 std::string boardTypeName(BoardType type);
 BoardType boardTypeFromName(const std::string& name);
 
@@ -35,7 +35,7 @@ struct BoardLayout {
   double marker_size = 0.022;  // ChArUco: marker side, metres (< square_size)
   std::string dictionary = "DICT_5X5_100";  // ChArUco only
 
-  // Throws binpick::Error "BoardLayout.FIELD must be ..."; a ChArUco board needs a dictionary
+  // Throws core::Error "BoardLayout.FIELD must be ..."; a ChArUco board needs a dictionary
   // holding at least one marker per white square.
   void validate() const;
   int cornerCount() const { return (squares_x - 1) * (squares_y - 1); }

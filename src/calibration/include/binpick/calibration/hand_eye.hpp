@@ -21,7 +21,7 @@
 namespace binpick::calibration {
 
 enum class HandEyeSetup { EyeToHand, EyeInHand };
-// "eye-to-hand", "eye-in-hand"; handEyeSetupFromName throws binpick::Error on another name.
+// "eye-to-hand", "eye-in-hand"; handEyeSetupFromName throws core::Error on another name.
 std::string handEyeSetupName(HandEyeSetup setup);
 HandEyeSetup handEyeSetupFromName(const std::string& name);
 // "T_base_camera" / "T_flange_camera" and "T_flange_board" / "T_base_board".
@@ -70,7 +70,7 @@ struct HandEyeParams {
   // cuts the error severalfold; eye-in-hand the board pose's error reaches the flange times the
   // camera-to-board distance, and with a coarse camera it made the result worse. Hence opt-in.
   bool refine = false;
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 // How far the two ways to the board disagree in one view: the robot's (T_base_flange and the
@@ -96,7 +96,7 @@ struct HandEyeResult {
   bool ok() const { return failure.empty(); }
 };
 
-// Throws binpick::Error on bad params, fewer than min_views views, a non-rigid or non-finite
+// Throws core::Error on bad params, fewer than min_views views, a non-rigid or non-finite
 // pose (naming the view), too little or single-axis rotation, inverted poses, or an OpenCV
 // solution that is not finite. A poor fit is not thrown: the result says so in `failure`, with
 // the residuals that show which views are to blame.

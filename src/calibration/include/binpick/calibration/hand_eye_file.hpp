@@ -33,13 +33,13 @@ struct HandEyeFile {
   double rms_deg = 0.0;
 };
 
-// The file for a solved calibration, dated now. Throws binpick::Error when the result failed
+// The file for a solved calibration, dated now. Throws core::Error when the result failed
 // (!result.ok()): a bad calibration is never written.
 HandEyeFile handEyeFileOf(const HandEyeResult& result);
 
-// Written through a temporary file and a rename. Throws binpick::Error when it cannot be.
+// Written through a temporary file and a rename. Throws core::Error when it cannot be.
 void writeHandEyeFile(const std::string& path, const HandEyeFile& file);
-// Throws binpick::Error "PATH: key what was wrong" on a missing file, bad YAML, a missing,
+// Throws core::Error "PATH: key what was wrong" on a missing file, bad YAML, a missing,
 // unknown or mistyped key, or a camera transform that does not match the setup.
 HandEyeFile readHandEyeFile(const std::string& path);
 

@@ -23,7 +23,7 @@ struct HandEyeViewFile {
   std::string image_path;
 };
 
-// Views in poses.txt order. Throws binpick::Error naming the view for a pose without its image
+// Views in poses.txt order. Throws core::Error naming the view for a pose without its image
 // or an image (DIR/*.png) without a pose, and whatever readRobotPoseFile throws.
 std::vector<HandEyeViewFile> listHandEyeViews(const std::string& directory);
 
@@ -34,7 +34,7 @@ struct BoardViewParams {
   // out, above it the view is used and noted.
   double min_corner_share = 0.5;
   double max_rms_px = 1.0;  // a pose fitting its corners worse than this is left out
-  void validate() const;    // throws binpick::Error naming the field
+  void validate() const;    // throws core::Error naming the field
 };
 
 struct MeasuredView {
@@ -49,12 +49,12 @@ struct MeasuredView {
   bool usable() const { return T_camera_board.has_value(); }
 };
 
-// Reads and measures one view's image. Throws binpick::Error naming the view for an unreadable
+// Reads and measures one view's image. Throws core::Error naming the view for an unreadable
 // image, one that is not 8- or 16-bit grey, or one whose size is not the camera's.
 MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
-                         const LensIntrinsics& camera, const BoardViewParams& params = {});
+                         const io::LensIntrinsics& camera, const BoardViewParams& params = {});
 
-// The usable views solved. Throws binpick::Error listing every unusable view with its reason
+// The usable views solved. Throws core::Error listing every unusable view with its reason
 // when fewer than params.min_views are usable, and whatever solveHandEye throws.
 HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views,
                                  const HandEyeParams& params);

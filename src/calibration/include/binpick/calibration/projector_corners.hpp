@@ -32,7 +32,7 @@ struct ProjectorCornerParams {
   // is not trusted.
   double min_hull_depth = 2.0;
   int threads = 0;  // corners fitted in parallel; 0: all cores
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct ProjectorCorner {
@@ -53,7 +53,7 @@ struct ProjectorCorners {
 };
 
 // One projector pixel per corner of `detection` that passes the checks above (`detection` and
-// `decoded` come from the same capture). Throws binpick::Error when `decoded` lacks columns or
+// `decoded` come from the same capture). Throws core::Error when `decoded` lacks columns or
 // rows (a capture without column or row codes) or the params are bad.
 ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& decoded,
                                       const BoardDetection& detection,

@@ -37,7 +37,7 @@ struct RigCalibrationParams {
   // A final stereo RMS above this is reported as a warning: the calibration is written, but
   // something (focus, board flatness, a moving board) is wrong.
   double warn_rms_px = 1.0;
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct RigCalibrationTimings {  // milliseconds
@@ -47,13 +47,13 @@ struct RigCalibrationTimings {  // milliseconds
 };
 
 struct RigCalibrationResult {
-  RigCalibration rig;
-  RigCalibrationQuality quality;      // per view, in the order given; ready for calib.yaml
+  io::RigCalibration rig;
+  io::RigCalibrationQuality quality;      // per view, in the order given; ready for calib.yaml
   std::vector<std::string> warnings;  // one line each, naming the view
   RigCalibrationTimings timings;      // of the final solve
 };
 
-// Throws binpick::Error when fewer than min_views views are usable (naming each unusable view and
+// Throws core::Error when fewer than min_views views are usable (naming each unusable view and
 // why), when dropping the outliers leaves too few, when the views disagree on the camera or
 // projector size, or when OpenCV cannot solve the calibration.
 RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const BoardLayout& layout,

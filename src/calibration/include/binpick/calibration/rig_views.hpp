@@ -18,7 +18,7 @@ struct RigViewParams {
   BoardDetectionParams detection;
   reconstruction::DecodeParams decode;
   ProjectorCornerParams projector;
-  void validate() const;  // throws binpick::Error naming the member and field
+  void validate() const;  // throws core::Error naming the member and field
 };
 
 struct RigViewTimings {  // milliseconds
@@ -36,11 +36,11 @@ struct RigView {
   RigViewTimings timings;
 };
 
-// Throws binpick::Error "NAME: ..." when the capture cannot serve a calibration: no column or
+// Throws core::Error "NAME: ..." when the capture cannot serve a calibration: no column or
 // row codes, no white image, or images the decoder refuses (decoder.hpp).
-RigView measureRigView(const Capture& capture, const std::string& name, const BoardLayout& layout,
+RigView measureRigView(const io::Capture& capture, const std::string& name, const BoardLayout& layout,
                        const RigViewParams& params = {});
-// readCapture(directory) then measureRigView, named by the directory. Throws binpick::Error
+// readCapture(directory) then measureRigView, named by the directory. Throws core::Error
 // naming the directory on an unreadable or incomplete capture too.
 RigView readRigView(const std::string& directory, const BoardLayout& layout,
                     const RigViewParams& params = {});

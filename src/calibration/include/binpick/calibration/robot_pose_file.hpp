@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "binpick/io/robot_orientation.hpp"
+#include "binpick/core/orientation.hpp"
 
 namespace binpick::calibration {
 
@@ -23,11 +23,11 @@ struct RobotPose {
 };
 
 struct RobotPoseFile {
-  robot::Orientation orientation = robot::Orientation::EulerZYX;
+  core::Orientation orientation = core::Orientation::EulerZYX;
   std::vector<RobotPose> poses;  // file order
 };
 
-// Throws binpick::Error "ORIGIN:LINE: ..." naming the view where there is one: a missing or
+// Throws core::Error "ORIGIN:LINE: ..." naming the view where there is one: a missing or
 // unknown orientation line, a bad view name, a wrong value count, a value that is not a finite
 // number, a zero quaternion, a view listed twice.
 RobotPoseFile parseRobotPoses(const std::string& text, const std::string& origin);

@@ -12,7 +12,7 @@ namespace binpick::estimation {
 struct ClusteringParams {
   float max_translation_ratio = 0.1f;  // in diam(M): translations closer than this may join
   float max_rotation_deg = 12.0f;      // and rotations closer than this (both must hold)
-  void validate() const;               // throws binpick::Error naming the field
+  void validate() const;               // throws core::Error naming the field
 };
 
 struct PoseCluster {

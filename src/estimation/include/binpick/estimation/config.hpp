@@ -1,7 +1,7 @@
 #pragma once
 // Estimation settings from a YAML file (config/detection.yaml lists every key with its default
 // and unit). Every key is optional; an unknown key, a wrong type or an invalid value
-// throws binpick::Error naming the file and the key. Thread-safe (no shared state).
+// throws core::Error naming the file and the key. Thread-safe (no shared state).
 #include <string>
 
 #include "binpick/estimation/detector.hpp"

@@ -40,7 +40,7 @@ struct DetectorParams {
   // The paper's baselines (Table I): PPF1 = all references, PPF5 = 20% of references; both pair
   // each reference with every scene point and cluster poses.
   static DetectorParams drost(float reference_fraction);
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct Detection {
@@ -67,10 +67,10 @@ struct DetectionResult {
 class Detector {
  public:
   Detector(PreparedModel model, DetectorParams params);
-  DetectionResult detect(const PointCloud& scene_cloud) const;
+  DetectionResult detect(const io::PointCloud& scene_cloud) const;
   // The same with another crop box than the params' (a bin that moves between captures, or one
   // detector shared by several cells): no copy of the model.
-  DetectionResult detect(const PointCloud& scene_cloud, const std::optional<CropBox>& crop) const;
+  DetectionResult detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop) const;
   const PreparedModel& model() const { return model_; }
   const DetectorParams& params() const { return params_; }
 

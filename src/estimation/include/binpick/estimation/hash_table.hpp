@@ -23,7 +23,7 @@ class PpfHashTable {
   // with near-identical pairs, and every scene pair landing there votes for all of them).
   PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
                const PpfQuantizer& quantizer, uint32_t max_pairs_per_key = 0);
-  // Adopts arrays read from a cache; validates their consistency (throws binpick::Error).
+  // Adopts arrays read from a cache; validates their consistency (throws core::Error).
   PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries, uint32_t point_count);
 
   struct Range {

@@ -22,7 +22,7 @@ struct IcpParams {
   float fit_distance_ratio = 0.75f;         // final coverage: a visible model point fits when a
                                             // scene point lies this close (in steps)
   bool visible_points_only = true;          // false: use all model points (for comparison)
-  void validate() const;                    // throws binpick::Error naming the field
+  void validate() const;                    // throws core::Error naming the field
 };
 
 struct IcpResult {

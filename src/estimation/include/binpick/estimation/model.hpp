@@ -22,7 +22,7 @@ struct ModelParams {
   uint32_t max_pairs_per_feature = 2000;   // cap on model pairs per hash key (0: none, as in the
                                            // paper); halves voting for parts with big flat faces
   uint64_t seed = 1;                       // dense surface sampling
-  void validate() const;                   // throws binpick::Error naming the field
+  void validate() const;                   // throws core::Error naming the field
 };
 
 struct PreparedModel {
@@ -41,7 +41,7 @@ struct PreparedModel {
 // Mesh input: area-weighted dense samples, normals oriented by the faces. Cloud input: the cloud
 // is the original cloud; its normals are used when present, else fitted and oriented away from
 // the centroid (right for convex-ish parts: prefer meshes or clouds with normals).
-// Throws binpick::Error for an empty geometry, a mesh without area, or nonsense params.
-PreparedModel prepareModel(const ModelGeometry& geometry, const ModelParams& params);
+// Throws core::Error for an empty geometry, a mesh without area, or nonsense params.
+PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams& params);
 
 }  // namespace binpick::estimation

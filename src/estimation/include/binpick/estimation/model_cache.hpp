@@ -1,7 +1,7 @@
 #pragma once
 // Prepared-model cache files: the sampled model, its parameters and the PPF table, so that a
 // service starts in milliseconds instead of rebuilding the table. Versioned and checksummed; a
-// truncated, corrupt, foreign or outdated file is rejected with binpick::Error, never trusted.
+// truncated, corrupt, foreign or outdated file is rejected with core::Error, never trusted.
 // Free functions without shared state: thread-safe (for different files).
 #include <cstdint>
 #include <string>
@@ -22,7 +22,7 @@ struct CachedModel {
 };
 CachedModel loadModelCache(const std::string& path);
 
-// FNV-1a 64 of a file's bytes; throws binpick::Error when it cannot be read.
+// FNV-1a 64 of a file's bytes; throws core::Error when it cannot be read.
 uint64_t fingerprintFile(const std::string& path);
 
 // The cache at `cache_path` when it exists and was built from the same source with the same

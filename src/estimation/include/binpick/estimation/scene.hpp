@@ -26,7 +26,7 @@ struct SceneParams {
   int min_normal_neighbours = 5;   // fewer full-resolution neighbours: the point is dropped
   int max_window_half_size = 12;   // organized clouds: largest pixel window radius for normals
   int threads = 0;                 // 0: all hardware threads
-  void validate() const;           // throws binpick::Error naming the field
+  void validate() const;           // throws core::Error naming the field
 };
 
 struct PreparedScene {
@@ -37,8 +37,8 @@ struct PreparedScene {
   std::size_t size() const { return points.size(); }
 };
 
-// Throws binpick::Error when the cloud is malformed (non-finite points in an unorganized cloud,
+// Throws core::Error when the cloud is malformed (non-finite points in an unorganized cloud,
 // normals of the wrong count); an empty or fully cropped cloud gives an empty scene.
-PreparedScene prepareScene(const PointCloud& cloud, const PreparedModel& model, const SceneParams& params);
+PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& model, const SceneParams& params);
 
 }  // namespace binpick::estimation

@@ -17,7 +17,7 @@ struct SelectionParams {
   float min_score_fraction = 0.1f;         // stop when the best Score_New / N_m falls below this
   float min_centre_distance_ratio = 0.1f;  // a pose whose model centre lies closer than this
                                            // (times diam(M)) to an accepted one is a repeat
-  void validate() const;                   // throws binpick::Error naming the field
+  void validate() const;                   // throws core::Error naming the field
 };
 
 class MultipleSelection {

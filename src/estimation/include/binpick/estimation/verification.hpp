@@ -18,7 +18,7 @@ struct VerificationParams {
   float max_normal_angle_deg = 180.0f;  // a fit also needs the scene normal within this angle of
                                         // the moved model normal (180: off, as in the paper)
   int threads = 0;                      // 0: all hardware threads
-  void validate() const;                // throws binpick::Error naming the field
+  void validate() const;                // throws core::Error naming the field
 };
 
 struct VerifiedCandidate {

@@ -20,7 +20,7 @@ struct VotingParams {
                                     // reference's best vote count (Drost keeps near-peaks)
   uint64_t seed = 1;                // which points are references and referred points
   int threads = 0;                  // 0: all hardware threads
-  void validate() const;            // throws binpick::Error naming the field
+  void validate() const;            // throws core::Error naming the field
 };
 
 struct PoseCandidate {

@@ -14,7 +14,7 @@ class SceneVoxelGrid {
  public:
   static constexpr int32_t kEmpty = -1;
 
-  // Throws binpick::Error on a non-positive voxel size or a non-finite scene point.
+  // Throws core::Error on a non-positive voxel size or a non-finite scene point.
   SceneVoxelGrid(const std::vector<Eigen::Vector3f>& scene_points, float voxel_size);
 
   // Voxel(p) of eq. 3: the index of a scene point near p, or kEmpty.

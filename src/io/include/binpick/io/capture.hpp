@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace binpick {
+namespace binpick::io {
 
 // What the projector shows, as plain data; reconstruction turns it into patterns and decodes them.
 struct PatternSetSpec {
@@ -20,7 +20,7 @@ struct PatternSetSpec {
   bool row_codes = true;        // Gray code of the projector row, each bit with its inverse
   int phase_steps = 4;          // phase-shift images per coded axis (0: none, else >= 3)
   int phase_period = 16;        // projector pixels per sine period (>= 4)
-  void validate() const;        // throws binpick::Error naming the field
+  void validate() const;        // throws core::Error naming the field
 };
 
 struct CaptureMetadata {
@@ -45,7 +45,7 @@ struct Capture {
   std::vector<cv::Mat> images;  // CV_8UC1 or CV_16UC1, one per pattern, in capture order
 };
 
-// Reads DIR/capture.json. Throws binpick::Error "PATH: ..." on a missing file, malformed JSON, a
+// Reads DIR/capture.json. Throws core::Error "PATH: ..." on a missing file, malformed JSON, a
 // missing or mistyped key, an unsupported version, or lists of different lengths.
 CaptureMetadata readCaptureMetadata(const std::string& directory);
 // Reads the metadata and every image, decoding the images on `threads` threads (0: all cores).
@@ -64,4 +64,4 @@ void writeCapture(const std::string& directory, Capture capture, int threads = 0
 // The current time as ISO 8601 UTC, e.g. "2026-01-31T12:00:00.123Z".
 std::string utcTimestamp();
 
-}  // namespace binpick
+}  // namespace binpick::io

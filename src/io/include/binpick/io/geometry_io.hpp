@@ -1,7 +1,7 @@
 #pragma once
 // Reading and writing meshes and point clouds: PLY (ascii, binary little/big endian), PCD (ascii,
 // binary, binary_compressed), STL (ascii, binary), OBJ. Every reader validates what it returns
-// and throws binpick::Error naming the file and what was wrong (missing, truncated, corrupt,
+// and throws core::Error naming the file and what was wrong (missing, truncated, corrupt,
 // NaN, wrong counts). Free functions without shared state: thread-safe.
 //
 // Errors: every message is "PATH: what was wrong", PATH exactly as passed in, e.g.
@@ -34,7 +34,7 @@
 
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick {
+namespace binpick::io {
 
 // What a model file holds: a mesh when the file has faces, otherwise only a cloud.
 struct ModelGeometry {
@@ -56,10 +56,10 @@ TriangleMesh readMesh(const std::string& path);
 PointCloud readPointCloud(const std::string& path);
 
 // Binary round-trips every float bit (NaN pixels included). Ascii writes the shortest decimal text
-// that reads back to the same float (PLY; PCD ascii uses 9 significant digits via PCL).
+// that reads back to the same float (PLY and PCD).
 enum class Encoding { Ascii, Binary };
 // Writes .ply (binary little endian or ascii; organized grid as `obj_info organized W H`) or .pcd
-// (binary or ascii, via PCL; grid as WIDTH/HEIGHT) by extension, with normals (PLY nx ny nz, PCD
+// (binary or ascii, as PCL writes them; grid as WIDTH/HEIGHT) by extension, with normals (PLY nx ny nz, PCD
 // normal_x/y/z) and intensities (PLY `property float intensity` after the coordinates and normals,
 // PCD float field `intensity`) when the cloud has them. Refuses, with the same errors, any cloud
 // the readers would reject (empty, NaN in an unorganized cloud, zero normal, non-finite intensity
@@ -71,4 +71,4 @@ void writePointCloud(const std::string& path, const PointCloud& cloud,
 // non-finite vertices and meshes whose faces all have zero area.
 void writeMesh(const std::string& path, const TriangleMesh& mesh);
 
-}  // namespace binpick
+}  // namespace binpick::io

@@ -6,7 +6,7 @@
 #include <array>
 #include <string>
 
-namespace binpick {
+namespace binpick::io {
 
 struct LensIntrinsics {
   int width = 0;   // pixels
@@ -15,7 +15,7 @@ struct LensIntrinsics {
   double cx = 0.0, cy = 0.0;  // principal point, pixels
   std::array<double, 5> distortion{};  // k1, k2, p1, p2, k3 (OpenCV's order)
 
-  // Throws binpick::Error naming `what` (e.g. "camera") and the bad field.
+  // Throws core::Error naming `what` (e.g. "camera") and the bad field.
   void validate(const std::string& what) const;
 
   // Where a point of the device frame (z > 0) lands on the image, lens distortion included.
@@ -34,4 +34,4 @@ struct LensIntrinsics {
   LensIntrinsics scaled(double factor) const;
 };
 
-}  // namespace binpick
+}  // namespace binpick::io

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace binpick {
+namespace binpick::io {
 
 // A cloud in one frame and one unit. Organized clouds (width x height, row-major, as a camera sees
 // them) keep invalid pixels as NaN points so that the pixel grid stays intact.
@@ -37,11 +37,11 @@ struct TriangleMesh {
   bool empty() const { return triangles.empty(); }
 };
 
-// Throws binpick::Error naming `what` when a point, normal or intensity is not finite (NaN points
+// Throws core::Error naming `what` when a point, normal or intensity is not finite (NaN points
 // of an organized cloud are allowed: they mark invalid pixels, and their normals and intensities
 // are not checked) or a normal or intensity count does not match.
 void validateCloud(const PointCloud& cloud, const std::string& what);
-// Throws binpick::Error naming `what` on non-finite vertices or out-of-range triangle indices.
+// Throws core::Error naming `what` on non-finite vertices or out-of-range triangle indices.
 void validateMesh(const TriangleMesh& mesh, const std::string& what);
 
-}  // namespace binpick
+}  // namespace binpick::io

@@ -12,7 +12,7 @@
 
 #include "binpick/io/lens.hpp"
 
-namespace binpick {
+namespace binpick::io {
 
 struct RigCalibration {
   LensIntrinsics camera;
@@ -21,7 +21,7 @@ struct RigCalibration {
   // R, T with the camera first). Metres.
   Eigen::Isometry3d T_projector_camera = Eigen::Isometry3d::Identity();
 
-  // Throws binpick::Error naming the bad field; R must be a rotation (orthonormal, det +1).
+  // Throws core::Error naming the bad field; R must be a rotation (orthonormal, det +1).
   void validate() const;
 };
 
@@ -48,7 +48,7 @@ struct RigCalibrationQuality {
   int viewsUsed() const;
 };
 
-// Throws binpick::Error "PATH: ..." on a missing/unreadable file, a missing key, a matrix of the
+// Throws core::Error "PATH: ..." on a missing/unreadable file, a missing key, a matrix of the
 // wrong size, a non-finite value or a non-rotation R.
 RigCalibration readRigCalibration(const std::string& path);
 // Written through a temporary file and a rename: a reader never sees half a file.
@@ -57,7 +57,7 @@ void writeRigCalibration(const std::string& path, const RigCalibration& rig);
 void writeRigCalibration(const std::string& path, const RigCalibration& rig,
                          const RigCalibrationQuality& quality);
 // The `quality` map of a calibration file; empty when the file has none (written by hand or by
-// older versions). Throws binpick::Error "PATH: ..." on an unreadable file or a malformed map.
+// older versions). Throws core::Error "PATH: ..." on an unreadable file or a malformed map.
 std::optional<RigCalibrationQuality> readRigCalibrationQuality(const std::string& path);
 
-}  // namespace binpick
+}  // namespace binpick::io

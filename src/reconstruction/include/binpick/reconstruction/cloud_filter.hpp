@@ -22,10 +22,10 @@ struct CloudFilterParams {
   double speckle_max_step = 0.002;  // metres
   int speckle_min_pixels = 50;
   int threads = 0;  // 0: all cores
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
-// `cloud` must be organized and `status` CV_8UC1 of its size (throws binpick::Error otherwise).
-void filterCloud(PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params);
+// `cloud` must be organized and `status` CV_8UC1 of its size (throws core::Error otherwise).
+void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params);
 
 }  // namespace binpick::reconstruction

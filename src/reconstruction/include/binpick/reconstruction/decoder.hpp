@@ -56,7 +56,7 @@ struct DecodeParams {
   double max_saturated_fraction = 0.5;
   double max_pair_sum_error = 0.25;
   int threads = 0;  // 0: all cores
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 // Copies share the cv::Mat pixels (as cv::Mat does): clone() a member before changing it.
@@ -75,11 +75,11 @@ struct DecodedCapture {
   bool has_phase = false;  // the capture had phase-shift images (sub-pixel coordinates)
 };
 
-// Throws binpick::Error naming what is wrong when the capture cannot be decoded as a whole: the
+// Throws core::Error naming what is wrong when the capture cannot be decoded as a whole: the
 // images do not match the metadata's pattern set (count, order, size, type), the white image is
 // no brighter than the black one (projector off), the white image is saturated over more than
 // max_saturated_fraction of the lit pixels, or a Gray pair does not add up to white + black (a
 // missing, black or shuffled frame).
-DecodedCapture decodeCapture(const Capture& capture, const DecodeParams& params = {});
+DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& params = {});
 
 }  // namespace binpick::reconstruction

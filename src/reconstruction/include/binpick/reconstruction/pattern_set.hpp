@@ -25,8 +25,8 @@ struct Pattern {
   std::string name() const;
 };
 
-std::vector<Pattern> patternSequence(const PatternSetSpec& spec);
-std::vector<std::string> patternNames(const PatternSetSpec& spec);
+std::vector<Pattern> patternSequence(const io::PatternSetSpec& spec);
+std::vector<std::string> patternNames(const io::PatternSetSpec& spec);
 
 // Bits needed to give each of `size` projector columns (or rows) its own code: ceil(log2(size)).
 int grayCodeBits(int size);
@@ -40,8 +40,8 @@ inline unsigned grayDecode(unsigned code) {
 
 // Brightness in [0, 1] of the projector pixel at `coordinate` (its column for a column pattern,
 // its row for a row pattern, ignored for white and black), as an 8-bit projector shows it.
-double patternBrightness(const Pattern& pattern, const PatternSetSpec& spec, int coordinate);
+double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int coordinate);
 // The projector image (projector_width x projector_height, CV_8UC1).
-cv::Mat patternImage(const Pattern& pattern, const PatternSetSpec& spec);
+cv::Mat patternImage(const Pattern& pattern, const io::PatternSetSpec& spec);
 
 }  // namespace binpick::reconstruction

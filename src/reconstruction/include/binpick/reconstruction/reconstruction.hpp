@@ -22,7 +22,7 @@ struct ReconstructionParams {
   CloudFilterParams filter;
   // Sets the thread count of every stage (0: all cores).
   void setThreads(int threads);
-  void validate() const;  // throws binpick::Error naming the stage and field
+  void validate() const;  // throws core::Error naming the stage and field
 };
 
 struct ReconstructionTimings {  // milliseconds
@@ -35,7 +35,7 @@ struct ReconstructionTimings {  // milliseconds
 struct Reconstruction {
   // Organized (camera width x height), camera frame, metres, NaN where there is no point; the
   // intensities are the white image on the sensor's scale [0, 1], for every pixel.
-  PointCloud cloud;
+  io::PointCloud cloud;
   cv::Mat status;  // CV_8UC1 PixelStatus per pixel
   StatusCounts counts;
   ReconstructionTimings timings;
@@ -44,16 +44,16 @@ struct Reconstruction {
 
 class Reconstructor {
  public:
-  // Precomputes what depends on the calibration. Throws binpick::Error on an invalid rig or
+  // Precomputes what depends on the calibration. Throws core::Error on an invalid rig or
   // params.
-  Reconstructor(const RigCalibration& rig, const ReconstructionParams& params = {});
+  Reconstructor(const io::RigCalibration& rig, const ReconstructionParams& params = {});
 
-  // Throws binpick::Error when the capture cannot be decoded (decoder.hpp) or its images are not
+  // Throws core::Error when the capture cannot be decoded (decoder.hpp) or its images are not
   // the size of the calibration's camera.
-  Reconstruction reconstruct(const Capture& capture) const;
+  Reconstruction reconstruct(const io::Capture& capture) const;
 
   const ReconstructionParams& params() const { return params_; }
-  const RigCalibration& rig() const { return triangulator_.rig(); }
+  const io::RigCalibration& rig() const { return triangulator_.rig(); }
 
  private:
   ReconstructionParams params_;

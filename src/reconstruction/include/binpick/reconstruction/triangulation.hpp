@@ -34,32 +34,32 @@ struct TriangulationParams {
   // cent at most for real lenses). Used only when rows were decoded.
   double max_epipolar_error = 1.5;
   int threads = 0;  // 0: all cores
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct TriangulatedCloud {
   // Organized (camera width x height), camera frame, metres; NaN where status is not Valid.
-  PointCloud cloud;
+  io::PointCloud cloud;
   cv::Mat status;  // CV_8UC1 PixelStatus: the decoder's, plus Inconsistent / NoIntersection
 };
 
 class Triangulator {
  public:
   // Precomputes what depends only on the calibration (the camera ray of every pixel, the
-  // projector's undistortion). Throws binpick::Error on an invalid rig or params.
-  Triangulator(const RigCalibration& rig, const TriangulationParams& params = {});
+  // projector's undistortion). Throws core::Error on an invalid rig or params.
+  Triangulator(const io::RigCalibration& rig, const TriangulationParams& params = {});
   ~Triangulator();
   Triangulator(Triangulator&&) noexcept;
   Triangulator& operator=(Triangulator&&) noexcept;
 
-  // Throws binpick::Error when `decoded` is not the camera's image size.
+  // Throws core::Error when `decoded` is not the camera's image size.
   TriangulatedCloud triangulate(const DecodedCapture& decoded) const;
 
-  const RigCalibration& rig() const;
+  const io::RigCalibration& rig() const;
 
  private:
   struct Tables;
-  RigCalibration rig_;
+  io::RigCalibration rig_;
   TriangulationParams params_;
   std::unique_ptr<const Tables> tables_;
 };

@@ -29,7 +29,7 @@
 #include "binpick/io/point_cloud.hpp"
 #include "binpick/io/rig_calibration.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 // The board types and their names are the calibration tools' own.
 using calibration::BoardType;
@@ -51,7 +51,7 @@ struct BoardSpec {
   double black_albedo = 0.05;  // of the black squares and marker bits
   // The geometry the calibration tools detect (type, squares, markers, dictionary).
   calibration::BoardLayout layout() const;
-  // Throws binpick::Error naming the field: "BoardLayout.marker_size ..." for the geometry,
+  // Throws core::Error naming the field: "BoardLayout.marker_size ..." for the geometry,
   // "BoardSpec.thickness ..." for the rest.
   void validate() const;
 };
@@ -65,14 +65,14 @@ struct BoardCorner {
 class CalibrationBoard {
  public:
   // The print is held as a texture of square texels no larger than `texel_size` metres (a
-  // whole number of texels per square). Throws binpick::Error naming the field of a bad spec
+  // whole number of texels per square). Throws core::Error naming the field of a bad spec
   // or a non-positive texel_size.
   explicit CalibrationBoard(const BoardSpec& spec, double texel_size = 1e-4);
 
   const BoardSpec& spec() const { return spec_; }
   // A closed box, outward winding, in the board frame: the printed face z = 0 (normal -z) over
   // printedFace(), the back at z = thickness.
-  const TriangleMesh& mesh() const { return mesh_; }
+  const io::TriangleMesh& mesh() const { return mesh_; }
   // Every corner in id order.
   const std::vector<BoardCorner>& corners() const { return corners_; }
   // The printed face in the board frame (x, y), margin included: the board's outline.
@@ -89,7 +89,7 @@ class CalibrationBoard {
 
  private:
   BoardSpec spec_;
-  TriangleMesh mesh_;
+  io::TriangleMesh mesh_;
   std::vector<BoardCorner> corners_;
   Eigen::AlignedBox2d face_;
   Eigen::Vector2d squares_origin_;  // board (x, y) of the squares' top-left outer corner
@@ -110,7 +110,7 @@ struct CornerObservation {
 // The corners that both devices see on the board at T_camera_board: inside both images and on
 // the side of the print that faces each device (the board alone hides none of its own corners).
 std::vector<CornerObservation> observeCorners(const CalibrationBoard& board,
-                                              const RigCalibration& rig,
+                                              const io::RigCalibration& rig,
                                               const Eigen::Isometry3d& T_camera_board);
 
 // Random board poses in the working volume, for a calibration sequence.
@@ -129,22 +129,22 @@ struct BoardPoseParams {
   // direction to each device centre, at each corner of the outline.
   double min_facing_cosine = 0.3;
   int max_attempts = 1000;  // draws per pose before giving up
-  void validate() const;    // throws binpick::Error naming the field
+  void validate() const;    // throws core::Error naming the field
 };
 
 // Whether the whole board outline lies `image_margin` pixels inside the camera image and the
 // projector image, in front of both, and the print faces both by `min_facing_cosine`.
-bool boardInView(const CalibrationBoard& board, const RigCalibration& rig,
+bool boardInView(const CalibrationBoard& board, const io::RigCalibration& rig,
                  const Eigen::Isometry3d& T_camera_board, double image_margin,
                  double min_facing_cosine);
 
 // `params.count` poses T_camera_board. Each draw takes a distance, an offset, a tilt about a
 // random axis in the image plane and an in-plane rotation; a draw that fails boardInView is
 // dropped and the next one taken from the same generator, so a seed gives the same poses on any
-// machine (and the first k poses do not depend on count). Throws binpick::Error on bad params
+// machine (and the first k poses do not depend on count). Throws core::Error on bad params
 // or when max_attempts draws in a row fail (the board is too large for the views).
 std::vector<Eigen::Isometry3d> randomBoardPoses(const CalibrationBoard& board,
-                                                const RigCalibration& rig,
+                                                const io::RigCalibration& rig,
                                                 const BoardPoseParams& params);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

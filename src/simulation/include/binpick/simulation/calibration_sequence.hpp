@@ -19,13 +19,13 @@
 #include "binpick/simulation/sensor_geometry.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct CalibrationSequenceParams {
   BoardSpec board;
   BoardPoseParams poses;  // count, seed and the working volume
-  RigCalibration rig = makeVirtualRig();
-  PatternSetSpec pattern_set;  // its projector size must be the rig projector's
+  io::RigCalibration rig = makeVirtualRig();
+  io::PatternSetSpec pattern_set;  // its projector size must be the rig projector's
   // Image formation, bit depth included. Its seed is ignored: renderCalibrationCapture takes the
   // noise seed as an argument, and writeCalibrationSequence derives one per pose from poses.seed.
   PhotometryParams photometry;
@@ -45,12 +45,12 @@ struct CalibrationSequenceParams {
   double exposure_us = 8000.0;
   double max_white_counts = 235.0;
   std::string source = "binpick virtual cell: calibration sequence";
-  void validate() const;  // throws binpick::Error naming the field, nested ones included
+  void validate() const;  // throws core::Error naming the field, nested ones included
 };
 
 // One pose's capture: the images under every pattern of params.pattern_set, in pattern order,
 // and the metadata (source, exposure, pattern names). `noise_seed` seeds the image noise.
-Capture renderCalibrationCapture(const CalibrationBoard& board,
+io::Capture renderCalibrationCapture(const CalibrationBoard& board,
                                  const Eigen::Isometry3d& T_camera_board,
                                  const CalibrationSequenceParams& params, uint64_t noise_seed);
 // The capture's first image, the white one, alone (the same pixels): for views that need no
@@ -61,7 +61,7 @@ cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board,
 
 // Draws params.poses.count poses, renders and writes each as DIR/pose_NNN/, then writes
 // DIR/truth/rig.yaml and DIR/truth/board.json last (a directory with truth/board.json holds a
-// whole sequence). Returns the poses T_camera_board. Throws binpick::Error on bad params, when
+// whole sequence). Returns the poses T_camera_board. Throws core::Error on bad params, when
 // DIR exists and is not empty (never mixes two sequences), or when a file cannot be written.
 std::vector<Eigen::Isometry3d> writeCalibrationSequence(const std::string& directory,
                                                         const CalibrationSequenceParams& params);
@@ -77,8 +77,8 @@ struct CalibrationTruth {
   std::vector<BoardCorner> corners;  // the board's corners in the board frame
   std::vector<CalibrationTruthPose> poses;
 };
-// Throws binpick::Error "PATH: ..." on a missing file, malformed JSON, or a missing or mistyped
+// Throws core::Error "PATH: ..." on a missing file, malformed JSON, or a missing or mistyped
 // key.
 CalibrationTruth readCalibrationTruth(const std::string& directory);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

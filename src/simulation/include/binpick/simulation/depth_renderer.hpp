@@ -9,7 +9,7 @@
 
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct PinholeCamera {
   int width = 1280;
@@ -21,7 +21,7 @@ struct PinholeCamera {
 };
 
 struct RenderObject {
-  const TriangleMesh* mesh = nullptr;
+  const io::TriangleMesh* mesh = nullptr;
   Eigen::Isometry3d T_camera_object = Eigen::Isometry3d::Identity();
   int32_t id = 0;  // written to the instance image
 };
@@ -36,6 +36,6 @@ struct DepthImage {
 DepthImage renderDepth(const PinholeCamera& camera, const std::vector<RenderObject>& objects);
 
 // Organized cloud (width x height, NaN where nothing was hit) from a depth image.
-PointCloud depthToCloud(const PinholeCamera& camera, const DepthImage& image);
+io::PointCloud depthToCloud(const PinholeCamera& camera, const DepthImage& image);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

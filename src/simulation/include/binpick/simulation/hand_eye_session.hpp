@@ -17,11 +17,11 @@
 
 #include "binpick/calibration/hand_eye.hpp"
 #include "binpick/io/rig_calibration.hpp"
-#include "binpick/io/robot_orientation.hpp"
+#include "binpick/core/orientation.hpp"
 #include "binpick/simulation/calibration_board.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 // The virtual cell's truth for each setup (docs/virtual-cell.md): the camera 0.9 m above the
 // bin looking down (config/demo-binpickd.yaml), the board 30 mm out from the flange, turned and
@@ -39,9 +39,9 @@ struct HandEyeSessionParams {
   // rotation vector about the flange's axes (degrees). Real arms: ~0.1 mm, ~0.05 deg.
   double robot_noise_mm = 0.0;
   double robot_noise_deg = 0.0;
-  robot::Orientation orientation = robot::Orientation::EulerZYX;  // of poses.txt
+  core::Orientation orientation = core::Orientation::EulerZYX;  // of poses.txt
   BoardSpec board;
-  RigCalibration rig = makeVirtualRig();
+  io::RigCalibration rig = makeVirtualRig();
   BoardPoseParams poses;  // the working volume; count and seed come from views and seed
   // The truth: T_base_camera and T_flange_board (eye-to-hand), T_flange_camera and
   // T_base_board (eye-in-hand); the other setup's pair is unused.
@@ -49,7 +49,7 @@ struct HandEyeSessionParams {
   Eigen::Isometry3d T_flange_board = virtualCellFlangeBoard(BoardSpec{});
   Eigen::Isometry3d T_flange_camera = virtualCellFlangeCamera();
   Eigen::Isometry3d T_base_board = virtualCellBaseBoard(BoardSpec{});
-  void validate() const;  // throws binpick::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct HandEyeSessionView {
@@ -66,7 +66,7 @@ struct HandEyeSession {
   std::vector<HandEyeSessionView> views;
 };
 
-// The poses only, no images: for solver tests and benchmarks. Throws binpick::Error on bad
+// The poses only, no images: for solver tests and benchmarks. Throws core::Error on bad
 // params.
 HandEyeSession simulateHandEyeSession(const HandEyeSessionParams& params);
 
@@ -76,9 +76,9 @@ cv::Mat renderHandEyeImage(const CalibrationBoard& board, const Eigen::Isometry3
                            const HandEyeSessionParams& params, uint64_t noise_seed);
 
 // Simulates, renders and writes the views directory and its truth; returns the session. Throws
-// binpick::Error on bad params, when DIR exists and is not empty, or when a file cannot be
+// core::Error on bad params, when DIR exists and is not empty, or when a file cannot be
 // written.
 HandEyeSession writeHandEyeSession(const std::string& directory,
                                    const HandEyeSessionParams& params);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

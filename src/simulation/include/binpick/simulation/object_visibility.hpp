@@ -9,7 +9,7 @@
 #include "binpick/simulation/ray_caster.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct ObjectVisibility {
   int visible_lit_pixels = 0;     // camera pixels seeing this object, lit, in the full scene
@@ -21,18 +21,18 @@ struct ObjectVisibility {
 // computeSensorGeometry(rig, scene, ...) with the same params. Only the pixels inside each
 // object's projected bounding box are examined, and of those only the ones where the object is
 // hidden or shadowed in `geometry` are cast again, against the object alone. Throws
-// binpick::Error on an invalid rig or params, or a geometry of the wrong size.
-std::vector<ObjectVisibility> computeObjectVisibility(const RigCalibration& rig,
+// core::Error on an invalid rig or params, or a geometry of the wrong size.
+std::vector<ObjectVisibility> computeObjectVisibility(const io::RigCalibration& rig,
                                                       const RayCaster& scene,
                                                       const SensorGeometry& geometry,
                                                       const SensorGeometryParams& params = {});
 
 // The same for the objects listed (indices into `scene`), in that order: e.g. the parts but not
-// the bin, whose bounding box covers much of the image. Throws binpick::Error on a bad index.
-std::vector<ObjectVisibility> computeObjectVisibilityOf(const RigCalibration& rig,
+// the bin, whose bounding box covers much of the image. Throws core::Error on a bad index.
+std::vector<ObjectVisibility> computeObjectVisibilityOf(const io::RigCalibration& rig,
                                                         const RayCaster& scene,
                                                         const SensorGeometry& geometry,
                                                         const std::vector<int>& object_indices,
                                                         const SensorGeometryParams& params = {});
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -9,7 +9,7 @@
 
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 // The rotations that map a part onto itself (about its model origin).
 struct Symmetry {
@@ -20,20 +20,20 @@ struct Symmetry {
 struct Part {
   std::string name;
   std::string description;
-  TriangleMesh mesh;
+  io::TriangleMesh mesh;
   Symmetry symmetry;
 };
 
 // Names of the built-in parts, e.g. "l_bracket", "clamp".
 std::vector<std::string> partNames();
-// Builds a built-in part; throws binpick::Error naming the unknown part.
+// Builds a built-in part; throws core::Error naming the unknown part.
 Part makePart(const std::string& name);
 
 // A prism: a simple polygon (counter-clockwise, metres, in the xy plane) extruded along z by
 // `thickness`, centred on z = 0. Throws on a degenerate or self-intersecting profile.
 // The profile keeps its coordinates (x, y are not re-centred). A clockwise profile is reversed,
 // and repeated or collinear points are dropped, so the mesh is always closed with outward normals.
-TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thickness);
+io::TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thickness);
 
 // A lathe (surface of revolution): a simple polygon in the (r, z) half-plane (r >= 0; either
 // orientation; repeated or collinear points are dropped) revolved about the z axis with `segments`
@@ -41,7 +41,7 @@ TriangleMesh makePrism(const std::vector<Eigen::Vector2d>& profile, double thick
 // vertex each (no degenerate triangles), and a profile edge lying on the axis bounds no surface.
 // The mesh is closed with outward normals and keeps the profile's z (no re-centring). Throws on a
 // point with r < 0, a degenerate or self-intersecting profile, or too few segments.
-TriangleMesh makeLathe(const std::vector<Eigen::Vector2d>& profile, int segments);
+io::TriangleMesh makeLathe(const std::vector<Eigen::Vector2d>& profile, int segments);
 
 // Rotation + translation error between an estimate and the truth, minimised over the symmetry:
 // the estimate is compared with every truth * S (S a symmetry rotation, in the model frame), and
@@ -54,4 +54,4 @@ struct PoseError {
 PoseError poseError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth,
                     const Symmetry& symmetry);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -11,7 +11,7 @@
 
 #include "binpick/io/capture.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct PhotometryParams {
   // Counts a full-white projector pixel gives on a white Lambertian surface facing the projector
@@ -35,7 +35,7 @@ struct PhotometryParams {
   int bit_depth = 8;                  // 8 or 16 (16 scales the 8-bit counts by 257)
   uint64_t seed = 1;
   int threads = 0;                    // 0: all cores
-  void validate() const;              // throws binpick::Error naming the field
+  void validate() const;              // throws core::Error naming the field
 };
 
 // What one camera pixel sees, in 8-bit counts, independent of the pattern.
@@ -50,14 +50,14 @@ struct PixelLighting {
 
 // One image per pattern of `spec` (patternSequence order), `width` x `height`, CV_8UC1 or
 // CV_16UC1. Noise is keyed by (pattern, pixel): the same seed gives the same images on any
-// number of threads. Throws binpick::Error on a size mismatch or bad params.
+// number of threads. Throws core::Error on a size mismatch or bad params.
 std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width,
-                                         int height, const PatternSetSpec& spec,
+                                         int height, const io::PatternSetSpec& spec,
                                          const PhotometryParams& params);
 
 // renderPatternImages(...).front(), the white image, alone: the same pixels for a fraction of
 // the cost, for views that need no patterns (hand-eye sessions).
 cv::Mat renderWhiteImage(const std::vector<PixelLighting>& pixels, int width, int height,
-                         const PatternSetSpec& spec, const PhotometryParams& params);
+                         const io::PatternSetSpec& spec, const PhotometryParams& params);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

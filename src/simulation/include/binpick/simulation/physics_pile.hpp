@@ -13,7 +13,7 @@
 
 #include "binpick/io/point_cloud.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 // The inside of the bin. Bin frame: origin at the centre of the floor's top face, x along the
 // length, z up; the walls stand outside this area, from the floor up to wall_height.
@@ -25,8 +25,8 @@ struct BinInterior {
 
 // The bin as the rig sees it and as the physics holds it: a closed triangle mesh in the bin frame,
 // the floor slab (10 mm thick, below z = 0) and four walls (10 mm thick) outside the interior.
-// Throws binpick::Error unless the three sizes are positive and finite.
-TriangleMesh binMesh(const BinInterior& bin);
+// Throws core::Error unless the three sizes are positive and finite.
+io::TriangleMesh binMesh(const BinInterior& bin);
 
 struct PhysicsParams {
   // Parts are released in layers above whatever already lies in the bin: each part's lowest point
@@ -73,7 +73,7 @@ struct PhysicsParams {
   // part gaps at rest are about twice this.
   double collision_margin = 0.0004;  // metres
 
-  // Throws binpick::Error naming the first bad field as `name`.field, e.g.
+  // Throws core::Error naming the first bad field as `name`.field, e.g.
   // "PhysicsParams.friction".
   void validate(const std::string& name = "PhysicsParams") const;
 };
@@ -97,11 +97,11 @@ struct PhysicsPile {
 // max_simulated_time runs out. The orientations, positions and release heights are random, drawn
 // from `seed`. A part that comes to rest outside the bin is taken out and dropped again; one still
 // outside when the time runs out is left out of the result and counted in `lost`, never returned.
-// Throws binpick::Error on bad params or bin, a mesh with bad indices or no enclosed volume (empty,
+// Throws core::Error on bad params or bin, a mesh with bad indices or no enclosed volume (empty,
 // inside out), or a part too large to be released between the walls in every orientation. A mesh
 // with holes is not detected: its collision shape is then the decomposition of what its surface
 // appears to enclose.
-PhysicsPile simulatePile(const TriangleMesh& part, int objects, const BinInterior& bin,
+PhysicsPile simulatePile(const io::TriangleMesh& part, int objects, const BinInterior& bin,
                          const PhysicsParams& params, uint64_t seed);
 
 // How the pile re-settled after a part was taken out (PhysicsBin::remove).
@@ -121,9 +121,9 @@ struct SettleResult {
 class PhysicsBin {
  public:
   // Builds the part's collision shape (0.03-0.15 s for the built-in parts). Throws
-  // binpick::Error on bad params or bin, a bad mesh, or a part too large for the bin, as
+  // core::Error on bad params or bin, a bad mesh, or a part too large for the bin, as
   // simulatePile does.
-  PhysicsBin(const TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params,
+  PhysicsBin(const io::TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params,
              uint64_t seed);
   ~PhysicsBin();
   PhysicsBin(PhysicsBin&&) noexcept;
@@ -134,7 +134,7 @@ class PhysicsBin {
   // Drops `objects` more parts onto whatever lies in the bin, exactly as simulatePile does
   // (simulatePile is a fresh PhysicsBin's first drop). The time limit max_simulated_time and
   // the counts (settled, lost, redrops, layers, time, steps) are this call's; T_bin_object lists
-  // every part now in the bin, as poses() does. Throws binpick::Error when objects < 0.
+  // every part now in the bin, as poses() does. Throws core::Error when objects < 0.
   PhysicsPile drop(int objects);
 
   // T_bin_object of every part in the bin, in the order the parts were added (the order of their
@@ -145,7 +145,7 @@ class PhysicsBin {
   // Takes part `index` (into poses()) out of the world, wakes every other part (resting parts
   // sleep, and Bullet would leave one hanging in the air when its support goes), steps until
   // everything is at rest again or max_resettle_time runs out, then takes out parts that ended
-  // outside the bin. Throws binpick::Error on an index outside [0, size()).
+  // outside the bin. Throws core::Error on an index outside [0, size()).
   SettleResult remove(int index);
 
  private:
@@ -153,4 +153,4 @@ class PhysicsBin {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -13,7 +13,7 @@
 #include "binpick/simulation/physics_pile.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct PileParams {
   int objects = 20;
@@ -28,11 +28,11 @@ struct PileParams {
   double max_view_angle_deg = 80.0;
   double part_albedo = 0.55;     // diffuse reflectance of the parts' surface
   double bin_albedo = 0.30;      // and of the bin's
-  RigCalibration rig = makeVirtualRig();
+  io::RigCalibration rig = makeVirtualRig();
   PhysicsParams physics;
   uint64_t seed = 1;
   int threads = 0;               // 0: all cores
-  void validate() const;         // throws binpick::Error naming the field
+  void validate() const;         // throws core::Error naming the field
 };
 
 struct ObjectTruth {
@@ -46,12 +46,12 @@ struct ObjectTruth {
 struct PileScene {
   // What the sensor measures (an ideal decoder): organized, camera frame, the points both seen and
   // lit, with noise and dropouts; NaN elsewhere.
-  PointCloud cloud;
-  PointCloud exact_cloud;      // every surface point the camera sees, with normals; no noise
+  io::PointCloud cloud;
+  io::PointCloud exact_cloud;      // every surface point the camera sees, with normals; no noise
   std::vector<float> depth;    // exact camera z per pixel, NaN where nothing is seen
   std::vector<int32_t> instance;  // per pixel: object index, -2 the bin, -1 nothing
   std::vector<ObjectTruth> objects;  // objects[i] has instance id i
-  RigCalibration rig;
+  io::RigCalibration rig;
   // Bin frame: origin at the centre of the floor's top face, x along bin_length, z up. The camera
   // looks straight down: bin x = camera x, bin y = camera -y, floor centre at camera z =
   // camera_height.
@@ -60,13 +60,13 @@ struct PileScene {
 };
 
 // Drops the parts into the bin (Bullet rigid bodies, physics_pile.hpp), then casts the rig's
-// camera and projector rays into the scene. Throws binpick::Error on bad params or a part that
+// camera and projector rays into the scene. Throws core::Error on bad params or a part that
 // cannot be dropped between the walls.
-PileScene generatePile(const TriangleMesh& part, const PileParams& params);
+PileScene generatePile(const io::TriangleMesh& part, const PileParams& params);
 
 // The camera images of `scene` under every pattern of `patterns` (patternSequence order).
-std::vector<cv::Mat> renderPileImages(const TriangleMesh& part, const PileScene& scene,
-                                      const PileParams& params, const PatternSetSpec& patterns,
+std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileScene& scene,
+                                      const PileParams& params, const io::PatternSetSpec& patterns,
                                       const PhotometryParams& photometry);
 
 struct PileCapture {
@@ -75,29 +75,29 @@ struct PileCapture {
 };
 
 // generatePile and renderPileImages in one pass: the rig's rays are cast once for both.
-PileCapture generatePileCapture(const TriangleMesh& part, const PileParams& params,
-                                const PatternSetSpec& patterns, const PhotometryParams& photometry);
+PileCapture generatePileCapture(const io::TriangleMesh& part, const PileParams& params,
+                                const io::PatternSetSpec& patterns, const PhotometryParams& photometry);
 
 // The parts at the given poses (T_bin_object, bin frame), seen by the rig, with the same truth as
 // generatePile gives for its own poses (generatePile is simulatePile, then this): no physics is
 // run, the poses are taken as they are (a PhysicsBin gives them inside the bin and apart);
 // params.objects and params.physics are not used. objects[i] is T_bin_objects[i];
 // scene.physics holds the poses, settled, and no counts. No poses: the empty bin. Throws
-// binpick::Error on bad params, a bad part mesh or a pose that is not a finite rigid transform.
-PileScene viewPile(const TriangleMesh& part, const PileParams& params,
+// core::Error on bad params, a bad part mesh or a pose that is not a finite rigid transform.
+PileScene viewPile(const io::TriangleMesh& part, const PileParams& params,
                    const std::vector<Eigen::Isometry3d>& T_bin_objects);
 
 // viewPile and its pattern images in one pass, as generatePileCapture.
-PileCapture renderPileCaptureAt(const TriangleMesh& part, const PileParams& params,
+PileCapture renderPileCaptureAt(const io::TriangleMesh& part, const PileParams& params,
                                 const std::vector<Eigen::Isometry3d>& T_bin_objects,
-                                const PatternSetSpec& patterns,
+                                const io::PatternSetSpec& patterns,
                                 const PhotometryParams& photometry);
 
 // The images as the rig would have recorded them: a Capture with its metadata (image size, bit
 // depth, pattern set and names, a nominal exposure, the time now), ready for writeCapture or the
 // decoder. `source` describes the scene in the metadata.
-Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
-                        const PatternSetSpec& patterns, const PhotometryParams& photometry,
+io::Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
+                        const io::PatternSetSpec& patterns, const PhotometryParams& photometry,
                         const std::string& source);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

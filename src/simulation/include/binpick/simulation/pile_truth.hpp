@@ -7,7 +7,7 @@
 
 #include "binpick/simulation/pile.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct PileTruth {
   std::string part;  // built-in part name, or the mesh file the pile was made of
@@ -15,12 +15,12 @@ struct PileTruth {
   std::vector<ObjectTruth> objects;
 };
 
-// Writes DIR/truth/ (creating it). Throws binpick::Error naming the file that cannot be written.
+// Writes DIR/truth/ (creating it). Throws core::Error naming the file that cannot be written.
 void writePileTruth(const std::string& capture_directory, const PileScene& scene,
-                    const std::string& part_name, const TriangleMesh& part);
+                    const std::string& part_name, const io::TriangleMesh& part);
 
-// Reads DIR/truth/objects.json (or the file itself when given one). Throws binpick::Error
+// Reads DIR/truth/objects.json (or the file itself when given one). Throws core::Error
 // "PATH: ..." on a missing file, malformed JSON or a bad pose.
 PileTruth readPileTruth(const std::string& path);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -12,15 +12,15 @@
 #include "binpick/simulation/pattern_renderer.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 // Diffuse reflectance in [0, 1] of the surface of object `object_id` at a point of its own frame
 // (a calibration board's print depends on the point; a part's paint does not).
 using AlbedoFunction = std::function<float(int32_t object_id, const Eigen::Vector3f& object_point)>;
 
 std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry,
-                                                const RigCalibration& rig,
+                                                const io::RigCalibration& rig,
                                                 const PhotometryParams& params,
                                                 const AlbedoFunction& albedo);
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -21,7 +21,7 @@
 
 #include "binpick/simulation/depth_renderer.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct Ray {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();      // camera frame, metres
@@ -51,7 +51,7 @@ struct RayHit {
 
 class RayCaster {
  public:
-  // Throws binpick::Error naming the object when a mesh pointer is null, a mesh has non-finite
+  // Throws core::Error naming the object when a mesh pointer is null, a mesh has non-finite
   // vertices or bad indices, or a pose is not a finite rigid transform; and when Embree fails
   // (no device on this CPU, out of memory), with Embree's message. Empty lists and empty meshes
   // are fine: they are never hit.
@@ -63,7 +63,7 @@ class RayCaster {
   RayCaster& operator=(const RayCaster&) = delete;
 
   int objectCount() const;
-  // Throw binpick::Error on an index outside [0, objectCount()).
+  // Throw core::Error on an index outside [0, objectCount()).
   int32_t objectId(int object_index) const;
   const Eigen::Isometry3d& objectPose(int object_index) const;  // T_camera_object
   // Axis-aligned bounds of the placed mesh in the camera frame; empty for an empty mesh.
@@ -76,7 +76,7 @@ class RayCaster {
   bool occluded(const Ray& ray) const;
 
   // The same two queries as if object `object_index` were alone in the scene at its pose. Throw
-  // binpick::Error on a bad index.
+  // core::Error on a bad index.
   RayHit closestHitAlone(int object_index, const Ray& ray) const;
   bool occludedAlone(int object_index, const Ray& ray) const;
 
@@ -97,4 +97,4 @@ class RayCaster {
   std::unique_ptr<Impl> impl_;  // null only in a moved-from caster, which hits nothing
 };
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -15,7 +15,7 @@
 #include "binpick/io/rig_calibration.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct SensorGeometryParams {
   int threads = 0;  // OpenMP threads; 0: all hardware threads
@@ -24,7 +24,7 @@ struct SensorGeometryParams {
   // about as much.
   double shadow_ray_offset = 1e-5;
 
-  // Throws binpick::Error naming the bad field.
+  // Throws core::Error naming the bad field.
   void validate() const;
 };
 
@@ -64,8 +64,8 @@ struct SensorGeometry {
 };
 
 // Casts every camera pixel of `rig` into `scene` (built in the camera frame). Throws
-// binpick::Error on an invalid rig or params.
-SensorGeometry computeSensorGeometry(const RigCalibration& rig, const RayCaster& scene,
+// core::Error on an invalid rig or params.
+SensorGeometry computeSensorGeometry(const io::RigCalibration& rig, const RayCaster& scene,
                                      const SensorGeometryParams& params = {});
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -4,14 +4,14 @@
 // working distance. Pure: thread-safe.
 #include "binpick/io/rig_calibration.hpp"
 
-namespace binpick::sim {
+namespace binpick::simulation {
 
 struct VirtualRigParams {
   double working_distance = 0.9;  // metres along the camera axis where the optical axes cross
   double baseline = 0.25;         // metres, projector centre along the camera's +x
-  void validate() const;          // throws binpick::Error naming the field
+  void validate() const;          // throws core::Error naming the field
 };
 
-RigCalibration makeVirtualRig(const VirtualRigParams& params = {});
+io::RigCalibration makeVirtualRig(const VirtualRigParams& params = {});
 
-}  // namespace binpick::sim
+}  // namespace binpick::simulation

@@ -1,0 +1,25 @@
+# The two ways a target is added in this tree.
+#
+# binpick_add_library(NAME SOURCES a.cpp ... [PUBLIC deps...] [PRIVATE deps...])
+#   A module: src/NAME holds include/binpick/NAME/*.hpp (its interface, namespace binpick::NAME)
+#   and src/*.cpp with private headers beside them. Defines binpick_NAME and the alias
+#   binpick::NAME; warnings are on for the module's own sources only.
+function(binpick_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
+  add_library(binpick_${name} ${ARG_SOURCES})
+  add_library(binpick::${name} ALIAS binpick_${name})
+  target_include_directories(binpick_${name}
+    PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(binpick_${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE} binpick_warnings)
+endfunction()
+
+# binpick_add_test(NAME SOURCES a.cpp b.cpp LIBS binpick::io ...)
+#   A GoogleTest executable, its tests registered with ctest one by one.
+function(binpick_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main binpick_warnings)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+endfunction()

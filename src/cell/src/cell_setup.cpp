@@ -1,0 +1,99 @@
+#include "binpick/cell/cell_setup.hpp"
+
+#include "binpick/acquisition/aravis_camera.hpp"
+#include "binpick/core/stopwatch.hpp"
+#include "binpick/picking/grasp_generation.hpp"
+#include "binpick/estimation/config.hpp"
+#include "binpick/estimation/model_cache.hpp"
+#include "binpick/io/geometry_io.hpp"
+#include "binpick/io/rig_calibration.hpp"
+#include "service_logger.hpp"
+
+namespace binpick::cell {
+namespace {
+
+// A recipe without grasps: generated from its model (mesh or cloud with normals) for the cell's
+// gripper, one per symmetry class.
+std::vector<picking::Grasp> generatedGrasps(const RecipeConfig& config, const picking::PickParams& cell_picking) {
+  const core::Stopwatch stopwatch;
+  const io::ModelGeometry geometry = io::readModelGeometry(config.model_file);
+  const picking::GraspGenerationParams params;
+  std::vector<picking::Grasp> grasps;
+  try {
+    grasps = geometry.hasMesh() ? picking::generateGrasps(geometry.mesh, cell_picking.gripper, config.symmetry, params)
+                                : picking::generateGrasps(geometry.cloud, cell_picking.gripper, config.symmetry, params);
+  } catch (const core::Error& e) {
+    throw core::Error(config.model_file + ": recipe " + config.name + ": cannot generate grasps: " + e.what());
+  }
+  if (grasps.empty()) {
+    throw core::Error(config.model_file + ": recipe " + config.name + ": the " + picking::gripperTypeName(cell_picking.gripper.type) +
+                " gripper fits nowhere on the model; write the recipe's grasps by hand");
+  }
+  const double ms = stopwatch.elapsedMs();
+  logger()->info("recipe {}: {} {} grasps generated from the model in {:.0f} ms (best: {}, quality {:.2f})",
+                 config.name, grasps.size(), picking::gripperTypeName(cell_picking.gripper.type), ms, grasps.front().name,
+                 grasps.front().quality);
+  return grasps;
+}
+
+Recipe prepareRecipe(const RecipeConfig& config, const picking::PickParams& cell_picking) {
+  estimation::EstimationConfig settings;
+  if (!config.settings_file.empty()) settings = estimation::loadEstimationConfig(config.settings_file);
+  Recipe recipe;
+  recipe.name = config.name;
+  estimation::PreparedModel model =
+      config.model_cache.empty()
+          ? estimation::prepareModel(io::readModelGeometry(config.model_file), settings.model)
+          : estimation::loadOrPrepareModel(config.model_file, settings.model, config.model_cache,
+                                           &recipe.model_from_cache);
+  recipe.detector = std::make_shared<const estimation::Detector>(std::move(model), settings.detector);
+  recipe.picking = cell_picking;
+  // Hand-written (or file) grasps take precedence over generated ones.
+  recipe.picking.grasps = config.grasps.empty() ? generatedGrasps(config, cell_picking) : config.grasps;
+  recipe.picking.symmetry = config.symmetry;
+  return recipe;
+}
+
+void prepareReconstructor(CellSetup& setup) {
+  if (setup.config.calibration.empty()) {
+    setup.calibration_problem = "no calibration file is configured";
+    return;
+  }
+  try {
+    const io::RigCalibration rig = io::readRigCalibration(setup.config.calibration);
+    setup.reconstructor = std::make_shared<const reconstruction::Reconstructor>(rig, setup.config.reconstruction);
+  } catch (const core::Error& e) {
+    setup.calibration_problem = e.what();
+  }
+}
+
+}  // namespace
+
+int CellSetup::recipeIndex(const std::string& name_or_index) const {
+  for (std::size_t i = 0; i < recipes.size(); ++i) {
+    if (recipes[i].name == name_or_index || std::to_string(i) == name_or_index) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::shared_ptr<const CellSetup> prepareCell(CellConfig config) {
+  const core::Stopwatch stopwatch;
+  auto setup = std::make_shared<CellSetup>();
+  setup->config = std::move(config);
+  for (const RecipeConfig& recipe : setup->config.recipes) {
+    setup->recipes.push_back(prepareRecipe(recipe, setup->config.picking));
+  }
+  prepareReconstructor(*setup);
+  setup->prepare_ms = stopwatch.elapsedMs();
+  return setup;
+}
+
+std::unique_ptr<acquisition::CaptureSource> makeCaptureSource(const SourceConfig& source) {
+  if (source.mode == SourceConfig::Mode::Replay) return acquisition::makeReplaySource(source.replay);
+  const LiveSourceConfig& live = source.live;
+  auto projector = live.trigger == "gpio" ? acquisition::makeGpioTrigger(live.gpio)
+                                          : acquisition::makeFreeRunningProjector();
+  return acquisition::makeLiveSource(acquisition::makeAravisCamera(live.camera), std::move(projector), live.live);
+}
+
+}  // namespace binpick::cell

@@ -1,0 +1,109 @@
+#include "binpick/cell/pick_cycle.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "binpick/core/stopwatch.hpp"
+#include "binpick/picking/tool_collision.hpp"
+
+namespace binpick::cell {
+namespace {
+
+// The detections confident enough to send the robot to, in the base frame, and which detection
+// each one is.
+struct Candidates {
+  std::vector<picking::DetectedPart> parts;
+  std::vector<int> detection;
+};
+
+Candidates pickCandidates(const std::vector<Eigen::Isometry3d>& T_base_objects,
+                          const estimation::DetectionResult& result, double min_coverage) {
+  Candidates candidates;
+  for (std::size_t i = 0; i < T_base_objects.size(); ++i) {
+    if (result.detections[i].coverage < min_coverage) continue;
+    const estimation::Detection& detection = result.detections[i];
+    candidates.parts.push_back({T_base_objects[i], detection.score, detection.coverage});
+    candidates.detection.push_back(static_cast<int>(i));
+  }
+  return candidates;
+}
+
+// Nothing detected: an empty bin, or parts the detector could not find.
+void classifyEmpty(CycleOutcome& outcome, const CellSetup& setup) {
+  const bool empty = outcome.bin_points <= setup.config.limits.empty_bin_max_points;
+  outcome.status = empty ? robot::Status::BinEmpty : robot::Status::NoObjects;
+  outcome.detail = std::to_string(outcome.bin_points) + " points in the bin";
+}
+
+// "12 parts detected: 2 not sure enough, 4 too tilted, ..." for a cycle without a pick.
+std::string unreachableDetail(std::size_t detected, std::size_t not_sure, const picking::PickRejections& r) {
+  return std::to_string(detected) + " parts detected: " + std::to_string(not_sure) + " not sure enough, " +
+         std::to_string(r.tilt) + " too tilted, " + std::to_string(r.bin) + " with the tool hitting the bin, " +
+         std::to_string(r.cloud) + " with the tool hitting the measured cloud, " + std::to_string(r.seal) +
+         " with no measured face under the cup, " + std::to_string(r.avoided) +
+         " avoided, " + std::to_string(r.invalid) + " invalid";
+}
+
+}  // namespace
+
+int countPointsInBin(const io::PointCloud& cloud, const Eigen::Isometry3d& T_base_camera, const picking::BinBox& bin,
+                     double min_height) {
+  const Eigen::Isometry3d T_bin_camera = bin.T_base_bin.inverse() * T_base_camera;
+  const Eigen::Isometry3f transform = T_bin_camera.cast<float>();
+  // Kept off the walls by as much as off the floor: wall points must not make a bin look full.
+  const float half_length = static_cast<float>(bin.length / 2 - min_height);
+  const float half_width = static_cast<float>(bin.width / 2 - min_height);
+  int count = 0;
+  for (const Eigen::Vector3f& point : cloud.points) {
+    if (!point.allFinite()) continue;
+    const Eigen::Vector3f p = transform * point;
+    const bool inside = std::abs(p.x()) < half_length && std::abs(p.y()) < half_width &&
+                        p.z() > min_height && p.z() < bin.wall_height * 2;
+    count += inside ? 1 : 0;
+  }
+  return count;
+}
+
+CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
+                            const std::vector<Eigen::Vector3d>& avoid) {
+  CycleOutcome outcome;
+  const Eigen::Isometry3d& T_base_camera = *setup.config.T_base_camera;
+  core::Stopwatch stage;
+  outcome.reconstruction = setup.reconstructor->reconstruct(capture);
+  outcome.timing_ms.reconstruct = stage.lapMs();
+
+  outcome.detection = recipe.detector->detect(outcome.reconstruction.cloud);
+  outcome.timing_ms.detect = stage.lapMs();
+
+  outcome.bin_points = countPointsInBin(outcome.reconstruction.cloud, T_base_camera, recipe.picking.bin,
+                                        setup.config.limits.empty_bin_min_height);
+  for (const estimation::Detection& d : outcome.detection.detections) {
+    outcome.T_base_objects.push_back(T_base_camera * d.T_camera_model.cast<double>());
+  }
+  const Candidates candidates =
+      pickCandidates(outcome.T_base_objects, outcome.detection, setup.config.limits.min_pick_coverage);
+  const picking::MeasuredScene scene(outcome.reconstruction.cloud, T_base_camera);
+  const io::PointCloud& cloud = outcome.reconstruction.cloud;
+  const io::LensIntrinsics& camera = setup.reconstructor->rig().camera;
+  std::optional<picking::MeasuredSurface> surface;  // the seal test reads the cloud through the camera's pixels
+  if (cloud.width == camera.width && cloud.height == camera.height) surface.emplace(cloud, camera, T_base_camera);
+  picking::PickPlan plan = picking::planPicks(candidates.parts, avoid, recipe.picking, &scene, surface ? &*surface : nullptr);
+  if (plan.picks.size() > static_cast<std::size_t>(setup.config.limits.max_picks)) {
+    plan.picks.resize(setup.config.limits.max_picks);
+  }
+  for (picking::Pick& pick : plan.picks) pick.object = candidates.detection[static_cast<std::size_t>(pick.object)];
+  outcome.picks = std::move(plan.picks);
+  outcome.rejected = plan.rejected;
+  outcome.timing_ms.plan = stage.lapMs();
+
+  if (outcome.T_base_objects.empty()) {
+    classifyEmpty(outcome, setup);
+  } else if (outcome.picks.empty()) {
+    outcome.status = robot::Status::Unreachable;
+    outcome.detail = unreachableDetail(outcome.T_base_objects.size(),
+                                       outcome.T_base_objects.size() - candidates.parts.size(), plan.rejected);
+  }
+  return outcome;
+}
+
+}  // namespace binpick::cell

@@ -1,0 +1,89 @@
+#pragma once
+// CellService's shared state, guarded by one mutex. Replies are collected while the lock is held
+// (Outbox) and sent after it is released, so the server thread never waits on a cycle.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "artefact_saver.hpp"
+#include "binpick/cell/cell_service.hpp"
+
+namespace binpick::cell {
+
+using Clock = std::chrono::steady_clock;
+
+// Counters on the wire are int32.
+inline int32_t clampToInt32(uint64_t value) { return static_cast<int32_t>(std::min<uint64_t>(value, INT32_MAX)); }
+
+class Outbox {
+ public:
+  void add(robot::ClientId client, robot::Reply reply) { replies_.emplace_back(client, std::move(reply)); }
+  void send(const ReplySink& sink) {
+    for (const auto& [client, reply] : replies_) sink(client, reply);
+    replies_.clear();
+  }
+ private:
+  std::vector<std::pair<robot::ClientId, robot::Reply>> replies_;
+};
+
+// The picks of the latest cycle, handed out one by one.
+struct LatestCycle {
+  uint64_t number = 0;
+  robot::Status status = robot::Status::Ok;
+  std::vector<picking::Pick> picks;
+  std::vector<Eigen::Isometry3d> T_base_objects;
+  std::size_t cursor = 0;
+  int last_object = -1;  // the object of the last pick handed out (FAILED without argument)
+};
+
+struct AvoidEntry {
+  Eigen::Vector3d centre;
+  uint64_t until_cycle = 0;  // avoided in cycles numbered up to this one
+  int failures = 1;          // picks of a part at this place that failed, in a row
+};
+
+struct CellService::State {
+  ReplySink sink;
+  mutable std::mutex mutex;
+  std::condition_variable cycle_wakeup;
+  std::condition_variable deadline_wakeup;
+
+  std::shared_ptr<const CellSetup> setup;
+  std::unique_ptr<acquisition::CaptureSource> source;          // used by the cycle thread only
+  std::unique_ptr<acquisition::CaptureSource> pending_source;  // from a reload, swapped in between cycles
+  int recipe = 0;
+
+  CellState cell_state = CellState::Idle;
+  bool trigger_requested = false;
+  std::optional<robot::ClientId> trigger_client;  // answered when the capture is done
+  std::vector<robot::ClientId> next_waiters;      // NEXT requests waiting for the running cycle
+  Clock::time_point stage_deadline;
+  bool stage_expired = false;              // the running stage's waiters got "timeout"
+
+  std::optional<LatestCycle> latest;
+  uint64_t cycles_started = 0;
+  std::vector<AvoidEntry> avoid;
+  CellSnapshot last;                       // for snapshot()
+  bool stopping = false;
+
+  std::unique_ptr<ArtefactSaver> saver;
+  std::thread cycle_thread;
+  std::thread deadline_thread;
+
+  // Helpers; the caller holds the mutex.
+  const Recipe& currentRecipe() const { return setup->recipes.at(static_cast<std::size_t>(recipe)); }
+  robot::Reply nextPick();  // NEXT from `latest`
+  void answerWaiters(Outbox& outbox);
+  void failRunningStage(robot::Status status, Outbox& outbox);
+  // FAILED: avoid the part at `centre` (base frame); returns for how many cycles.
+  uint64_t avoidFailedPart(const Eigen::Vector3d& centre);
+};
+
+}  // namespace binpick::cell

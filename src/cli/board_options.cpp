@@ -1,0 +1,40 @@
+// Board options: parsed once for every calibration command.
+#include "board_options.hpp"
+
+#include "binpick/core/error.hpp"
+
+namespace binpick::cli {
+namespace {
+
+// "9x7" -> squares_x 9, squares_y 7.
+void parseSquares(const std::string& text, calibration::BoardLayout& layout) {
+  const auto x = text.find('x');
+  if (x == std::string::npos) throw core::Error("--squares must be COLUMNSxROWS, e.g. 9x7 (got '" + text + "')");
+  layout.squares_x = parseInteger("--squares columns", text.substr(0, x));
+  layout.squares_y = parseInteger("--squares rows", text.substr(x + 1));
+}
+
+}  // namespace
+
+const std::set<std::string>& boardOptionNames() {
+  static const std::set<std::string> names = {"--board", "--squares", "--square-mm", "--marker-mm",
+                                              "--dictionary"};
+  return names;
+}
+
+calibration::BoardLayout boardLayoutFromArguments(const Arguments& args) {
+  calibration::BoardLayout layout;
+  if (const auto type = args.value("--board")) layout.type = calibration::boardTypeFromName(*type);
+  if (const auto squares = args.value("--squares")) parseSquares(*squares, layout);
+  if (const auto size = args.number("--square-mm")) layout.square_size = *size / 1000.0;
+  if (const auto size = args.number("--marker-mm")) layout.marker_size = *size / 1000.0;
+  if (const auto name = args.value("--dictionary")) layout.dictionary = *name;
+  try {
+    layout.validate();
+  } catch (const core::Error& e) {
+    throw core::Error(std::string("board options: ") + e.what());
+  }
+  return layout;
+}
+
+}  // namespace binpick::cli

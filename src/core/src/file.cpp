@@ -1,0 +1,83 @@
+#include "binpick/core/file.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "binpick/core/error.hpp"
+
+namespace binpick::core {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// PATH.tmp-PID-N: two processes (or threads) writing one path never share a temporary file.
+std::string temporaryPathFor(const std::string& path) {
+  static std::atomic<unsigned> calls{0};
+  return path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(calls++);
+}
+
+[[noreturn]] void failWriting(const std::string& path, const std::string& reason) {
+  throw Error(path + ": cannot write the file: " + reason);
+}
+
+void writeBytes(const std::string& path, const std::string& temporary, std::string_view bytes) {
+  std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+  if (!file) failWriting(path, std::strerror(errno));
+  file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  file.close();  // flushes: a full disk shows here
+  if (!file) failWriting(path, "writing " + std::to_string(bytes.size()) + " bytes failed");
+}
+
+void createParentDirectory(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  if (parent.empty()) return;
+  std::error_code error;
+  fs::create_directories(parent, error);
+  if (error) failWriting(path, "cannot create " + parent.string() + ": " + error.message());
+}
+
+}  // namespace
+
+std::string readFile(const std::string& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status)) throw Error(path + ": the file does not exist");
+  if (fs::is_directory(status)) throw Error(path + ": is a directory, not a file");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(path + ": cannot read the file: " + std::strerror(errno));
+  std::ostringstream bytes;
+  bytes << file.rdbuf();
+  if (file.bad()) throw Error(path + ": cannot read the file: read error");
+  return bytes.str();
+}
+
+void replaceFileAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+  const std::string temporary = temporaryPathFor(path);
+  std::error_code ignored;
+  try {
+    write(temporary);
+  } catch (...) {
+    fs::remove(temporary, ignored);
+    throw;
+  }
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error) {
+    fs::remove(temporary, ignored);
+    failWriting(path, error.message());
+  }
+}
+
+void writeFileAtomically(const std::string& path, std::string_view bytes, ParentDirectory parent) {
+  if (parent == ParentDirectory::Create) createParentDirectory(path);
+  replaceFileAtomically(path, [&](const std::string& temporary) { writeBytes(path, temporary, bytes); });
+}
+
+}  // namespace binpick::core

@@ -1,0 +1,141 @@
+#include "daemon.hpp"
+
+#include <signal.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "binpick/core/file.hpp"
+#include "binpick/cell/cell_service.hpp"
+#include "binpick/robot/robot_server.hpp"
+#include "binpick/cell/systemd_notify.hpp"
+#include "binpick/core/error.hpp"
+#include "status_text.hpp"
+
+namespace binpick::daemon {
+namespace {
+
+using namespace binpick::cell;
+
+sigset_t stopAndReloadSignals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGHUP);
+  return set;
+}
+
+// The next signal, or 0 after `timeout`.
+int waitForSignal(std::chrono::milliseconds timeout) {
+  const sigset_t set = stopAndReloadSignals();
+  timespec wait{static_cast<time_t>(timeout.count() / 1000), static_cast<long>(timeout.count() % 1000) * 1000000L};
+  const int signal = sigtimedwait(&set, nullptr, &wait);
+  return signal > 0 ? signal : 0;
+}
+
+CellConfig loadConfig(const DaemonOptions& options) {
+  CellConfig config = loadCellConfig(options.config_path);
+  if (options.port_override >= 0) config.robot.port = options.port_override;
+  return config;
+}
+
+class Daemon {
+ public:
+  explicit Daemon(const DaemonOptions& options)
+      : options_(options),
+        config_(loadConfig(options)),
+        service_(prepareCell(config_), makeCaptureSource(config_.source),
+                 [this](robot::ClientId client, const robot::Reply& reply) { server_->reply(client, reply); }),
+        server_(std::make_unique<robot::RobotServer>(config_.robot, service_)),
+        notifier_(SystemdNotifier::fromEnvironment()) {}
+
+  int run() {
+    std::thread serving([this] { serve(); });
+    // Atomically: a script polling for it never reads half a number.
+    if (!options_.port_file.empty()) core::writeFileAtomically(options_.port_file, std::to_string(server_->port()) + "\n");
+    spdlog::info("serving robots on {}:{} ({} recipe(s), source: {})", config_.robot.bind_address,
+                 server_->port(), config_.recipes.size(), config_.source.mode == SourceConfig::Mode::Replay ? "replay" : "live");
+    notifier_.ready(statusText(service_.snapshot(), server_->clientCount()));
+    loop();
+    notifier_.stopping("stopping");
+    server_->stop();
+    serving.join();
+    service_.stop();
+    spdlog::info("stopped");
+    return serve_error_.empty() ? 0 : 1;
+  }
+
+ private:
+  void serve() {
+    try {
+      server_->run();
+    } catch (const std::exception& e) {  // the listening socket failed: nothing left to serve
+      serve_error_ = e.what();
+      spdlog::critical("robot server failed: {}", e.what());
+      kill(getpid(), SIGTERM);
+    }
+  }
+
+  // Signals, watchdog pings and the STATUS= line, until SIGTERM or SIGINT.
+  void loop() {
+    const auto interval = notifier_.watchdogInterval();
+    const auto tick = interval.count() > 0
+                          ? std::chrono::duration_cast<std::chrono::milliseconds>(interval / 2)
+                          : std::chrono::milliseconds(1000);
+    std::string last_status;
+    for (;;) {
+      const int signal = waitForSignal(std::min(tick, std::chrono::milliseconds(1000)));
+      if (signal == SIGTERM || signal == SIGINT) return;
+      if (signal == SIGHUP) reload();
+      if (service_.healthy()) notifier_.watchdog();
+      else spdlog::error("a cycle stage hangs far past its deadline; the watchdog will restart the service");
+      const std::string status = statusText(service_.snapshot(), server_->clientCount());
+      if (status != last_status) notifier_.status(status);
+      last_status = status;
+    }
+  }
+
+  // A bad file keeps the running settings; the robot connections stay up either way.
+  void reload() {
+    notifier_.reloading("reloading " + options_.config_path);
+    try {
+      CellConfig config = loadConfig(options_);
+      if (config.robot.bind_address != config_.robot.bind_address || config.robot.port != config_.robot.port) {
+        spdlog::warn("a new bind address or port takes effect at the next restart");
+      }
+      auto setup = prepareCell(config);
+      service_.reconfigure(setup, makeCaptureSource(config.source));
+      server_->setCodec(config.robot.codec);
+      server_->setAllowedClients(config.robot.allowed_clients);
+      config_ = std::move(config);
+      spdlog::info("reloaded {}", options_.config_path);
+    } catch (const std::exception& e) {
+      spdlog::error("reload failed, keeping the running settings: {}", e.what());
+    }
+    notifier_.ready(statusText(service_.snapshot(), server_->clientCount()));
+  }
+
+  DaemonOptions options_;
+  CellConfig config_;
+  CellService service_;
+  std::unique_ptr<robot::RobotServer> server_;
+  SystemdNotifier notifier_;
+  std::string serve_error_;
+};
+
+}  // namespace
+
+void blockStopAndReloadSignals() {
+  const sigset_t set = stopAndReloadSignals();
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+}
+
+int runDaemon(const DaemonOptions& options) {
+  Daemon daemon(options);
+  return daemon.run();
+}
+
+}  // namespace binpick::daemon

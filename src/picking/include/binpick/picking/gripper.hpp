@@ -1,0 +1,42 @@
+#pragma once
+// The robot's gripper as the planner, the grasp generator and the virtual cell's robot see it:
+// a suction cup or a parallel-jaw gripper at the end of a cylindrical tool body. All metres.
+//
+// Grasp frame (picking.hpp): z is the approach direction, pointing into the part; the origin is
+// the grasp point.
+// - Suction: the cup's sealing disc (diameter cup_diameter) lies in the grasp frame's xy plane,
+//   centred on the origin; the cup itself fills the cylinder of radius cup_diameter / 2 from
+//   z = -cup_length to z = 0.
+// - Parallel jaw: the jaws close along the grasp frame's x axis; the origin lies midway between
+//   the two contact points. Each finger is a box finger_thickness along x (outside its contact
+//   face), finger_width along y, reaching from z = -finger_depth / 2 to z = +finger_depth / 2 at
+//   its tip; the fingers open to at most `stroke` between their contact faces.
+// - The tool body: a cylinder of radius tool_radius on the approach axis, from where the cup (or
+//   the fingers' root at z = -finger_depth / 2) ends, tool_length further back along -z.
+// Plain data: thread-safe.
+#include <string>
+
+namespace binpick::picking {
+
+enum class GripperType { Suction, Parallel };
+GripperType gripperTypeFromName(const std::string& name);  // "suction" | "parallel"
+std::string gripperTypeName(GripperType type);
+
+struct GripperParams {
+  GripperType type = GripperType::Suction;
+  // Suction
+  double cup_diameter = 0.006;     // metres: the disc that must seal on the part
+  double cup_length = 0.025;       // metres: cup + bellows along the approach axis
+  double seal_tolerance = 0.0008;  // metres: how far the surface under the cup may leave its plane
+  // Parallel jaw
+  double stroke = 0.080;           // metres: widest opening between the contact faces
+  double finger_width = 0.012;     // metres, across the closing direction
+  double finger_depth = 0.020;     // metres, along the approach
+  double finger_thickness = 0.008; // metres, along the closing direction
+  // Tool body behind the cup or the fingers
+  double tool_radius = 0.015;      // metres
+  double tool_length = 0.15;       // metres
+  void validate() const;           // throws core::Error naming the field
+};
+
+}  // namespace binpick::picking

@@ -1,0 +1,294 @@
+// MeasuredScene (the thinned, column-indexed cloud) and the tool's collision test against it.
+#include "binpick/picking/tool_collision.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "binpick/core/error.hpp"
+#include "rigid.hpp"
+
+namespace binpick::picking {
+namespace {
+
+// Calibrated transforms come from files with a few decimals.
+constexpr double kPoseTolerance = 1e-5;
+// More columns than this (a cloud with far outliers) and the columns grow instead: bounded memory.
+constexpr double kMaxCells = 1 << 20;
+// Pixels sampled to estimate an organized cloud's point spacing.
+constexpr int kSpacingSamples = 4000;
+
+// The median distance between horizontally neighbouring valid pixels; 0 when none are found.
+double medianPixelSpacing(const io::PointCloud& cloud) {
+  const std::size_t count = cloud.points.size();
+  const std::size_t step = std::max<std::size_t>(1, count / kSpacingSamples);
+  std::vector<float> spacings;
+  for (std::size_t i = 0; i + 1 < count; i += step) {
+    if ((i + 1) % static_cast<std::size_t>(cloud.width) == 0) continue;  // last column
+    const Eigen::Vector3f& a = cloud.points[i];
+    const Eigen::Vector3f& b = cloud.points[i + 1];
+    if (a.allFinite() && b.allFinite()) spacings.push_back((a - b).norm());
+  }
+  if (spacings.empty()) return 0.0;
+  auto middle = spacings.begin() + static_cast<std::ptrdiff_t>(spacings.size() / 2);
+  std::nth_element(spacings.begin(), middle, spacings.end());
+  return *middle;
+}
+
+// Pixel stride keeping strided neighbours about step / 2 apart: dense enough that thinning to
+// `step` still sees every surface, sparse enough to transform only a fraction of 1.3 MP.
+int pixelStride(const io::PointCloud& cloud, double step) {
+  if (!cloud.isOrganized()) return 1;
+  const double spacing = medianPixelSpacing(cloud);
+  if (!(spacing > 0.0)) return 1;
+  return std::max(1, static_cast<int>(std::floor(0.5 * step / spacing)));
+}
+
+// Calls visit(base point) for every valid point of the strided cloud. Run once per pass of the
+// indexing instead of keeping a transformed copy: a fresh megabyte costs more in page faults than
+// transforming the points again.
+template <typename Visit>
+void forEachBasePoint(const io::PointCloud& cloud, const Eigen::Isometry3f& T_base_camera, int stride, Visit&& visit) {
+  const auto visitValid = [&](const Eigen::Vector3f& p) {
+    if (p.allFinite()) visit(T_base_camera * p);
+  };
+  if (stride == 1) {
+    for (const Eigen::Vector3f& p : cloud.points) visitValid(p);
+    return;
+  }
+  const auto width = static_cast<std::size_t>(cloud.width);
+  for (int row = 0; row < cloud.height; row += stride) {
+    const std::size_t row_start = static_cast<std::size_t>(row) * width;
+    for (int column = 0; column < cloud.width; column += stride) {
+      visitValid(cloud.points[row_start + static_cast<std::size_t>(column)]);
+    }
+  }
+}
+
+// ---- The tool's volume in the grasp frame --------------------------------------------------
+
+struct Cylinder {  // about the grasp z axis
+  double radius = 0, z_lo = 0, z_hi = 0;
+  bool front_is_contact = false;  // points in front of z_hi are the grasped face (clearance)
+};
+
+struct Box {
+  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
+  double between_jaws = 0;  // points with |x| below this are the grasped part (clearance)
+};
+
+struct ToolVolume {
+  std::array<Cylinder, 2> cylinders;
+  std::array<Box, 2> boxes;
+  int cylinder_count = 0, box_count = 0;
+};
+
+ToolVolume suctionVolume(const GripperParams& g, const ToolSweep& s) {
+  ToolVolume tool;
+  const double m = s.margin;
+  tool.cylinders[0] = {0.5 * g.cup_diameter + m, -(g.cup_length + s.approach_distance) - m, -m, true};
+  tool.cylinders[1] = {g.tool_radius + m, -(g.cup_length + g.tool_length + s.approach_distance) - m,
+                       std::min(-g.cup_length + m, -m), false};
+  tool.cylinder_count = 2;
+  return tool;
+}
+
+ToolVolume parallelVolume(const GripperParams& g, const ToolSweep& s) {
+  ToolVolume tool;
+  const double m = s.margin;
+  const double opening = s.opening > 0.0 ? std::min(s.opening, g.stroke) : g.stroke;
+  const double root = -0.5 * g.finger_depth;
+  const double inner = 0.5 * opening;
+  for (int side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? 1.0 : -1.0;
+    const double x_a = sign * (inner - m), x_b = sign * (inner + g.finger_thickness + m);
+    Box& finger = tool.boxes[static_cast<std::size_t>(side)];
+    finger.lo = {std::min(x_a, x_b), -0.5 * g.finger_width - m, root - s.approach_distance - m};
+    finger.hi = {std::max(x_a, x_b), 0.5 * g.finger_width + m, -root + m};
+    finger.between_jaws = inner;
+  }
+  tool.box_count = 2;
+  tool.cylinders[0] = {g.tool_radius + m, root - g.tool_length - s.approach_distance - m, root + m, false};
+  tool.cylinder_count = 1;
+  return tool;
+}
+
+// Distance from `p` (grasp frame) to the cylinder; negative when inside. `counts` tells whether
+// the distance matters for the clearance.
+double cylinderDistance(const Cylinder& c, const Eigen::Vector3d& p, bool& counts) {
+  const double radial = std::sqrt(p.x() * p.x() + p.y() * p.y()) - c.radius;
+  const double axial = std::max(c.z_lo - p.z(), p.z() - c.z_hi);
+  if (radial <= 0.0 && axial <= 0.0) return -1.0;
+  counts = !(c.front_is_contact && p.z() > c.z_hi);
+  const double r = std::max(radial, 0.0), a = std::max(axial, 0.0);
+  return std::sqrt(r * r + a * a);  // not std::hypot: its overflow care costs 5x here
+}
+
+double boxDistance(const Box& b, const Eigen::Vector3d& p, bool& counts) {
+  const Eigen::Vector3d outside = (b.lo - p).cwiseMax(p - b.hi);
+  if ((outside.array() <= 0.0).all()) return -1.0;
+  counts = std::abs(p.x()) >= b.between_jaws;
+  return outside.cwiseMax(0.0).norm();
+}
+
+// The tool's bounding box in the base frame, grown by `grow`.
+void baseBounds(const ToolVolume& tool, const Eigen::Isometry3d& T_base_grasp, double grow, Eigen::Vector3d& lo,
+                Eigen::Vector3d& hi) {
+  lo.setConstant(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  const auto add = [&](const Eigen::Vector3d& local_lo, const Eigen::Vector3d& local_hi) {
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d local((corner & 1) ? local_hi.x() : local_lo.x(),
+                                  (corner & 2) ? local_hi.y() : local_lo.y(),
+                                  (corner & 4) ? local_hi.z() : local_lo.z());
+      const Eigen::Vector3d base = T_base_grasp * local;
+      lo = lo.cwiseMin(base);
+      hi = hi.cwiseMax(base);
+    }
+  };
+  for (int i = 0; i < tool.cylinder_count; ++i) {
+    const Cylinder& c = tool.cylinders[static_cast<std::size_t>(i)];
+    const double r = c.radius + grow;
+    add({-r, -r, c.z_lo - grow}, {r, r, c.z_hi + grow});
+  }
+  for (int i = 0; i < tool.box_count; ++i) {
+    const Box& b = tool.boxes[static_cast<std::size_t>(i)];
+    add(b.lo.array() - grow, b.hi.array() + grow);
+  }
+}
+
+}  // namespace
+
+void MeasuredSceneParams::validate() const {
+  core::requireField(std::isfinite(thin_step) && thin_step >= 1e-4, "measured_scene", "thin_step", ">= 0.0001 m",
+               thin_step);
+}
+
+MeasuredScene::MeasuredScene(const io::PointCloud& cloud, const Eigen::Isometry3d& T_base_camera,
+                             const MeasuredSceneParams& params) {
+  params.validate();
+  if (!isRigidPose(T_base_camera, kPoseTolerance)) throw core::Error("measured scene: T_base_camera is not a rigid pose");
+  const double step = params.thin_step;
+  const int stride = pixelStride(cloud, step);
+  const Eigen::Isometry3f transform = T_base_camera.cast<float>();
+  const auto forEach = [&](auto&& visit) { forEachBasePoint(cloud, transform, stride, visit); };
+
+  // Pass 1: the grid over the points' xy extent.
+  Eigen::Vector2f lo = Eigen::Vector2f::Constant(std::numeric_limits<float>::infinity());
+  Eigen::Vector2f hi = -lo;
+  forEach([&](const Eigen::Vector3f& p) {
+    lo = lo.cwiseMin(p.head<2>());
+    hi = hi.cwiseMax(p.head<2>());
+  });
+  if (!(lo.x() <= hi.x())) lo = hi = Eigen::Vector2f::Zero();  // no valid point
+  const Eigen::Vector2d extent = (hi - lo).cast<double>();
+  cell_size_ = std::max(step, std::sqrt(extent.x() * extent.y() / kMaxCells));
+  origin_ = lo.cast<double>();
+  columns_ = static_cast<int>(extent.x() / cell_size_) + 1;
+  rows_ = static_cast<int>(extent.y() / cell_size_) + 1;
+  const auto cellOf = [&](const Eigen::Vector3f& p) {
+    const auto x = std::min(columns_ - 1, static_cast<int>((p.x() - origin_.x()) / cell_size_));
+    const auto y = std::min(rows_ - 1, static_cast<int>((p.y() - origin_.y()) / cell_size_));
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) + static_cast<std::size_t>(x);
+  };
+
+  // Passes 2 and 3: a counting sort into the columns.
+  const std::size_t cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
+  cell_start_.assign(cells + 1, 0);
+  forEach([&](const Eigen::Vector3f& p) { ++cell_start_[cellOf(p) + 1]; });
+  for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  points_.resize(cell_start_[cells]);
+  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  forEach([&](const Eigen::Vector3f& p) { points_[fill[cellOf(p)]++] = p; });
+  thinColumns(step);
+}
+
+// Each column by height, keeping one point per `step` of it; compacted in place (the kept
+// points of a column never lie after where its points started).
+void MeasuredScene::thinColumns(double step) {
+  const std::size_t cells = cell_start_.size() - 1;
+  const auto by_height = [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) { return a.z() < b.z(); };
+  std::size_t kept = 0;
+  std::uint32_t begin = cell_start_[0];
+  for (std::size_t c = 0; c < cells; ++c) {
+    const std::uint32_t end = cell_start_[c + 1];
+    std::sort(points_.begin() + begin, points_.begin() + end, by_height);
+    float last_kept = -std::numeric_limits<float>::infinity();
+    for (std::uint32_t i = begin; i < end; ++i) {
+      if (points_[i].z() - last_kept < static_cast<float>(step)) continue;
+      last_kept = points_[i].z();
+      points_[kept++] = points_[i];
+    }
+    begin = end;
+    cell_start_[c + 1] = static_cast<std::uint32_t>(kept);
+  }
+  points_.resize(kept);
+  heights_.resize(kept);
+  for (std::size_t i = 0; i < kept; ++i) heights_[i] = points_[i].z();
+}
+
+MeasuredScene::CellRange MeasuredScene::cellsUnder(double x_lo, double y_lo, double x_hi, double y_hi) const {
+  const auto clip = [](double value, int count) {
+    if (!(value >= 0.0)) return 0;  // below the grid (or NaN)
+    return static_cast<int>(std::min(value, static_cast<double>(count - 1)));
+  };
+  CellRange range{clip((x_lo - origin_.x()) / cell_size_, columns_), clip((x_hi - origin_.x()) / cell_size_, columns_),
+                  clip((y_lo - origin_.y()) / cell_size_, rows_), clip((y_hi - origin_.y()) / cell_size_, rows_)};
+  // A box wholly outside the grid on one side clips onto its edge: make the range empty.
+  if (x_hi < origin_.x() || y_hi < origin_.y() || x_lo > origin_.x() + columns_ * cell_size_ ||
+      y_lo > origin_.y() + rows_ * cell_size_ || points_.empty()) {
+    range.x0 = 1;
+    range.x1 = 0;
+  }
+  return range;
+}
+
+double MeasuredScene::shareCoveredAbove(const Eigen::Vector3d& point, double radius, double height) const {
+  const CellRange cells = cellsUnder(point.x() - radius, point.y() - radius, point.x() + radius, point.y() + radius);
+  const double limit = point.z() + height;
+  int occupied = 0, covered = 0;
+  for (int y = cells.y0; y <= cells.y1; ++y) {
+    for (int x = cells.x0; x <= cells.x1; ++x) {
+      const Eigen::Vector2d centre = origin_ + cell_size_ * Eigen::Vector2d(x + 0.5, y + 0.5);
+      if ((centre - point.head<2>()).squaredNorm() > radius * radius) continue;
+      const std::size_t cell = static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) +
+                               static_cast<std::size_t>(x);
+      if (cell_start_[cell] == cell_start_[cell + 1]) continue;
+      ++occupied;
+      covered += heights_[cell_start_[cell + 1] - 1] > limit ? 1 : 0;  // the column's top
+    }
+  }
+  return occupied == 0 ? 0.0 : static_cast<double>(covered) / occupied;
+}
+
+ToolContact toolCollision(const MeasuredScene& scene, const Eigen::Isometry3d& T_base_grasp,
+                          const GripperParams& gripper, const ToolSweep& sweep) {
+  const ToolVolume tool =
+      gripper.type == GripperType::Suction ? suctionVolume(gripper, sweep) : parallelVolume(gripper, sweep);
+  Eigen::Vector3d lo, hi;
+  const double cap = std::max(0.0, sweep.clearance_cap);
+  baseBounds(tool, T_base_grasp, cap, lo, hi);
+  const Eigen::Isometry3d T_grasp_base = T_base_grasp.inverse();
+  double nearest = cap;
+  bool collision = false;
+  scene.visitBox(lo, hi, [&](const Eigen::Vector3f& base_point) {
+    const Eigen::Vector3d p = T_grasp_base * base_point.cast<double>();
+    for (int i = 0; i < tool.cylinder_count + tool.box_count; ++i) {
+      bool counts = true;
+      const auto box = static_cast<std::size_t>(i - tool.cylinder_count);
+      const double distance = i < tool.cylinder_count
+                                  ? cylinderDistance(tool.cylinders[static_cast<std::size_t>(i)], p, counts)
+                                  : boxDistance(tool.boxes[box], p, counts);
+      if (distance < 0.0) {
+        collision = true;
+        return false;
+      }
+      if (counts) nearest = std::min(nearest, distance);
+    }
+    return true;
+  });
+  if (collision) return {true, 0.0};
+  return {false, nearest};
+}
+
+}  // namespace binpick::picking

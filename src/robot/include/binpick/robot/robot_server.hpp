@@ -1,0 +1,82 @@
+#pragma once
+// The TCP server the robot controllers connect to. One thread runs the event loop (poll): it
+// accepts clients from the allow-list, reads requests with the configured framing, hands each to
+// the RequestHandler and writes the replies. A client gets its replies in request order; its next
+// request is handed over only once the previous one is answered (robots are synchronous), while
+// every other client is served meanwhile. A client that sends garbage gets error replies (in
+// order with its other replies); one that queues more than max_queued_requests unanswered
+// requests, holds more than max_buffered_input bytes of an incomplete request, or does not read
+// its replies (max_buffered_output), is disconnected; no client can stall another or the handler.
+//
+// Thread-safety: reply(), stop(), clientCount(), setCodec() and setAllowedClients() may be called
+// from any thread; run() from one thread at a time. The destructor joins nothing (run() runs on
+// the caller's thread): call stop() and wait for run() to return before destroying the server.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "binpick/robot/protocol.hpp"
+
+namespace binpick::robot {
+
+struct RobotServerParams {
+  std::string bind_address = "0.0.0.0";       // IPv4 address to listen on
+  int port = 50100;                            // 0: any free port (tests; see port())
+  std::vector<std::string> allowed_clients;    // IPv4 addresses or CIDR blocks; empty: any
+  int max_clients = 8;                         // further connections are closed at once
+  // Requests received but not yet answered, per client, the one with the handler included. A
+  // robot sends one at a time; a client that pipelines more is disconnected.
+  std::size_t max_queued_requests = 16;
+  // Bytes of an incomplete request held per client; at least codec.max_line_length.
+  std::size_t max_buffered_input = 4096;
+  std::size_t max_buffered_output = 65536;     // bytes of unread replies per client
+  robot::CodecParams codec;
+  void validate() const;                       // throws core::Error naming the field
+};
+
+using ClientId = uint64_t;  // never reused within a server's life
+
+// Called on the server thread; must not block. It answers now or later by calling
+// RobotServer::reply(client, ...) exactly once per request (from any thread, this one included).
+// Replies for a client that has gone are dropped. A handle() that throws has not answered: the
+// server answers that request with InternalError itself.
+class RequestHandler {
+ public:
+  virtual ~RequestHandler() = default;
+  virtual void handle(ClientId client, const robot::Request& request) = 0;
+  // The client is gone (it closed, broke a limit, or the server stopped); its outstanding
+  // request, if any, need not be answered.
+  virtual void disconnected(ClientId /*client*/) {}
+};
+
+class RobotServer {
+ public:
+  // Validates params, then binds and listens at once: throws core::Error naming the address
+  // and port when it cannot (address in use, not an IPv4 address).
+  RobotServer(const RobotServerParams& params, RequestHandler& handler);
+  ~RobotServer();  // closes the sockets; see the thread-safety note above
+  RobotServer(const RobotServer&) = delete;
+  RobotServer& operator=(const RobotServer&) = delete;
+
+  int port() const;                 // the bound port
+  // Serves until stop(), then closes every client (handler.disconnected for each) and the
+  // listening socket. Problems of one client never end it; a failing listening socket or poll()
+  // throws core::Error. A stopped server stays stopped: run() then returns at once.
+  void run();
+  void stop();
+  void reply(ClientId client, const robot::Reply& reply);
+  std::size_t clientCount() const;
+  // Takes new codec settings (SIGHUP reload) for connections opened from now on; connected
+  // clients keep theirs. Bind address and port changes need a restart. Throws core::Error
+  // naming the field for invalid settings and keeps the old ones.
+  void setCodec(const robot::CodecParams& codec);
+  // For connections opened from now on; throws core::Error naming a malformed entry.
+  void setAllowedClients(const std::vector<std::string>& allowed);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace binpick::robot

@@ -1,0 +1,263 @@
+// ASCII framing: requests "KEYWORD[,argument]" and "POSE,x,y,z,v1,v2,v3[,v4]"; replies
+// "KEYWORD,status[,integers...][,x,y,z,orientation...]\r\n".
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include "binpick/core/error.hpp"
+#include "codec.hpp"
+
+namespace binpick::robot::detail {
+
+namespace {
+
+// Below 0x20 or above 0x7e: NUL, tabs, stray carriage returns, UTF-8. Refused rather than
+// skipped, so that a robot program writing garbage hears about it.
+bool isForbiddenByte(char c) {
+  const auto byte = static_cast<unsigned char>(c);
+  return byte < 0x20 || byte > 0x7e;
+}
+
+bool holdsForbiddenByte(std::string_view text) {
+  for (char c : text) {
+    if (isForbiddenByte(c)) return true;
+  }
+  return false;
+}
+
+std::string_view trimSpaces(std::string_view text) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  return text;
+}
+
+Decoded failure(Status error, Command command, std::string detail) {
+  Decoded decoded;
+  decoded.error = error;
+  decoded.command = command;
+  decoded.detail = std::move(detail);
+  return decoded;
+}
+
+// POSE's fields after the keyword: the pose, every value a finite number.
+Decoded decodePoseFields(const std::vector<std::string_view>& fields, core::Orientation orientation) {
+  std::vector<double> values;
+  for (std::size_t i = 1; i < fields.size(); ++i) {
+    const std::optional<double> value = parseFiniteNumber(fields[i]);
+    if (!value) {
+      return failure(Status::BadMessage, Command::Pose,
+                     "POSE value " + std::to_string(i) + " '" + std::string(fields[i]) +
+                         "' is no finite number");
+    }
+    values.push_back(*value);
+  }
+  std::string problem;
+  std::optional<Eigen::Isometry3d> T_base_flange =
+      poseFromWireValues(values, orientation, problem);
+  if (!T_base_flange) return failure(Status::BadMessage, Command::Pose, "POSE: " + problem);
+  Decoded decoded;
+  decoded.command = Command::Pose;
+  decoded.request = Request{Command::Pose, std::nullopt, T_base_flange};
+  return decoded;
+}
+
+// The request of a line whose keyword is known and whose bytes are all allowed.
+Decoded decodeFields(Command command, const std::vector<std::string_view>& fields,
+                     const CodecParams& params) {
+  if (command == Command::Pose) return decodePoseFields(fields, params.orientation);
+  const std::string keyword = commandKeyword(command);
+  if (fields.size() > 2) {
+    return failure(Status::BadMessage, command, keyword + " takes at most one argument");
+  }
+  std::optional<std::string> argument;
+  if (fields.size() == 2) argument = std::string(fields[1]);
+  const std::string problem = argumentProblem(command, argument);
+  if (!problem.empty()) return failure(Status::BadMessage, command, problem);
+  Decoded decoded;
+  decoded.command = command;
+  decoded.request = Request{command, canonicalArgument(command, argument)};
+  return decoded;
+}
+
+}  // namespace
+
+std::vector<std::string_view> splitAtCommas(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t start = 0;
+  for (std::size_t comma = line.find(','); comma != std::string_view::npos;
+       comma = line.find(',', start)) {
+    fields.push_back(line.substr(start, comma - start));
+    start = comma + 1;
+  }
+  fields.push_back(line.substr(start));
+  return fields;
+}
+
+std::optional<Decoded> decodeAsciiRequestLine(std::string_view line, const CodecParams& params) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  if (trimSpaces(line).empty()) return std::nullopt;
+  std::vector<std::string_view> fields = splitAtCommas(line);
+  for (std::string_view& field : fields) field = trimSpaces(field);
+  const std::string_view keyword = fields.front();
+  if (holdsForbiddenByte(keyword)) {
+    return failure(Status::BadMessage, Command::Ping,
+                   "a control character or non-ASCII byte in the keyword");
+  }
+  const std::optional<Command> command = commandFromKeyword(keyword);
+  if (!command) {
+    if (keyword.empty()) return failure(Status::BadMessage, Command::Ping, "no keyword");
+    return failure(Status::UnknownCommand, kUnknownAsciiCommand,
+                   "unknown command '" + std::string(keyword) + "'");
+  }
+  if (holdsForbiddenByte(line)) {
+    return failure(Status::BadMessage, *command,
+                   "a control character or non-ASCII byte in the line");
+  }
+  return decodeFields(*command, fields, params);
+}
+
+Decoded oversizedAsciiRequest(std::string_view start) {
+  // The keyword is known only if its comma arrived within the limit; else it is garbage.
+  Command command = Command::Ping;
+  const std::size_t comma = start.find(',');
+  if (comma != std::string_view::npos) {
+    const std::string_view keyword = trimSpaces(start.substr(0, comma));
+    if (!holdsForbiddenByte(keyword)) command = commandFromKeyword(keyword).value_or(command);
+  }
+  return failure(Status::BadMessage, command, "a line longer than max_line_length");
+}
+
+std::string encodeAsciiRequest(const Request& request, const CodecParams& params) {
+  std::string line = commandKeyword(request.command);
+  if (request.argument) line += "," + *request.argument;
+  if (request.T_base_flange) {
+    const std::optional<std::string> pose =
+        asciiPoseText(*request.T_base_flange, params.orientation, params.position_decimals,
+                      params.orientation_decimals);
+    if (!pose) throw core::Error("Request.T_base_flange is too far out to be written as a POSE line");
+    line += *pose;
+  }
+  return line + "\r\n";
+}
+
+
+namespace {
+
+// How many decimals a reply gives up, in turn, when it is too long at full precision: the
+// orientation first (a quaternion's fifth decimal moves a point 200 mm from the flange by
+// ~2 um, a position's second decimal by 10 um), and never more than these.
+struct PrecisionDrop {
+  int position, orientation;
+};
+constexpr std::array<PrecisionDrop, 4> kPrecisionDrops = {{{0, 0}, {0, 1}, {1, 1}, {1, 2}}};
+
+std::optional<std::string> poseText(const Eigen::Isometry3d& T_base_tool, const CodecParams& params,
+                                    PrecisionDrop drop) {
+  return asciiPoseText(T_base_tool, params.orientation,
+                       std::max(0, params.position_decimals - drop.position),
+                       std::max(0, params.orientation_decimals - drop.orientation));
+}
+
+std::string badMessageLine(Command command) {
+  return std::string(commandKeyword(command)) + "," +
+         std::to_string(static_cast<int32_t>(Status::BadMessage)) + "\r\n";
+}
+
+// --- decoding
+
+[[noreturn]] void malformed(std::string_view line, const std::string& problem) {
+  std::string shown(line.substr(0, 100));
+  for (char& c : shown) {
+    if (c < 0x20 || c > 0x7e) c = '?';  // the message goes to logs and terminals
+  }
+  throw core::Error("malformed reply '" + shown + "': " + problem);
+}
+
+template <typename Number>
+std::optional<Number> parseNumber(std::string_view text) {
+  Number value{};
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size()) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+Command replyCommand(std::string_view line, std::string_view keyword) {
+  if (const std::optional<Command> command = commandFromKeyword(keyword)) return *command;
+  if (keyword == kUnknownKeyword) return kUnknownAsciiCommand;
+  malformed(line, "unknown keyword");
+}
+
+Eigen::Isometry3d parsePose(std::string_view line, const std::vector<std::string_view>& fields,
+                            core::Orientation orientation) {
+  std::vector<double> values;
+  for (std::string_view field : fields) {
+    const std::optional<double> value = parseFiniteNumber(field);
+    if (!value) malformed(line, "a pose value is no finite number");
+    values.push_back(*value);
+  }
+  std::string problem;
+  const std::optional<Eigen::Isometry3d> T_base_tool =
+      poseFromWireValues(values, orientation, problem);
+  if (!T_base_tool) malformed(line, problem);
+  return *T_base_tool;
+}
+
+}  // namespace
+
+std::string encodeAsciiReply(const Reply& reply, const CodecParams& params) {
+  std::string head = std::string(commandKeyword(reply.command)) + "," +
+                     std::to_string(static_cast<int32_t>(reply.status));
+  for (int32_t integer : reply.integers) head += "," + std::to_string(integer);
+  if (!reply.T_base_tool) {
+    const std::string line = head + "\r\n";
+    return line.size() <= params.max_line_length ? line : badMessageLine(reply.command);
+  }
+  for (const PrecisionDrop& drop : kPrecisionDrops) {
+    const std::optional<std::string> pose = poseText(*reply.T_base_tool, params, drop);
+    if (!pose) break;
+    const std::string line = head + *pose + "\r\n";
+    if (line.size() <= params.max_line_length) return line;
+  }
+  return badMessageLine(reply.command);
+}
+
+Reply decodeAsciiReplyLine(std::string_view line, const CodecParams& params) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  const std::vector<std::string_view> fields = splitAtCommas(line);
+  if (fields.size() < 2) malformed(line, "no status");
+  Reply reply;
+  reply.command = replyCommand(line, fields[0]);
+  const std::optional<int64_t> code = parseNumber<int64_t>(fields[1]);
+  const std::optional<Status> status = code ? statusFromCode(*code) : std::nullopt;
+  if (!status) malformed(line, "the status is no status code");
+  reply.status = *status;
+  const std::size_t numbers = fields.size() - 2;
+  const std::size_t poseValues =
+      3 + static_cast<std::size_t>(core::orientationValueCount(params.orientation));
+  const bool hasPose = numbers > kMaxReplyIntegers;
+  if (hasPose && (numbers < poseValues || numbers - poseValues > kMaxReplyIntegers)) {
+    malformed(line, "neither up to 3 integers nor up to 3 integers and a pose");
+  }
+  const std::size_t integers = hasPose ? numbers - poseValues : numbers;
+  for (std::size_t i = 0; i < integers; ++i) {
+    const std::optional<int32_t> integer = parseNumber<int32_t>(fields[2 + i]);
+    if (!integer) malformed(line, "an integer field is no int32");
+    reply.integers.push_back(*integer);
+  }
+  if (hasPose) {
+    reply.T_base_tool =
+        parsePose(line, {fields.begin() + 2 + static_cast<std::ptrdiff_t>(integers), fields.end()},
+                  params.orientation);
+  }
+  try {
+    checkReply(reply);
+  } catch (const core::Error& error) {
+    malformed(line, error.what());
+  }
+  return reply;
+}
+
+}  // namespace binpick::robot::detail

@@ -1,0 +1,128 @@
+#include <arpa/inet.h>
+#include <exception>
+
+#include "address_filter.hpp"
+#include "binpick/core/error.hpp"
+#include "binpick/robot/robot_server.hpp"
+#include "server_impl.hpp"
+#include "server_logger.hpp"
+
+namespace binpick::robot {
+namespace {
+
+const std::string kOwner = "robot_server";
+
+detail::ClientLimits limitsOf(const RobotServerParams& params) {
+  detail::ClientLimits limits;
+  limits.max_queued_requests = params.max_queued_requests;
+  limits.max_buffered_input = params.max_buffered_input;
+  limits.max_buffered_output = params.max_buffered_output;
+  return limits;
+}
+
+}  // namespace
+
+RobotServer::Impl::Impl(const RobotServerParams& params, RequestHandler& request_handler)
+    : limits(limitsOf(params)),
+      max_clients(params.max_clients),
+      handler(request_handler),
+      listener(detail::listenTcp(params.bind_address, params.port)),
+      wake_fd(detail::makeEventFd()),
+      port(detail::boundPort(listener.get())),
+      codec(params.codec),
+      allowed(std::make_shared<const detail::AddressFilter>(params.allowed_clients,
+                                                            kOwner + ".allowed_clients")) {}
+
+RobotServer::RobotServer(const RobotServerParams& params, RequestHandler& handler) {
+  params.validate();
+  impl_ = std::make_unique<Impl>(params, handler);
+  detail::serverLogger()->info("listening on {}:{}", params.bind_address, impl_->port);
+}
+
+RobotServer::~RobotServer() = default;
+
+int RobotServer::port() const { return impl_->port; }
+
+void RobotServer::run() {
+  if (impl_->running.exchange(true)) throw core::Error("robot server: run() is already running");
+  if (!impl_->listener.valid() && !impl_->stop_requested.load()) {
+    impl_->running.store(false);
+    throw core::Error("robot server: the listening socket was closed by a failure; create a new server");
+  }
+  // Whichever way the loop ends, the clients hear of it and a later run() finds a clean state.
+  struct Finish {
+    Impl& impl;
+    const char* reason;
+    ~Finish() {
+      impl.closeAll(reason);
+      impl.listener.reset();
+      impl.running.store(false);
+    }
+  } finish{*impl_, "the server stopped"};
+  try {
+    impl_->serve();
+  } catch (const std::exception&) {
+    finish.reason = "the server failed";
+    throw;
+  }
+}
+
+void RobotServer::stop() {
+  impl_->stop_requested.store(true);
+  impl_->wake();
+}
+
+void RobotServer::reply(ClientId client, const robot::Reply& reply) {
+  // Once stopped, nothing would ever take the reply off the queue.
+  if (impl_->stop_requested.load()) return;
+  {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
+    impl_->incoming_replies.emplace_back(client, reply);
+  }
+  impl_->wake();
+}
+
+std::size_t RobotServer::clientCount() const { return impl_->client_count.load(); }
+
+void RobotServer::setCodec(const robot::CodecParams& codec) {
+  codec.validate();
+  core::requireField(codec.max_line_length <= impl_->limits.max_buffered_input &&
+                   codec.max_line_length <= impl_->limits.max_buffered_output,
+               kOwner + ".codec", "max_line_length", "<= max_buffered_input and max_buffered_output",
+               codec.max_line_length);
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->codec = codec;
+}
+
+void RobotServer::setAllowedClients(const std::vector<std::string>& allowed) {
+  auto filter = std::make_shared<const detail::AddressFilter>(allowed, kOwner + ".allowed_clients");
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  impl_->allowed = std::move(filter);
+}
+
+
+void RobotServerParams::validate() const {
+  const std::string owner = "robot_server";
+  in_addr address{};
+  core::requireField(inet_pton(AF_INET, bind_address.c_str(), &address) == 1, owner, "bind_address",
+               "an IPv4 address", bind_address);
+  core::requireField(port >= 0 && port <= 65535, owner, "port", "in [0, 65535]", port);
+  // Parsing is the check; the filter itself is built again by the server.
+  detail::AddressFilter{allowed_clients, owner + ".allowed_clients"};
+  core::requireField(max_clients >= 1, owner, "max_clients", ">= 1", max_clients);
+  core::requireField(max_queued_requests >= 1, owner, "max_queued_requests", ">= 1",
+               max_queued_requests);
+  // A request the codec accepts must fit, or every long request would cost the connection.
+  core::requireField(max_buffered_input >= codec.max_line_length &&
+                   max_buffered_input >= robot::kMaxBinaryRequestSize,
+               owner, "max_buffered_input", ">= codec.max_line_length and the longest binary request",
+               max_buffered_input);
+  // One reply must fit, or the first reply to a client that is slow to read would cost it.
+  core::requireField(max_buffered_output >= robot::kBinaryReplySize &&
+                   max_buffered_output >= codec.max_line_length,
+               owner, "max_buffered_output", ">= codec.max_line_length and the binary reply size",
+               max_buffered_output);
+  codec.validate();
+}
+
+}  // namespace binpick::robot

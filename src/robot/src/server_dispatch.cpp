@@ -1,0 +1,102 @@
+// The server thread's side of requests and replies: handing requests to the handler one at a
+// time per client, applying the replies other threads queued, and closing clients.
+#include <exception>
+#include <string>
+
+#include "server_impl.hpp"
+#include "server_logger.hpp"
+
+namespace binpick::robot {
+
+void RobotServer::Impl::serveReadyClients() {
+  while (!ready.empty()) {
+    const ClientId id = ready.front();
+    ready.pop_front();
+    const auto found = clients.find(id);
+    if (found == clients.end()) continue;
+    detail::ClientConnection& client = *found->second;
+    while (std::optional<robot::Request> request = client.takeNextRequest()) {
+      handOver(client, *request);
+      // A handler that answered at once frees the client for its next request now, without a
+      // trip through poll() per pipelined request.
+      applyReplies();
+    }
+    client.checkBacklog();
+  }
+}
+
+void RobotServer::Impl::handOver(detail::ClientConnection& client,
+                                 const robot::Request& request) {
+  std::string failure;
+  try {
+    handler.handle(client.id(), request);
+    return;
+  } catch (const std::exception& error) {
+    failure = error.what();
+  } catch (...) {
+    failure = "unknown exception";
+  }
+  // The robot must not wait forever for a reply the handler will never send.
+  detail::serverLogger()->error("client {}: the handler failed on {}: {}", client.id(),
+                                robot::commandKeyword(request.command), failure);
+  robot::Reply reply;
+  reply.command = request.command;
+  reply.status = robot::Status::InternalError;
+  client.answer(reply);
+}
+
+void RobotServer::Impl::applyReplies() {
+  std::vector<std::pair<ClientId, robot::Reply>> replies;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    replies.swap(incoming_replies);
+  }
+  for (const auto& [id, reply] : replies) {
+    const auto found = clients.find(id);
+    if (found == clients.end() || found->second->closing()) {
+      detail::serverLogger()->debug("reply for client {} dropped: the client has gone", id);
+      continue;
+    }
+    if (!found->second->answer(reply)) {
+      detail::serverLogger()->warn("reply {} for client {} dropped: no request outstanding",
+                                   robot::commandKeyword(reply.command), id);
+      continue;
+    }
+    ready.push_back(id);
+  }
+}
+
+void RobotServer::Impl::closeClosingClients() {
+  for (auto it = clients.begin(); it != clients.end();) {
+    if (!it->second->closing()) {
+      ++it;
+      continue;
+    }
+    std::unique_ptr<detail::ClientConnection> client = std::move(it->second);
+    it = clients.erase(it);
+    client_count.store(clients.size());
+    disconnect(std::move(client));
+  }
+}
+
+void RobotServer::Impl::closeAll(const char* reason) {
+  for (auto& entry : clients) entry.second->markClosing(reason);
+  closeClosingClients();
+}
+
+void RobotServer::Impl::disconnect(std::unique_ptr<detail::ClientConnection> client) {
+  const ClientId id = client->id();
+  detail::serverLogger()->info("client {} ({}) disconnected: {}", id, client->peer(),
+                               client->closeReason());
+  client.reset();  // the socket closes before the handler hears of it
+  try {
+    handler.disconnected(id);
+  } catch (const std::exception& error) {
+    detail::serverLogger()->error("client {}: the handler failed on disconnect: {}", id,
+                                  error.what());
+  } catch (...) {
+    detail::serverLogger()->error("client {}: the handler failed on disconnect", id);
+  }
+}
+
+}  // namespace binpick::robot

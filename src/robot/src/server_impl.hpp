@@ -1,0 +1,66 @@
+#pragma once
+// Internal: the state of a RobotServer. Fields above the mutex are set in the constructor (the
+// listener is closed when run() ends); those it guards are shared with the threads calling
+// reply(), setCodec() and setAllowedClients(); the atomics with any thread; the rest belong to
+// the thread in run().
+#include <poll.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+#include "address_filter.hpp"
+#include "binpick/robot/robot_server.hpp"
+#include "client_connection.hpp"
+#include "socket_util.hpp"
+
+namespace binpick::robot {
+
+struct RobotServer::Impl {
+  Impl(const RobotServerParams& params, RequestHandler& request_handler);
+
+  void serve();  // the loop of run()
+  void wake() { detail::signalEventFd(wake_fd.get()); }
+
+  // Server thread only.
+  std::vector<pollfd> pollSet(std::vector<ClientId>& client_of_entry) const;
+  int pollTimeoutMs() const;
+  void acceptClients();
+  void admit(detail::UniqueFd socket, const sockaddr_in& peer);
+  void serveReadyClients();
+  void handOver(detail::ClientConnection& client, const robot::Request& request);
+  void applyReplies();
+  void closeClosingClients();
+  void closeAll(const char* reason);
+  void disconnect(std::unique_ptr<detail::ClientConnection> client);
+
+  detail::ClientLimits limits;
+  int max_clients;
+  RequestHandler& handler;
+  detail::UniqueFd listener;
+  detail::UniqueFd wake_fd;
+  int port = 0;
+
+  std::mutex mutex;
+  std::vector<std::pair<ClientId, robot::Reply>> incoming_replies;
+  robot::CodecParams codec;
+  std::shared_ptr<const detail::AddressFilter> allowed;
+
+  std::atomic<bool> stop_requested{false};
+  std::atomic<bool> running{false};
+  std::atomic<std::size_t> client_count{0};
+
+  std::map<ClientId, std::unique_ptr<detail::ClientConnection>> clients;
+  std::deque<ClientId> ready;  // clients whose next request may be handed over
+  ClientId next_id = 1;
+  // Out of descriptors: accepting pauses, or the listener would wake poll() in a busy loop.
+  std::chrono::steady_clock::time_point accept_paused_until{};
+};
+
+}  // namespace binpick::robot

@@ -1,0 +1,133 @@
+// The event loop of RobotServer::run(): poll() over the wake-up eventfd, the listening socket
+// and the clients, then accepting, reading, handing requests over and applying replies.
+#include <arpa/inet.h>
+
+#include <cerrno>
+#include <exception>
+#include <string>
+
+#include "binpick/core/error.hpp"
+#include "server_impl.hpp"
+#include "server_logger.hpp"
+
+namespace binpick::robot {
+namespace {
+
+constexpr std::size_t kWakeEntry = 0;
+constexpr std::size_t kListenerEntry = 1;
+constexpr std::size_t kFirstClientEntry = 2;
+// At most this many connections are accepted per wake-up: a connect flood cannot starve the
+// connected robots.
+constexpr int kAcceptBatch = 16;
+constexpr auto kAcceptPause = std::chrono::milliseconds(100);
+
+bool isFatalAcceptError(int error_number) {
+  return error_number == EBADF || error_number == EINVAL || error_number == ENOTSOCK ||
+         error_number == EFAULT;
+}
+
+bool isOutOfResources(int error_number) {
+  return error_number == EMFILE || error_number == ENFILE || error_number == ENOBUFS ||
+         error_number == ENOMEM;
+}
+
+}  // namespace
+
+void RobotServer::Impl::serve() {
+  while (!stop_requested.load()) {
+    std::vector<ClientId> client_of_entry;
+    std::vector<pollfd> entries = pollSet(client_of_entry);
+    if (::poll(entries.data(), entries.size(), pollTimeoutMs()) < 0) {
+      if (errno == EINTR) continue;
+      throw core::Error("robot server: poll failed: " + detail::errnoText(errno));
+    }
+    if (entries[kWakeEntry].revents != 0) detail::drainEventFd(wake_fd.get());
+    const short listener_events = entries[kListenerEntry].revents;
+    if (listener_events & POLLNVAL) throw core::Error("robot server: the listening socket is gone");
+    if (listener_events & (POLLIN | POLLERR)) acceptClients();
+    for (std::size_t i = kFirstClientEntry; i < entries.size(); ++i) {
+      const auto found = clients.find(client_of_entry[i - kFirstClientEntry]);
+      if (found == clients.end() || entries[i].revents == 0) continue;
+      detail::ClientConnection& client = *found->second;
+      if (entries[i].revents & POLLOUT) client.flush();
+      if (entries[i].revents & (POLLIN | POLLHUP | POLLERR)) client.receive();
+      ready.push_back(client.id());
+    }
+    applyReplies();
+    serveReadyClients();
+    closeClosingClients();
+  }
+}
+
+std::vector<pollfd> RobotServer::Impl::pollSet(std::vector<ClientId>& client_of_entry) const {
+  std::vector<pollfd> entries;
+  entries.push_back({wake_fd.get(), POLLIN, 0});
+  const bool accepting = std::chrono::steady_clock::now() >= accept_paused_until;
+  // A negative descriptor is skipped by poll(): how accepting pauses.
+  entries.push_back({accepting ? listener.get() : -1, POLLIN, 0});
+  for (const auto& [id, client] : clients) {
+    const short events = client->hasUnsentOutput() ? (POLLIN | POLLOUT) : POLLIN;
+    entries.push_back({client->fd(), events, 0});
+    client_of_entry.push_back(id);
+  }
+  return entries;
+}
+
+int RobotServer::Impl::pollTimeoutMs() const {
+  const auto now = std::chrono::steady_clock::now();
+  if (now >= accept_paused_until) return -1;
+  const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(accept_paused_until - now);
+  return static_cast<int>(wait.count()) + 1;
+}
+
+void RobotServer::Impl::acceptClients() {
+  for (int attempt = 0; attempt < kAcceptBatch; ++attempt) {
+    sockaddr_in peer{};
+    detail::UniqueFd socket = detail::acceptClient(listener.get(), peer);
+    if (socket.valid()) {
+      admit(std::move(socket), peer);
+      continue;
+    }
+    const int error_number = errno;
+    if (error_number == EAGAIN || error_number == EWOULDBLOCK) return;
+    if (isFatalAcceptError(error_number)) {
+      throw core::Error("robot server: accept failed: " + detail::errnoText(error_number));
+    }
+    if (isOutOfResources(error_number)) {
+      detail::serverLogger()->warn("cannot accept a connection: {}; pausing {} ms",
+                                   detail::errnoText(error_number), kAcceptPause.count());
+      accept_paused_until = std::chrono::steady_clock::now() + kAcceptPause;
+      return;
+    }
+    // A connection that failed before it was accepted (ECONNABORTED, network errors): the next.
+  }
+}
+
+void RobotServer::Impl::admit(detail::UniqueFd socket, const sockaddr_in& peer) {
+  const std::string peer_text =
+      detail::addressText(peer.sin_addr) + ":" + std::to_string(ntohs(peer.sin_port));
+  std::shared_ptr<const detail::AddressFilter> filter;
+  robot::CodecParams codec_now;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    filter = allowed;
+    codec_now = codec;
+  }
+  const auto log = detail::serverLogger();
+  if (!filter->allows(peer.sin_addr)) {
+    log->warn("refused {}: not in allowed_clients", peer_text);
+    return;  // the socket closes here
+  }
+  if (clients.size() >= static_cast<std::size_t>(max_clients)) {
+    log->warn("refused {}: {} clients already connected (max_clients)", peer_text, clients.size());
+    return;
+  }
+  detail::setNoDelay(socket.get());
+  const ClientId id = next_id++;
+  clients.emplace(id, std::make_unique<detail::ClientConnection>(id, std::move(socket), peer_text,
+                                                                 codec_now, limits));
+  client_count.store(clients.size());
+  log->info("client {} connected from {}", id, peer_text);
+}
+
+}  // namespace binpick::robot

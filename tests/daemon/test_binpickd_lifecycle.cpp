@@ -1,0 +1,85 @@
+// binpickd as systemd runs it: readiness, watchdog, reload on SIGHUP and stop on SIGTERM in the
+// middle of a cycle, and refusal of bad settings.
+#include <signal.h>
+
+#include <thread>
+
+#include "daemon_fixture.hpp"
+#include "binpick/robot/protocol.hpp"
+
+namespace binpick::cell::testing {
+namespace {
+
+using namespace std::chrono_literals;
+using robot::Command;
+using robot::Status;
+
+TEST_F(DaemonTest, TellsSystemdItIsReadyAndFeedsTheWatchdog) {
+  start("", 400000);  // WatchdogSec=0.4s: pings every 0.2 s
+  EXPECT_TRUE(notify_->waitFor("READY=1", 60s));
+  EXPECT_TRUE(notify_->waitFor("WATCHDOG=1", 10s));
+  EXPECT_TRUE(notify_->waitFor("WATCHDOG=1", 10s));
+  RobotClient robot(port_);
+  EXPECT_EQ(robot.ask(request(Command::Ping)).status, Status::Ok);
+  daemon_->signal(SIGTERM);
+  EXPECT_TRUE(notify_->waitFor("STOPPING=1", 30s));
+  EXPECT_EQ(daemon_->wait(60s), 0);
+}
+
+TEST_F(DaemonTest, ReloadsOnSighupDuringACycleWithoutDroppingTheRobot) {
+  start();
+  ASSERT_TRUE(notify_->waitFor("READY=1", 60s));
+  RobotClient robot(port_);
+  robot.sendRaw(robot::encodeRequest(request(Command::Trigger), {}));
+  writeConfig("limits: {max_picks: 1}\n");
+  daemon_->signal(SIGHUP);
+  EXPECT_TRUE(notify_->waitFor("RELOADING=1", 30s));
+  EXPECT_TRUE(notify_->waitFor("READY=1", 60s));
+  const auto triggered = robot.receive(60s);
+  ASSERT_TRUE(triggered.has_value()) << "the connection survived the reload";
+  EXPECT_EQ(triggered->status, Status::Ok);
+
+  // The next cycle runs with the reloaded settings: one pick at most.
+  while (robot.ask(request(Command::NextPick)).status == Status::Ok) {}
+  ASSERT_EQ(robot.ask(request(Command::Trigger)).status, Status::Ok);
+  const robot::Reply only = robot.ask(request(Command::NextPick));
+  EXPECT_EQ(only.status, Status::Ok);
+  EXPECT_EQ(only.integers.at(0), 0) << "no pick remaining after the first";
+
+  // A broken file is refused; the running settings stay and the robot is still served.
+  std::ofstream(config_path_) << "robot: {port: [\n";
+  daemon_->signal(SIGHUP);
+  EXPECT_TRUE(notify_->waitFor("READY=1", 60s));
+  EXPECT_EQ(robot.ask(request(Command::Ping)).status, Status::Ok);
+  EXPECT_NE(daemonStderr().find("reload failed"), std::string::npos);
+}
+
+TEST_F(DaemonTest, StopsCleanlyOnSigtermInTheMiddleOfACycle) {
+  start();
+  ASSERT_TRUE(notify_->waitFor("READY=1", 60s));
+  RobotClient robot(port_);
+  robot.sendRaw(robot::encodeRequest(request(Command::Trigger), {}));
+  std::this_thread::sleep_for(20ms);  // let the cycle start
+  daemon_->signal(SIGTERM);
+  EXPECT_EQ(daemon_->wait(60s), 0) << daemonStderr();
+  // The robot got its answer (the capture, or "stopping"), or saw the connection close: never silence.
+  const auto reply = robot.receive(1s);
+  if (reply) {
+    EXPECT_TRUE(reply->status == Status::Ok || reply->status == Status::InternalError);
+  }
+}
+
+TEST_F(DaemonTest, RefusesBadSettingsNamingTheKey) {
+  config_path_ = pathOf("bad.yaml");
+  std::ofstream(config_path_) << cellConfigYaml(cellScene(), "limits: {avoid_cycles: -2}\n");
+  DaemonOptions options;
+  options.config_path = config_path_;
+  options.port_file = pathOf("port");
+  options.stderr_file = pathOf("stderr");
+  DaemonProcess daemon(options);
+  EXPECT_EQ(daemon.wait(60s), 1);
+  EXPECT_NE(daemonStderr().find("limits.avoid_cycles"), std::string::npos) << daemonStderr();
+}
+
+}  // namespace
+}  // namespace binpick::cell::testing

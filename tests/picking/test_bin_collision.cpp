@@ -1,0 +1,118 @@
+// The approach corridor against the bin (picking.hpp): walls, wall top, floor, a moved bin.
+// Default bin: inner half sizes 200 x 150 mm, walls 150 mm high; with the 25 mm tool these tests
+// set and the default 5 mm clearance the corridor radius is 30 mm, so a grasp point below the wall
+// top must stay within 170 x 120 mm of the centre.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "picking_test_support.hpp"
+
+namespace binpick::picking {
+namespace {
+
+using namespace binpick::picking::test;
+
+// The default top grasp's part placed so that its grasp point lands on `grasp_point`.
+DetectedPart partGraspedAt(const Eigen::Vector3d& grasp_point) {
+  return part(grasp_point - Eigen::Vector3d(0, 0, 0.02));
+}
+
+// The top grasp with the tool the limits below are worked out for.
+PickParams wideToolParams() {
+  PickParams params = topGraspParams();
+  params.gripper.tool_radius = 0.025;
+  return params;
+}
+
+bool reachable(const PickParams& params, const DetectedPart& detected) {
+  return planPicks({detected}, {}, params).picks.size() == 1;
+}
+
+TEST(picking_bin, VerticalGraspNearAWallIsRejectedInTheCentreAccepted) {
+  const PickParams params = wideToolParams();
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.185, 0, 0.06})));
+  EXPECT_FALSE(reachable(params, partGraspedAt({0, -0.135, 0.06})));
+  EXPECT_TRUE(reachable(params, partGraspedAt({0, 0, 0.06})));
+}
+
+// Analytic, not sampled: 1 mm either side of each limit decides.
+TEST(picking_bin, VerticalCorridorLimitsHoldToTheMillimetre) {
+  const PickParams params = wideToolParams();
+  EXPECT_TRUE(reachable(params, partGraspedAt({0.169, 0, 0.06})));
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.171, 0, 0.06})));
+  EXPECT_TRUE(reachable(params, partGraspedAt({0, -0.119, 0.06})));
+  EXPECT_FALSE(reachable(params, partGraspedAt({0, -0.121, 0.06})));
+  // Right beside the wall: free only once the grasp point is above the wall top.
+  EXPECT_TRUE(reachable(params, partGraspedAt({0.19, 0, 0.151})));
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.19, 0, 0.149})));
+}
+
+// Approach 45 degrees off vertical, from +x: the pre-grasp point lies 70.7 mm further out in x
+// and up in z than the grasp point.
+PickParams leaningGraspParams() {
+  PickParams params = wideToolParams();
+  params.grasps = {{"leaning", pose({0, 0, 0.02}, rotY(45) * rotX(180))}};
+  return params;
+}
+
+TEST(picking_bin, CorridorCrossingTheWallTopIsRejected) {
+  const PickParams params = leaningGraspParams();
+  // Grasp point 30 mm inside the shrunk box, but the corridor leaves over the +x wall top.
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.14, 0, 0.12})));
+  EXPECT_TRUE(reachable(params, partGraspedAt({0, 0, 0.12})));
+  // As close to the -x wall, the corridor leans towards the centre: free.
+  EXPECT_TRUE(reachable(params, partGraspedAt({-0.14, 0, 0.12})));
+}
+
+// A tilted corridor's slice reaches 30 mm * sin(45) below its axis: every slice whose axis is
+// below 150 + 21.2 mm must have it within 170 mm of the centre in x. Along the corridor x grows
+// as z does, so from a grasp point at z = 120 mm the limit is x = 170 - 51.2 mm.
+TEST(picking_bin, TiltedCorridorLimitHoldsToTheMillimetre) {
+  const PickParams params = leaningGraspParams();
+  const double radius = params.gripper.tool_radius + params.wall_clearance;
+  const double checked_up_to = params.bin.wall_height + radius * std::sin(radians(45));
+  const double limit_x = 0.5 * params.bin.length - radius - (checked_up_to - 0.12);
+  EXPECT_TRUE(reachable(params, partGraspedAt({limit_x - 0.001, 0, 0.12})));
+  EXPECT_FALSE(reachable(params, partGraspedAt({limit_x + 0.001, 0, 0.12})));
+}
+
+// A thin part lying on the floor is pickable: only the corridor's axis must stay above it.
+TEST(picking_bin, GraspPointJustAboveTheFloorIsAcceptedBelowItRejected) {
+  PickParams params;
+  params.grasps = {{"flat", pose({0, 0, 0.002}, rotX(180))}};
+  EXPECT_TRUE(reachable(params, part({0, 0, 0})));
+  EXPECT_FALSE(reachable(params, part({0, 0, -0.003})));
+}
+
+TEST(picking_bin, ApproachFromBelowTheFloorIsRejected) {
+  PickParams params = wideToolParams();
+  params.max_tilt_deg = 180;
+  const DetectedPart upside_down = part({0, 0, 0.05}, rotX(180));  // grasp point 30 mm up
+  EXPECT_FALSE(reachable(params, upside_down));  // pre-grasp point 70 mm below the floor
+  params.approach_distance = 0.02;
+  EXPECT_TRUE(reachable(params, upside_down));  // pre-grasp point 10 mm above the floor
+}
+
+// The bin turned a quarter about base z (its length along base y), tilted 10 degrees and moved:
+// limits hold in the bin frame, and the pick is the bin-frame grasp carried into the base.
+TEST(picking_bin, MovedAndTiltedBinChecksInItsOwnFrame) {
+  PickParams params = wideToolParams();
+  params.bin.T_base_bin = pose({0.8, -0.2, 0.3}, rotZ(90) * rotX(10));
+  const auto inBin = [&params](const Eigen::Vector3d& grasp_point_in_bin) {
+    return DetectedPart{params.bin.T_base_bin * partGraspedAt(grasp_point_in_bin).T_base_model, 1};
+  };
+  EXPECT_TRUE(reachable(params, inBin({0.16, 0, 0.06})));   // within 170 mm along the length
+  EXPECT_FALSE(reachable(params, inBin({0, 0.13, 0.06})));  // beyond 120 mm across the width
+  EXPECT_TRUE(reachable(params, inBin({0, 0.13, 0.16})));   // above the wall top
+  EXPECT_FALSE(reachable(params, inBin({0, 0, -0.001})));   // below the floor
+
+  const PickPlan plan = planPicks({inBin({0.16, 0.05, 0.06})}, {}, params);
+  ASSERT_TRUE(picksOne(plan));
+  const Eigen::Isometry3d expected = params.bin.T_base_bin * pose({0.16, 0.05, 0.06}, rotX(180));
+  EXPECT_TRUE(samePose(plan.picks[0].T_base_grasp, expected, 1e-3, 1e-3));
+  EXPECT_NEAR(plan.picks[0].tilt_deg, 10.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace binpick::picking
