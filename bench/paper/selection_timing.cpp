@@ -4,6 +4,7 @@
 #include <functional>
 #include <optional>
 
+#include "binpick/core/stopwatch.hpp"
 #include "binpick/estimation/selection.hpp"
 #include "binpick/estimation/verification.hpp"
 #include "binpick/estimation/voting.hpp"
@@ -13,7 +14,6 @@ namespace binpick::bench {
 namespace {
 
 using estimation::VerifiedCandidate;
-using Clock = std::chrono::steady_clock;
 
 // The remaining candidate with the highest score (ties: the lower index), as `score` rates it.
 std::optional<uint32_t> bestRemaining(const std::vector<VerifiedCandidate>& candidates,
@@ -38,26 +38,26 @@ void exhaustivePicks(const std::vector<VerifiedCandidate>& candidates, std::size
                      const std::function<uint32_t(const VerifiedCandidate&, const std::vector<uint8_t>&)>& score,
                      std::vector<double>& ms, std::vector<uint32_t>& picked) {
   std::vector<uint8_t> exist(scene_points, 1), taken(candidates.size(), 0);
-  const Clock::time_point start = Clock::now();
+  const core::Stopwatch stopwatch;
   for (int k = 0; k < picks; ++k) {
     const auto best = bestRemaining(candidates, taken, [&](const VerifiedCandidate& c) { return score(c, exist); });
     if (!best) break;
     taken[*best] = 1;
     for (uint32_t s : candidates[*best].support) exist[s] = 0;
-    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    ms.push_back(stopwatch.elapsedMs());
     picked.push_back(*best);
   }
 }
 
 void algorithm1Picks(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points, int picks,
                      SelectionCurves& out) {
-  const Clock::time_point start = Clock::now();
+  const core::Stopwatch stopwatch;
   estimation::MultipleSelection selection(candidates, scene_points);
   for (int k = 0; k < picks; ++k) {
     const auto pick = selection.next();
     if (!pick) break;
     selection.removeExplained(candidates[pick->candidate].support);
-    out.algorithm1_ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    out.algorithm1_ms.push_back(stopwatch.elapsedMs());
     out.algorithm1_picks.push_back(pick->candidate);
   }
 }

@@ -10,6 +10,7 @@
 
 #include "arguments.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 #include "commands.hpp"
 #include "binpick/robot/robot_connection.hpp"
 
@@ -18,7 +19,6 @@ namespace {
 
 using robot::RobotConnection;
 
-using Clock = std::chrono::steady_clock;
 using robot::Command;
 
 robot::CodecParams codecFrom(const Arguments& args) {
@@ -66,9 +66,9 @@ struct Session {
   std::chrono::milliseconds timeout;
 
   robot::Reply send(const robot::Request& request, const std::string& prefix) {
-    const auto start = Clock::now();
+    const core::Stopwatch stopwatch;
     const robot::Reply reply = connection.request(request, timeout);
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const double ms = stopwatch.elapsedMs();
     std::printf("%s%s (%.0f ms)\n", prefix.c_str(), describe(reply, orientation).c_str(), ms);
     std::fflush(stdout);
     return reply;
@@ -77,7 +77,7 @@ struct Session {
   // TRIGGER, then NEXT while picks remain. Returns the number of picks received.
   int cycle(int number, const std::optional<std::string>& model) {
     robot::Request trigger{Command::Trigger, model};
-    const auto start = Clock::now();
+    const core::Stopwatch stopwatch;
     const robot::Reply triggered = send(trigger, "cycle " + std::to_string(number) + ": ");
     if (triggered.status != robot::Status::Ok) return 0;
     int picks = 0;
@@ -87,7 +87,7 @@ struct Session {
       ++picks;
       if (!next.integers.empty() && next.integers[0] == 0) break;  // that was the last one
     }
-    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const double ms = stopwatch.elapsedMs();
     std::printf("cycle %d: %d picks in %.0f ms\n", number, picks, ms);
     return picks;
   }

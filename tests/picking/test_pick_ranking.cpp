@@ -5,6 +5,7 @@
 #include <chrono>
 #include <random>
 
+#include "binpick/core/stopwatch.hpp"
 #include "binpick/picking/tool_collision.hpp"
 #include "measured_scene_support.hpp"
 #include "picking_test_support.hpp"
@@ -165,10 +166,6 @@ io::PointCloud blockCloud(const std::vector<Block>& blocks, const Eigen::Isometr
   return cloud;
 }
 
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
 TEST(picking_ranking, TwentyPartsOnAFullSizeCloud) {
   const std::vector<Block> blocks = randomBlocks(20, 11);
   const Eigen::Isometry3d T_base_camera = pose({0, 0, 1.0}, rotX(180));
@@ -179,12 +176,11 @@ TEST(picking_ranking, TwentyPartsOnAFullSizeCloud) {
   std::vector<DetectedPart> parts;
   for (const Block& block : blocks) parts.push_back(part({block.centre.x(), block.centre.y(), block.top - 0.02}));
 
-  auto start = std::chrono::steady_clock::now();
+  core::Stopwatch stopwatch;
   const MeasuredScene scene(cloud, T_base_camera);
-  const double build_ms = millisecondsSince(start);
-  start = std::chrono::steady_clock::now();
+  const double build_ms = stopwatch.lapMs();
   const PickPlan plan = planPicks(parts, {}, params, &scene);
-  const double plan_ms = millisecondsSince(start);
+  const double plan_ms = stopwatch.lapMs();
   RecordProperty("scene_build_ms", std::to_string(build_ms));
   RecordProperty("plan_ms", std::to_string(plan_ms));
   std::printf("measured scene: %zu points, built in %.1f ms; 20 parts x 72 grasps planned in %.2f ms\n",
