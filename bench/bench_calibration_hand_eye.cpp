@@ -33,10 +33,14 @@ Options parse(int argc, char** argv) {
     const std::string flag = argv[i];
     if (i + 1 >= argc) throw core::Error("bench_calibration_hand_eye: " + flag + " needs a value");
     const std::string value = argv[++i];
-    if (flag == "--views") o.views = std::stoi(value);
-    else if (flag == "--seeds") o.seeds = std::stoi(value);
-    else if (flag == "--seed") o.seed = std::stoull(value);
-    else throw core::Error("bench_calibration_hand_eye: unknown option " + flag);
+    if (flag == "--views")
+      o.views = std::stoi(value);
+    else if (flag == "--seeds")
+      o.seeds = std::stoi(value);
+    else if (flag == "--seed")
+      o.seed = std::stoull(value);
+    else
+      throw core::Error("bench_calibration_hand_eye: unknown option " + flag);
   }
   if (o.views < 6 || o.seeds < 1) throw core::Error("bench_calibration_hand_eye: --views >= 6, --seeds >= 1");
   return o;
@@ -71,8 +75,8 @@ std::vector<std::pair<std::string, Eigen::Isometry3d>> measuredBoards(const simu
   uint64_t noise_seed = params.seed * 1000;
   for (const simulation::HandEyeSessionView& view : session.views) {
     const cv::Mat image = simulation::renderHandEyeImage(board, view.T_camera_board, params, ++noise_seed);
-    const auto pose = calibration::estimateBoardPose(calibration::detectBoard(image, layout), layout,
-                                                     params.rig.camera);
+    const auto pose =
+        calibration::estimateBoardPose(calibration::detectBoard(image, layout), layout, params.rig.camera);
     if (pose) boards.emplace_back(view.name, pose->T_camera_board);
   }
   return boards;
@@ -124,7 +128,8 @@ void runSetup(HandEyeSetup setup, const Options& o) {
     }
   }
   std::printf("\n%s, %d views, %d seeds from %llu: error of %s\n", calibration::handEyeSetupName(setup).c_str(),
-              o.views, o.seeds, static_cast<unsigned long long>(o.seed), calibration::cameraTransformName(setup).c_str());
+              o.views, o.seeds, static_cast<unsigned long long>(o.seed),
+              calibration::cameraTransformName(setup).c_str());
   std::printf("| robot noise        | method          | mean mm | max mm | mean deg | max deg | rejected |\n");
   std::printf("|--------------------|-----------------|--------:|-------:|---------:|--------:|---------:|\n");
   for (std::size_t n = 0; n < kNoiseLevels.size(); ++n) {
@@ -132,8 +137,8 @@ void runSetup(HandEyeSetup setup, const Options& o) {
       const Tally& t = tallies[n][m];
       const double k = std::max(t.solved, 1);
       std::printf("| %4.1f mm, %4.2f deg | %-15s | %7.3f | %6.3f | %8.4f | %7.4f | %8d |\n", kNoiseLevels[n].mm,
-                  kNoiseLevels[n].deg, methods[m].name().c_str(), t.sum_mm / k, t.max_mm, t.sum_deg / k,
-                  t.max_deg, t.failed);
+                  kNoiseLevels[n].deg, methods[m].name().c_str(), t.sum_mm / k, t.max_mm, t.sum_deg / k, t.max_deg,
+                  t.failed);
     }
   }
   std::fflush(stdout);

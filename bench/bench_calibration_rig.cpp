@@ -42,11 +42,16 @@ Options parse(int argc, char** argv) {
     const std::string flag = argv[i];
     if (i + 1 >= argc) throw core::Error("bench_calibration_rig: " + flag + " needs a value");
     const std::string value = argv[++i];
-    if (flag == "--poses") o.poses = std::stoi(value);
-    else if (flag == "--board") o.board = value;
-    else if (flag == "--seed") o.seed = std::stoi(value);
-    else if (flag == "--objects") o.objects = std::stoi(value);
-    else throw core::Error("bench_calibration_rig: unknown option " + flag);
+    if (flag == "--poses")
+      o.poses = std::stoi(value);
+    else if (flag == "--board")
+      o.board = value;
+    else if (flag == "--seed")
+      o.seed = std::stoi(value);
+    else if (flag == "--objects")
+      o.objects = std::stoi(value);
+    else
+      throw core::Error("bench_calibration_rig: unknown option " + flag);
   }
   if (o.poses < 3 || o.objects < 1) throw core::Error("bench_calibration_rig: --poses >= 3, --objects >= 1");
   return o;
@@ -74,8 +79,8 @@ struct MeasuredSequence {
   calibration::RigViewTimings timings;  // summed over the views
 };
 
-void compareWithTruth(const calibration::RigView& view,
-                      const std::vector<simulation::CornerObservation>& truth, MeasuredSequence& m) {
+void compareWithTruth(const calibration::RigView& view, const std::vector<simulation::CornerObservation>& truth,
+                      MeasuredSequence& m) {
   std::map<int, simulation::CornerObservation> by_id;
   for (const simulation::CornerObservation& corner : truth) by_id[corner.id] = corner;
   for (std::size_t i = 0; i < view.board.ids.size(); ++i) {
@@ -122,26 +127,25 @@ void printSequence(const MeasuredSequence& m) {
 // 2. The calibration against the true rig.
 
 void printLensErrors(const char* device, const io::LensIntrinsics& lens, const io::LensIntrinsics& truth) {
-  std::printf("  %-9s fx %+.2f  fy %+.2f  cx %+.2f  cy %+.2f px (of fx %.0f)\n", device,
-              lens.fx - truth.fx, lens.fy - truth.fy, lens.cx - truth.cx, lens.cy - truth.cy, truth.fx);
+  std::printf("  %-9s fx %+.2f  fy %+.2f  cx %+.2f  cy %+.2f px (of fx %.0f)\n", device, lens.fx - truth.fx,
+              lens.fy - truth.fy, lens.cx - truth.cx, lens.cy - truth.cy, truth.fx);
 }
 
-void printCalibration(const char* label, const calibration::RigCalibrationResult& r,
-                      const io::RigCalibration& truth) {
+void printCalibration(const char* label, const calibration::RigCalibrationResult& r, const io::RigCalibration& truth) {
   const Eigen::Isometry3d& T = r.rig.T_projector_camera;
   const Eigen::Isometry3d& T_true = truth.T_projector_camera;
   const double rotation = Eigen::AngleAxisd(T.linear().transpose() * T_true.linear()).angle();
   std::printf("%s\n", label);
   std::printf("  RMS camera %.3f px, projector %.3f px, stereo %.3f px; %d of %zu views used\n",
-              r.quality.camera_rms_px, r.quality.projector_rms_px, r.quality.stereo_rms_px,
-              r.quality.viewsUsed(), r.quality.views.size());
+              r.quality.camera_rms_px, r.quality.projector_rms_px, r.quality.stereo_rms_px, r.quality.viewsUsed(),
+              r.quality.views.size());
   printLensErrors("camera", r.rig.camera, truth.camera);
   printLensErrors("projector", r.rig.projector, truth.projector);
   std::printf("  baseline %+.3f mm (|T| %.2f mm), T off by %.3f mm, rotation off by %.4f deg\n",
               1e3 * (T.translation().norm() - T_true.translation().norm()), 1e3 * T_true.translation().norm(),
               1e3 * (T.translation() - T_true.translation()).norm(), rotation / kDegree);
-  std::printf("  time: camera %.0f ms, projector %.0f ms, stereo %.0f ms\n", r.timings.camera,
-              r.timings.projector, r.timings.stereo);
+  std::printf("  time: camera %.0f ms, projector %.0f ms, stereo %.0f ms\n", r.timings.camera, r.timings.projector,
+              r.timings.stereo);
   for (const std::string& warning : r.warnings) std::printf("  warning: %s\n", warning.c_str());
 }
 
@@ -178,18 +182,18 @@ void benchDepth(const io::RigCalibration& truth, const io::RigCalibration& recov
   photometry.seed = params.seed;
   const simulation::Part part = simulation::makePart("l_bracket");
   simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, params, patterns, photometry);
-  const io::Capture capture = simulation::recordedCapture(std::move(pile.images), params, patterns, photometry,
-                                               "bench_calibration_rig");
+  const io::Capture capture =
+      simulation::recordedCapture(std::move(pile.images), params, patterns, photometry, "bench_calibration_rig");
   const io::PointCloud with_true = reconstruction::Reconstructor(truth).reconstruct(capture).cloud;
   const io::PointCloud with_recovered = reconstruction::Reconstructor(recovered).reconstruct(capture).cloud;
   const DepthErrors e = compareDepth(pile.scene, with_true, with_recovered);
-  std::printf("\n== 3. Depth of a pile (%d x l_bracket, seed %d), |dz| over pixels valid in both ==\n",
-              o.objects, o.seed);
+  std::printf("\n== 3. Depth of a pile (%d x l_bracket, seed %d), |dz| over pixels valid in both ==\n", o.objects,
+              o.seed);
   printQuantiles("recovered vs true calibration", e.between, "mm");
   printQuantiles("true calibration vs rendered depth", e.true_vs_depth, "mm");
   printQuantiles("recovered calibration vs rendered depth", e.recovered_vs_depth, "mm");
-  std::printf("  95th percentile: %.3f / %.3f / %.3f mm\n", quantile(e.between, 0.95),
-              quantile(e.true_vs_depth, 0.95), quantile(e.recovered_vs_depth, 0.95));
+  std::printf("  95th percentile: %.3f / %.3f / %.3f mm\n", quantile(e.between, 0.95), quantile(e.true_vs_depth, 0.95),
+              quantile(e.recovered_vs_depth, 0.95));
 }
 
 void run(const Options& o) {
@@ -201,10 +205,9 @@ void run(const Options& o) {
   params.pattern_set.projector_height = params.rig.projector.height;
   params.validate();
   const calibration::BoardLayout layout = params.board.layout();
-  std::printf("bench_calibration_rig: %d %s poses, seed %d, camera %dx%d, projector %dx%d, %zu patterns\n",
-              o.poses, o.board.c_str(), o.seed, params.rig.camera.width, params.rig.camera.height,
-              params.rig.projector.width, params.rig.projector.height,
-              reconstruction::patternNames(params.pattern_set).size());
+  std::printf("bench_calibration_rig: %d %s poses, seed %d, camera %dx%d, projector %dx%d, %zu patterns\n", o.poses,
+              o.board.c_str(), o.seed, params.rig.camera.width, params.rig.camera.height, params.rig.projector.width,
+              params.rig.projector.height, reconstruction::patternNames(params.pattern_set).size());
   std::printf("\n== 1. Views (corners against the true pixels) ==\n");
   const MeasuredSequence m = measureSequence(params, layout);
   printSequence(m);

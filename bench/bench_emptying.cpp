@@ -18,9 +18,9 @@
 #include <thread>
 
 #include "bench_support.hpp"
-#include "binpick/emptying/emptying.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
+#include "binpick/emptying/emptying.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "plot.hpp"
 
@@ -64,16 +64,26 @@ Options parseOptions(int argc, char** argv) {
     }
     if (i + 1 >= argc) throw core::Error("option " + key + " needs a value\n" + kUsage);
     const std::string value = argv[++i];
-    if (key == "--parts") options.parts = splitCommas(value);
-    else if (key == "--meshes") options.meshes = splitCommas(value);
-    else if (key == "--grippers") options.grippers = splitCommas(value);
-    else if (key == "--cups") options.cups = parseCups(value);
-    else if (key == "--bins") options.bins = std::stoi(value);
-    else if (key == "--objects") options.objects = std::stoi(value);
-    else if (key == "--first-seed") options.first_seed = std::stoi(value);
-    else if (key == "--threads") options.threads = std::stoi(value);
-    else if (key == "--out") options.out = value;
-    else throw core::Error("unknown option " + key + "\n" + kUsage);
+    if (key == "--parts")
+      options.parts = splitCommas(value);
+    else if (key == "--meshes")
+      options.meshes = splitCommas(value);
+    else if (key == "--grippers")
+      options.grippers = splitCommas(value);
+    else if (key == "--cups")
+      options.cups = parseCups(value);
+    else if (key == "--bins")
+      options.bins = std::stoi(value);
+    else if (key == "--objects")
+      options.objects = std::stoi(value);
+    else if (key == "--first-seed")
+      options.first_seed = std::stoi(value);
+    else if (key == "--threads")
+      options.threads = std::stoi(value);
+    else if (key == "--out")
+      options.out = value;
+    else
+      throw core::Error("unknown option " + key + "\n" + kUsage);
   }
   if (options.out.empty()) throw core::Error(std::string("--out is needed\n") + kUsage);
   if (options.bins < 1 || options.objects < 1) throw core::Error("--bins and --objects must be >= 1");
@@ -147,9 +157,10 @@ std::string summaryTable(const std::vector<Row>& rows) {
     char cup[16] = "-";
     if (group.front()->cup_mm > 0) std::snprintf(cup, sizeof(cup), "%.0f mm", group.front()->cup_mm);
     char line[320];
-    std::snprintf(line, sizeof(line), "| %s | %s | %s | %zu | %.1f%% (%d/%d) | %d/%zu | %d | %.1f | %.2f s | %.2f s | %d |\n",
-                  key.first.c_str(), key.second.c_str(), cup, group.size(), 100.0 * picked / std::max(objects, 1), picked,
-                  objects, clean_bins, group.size(), failed, static_cast<double>(cycles) / group.size(),
+    std::snprintf(line, sizeof(line),
+                  "| %s | %s | %s | %zu | %.1f%% (%d/%d) | %d/%zu | %d | %.1f | %.2f s | %.2f s | %d |\n",
+                  key.first.c_str(), key.second.c_str(), cup, group.size(), 100.0 * picked / std::max(objects, 1),
+                  picked, objects, clean_bins, group.size(), failed, static_cast<double>(cycles) / group.size(),
                   median(cycle_ms) / 1000.0, max_ms / 1000.0, grasps);
     table += line;
   }

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "bench_support.hpp"
-#include "binpick/estimation/detector.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/estimation/detector.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
-#include "binpick/evaluation/evaluation.hpp"
 
 namespace {
 
@@ -39,14 +39,22 @@ Options parse(int argc, char** argv) {
     const std::string flag = argv[i];
     if (i + 1 >= argc) throw core::Error("bench_estimation: " + flag + " needs a value");
     const std::string value = argv[++i];
-    if (flag == "--parts") o.parts = splitCommas(value);
-    else if (flag == "--scenes") o.scenes = std::stoi(value);
-    else if (flag == "--objects") o.objects = std::stoi(value);
-    else if (flag == "--seed") o.seed = std::stoull(value);
-    else if (flag == "--method") o.method = value;
-    else if (flag == "--threads") o.threads = std::stoi(value);
-    else if (flag == "--max-pairs-per-feature") o.max_pairs_per_feature = static_cast<uint32_t>(std::stoul(value));
-    else throw core::Error("bench_estimation: unknown option " + flag);
+    if (flag == "--parts")
+      o.parts = splitCommas(value);
+    else if (flag == "--scenes")
+      o.scenes = std::stoi(value);
+    else if (flag == "--objects")
+      o.objects = std::stoi(value);
+    else if (flag == "--seed")
+      o.seed = std::stoull(value);
+    else if (flag == "--method")
+      o.method = value;
+    else if (flag == "--threads")
+      o.threads = std::stoi(value);
+    else if (flag == "--max-pairs-per-feature")
+      o.max_pairs_per_feature = static_cast<uint32_t>(std::stoul(value));
+    else
+      throw core::Error("bench_estimation: unknown option " + flag);
   }
   if (o.scenes < 1 || o.objects < 1) throw core::Error("bench_estimation: --scenes and --objects must be >= 1");
   return o;
@@ -54,9 +62,12 @@ Options parse(int argc, char** argv) {
 
 estimation::DetectorParams detectorParams(const Options& o) {
   estimation::DetectorParams p;
-  if (o.method == "ppf1") p = estimation::DetectorParams::drost(1.0f);
-  else if (o.method == "ppf5") p = estimation::DetectorParams::drost(0.2f);
-  else if (o.method != "li_hashimoto") throw core::Error("bench_estimation: --method must be li_hashimoto, ppf1 or ppf5");
+  if (o.method == "ppf1")
+    p = estimation::DetectorParams::drost(1.0f);
+  else if (o.method == "ppf5")
+    p = estimation::DetectorParams::drost(0.2f);
+  else if (o.method != "li_hashimoto")
+    throw core::Error("bench_estimation: --method must be li_hashimoto, ppf1 or ppf5");
   p.selection.max_objects = o.objects;
   p.threads = o.threads;
   return p;
@@ -104,8 +115,8 @@ void benchPart(const std::string& part_name, const Options& o) {
     params.scene.crop = evaluation::binInterior(scene, pile);
     const estimation::Detector detector(model, params);
     const estimation::DetectionResult result = detector.detect(scene.cloud);
-    const evaluation::Score score = evaluation::scoreDetections(result.detections, scene.objects, part.symmetry,
-                                                    {model.diameter / 10.0, 10.0});
+    const evaluation::Score score =
+        evaluation::scoreDetections(result.detections, scene.objects, part.symmetry, {model.diameter / 10.0, 10.0});
     totals.add(result, score, validPoints(scene.cloud));
   }
   const double objects = static_cast<double>(o.scenes) * o.objects;
@@ -113,13 +124,15 @@ void benchPart(const std::string& part_name, const Options& o) {
   std::printf("%-10s %-12s model %zu pts, %zu pairs | scenes %d x %d objects, %.0fk pts/scene, %d subsampled\n",
               part_name.c_str(), o.method.c_str(), model.size(), model.table.pairCount(), o.scenes, o.objects,
               totals.input_points / 1000.0 / o.scenes, totals.scene_points / o.scenes);
-  std::printf("  ms/object %.1f (scene %.1f, voting %.1f, verification %.1f, selection %.2f, icp %.1f); ms/scene %.0f\n",
-              per_object(totals.ms.total), per_object(totals.ms.prepare_scene), per_object(totals.ms.voting),
-              per_object(totals.ms.verification), per_object(totals.ms.selection), per_object(totals.ms.icp),
-              totals.ms.total / o.scenes);
-  std::printf("  recognition %.1f%% (%d/%d objects >= 50%% visible), detections %d, correct %d, wrong in first 10: %d\n",
-              totals.findable ? 100.0 * totals.found / totals.findable : 0.0, totals.found, totals.findable,
-              totals.detections, totals.correct, totals.wrong_first_10);
+  std::printf(
+      "  ms/object %.1f (scene %.1f, voting %.1f, verification %.1f, selection %.2f, icp %.1f); ms/scene %.0f\n",
+      per_object(totals.ms.total), per_object(totals.ms.prepare_scene), per_object(totals.ms.voting),
+      per_object(totals.ms.verification), per_object(totals.ms.selection), per_object(totals.ms.icp),
+      totals.ms.total / o.scenes);
+  std::printf(
+      "  recognition %.1f%% (%d/%d objects >= 50%% visible), detections %d, correct %d, wrong in first 10: %d\n",
+      totals.findable ? 100.0 * totals.found / totals.findable : 0.0, totals.found, totals.findable, totals.detections,
+      totals.correct, totals.wrong_first_10);
 }
 
 }  // namespace

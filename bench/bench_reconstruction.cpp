@@ -15,24 +15,24 @@
 #include <vector>
 
 #include "bench_support.hpp"
-#include "binpick/estimation/detector.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/core/thread_count.hpp"
+#include "binpick/estimation/detector.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
-#include "binpick/evaluation/evaluation.hpp"
 
 namespace {
 
 using namespace binpick;
 
 constexpr int kObjects = 20;
-constexpr double kWrongMm = 5.0;      // a point this far off in z is a wrong point, not noise
-constexpr double kEdgeStepMm = 3.0;   // adjacent truth depths this far apart: a depth edge
-constexpr int kEdgeRadius = 2;        // pixels: "near a depth edge"
+constexpr double kWrongMm = 5.0;     // a point this far off in z is a wrong point, not noise
+constexpr double kEdgeStepMm = 3.0;  // adjacent truth depths this far apart: a depth edge
+constexpr int kEdgeRadius = 2;       // pixels: "near a depth edge"
 constexpr double kPi = 3.14159265358979323846;
 
 struct Options {
@@ -51,16 +51,28 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
-    if (flag == "--skip-large") { o.skip_large = true; continue; }
-    if (flag == "--skip-detection") { o.skip_detection = true; continue; }
+    if (flag == "--skip-large") {
+      o.skip_large = true;
+      continue;
+    }
+    if (flag == "--skip-detection") {
+      o.skip_detection = true;
+      continue;
+    }
     if (i + 1 >= argc) throw core::Error("bench_reconstruction: " + flag + " needs a value");
     const std::string value = argv[++i];
-    if (flag == "--part") o.part = value;
-    else if (flag == "--parts") o.parts = splitCommas(value);
-    else if (flag == "--scenes") o.scenes = std::stoi(value);
-    else if (flag == "--repeats") o.repeats = std::stoi(value);
-    else if (flag == "--threads") o.threads = std::stoi(value);
-    else throw core::Error("bench_reconstruction: unknown option " + flag);
+    if (flag == "--part")
+      o.part = value;
+    else if (flag == "--parts")
+      o.parts = splitCommas(value);
+    else if (flag == "--scenes")
+      o.scenes = std::stoi(value);
+    else if (flag == "--repeats")
+      o.repeats = std::stoi(value);
+    else if (flag == "--threads")
+      o.threads = std::stoi(value);
+    else
+      throw core::Error("bench_reconstruction: unknown option " + flag);
   }
   if (o.scenes < 1 || o.repeats < 1) throw core::Error("bench_reconstruction: --scenes and --repeats must be >= 1");
   if (o.threads < 0) throw core::Error("bench_reconstruction: --threads must be >= 0");
@@ -108,7 +120,7 @@ RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& 
   simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, r.params, patterns, photometry);
   r.scene = std::move(pile.scene);
   r.capture = simulation::recordedCapture(std::move(pile.images), r.params, patterns, photometry,
-                                   "bench_reconstruction " + part.name);
+                                          "bench_reconstruction " + part.name);
   return r;
 }
 
@@ -145,7 +157,8 @@ Timing timeRuns(int repeats, Setup setup, Run run) {
 
 template <typename Run>
 Timing timeRuns(int repeats, Run run) {
-  return timeRuns(repeats, [] {}, run);
+  return timeRuns(
+      repeats, [] {}, run);
 }
 
 struct SpeedResult {
@@ -170,7 +183,11 @@ SpeedResult measureSpeed(const io::RigCalibration& rig, const io::Capture& captu
   io::PointCloud cloud;
   cv::Mat status;
   s.filter = timeRuns(
-      o.repeats, [&] { cloud = triangulated.cloud; status = triangulated.status.clone(); },
+      o.repeats,
+      [&] {
+        cloud = triangulated.cloud;
+        status = triangulated.status.clone();
+      },
       [&] { rc::filterCloud(cloud, status, params.filter); });
   const rc::Reconstructor reconstructor(rig, params);
   s.reconstruct = timeRuns(o.repeats, [&] { result = reconstructor.reconstruct(capture); });
@@ -184,8 +201,7 @@ void printTimingRow(const char* label, const std::vector<SpeedResult>& results, 
 }
 
 void printSpeed(const std::vector<SpeedResult>& results, const Options& o) {
-  std::printf("\n== 1. Speed (ms, from images in memory; median and min of %d runs after 1 warm-up) ==\n",
-              o.repeats);
+  std::printf("\n== 1. Speed (ms, from images in memory; median and min of %d runs after 1 warm-up) ==\n", o.repeats);
   std::printf("  %-28s", "capture");
   for (const SpeedResult& r : results) std::printf(" %19s", r.name.c_str());
   std::printf("\n  %-28s", "");
@@ -269,10 +285,10 @@ struct Accuracy {
   std::size_t valid_ideal = 0;  // of those, valid in the reconstruction
   ErrorStats all;               // every valid pixel with a true depth
   std::size_t wrong_near_edge = 0;
-  ErrorStats extra;             // valid pixels where scene.cloud is NaN
+  ErrorStats extra;  // valid pixels where scene.cloud is NaN
   std::size_t extra_grazing = 0, extra_unlit = 0, extra_nothing = 0;
-  std::size_t extra_on_bin = 0;  // instance -2: the bin's walls and floor rather than parts
-  ErrorStats ideal_sensor;      // scene.cloud itself against the truth: the noise floor
+  std::size_t extra_on_bin = 0;            // instance -2: the bin's walls and floor rather than parts
+  ErrorStats ideal_sensor;                 // scene.cloud itself against the truth: the noise floor
   reconstruction::StatusCounts missing{};  // ideal pixels the reconstruction lacks, by status
 };
 
@@ -292,8 +308,7 @@ void countWrongNearEdges(const simulation::PileScene& scene, const io::PointClou
   }
 }
 
-Accuracy measureAccuracy(const std::string& name, const RenderedPile& pile,
-                         const reconstruction::Reconstruction& r) {
+Accuracy measureAccuracy(const std::string& name, const RenderedPile& pile, const reconstruction::Reconstruction& r) {
   const simulation::PileScene& scene = pile.scene;
   Accuracy a;
   a.name = name;
@@ -370,15 +385,19 @@ void printAccuracy(const std::vector<Accuracy>& r, const std::string& part) {
   printAccuracyRow("  |dz| median / p90 / p99, mm", r, [](const Accuracy& a) { return triple(a.all); });
   printAccuracyRow("  median signed dz (bias), mm", r, [](const Accuracy& a) { return fmt("%+.3f", a.all.bias); });
   printAccuracyRow("  wrong (|dz| > 5 mm)", r, [](const Accuracy& a) { return countText(a.all.wrong); });
-  printAccuracyRow("    of which within 2 px of a depth edge", r, [](const Accuracy& a) { return countText(a.wrong_near_edge); });
-  printAccuracyRow("valid where scene.cloud is NaN (extra)", r, [](const Accuracy& a) { return countText(a.extra.count); });
+  printAccuracyRow("    of which within 2 px of a depth edge", r,
+                   [](const Accuracy& a) { return countText(a.wrong_near_edge); });
+  printAccuracyRow("valid where scene.cloud is NaN (extra)", r,
+                   [](const Accuracy& a) { return countText(a.extra.count); });
   printAccuracyRow("  grazing (view angle > 80 deg)", r, [](const Accuracy& a) { return countText(a.extra_grazing); });
   printAccuracyRow("  not grazing (truth: unlit)", r, [](const Accuracy& a) { return countText(a.extra_unlit); });
   printAccuracyRow("  on the bin (not on parts)", r, [](const Accuracy& a) { return countText(a.extra_on_bin); });
   printAccuracyRow("  |dz| median / p90 / p99, mm", r, [](const Accuracy& a) { return triple(a.extra); });
   printAccuracyRow("  wrong (|dz| > 5 mm)", r, [](const Accuracy& a) { return countText(a.extra.wrong); });
-  printAccuracyRow("valid where nothing is seen (no truth)", r, [](const Accuracy& a) { return countText(a.extra_nothing); });
-  printAccuracyRow("ideal sensor itself: |dz| med / p90 / p99", r, [](const Accuracy& a) { return triple(a.ideal_sensor); });
+  printAccuracyRow("valid where nothing is seen (no truth)", r,
+                   [](const Accuracy& a) { return countText(a.extra_nothing); });
+  printAccuracyRow("ideal sensor itself: |dz| med / p90 / p99", r,
+                   [](const Accuracy& a) { return triple(a.ideal_sensor); });
   printMissing(r);
 }
 
@@ -401,7 +420,7 @@ void detectInto(const estimation::Detector& detector, const io::PointCloud& clou
                 const simulation::Part& part, CloudTotals& totals) {
   const estimation::DetectionResult result = detector.detect(cloud);
   const evaluation::Score score = evaluation::scoreDetections(result.detections, scene.objects, part.symmetry,
-                                                  {detector.model().diameter / 10.0, 10.0});
+                                                              {detector.model().diameter / 10.0, 10.0});
   totals.findable += score.findable;
   totals.found += score.found;
   totals.wrong_first_10 += score.wrong_in_first_10;
@@ -411,10 +430,8 @@ void detectInto(const estimation::Detector& detector, const io::PointCloud& clou
 
 void printDetectionRow(const char* label, const CloudTotals& t, const Options& o) {
   const double objects = static_cast<double>(o.scenes) * kObjects;
-  std::printf("  %-26s %8.0fk %8.1f%% %3d/%-3d %10d %12.1f\n", label,
-              static_cast<double>(t.points) / 1000.0 / o.scenes,
-              t.findable ? 100.0 * t.found / t.findable : 0.0, t.found, t.findable, t.wrong_first_10,
-              t.ms / objects);
+  std::printf("  %-26s %8.0fk %8.1f%% %3d/%-3d %10d %12.1f\n", label, static_cast<double>(t.points) / 1000.0 / o.scenes,
+              t.findable ? 100.0 * t.found / t.findable : 0.0, t.found, t.findable, t.wrong_first_10, t.ms / objects);
 }
 
 // The detector on the same pile seen three ways: through the whole reconstruction, through the
@@ -442,14 +459,16 @@ void benchDetectionPart(const std::string& part_name, const reconstruction::Reco
 }
 
 void benchDetection(const Options& o) {
-  std::printf("\n== 3. End-to-end detection (%d scenes x %d objects, seeds 1..%d, 1280x1024; "
-              "correct: < diam/10 and 10 deg) ==\n",
-              o.scenes, kObjects, o.scenes);
+  std::printf(
+      "\n== 3. End-to-end detection (%d scenes x %d objects, seeds 1..%d, 1280x1024; "
+      "correct: < diam/10 and 10 deg) ==\n",
+      o.scenes, kObjects, o.scenes);
   std::printf("  %-26s %9s %17s %10s %12s\n", "cloud", "pts/scene", "recognition", "wrong@10", "ms/object");
   const reconstruction::Reconstructor reconstructor(simulation::makeVirtualRig(), reconstructionParams(o));
   for (const std::string& part : o.parts) benchDetectionPart(part, reconstructor, o);
-  std::printf("  (recognition: found / objects >= 50%% visible; wrong@10: wrong among the first 10 "
-              "detections, summed over scenes)\n");
+  std::printf(
+      "  (recognition: found / objects >= 50%% visible; wrong@10: wrong among the first 10 "
+      "detections, summed over scenes)\n");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -479,9 +498,10 @@ void benchReconstruction(const Options& o) {
 int main(int argc, char** argv) {
   try {
     const Options options = parse(argc, argv);
-    std::printf("bench_reconstruction: %d threads (--threads %d), default pattern set (Gray columns + "
-                "rows, 4 phase steps), reconstruction defaults\n",
-                core::resolveThreadCount(options.threads), options.threads);
+    std::printf(
+        "bench_reconstruction: %d threads (--threads %d), default pattern set (Gray columns + "
+        "rows, 4 phase steps), reconstruction defaults\n",
+        core::resolveThreadCount(options.threads), options.threads);
     benchReconstruction(options);
     if (!options.skip_detection) benchDetection(options);
     return 0;

@@ -43,10 +43,8 @@ const std::vector<std::string>& validPieces() {
       "POSE,nan,0,0,0,0,0\r\n",
       "POSE,0,3,12\r\n",
       "POSE,14,3,12\r\n",
-      std::string("\0\0\0\7\0\0\x27\x10\xff\xff\xb1\xe0\0\0\x75\x62\0\0\x27\x10", 20) +
-          std::string(12, '\0'),
-      std::string("\7\0\0\0\x60\xea\0\0\0\0\0\0\x40\x9c\0\0\x20\xbf\x02\0", 20) +
-          std::string(12, '\0')};
+      std::string("\0\0\0\7\0\0\x27\x10\xff\xff\xb1\xe0\0\0\x75\x62\0\0\x27\x10", 20) + std::string(12, '\0'),
+      std::string("\7\0\0\0\x60\xea\0\0\0\0\0\0\x40\x9c\0\0\x20\xbf\x02\0", 20) + std::string(12, '\0')};
   return pieces;
 }
 

@@ -43,8 +43,8 @@ void require(bool ok, const char* invariant, const std::string& bytes = "") {
 
 CodecParams paramsFor(uint8_t selector, Framing framing) {
   constexpr core::Orientation kOrientations[] = {core::Orientation::Quaternion, core::Orientation::EulerZYX,
-                                           core::Orientation::FixedXYZ, core::Orientation::RotationVector,
-                                           core::Orientation::EulerXYZ};
+                                                 core::Orientation::FixedXYZ, core::Orientation::RotationVector,
+                                                 core::Orientation::EulerXYZ};
   constexpr std::size_t kLineLengths[] = {80, 16, 200};
   CodecParams params;
   params.framing = framing;
@@ -78,8 +78,7 @@ std::vector<Decoded> decodeRequests(const std::string& stream, const CodecParams
 }
 
 bool sameDecoded(const Decoded& a, const Decoded& b) {
-  if (a.error != b.error || a.command != b.command ||
-      a.request.has_value() != b.request.has_value()) {
+  if (a.error != b.error || a.command != b.command || a.request.has_value() != b.request.has_value()) {
     return false;
   }
   if (!a.request) return true;
@@ -118,8 +117,7 @@ void checkReplyBytes(const std::string& bytes, const CodecParams& params) {
     return;
   }
   require(bytes.size() <= params.max_line_length, "an ASCII reply fits max_line_length", bytes);
-  require(bytes.size() >= 2 && bytes.compare(bytes.size() - 2, 2, "\r\n") == 0,
-          "an ASCII reply ends with CRLF", bytes);
+  require(bytes.size() >= 2 && bytes.compare(bytes.size() - 2, 2, "\r\n") == 0, "an ASCII reply ends with CRLF", bytes);
   require(bytes.find_first_of("\r\n") == bytes.size() - 2, "an ASCII reply is one line", bytes);
 }
 
@@ -148,10 +146,9 @@ void checkReplyReadsBack(const Reply& sent, const std::string& bytes, const Code
     require(read->T_base_tool.has_value(), "a pick keeps its pose", bytes);
     // At worst one position decimal dropped: 0.05 mm per axis.
     const double millimetres = (read->T_base_tool->translation() - T.translation()).norm() * 1e3;
-    require(millimetres <= 0.087 + 1e-12 * T.translation().norm() * 1e3,
-            "a pick's position survives", bytes);
-    const std::vector<double> turn = core::orientationValues(
-        read->T_base_tool->linear().transpose() * T.linear(), core::Orientation::RotationVector);
+    require(millimetres <= 0.087 + 1e-12 * T.translation().norm() * 1e3, "a pick's position survives", bytes);
+    const std::vector<double> turn = core::orientationValues(read->T_base_tool->linear().transpose() * T.linear(),
+                                                             core::Orientation::RotationVector);
     const double radians = Eigen::Vector3d(turn[0], turn[1], turn[2]).norm();
     require(radians <= 0.004, "a pick's orientation survives", bytes);
   }
@@ -160,15 +157,13 @@ void checkReplyReadsBack(const Reply& sent, const std::string& bytes, const Code
 // A POSE read back from its encoding is the pose sent, at the codec's resolution: positions
 // within half a unit per axis (relative double precision for huge ones), rotations within
 // 0.02 degrees (binary quaternions at 1e-4 reach 0.01).
-void checkPoseReadsBack(const Eigen::Isometry3d& sent, const Eigen::Isometry3d& read,
-                        const std::string& bytes) {
+void checkPoseReadsBack(const Eigen::Isometry3d& sent, const Eigen::Isometry3d& read, const std::string& bytes) {
   const double millimetres = (read.translation() - sent.translation()).norm() * 1e3;
-  require(millimetres <= 0.0087 + 1e-12 * sent.translation().norm() * 1e3,
-          "a POSE's position survives encoding", bytes);
+  require(millimetres <= 0.0087 + 1e-12 * sent.translation().norm() * 1e3, "a POSE's position survives encoding",
+          bytes);
   const std::vector<double> turn =
       core::orientationValues(read.linear().transpose() * sent.linear(), core::Orientation::RotationVector);
-  require(Eigen::Vector3d(turn[0], turn[1], turn[2]).norm() <= 3.5e-4,
-          "a POSE's orientation survives encoding", bytes);
+  require(Eigen::Vector3d(turn[0], turn[1], turn[2]).norm() <= 3.5e-4, "a POSE's orientation survives encoding", bytes);
 }
 
 void checkRequestRoundTrip(const Request& request, const CodecParams& params) {
@@ -179,8 +174,8 @@ void checkRequestRoundTrip(const Request& request, const CodecParams& params) {
     // A line that arrived with a bare "\n" may be one too long to send back with "\r\n"; a POSE
     // typed with fewer digits than the codec writes may be longer at its precision.
     const std::string message = error.what();
-    const bool tooLong = message.find("max_line_length") != std::string::npos ||
-                         message.find("too far out") != std::string::npos;
+    const bool tooLong =
+        message.find("max_line_length") != std::string::npos || message.find("too far out") != std::string::npos;
     const std::size_t longestRequest = std::string("TRIGGER,\r\n").size() + 32;
     require(tooLong && params.framing == Framing::Ascii &&
                 (request.command == Command::Pose || params.max_line_length < longestRequest),
@@ -204,18 +199,16 @@ constexpr std::size_t kMessagesCheckedInDepth = 8;
 
 void fuzzRequests(const std::string& stream, const CodecParams& params, uint64_t seed) {
   const std::vector<Decoded> whole = decodeRequests(stream, params, {stream.size()});
-  const std::vector<Decoded> pieces =
-      decodeRequests(stream, params,
-                     {seed % 7, stream.size() / 3, stream.size() / 2 + seed % 5, stream.size() - 1,
-                      stream.size()});
+  const std::vector<Decoded> pieces = decodeRequests(
+      stream, params, {seed % 7, stream.size() / 3, stream.size() / 2 + seed % 5, stream.size() - 1, stream.size()});
   require(whole.size() == pieces.size(), "splitting a stream keeps its messages");
   for (std::size_t i = 0; i < whole.size(); ++i) {
     const Decoded& decoded = whole[i];
     require(sameDecoded(decoded, pieces[i]), "splitting a stream keeps its messages");
     require(decoded.request.has_value() == (decoded.error == Status::Ok), "request xor error");
-    require(decoded.error == Status::Ok || decoded.error == Status::BadMessage ||
-                decoded.error == Status::UnknownCommand,
-            "a decoder reports only BadMessage or UnknownCommand");
+    require(
+        decoded.error == Status::Ok || decoded.error == Status::BadMessage || decoded.error == Status::UnknownCommand,
+        "a decoder reports only BadMessage or UnknownCommand");
     if (i >= kMessagesCheckedInDepth) continue;
     if (decoded.request) checkRequestRoundTrip(*decoded.request, params);
     const Reply reply = replyFor(decoded, seed * 6364136223846793005ull + i);

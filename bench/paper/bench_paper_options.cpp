@@ -81,20 +81,34 @@ PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
     if (i + 1 >= argc) throw core::Error(flag + " needs a value");
     const std::string value = argv[++i];
     try {
-      if (flag == "--scenes") o.scenes = positive(flag, value);
-      else if (flag == "--peer-scenes") o.peer_scenes = positive(flag, value);
-      else if (flag == "--peer-parts") o.peer_parts = checkedList(flag, value, parts);
-      else if (flag == "--objects") o.objects = positive(flag, value);
-      else if (flag == "--seed") o.seed = std::stoull(value);
-      else if (flag == "--threads") o.threads = std::max(0, std::stoi(value));
-      else if (flag == "--parts") o.parts = checkedList(flag, value, parts);
-      else if (flag == "--methods") o.methods = checkedList(flag, value, kMethods);
-      else if (flag == "--inputs") o.inputs = inputsFrom(value);
-      else if (flag == "--sections") o.sections = checkedList(flag, value, kSections);
-      else if (flag == "--scaling-part") o.scaling_part = checkedList(flag, value, parts).front();
-      else if (flag == "--scaling-scenes") o.scaling_scenes = positive(flag, value);
-      else if (flag == "--out") o.out = value;
-      else throw core::Error("unknown option " + flag);
+      if (flag == "--scenes")
+        o.scenes = positive(flag, value);
+      else if (flag == "--peer-scenes")
+        o.peer_scenes = positive(flag, value);
+      else if (flag == "--peer-parts")
+        o.peer_parts = checkedList(flag, value, parts);
+      else if (flag == "--objects")
+        o.objects = positive(flag, value);
+      else if (flag == "--seed")
+        o.seed = std::stoull(value);
+      else if (flag == "--threads")
+        o.threads = std::max(0, std::stoi(value));
+      else if (flag == "--parts")
+        o.parts = checkedList(flag, value, parts);
+      else if (flag == "--methods")
+        o.methods = checkedList(flag, value, kMethods);
+      else if (flag == "--inputs")
+        o.inputs = inputsFrom(value);
+      else if (flag == "--sections")
+        o.sections = checkedList(flag, value, kSections);
+      else if (flag == "--scaling-part")
+        o.scaling_part = checkedList(flag, value, parts).front();
+      else if (flag == "--scaling-scenes")
+        o.scaling_scenes = positive(flag, value);
+      else if (flag == "--out")
+        o.out = value;
+      else
+        throw core::Error("unknown option " + flag);
     } catch (const std::logic_error&) {  // std::stoi and friends
       throw core::Error(flag + ": '" + value + "' is not a number");
     }

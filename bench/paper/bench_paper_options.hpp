@@ -14,16 +14,16 @@ struct PaperBenchOptions {
   std::vector<std::string> methods{"binpick", "ppf5", "ppf1", "opencv_ppf", "pcl_ppf"};
   std::vector<CloudInput> inputs{CloudInput::Exact, CloudInput::Reconstructed};
   std::vector<std::string> sections{"paper", "selection", "scaling"};
-  int scenes = 2;           // per part; the paper: 50
-  int peer_scenes = 1;      // OpenCV's and PCL's matchers take minutes per scene: the first K only
+  int scenes = 2;                       // per part; the paper: 50
+  int peer_scenes = 1;                  // OpenCV's and PCL's matchers take minutes per scene: the first K only
   std::vector<std::string> peer_parts;  // and only these parts (empty: every part)
-  int objects = 20;         // per scene; the paper: 20
-  uint64_t seed = 1;        // scene s of every part has seed + s
-  int threads = 0;          // 0: all hardware threads
+  int objects = 20;                     // per scene; the paper: 20
+  uint64_t seed = 1;                    // scene s of every part has seed + s
+  int threads = 0;                      // 0: all hardware threads
   std::string scaling_part = "l_bracket";
   int scaling_scenes = 2;
   std::string out = "docs/benchmark";
-  bool help = false;        // --help: print paperBenchUsage() and run nothing
+  bool help = false;  // --help: print paperBenchUsage() and run nothing
   bool has(const std::string& section) const;
   bool runsPeersOn(const std::string& part) const;
 };

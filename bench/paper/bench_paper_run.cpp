@@ -70,7 +70,7 @@ std::string preamble(const PaperBenchOptions& o, int argc, char** argv) {
 struct ExperimentData {
   Tallies tallies;
   std::vector<std::pair<std::string, SelectionCurves>> selection;  // per part
-  double reconstruct_ms = 0.0;  // summed over the scenes
+  double reconstruct_ms = 0.0;                                     // summed over the scenes
   int reconstructed_scenes = 0;
 };
 
@@ -82,8 +82,8 @@ void runScene(const std::vector<std::unique_ptr<PoseMethod>>& methods, const Ben
   for (CloudInput input : o.inputs) {
     for (const auto& method : methods) {
       if (isPeer(method->name()) && scene_index >= o.peer_scenes) continue;
-      const std::string what = part.name + " seed " + std::to_string(scene.params.seed) + " " + inputName(input) +
-                               " " + method->name();
+      const std::string what =
+          part.name + " seed " + std::to_string(scene.params.seed) + " " + inputName(input) + " " + method->name();
       try {
         const SceneOutcome outcome = runMethod(*method, scene, input, part, diameter);
         writeOutcome(csv, outcome);
@@ -109,8 +109,8 @@ void runPart(const PaperBenchOptions& o, const std::string& part_name, std::ofst
       methods.push_back(makeMethod(name, setup));
     }
   }
-  const bool reconstruct = o.has("paper") && std::find(o.inputs.begin(), o.inputs.end(),
-                                                       CloudInput::Reconstructed) != o.inputs.end();
+  const bool reconstruct =
+      o.has("paper") && std::find(o.inputs.begin(), o.inputs.end(), CloudInput::Reconstructed) != o.inputs.end();
   for (int s = 0; s < o.scenes; ++s) {
     SceneRequest request;
     request.objects = o.objects;
@@ -146,10 +146,11 @@ std::string experimentSections(const PaperBenchOptions& o, const ExperimentData&
   for (CloudInput input : o.inputs) {
     const TableLayout layout{o.parts, o.methods, input};
     const std::string name = inputName(input) + " cloud";
-    out << "## Recognition rate, " << name << " (the paper's Table II)\n\n" << recognitionTable(data.tallies, layout)
-        << "\n## Speed in ms per object, " << name << " (the paper's Table III)\n\n"
-        << reconstructionNote(input, data) << speedTable(data.tallies, layout)
-        << "\n## Precision / recall, " << name << "\n\n"
+    out << "## Recognition rate, " << name << " (the paper's Table II)\n\n"
+        << recognitionTable(data.tallies, layout) << "\n## Speed in ms per object, " << name
+        << " (the paper's Table III)\n\n"
+        << reconstructionNote(input, data) << speedTable(data.tallies, layout) << "\n## Precision / recall, " << name
+        << "\n\n"
         << "Precision: correct / detections. Recall: objects found / objects at least half visible.\n\n"
         << precisionRecallTable(data.tallies, layout) << "\n## Stages in ms per object, " << name << "\n\n"
         << stageTable(data.tallies, layout) << '\n';

@@ -2,8 +2,8 @@
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
-#include "binpick/reconstruction/reconstruction.hpp"
 #include "binpick/evaluation/evaluation.hpp"
+#include "binpick/reconstruction/reconstruction.hpp"
 #include "pose_method.hpp"
 
 namespace binpick::bench {
@@ -50,8 +50,8 @@ BenchScene makeBenchScene(const simulation::Part& part, const SceneRequest& requ
     photometry.seed = request.seed;
     simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, s.params, patterns, photometry);
     s.truth = std::move(pile.scene);
-    const io::Capture capture = simulation::recordedCapture(std::move(pile.images), s.params, patterns, photometry,
-                                                 "bench_paper " + part.name);
+    const io::Capture capture =
+        simulation::recordedCapture(std::move(pile.images), s.params, patterns, photometry, "bench_paper " + part.name);
     reconstruction::ReconstructionParams params;
     params.setThreads(request.threads);
     const reconstruction::Reconstructor reconstructor(request.rig, params);

@@ -19,17 +19,17 @@ std::string inputName(CloudInput input);  // "exact" | "reconstructed"
 struct SceneRequest {
   int objects = 20;
   uint64_t seed = 1;
-  bool reconstruct = true;             // also render the patterns and reconstruct
+  bool reconstruct = true;  // also render the patterns and reconstruct
   io::RigCalibration rig = simulation::makeVirtualRig();
-  int threads = 0;                     // rendering and reconstruction; 0: all
+  int threads = 0;  // rendering and reconstruction; 0: all
 };
 
 struct BenchScene {
   simulation::PileParams params;
-  simulation::PileScene truth;                // truth.cloud is the exact input
-  io::PointCloud reconstructed;            // empty unless requested
-  estimation::CropBox crop;            // the bin's inside
-  double reconstruct_ms = 0.0;         // decode + triangulate + filter, from images in memory
+  simulation::PileScene truth;                             // truth.cloud is the exact input
+  io::PointCloud reconstructed;                            // empty unless requested
+  estimation::CropBox crop;                                // the bin's inside
+  double reconstruct_ms = 0.0;                             // decode + triangulate + filter, from images in memory
   std::size_t exact_in_bin = 0, reconstructed_in_bin = 0;  // finite points inside the crop
   const io::PointCloud& cloud(CloudInput input) const;
   std::size_t pointsInBin(CloudInput input) const;

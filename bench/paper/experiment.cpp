@@ -19,8 +19,9 @@ void addStages(estimation::StageTimings& sum, const estimation::StageTimings& t)
 
 }  // namespace
 
-evaluation::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<simulation::ObjectTruth>& truth,
-                       const simulation::Part& part, double diameter) {
+evaluation::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses,
+                             const std::vector<simulation::ObjectTruth>& truth, const simulation::Part& part,
+                             double diameter) {
   std::vector<estimation::Detection> detections(poses.size());
   for (std::size_t i = 0; i < poses.size(); ++i) detections[i].T_camera_model = poses[i];
   return evaluation::scoreDetections(detections, truth, part.symmetry, {diameter / 10.0, 10.0});
@@ -85,8 +86,8 @@ void writeOutcomeHeader(std::ostream& out) {
 
 void writeOutcome(std::ostream& out, const SceneOutcome& o) {
   out << o.part << ',' << o.method << ',' << inputName(o.input) << ',' << o.seed << ',' << o.objects << ','
-      << o.findable << ',' << o.found << ',' << o.detections << ',' << o.correct << ',' << o.ms << ','
-      << o.input_points << '\n';
+      << o.findable << ',' << o.found << ',' << o.detections << ',' << o.correct << ',' << o.ms << ',' << o.input_points
+      << '\n';
 }
 
 }  // namespace binpick::bench

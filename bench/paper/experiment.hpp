@@ -19,12 +19,12 @@ struct SceneOutcome {
   std::string part, method;
   CloudInput input = CloudInput::Exact;
   uint64_t seed = 0;
-  int objects = 0;      // objects in the bin
-  int findable = 0;     // of those, at least half visible
-  int found = 0;        // findable objects with a correct detection
+  int objects = 0;   // objects in the bin
+  int findable = 0;  // of those, at least half visible
+  int found = 0;     // findable objects with a correct detection
   int detections = 0;
-  int correct = 0;      // detections within diam/10 and 10 degrees of an object not claimed before
-  double ms = 0.0;      // detect(): the whole process
+  int correct = 0;               // detections within diam/10 and 10 degrees of an object not claimed before
+  double ms = 0.0;               // detect(): the whole process
   std::size_t input_points = 0;  // finite points inside the bin
   // binpick's methods only: the detector's own stage timings.
   std::optional<estimation::StageTimings> stages;
@@ -44,8 +44,9 @@ struct Tally {
 
 // The paper's criterion on poses in order: correct within diam/10 and 10 degrees of an object not
 // claimed before (the minimum over the part's symmetries); repeats are wrong.
-evaluation::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses, const std::vector<simulation::ObjectTruth>& truth,
-                       const simulation::Part& part, double diameter);
+evaluation::Score scorePoses(const std::vector<Eigen::Isometry3f>& poses,
+                             const std::vector<simulation::ObjectTruth>& truth, const simulation::Part& part,
+                             double diameter);
 // "found F of N findable, D poses, matched objects: ..." for messages.
 std::string describeScore(const evaluation::Score& score, std::size_t poses);
 

@@ -68,8 +68,7 @@ class ScopedCvThreads {
 };
 
 // Points (and optionally normals) as the Nx3 / Nx6 CV_32F rows OpenCV's functions take.
-cv::Mat toMat(const std::vector<Eigen::Vector3f>& points,
-              const std::vector<Eigen::Vector3f>* normals = nullptr) {
+cv::Mat toMat(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>* normals = nullptr) {
   cv::Mat mat(static_cast<int>(points.size()), normals ? 6 : 3, CV_32F);
   for (int i = 0; i < mat.rows; ++i) {
     float* row = mat.ptr<float>(i);
@@ -105,8 +104,7 @@ uint64_t voxelKey(const Eigen::Vector3f& p, float voxel) {
 
 // Centroids of the occupied cubic voxels of side `voxel`, in order of first occupation (so the
 // result is deterministic).
-std::vector<Eigen::Vector3f> voxelCentroids(const std::vector<Eigen::Vector3f>& points,
-                                            float voxel) {
+std::vector<Eigen::Vector3f> voxelCentroids(const std::vector<Eigen::Vector3f>& points, float voxel) {
   struct Cell {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     int count = 0;
@@ -143,8 +141,8 @@ Eigen::Isometry3f toIsometry(const cv::Matx44d& pose) {
   }
   Eigen::Isometry3f t = Eigen::Isometry3f::Identity();
   t.linear() = nearestRotation(r);
-  t.translation() = Eigen::Vector3f(static_cast<float>(pose(0, 3)), static_cast<float>(pose(1, 3)),
-                                    static_cast<float>(pose(2, 3)));
+  t.translation() =
+      Eigen::Vector3f(static_cast<float>(pose(0, 3)), static_cast<float>(pose(1, 3)), static_cast<float>(pose(2, 3)));
   return t;
 }
 
@@ -167,19 +165,18 @@ void orthonormalise(std::vector<cv::ppf_match_3d::Pose3DPtr>& poses) {
 
 void OpenCvPpfParams::validate() const {
   const std::string owner = "OpenCvPpfParams";
-  core::requireField(reference_fraction > 0.0 && reference_fraction <= 1.0, owner, "reference_fraction",
-               "in (0, 1]", reference_fraction);
+  core::requireField(reference_fraction > 0.0 && reference_fraction <= 1.0, owner, "reference_fraction", "in (0, 1]",
+                     reference_fraction);
   core::requireField(num_angles >= 4, owner, "num_angles", ">= 4", num_angles);
   core::requireField(cluster_translation_ratio > 0.0, owner, "cluster_translation_ratio", "> 0",
-               cluster_translation_ratio);
-  core::requireField(cluster_rotation_deg > 0.0 && cluster_rotation_deg <= 180.0, owner,
-               "cluster_rotation_deg", "in (0, 180]", cluster_rotation_deg);
+                     cluster_translation_ratio);
+  core::requireField(cluster_rotation_deg > 0.0 && cluster_rotation_deg <= 180.0, owner, "cluster_rotation_deg",
+                     "in (0, 180]", cluster_rotation_deg);
   core::requireField(normal_voxel_ratio >= 0.0, owner, "normal_voxel_ratio", ">= 0", normal_voxel_ratio);
   core::requireField(normal_neighbours >= 3, owner, "normal_neighbours", ">= 3", normal_neighbours);
   core::requireField(icp_iterations >= 0, owner, "icp_iterations", ">= 0 (0: no ICP)", icp_iterations);
   core::requireField(icp_tolerance > 0.0f, owner, "icp_tolerance", "> 0", icp_tolerance);
-  core::requireField(icp_rejection_scale >= 0.0f, owner, "icp_rejection_scale", ">= 0 (0: off)",
-               icp_rejection_scale);
+  core::requireField(icp_rejection_scale >= 0.0f, owner, "icp_rejection_scale", ">= 0 (0: off)", icp_rejection_scale);
   core::requireField(icp_levels >= 1, owner, "icp_levels", ">= 1", icp_levels);
 }
 
@@ -191,12 +188,10 @@ struct OpenCvPpfMethod::Trained {
       : detector(relative_sampling_step, relative_sampling_step, num_angles) {}
 };
 
-OpenCvPpfMethod::OpenCvPpfMethod(const MethodSetup& setup, OpenCvPpfParams params)
-    : setup_(setup), params_(params) {
+OpenCvPpfMethod::OpenCvPpfMethod(const MethodSetup& setup, OpenCvPpfParams params) : setup_(setup), params_(params) {
   params_.validate();
   const estimation::PreparedModel* model = setup_.model;
-  if (model == nullptr || model->points.size() < 2 ||
-      model->normals.size() != model->points.size()) {
+  if (model == nullptr || model->points.size() < 2 || model->normals.size() != model->points.size()) {
     throw core::Error("OpenCvPpfMethod: needs a prepared model with points and normals");
   }
   // Distance step = relative step * diag(bbox(model)) = d_dist (see the comment at the top).
@@ -206,8 +201,7 @@ OpenCvPpfMethod::OpenCvPpfMethod(const MethodSetup& setup, OpenCvPpfParams param
   trained_->detector.trainModel(trained_->model);
   constexpr double kRadPerDeg = 3.14159265358979323846 / 180.0;
   trained_->detector.setSearchParams(params_.cluster_translation_ratio * model->diameter,
-                                     params_.cluster_rotation_deg * kRadPerDeg,
-                                     params_.weighted_clustering);
+                                     params_.cluster_rotation_deg * kRadPerDeg, params_.weighted_clustering);
 }
 
 OpenCvPpfMethod::~OpenCvPpfMethod() = default;
@@ -251,15 +245,12 @@ std::vector<Eigen::Isometry3f> OpenCvPpfMethod::detect(const MethodInput& input)
   // OpenCV returns the clusters by votes; refine the best max_objects, as binpick's Drost does.
   if (poses.size() > static_cast<std::size_t>(setup_.max_objects)) poses.resize(setup_.max_objects);
   orthonormalise(poses);
-  ppf::ICP icp(params_.icp_iterations, params_.icp_tolerance, params_.icp_rejection_scale,
-               params_.icp_levels);
+  ppf::ICP icp(params_.icp_iterations, params_.icp_tolerance, params_.icp_rejection_scale, params_.icp_levels);
   if (!poses.empty() && params_.icp_iterations > 0) {
     icp.registerModelToScene(trained_->model, scene, poses);
   }
   if (params_.order_by_residual) {
-    const auto by_residual = [](const ppf::Pose3DPtr& a, const ppf::Pose3DPtr& b) {
-      return a->residual < b->residual;
-    };
+    const auto by_residual = [](const ppf::Pose3DPtr& a, const ppf::Pose3DPtr& b) { return a->residual < b->residual; };
     std::stable_sort(poses.begin(), poses.end(), by_residual);
   }
   timing_.icp = stage.lapMs();

@@ -40,8 +40,7 @@ std::string image(const std::string& file, const std::string& alt) { return "!["
 
 double lastOr0(const std::vector<double>& v) { return v.empty() ? 0.0 : v.back(); }
 
-PlotSeries scalingSeries(const std::string& label, const std::vector<ScalingPoint>& points,
-                         double ScalingPoint::*y) {
+PlotSeries scalingSeries(const std::string& label, const std::vector<ScalingPoint>& points, double ScalingPoint::*y) {
   PlotSeries s;
   s.label = label;
   for (const ScalingPoint& p : points) {
@@ -88,9 +87,9 @@ std::string selectionSection(const std::vector<std::pair<std::string, SelectionC
       << "| part | scene points | candidates | picks | Algorithm 1 ms | eq. 4 for all ms | verify all again ms |\n"
          "|---|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& [part, c] : curves) {
-    out << "| " << part << " | " << c.scene_points << " | " << c.candidates << " | " << c.algorithm1_ms.size()
-        << " | " << format("%.2f", lastOr0(c.algorithm1_ms)) << " | " << format("%.2f", lastOr0(c.rescore_all_ms))
-        << " | " << format("%.1f", lastOr0(c.reverify_all_ms)) << " |\n";
+    out << "| " << part << " | " << c.scene_points << " | " << c.candidates << " | " << c.algorithm1_ms.size() << " | "
+        << format("%.2f", lastOr0(c.algorithm1_ms)) << " | " << format("%.2f", lastOr0(c.rescore_all_ms)) << " | "
+        << format("%.1f", lastOr0(c.reverify_all_ms)) << " |\n";
   }
   return out.str() + "\n";
 }
@@ -126,9 +125,9 @@ std::string scalingSection(const std::string& part, const ScalingResults& r, con
       << "### Scene points\n\nCamera resolution from 640x512 to 2448x2048 (same field of view); the cloud "
          "given whole, or decimated to every second pixel of every second row first (decimation timed).\n\n"
       << image("scaling_points.png", "time against scene points") << kScalingHeader << scalingRows(r.points_full)
-      << scalingRows(r.points_decimated)
-      << "\n### Objects in the bin\n\n" << image("scaling_objects.png", "time against objects")
-      << kScalingHeader << scalingRows(r.objects) << "\n### Threads\n\n"
+      << scalingRows(r.points_decimated) << "\n### Objects in the bin\n\n"
+      << image("scaling_objects.png", "time against objects") << kScalingHeader << scalingRows(r.objects)
+      << "\n### Threads\n\n"
       << image("scaling_threads.png", "time against threads") << kScalingHeader << scalingRows(r.threads) << '\n';
   return out.str();
 }

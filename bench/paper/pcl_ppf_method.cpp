@@ -108,8 +108,7 @@ CloudN::Ptr modelCloud(const estimation::PreparedModel& model) {
 
 // All N^2 model pair features, hashed. N^2 PPFSignatures and as many hash nodes: about
 // 70 bytes per pair, i.e. ~70 MB for a 1000-point model.
-pcl::PPFHashMapSearch::Ptr buildHashMap(const CloudN::Ptr& model, float angle_step,
-                                        float distance_step) {
+pcl::PPFHashMapSearch::Ptr buildHashMap(const CloudN::Ptr& model, float angle_step, float distance_step) {
   pcl::PPFEstimation<PointN, PointN, pcl::PPFSignature> estimation;
   estimation.setInputCloud(model);
   estimation.setInputNormals(model);
@@ -130,8 +129,7 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const std::vector<Eigen::Vector3f>& po
 // Voxel-grid centroids of the cropped cloud, each with a normal fitted to the full-resolution
 // cropped points within `radius`, turned towards the camera at the origin. Points whose
 // neighbourhood is too small for a plane (PCL gives NaN) are dropped.
-CloudN::Ptr sceneWithNormals(const std::vector<Eigen::Vector3f>& cropped, float leaf, float radius,
-                             int threads) {
+CloudN::Ptr sceneWithNormals(const std::vector<Eigen::Vector3f>& cropped, float leaf, float radius, int threads) {
   auto scene = std::make_shared<CloudN>();
   if (cropped.empty()) return scene;
   const auto full = toPcl(cropped);
@@ -146,7 +144,7 @@ CloudN::Ptr sceneWithNormals(const std::vector<Eigen::Vector3f>& cropped, float 
   estimation.setSearchSurface(full);
   estimation.setSearchMethod(std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>());
   estimation.setRadiusSearch(radius);
-  estimation.setViewPoint(0.0f, 0.0f, 0.0f);  // the camera: normals face it
+  estimation.setViewPoint(0.0f, 0.0f, 0.0f);                                   // the camera: normals face it
   estimation.setNumberOfThreads(static_cast<unsigned>(std::max(0, threads)));  // 0: all processors
   pcl::PointCloud<pcl::Normal> normals;
   estimation.compute(normals);
@@ -206,8 +204,7 @@ void PclPpfParams::validate() const {
   if (icp_iterations < 0) throw core::Error("pcl_ppf params: icp_iterations must be >= 0");
   positive(icp_max_distance_ratio, "icp_max_distance_ratio");
   positive(support_distance_ratio, "support_distance_ratio");
-  if (!(min_support >= 0.0f && min_support <= 1.0f))
-    throw core::Error("pcl_ppf params: min_support must be in [0, 1]");
+  if (!(min_support >= 0.0f && min_support <= 1.0f)) throw core::Error("pcl_ppf params: min_support must be in [0, 1]");
   positive(removal_radius_ratio, "removal_radius_ratio");
 }
 
@@ -229,8 +226,7 @@ struct PclPpfMethod::Impl {
   }
 
   Eigen::Isometry3f align(const CloudN::Ptr& scene, const SceneTree::Ptr& tree) const;
-  Eigen::Isometry3f refine(const CloudN::Ptr& scene, const SceneTree::Ptr& tree,
-                           const Eigen::Isometry3f& coarse) const;
+  Eigen::Isometry3f refine(const CloudN::Ptr& scene, const SceneTree::Ptr& tree, const Eigen::Isometry3f& coarse) const;
   float support(const CloudN& posed, const SceneTree& tree) const;
   CloudN::Ptr withoutExplained(const CloudN& scene, const CloudN::Ptr& posed) const;
 };
@@ -245,7 +241,7 @@ Eigen::Isometry3f PclPpfMethod::Impl::align(const CloudN::Ptr& scene, const Scen
   registration.setRotationClusteringThreshold(radians(params.cluster_rotation_deg));
   registration.setSearchMethod(hash_map);
   registration.setInputSource(model_cloud);
-  registration.setInputTarget(scene);         // builds PCL's own FLANN tree for the radius search
+  registration.setInputTarget(scene);              // builds PCL's own FLANN tree for the radius search
   registration.setSearchMethodTarget(tree, true);  // spares the base class a second tree
   CloudN aligned;
   registration.align(aligned);
@@ -303,8 +299,8 @@ CloudN::Ptr PclPpfMethod::Impl::withoutExplained(const CloudN& scene, const Clou
   auto kept = std::make_shared<CloudN>();
   kept->reserve(scene.size());
   for (const PointN& p : scene) {
-    const bool explained = model_tree.nearestKSearch(p, 1, nearest, distance_sq) == 1 &&
-                           distance_sq[0] <= radius * radius;
+    const bool explained =
+        model_tree.nearestKSearch(p, 1, nearest, distance_sq) == 1 && distance_sq[0] <= radius * radius;
     if (!explained) kept->push_back(p);
   }
   return kept;
@@ -331,9 +327,7 @@ PclPpfMethod::~PclPpfMethod() = default;
 
 std::string PclPpfMethod::name() const { return "pcl_ppf"; }
 
-std::vector<Eigen::Isometry3f> PclPpfMethod::detect(const MethodInput& input) const {
-  return detect(input, nullptr);
-}
+std::vector<Eigen::Isometry3f> PclPpfMethod::detect(const MethodInput& input) const { return detect(input, nullptr); }
 
 // Our loop around PCL, which gives one pose per align(): find the best part, refine it, keep it,
 // take its points out of the scene, and look again, until max_objects poses, too few points left,

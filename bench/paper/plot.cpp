@@ -22,8 +22,8 @@ constexpr int kFace = cv::FONT_HERSHEY_SIMPLEX;
 constexpr int kShift = 4;  // sub-pixel bits for OpenCV drawing: smooth lines between pixels
 
 const cv::Scalar kWhite(255, 255, 255);
-const cv::Scalar kInk(40, 40, 40);          // text and axes: softer than pure black
-const cv::Scalar kGrid(222, 222, 222);      // major grid, light enough to read data over
+const cv::Scalar kInk(40, 40, 40);           // text and axes: softer than pure black
+const cv::Scalar kGrid(222, 222, 222);       // major grid, light enough to read data over
 const cv::Scalar kMinorGrid(242, 242, 242);  // log-axis minor grid, barely there
 const cv::Scalar kLegendEdge(170, 170, 170);
 
@@ -31,16 +31,16 @@ const cv::Scalar kLegendEdge(170, 170, 170);
 // Input checks and data ranges
 
 void validate(const LinePlot& plot) {
-  core::requireField(plot.width >= kMinWidth && plot.width <= kMaxSide, "LinePlot", "width",
-               "240..16384 pixels", plot.width);
-  core::requireField(plot.height >= kMinHeight && plot.height <= kMaxSide, "LinePlot", "height",
-               "180..16384 pixels", plot.height);
+  core::requireField(plot.width >= kMinWidth && plot.width <= kMaxSide, "LinePlot", "width", "240..16384 pixels",
+                     plot.width);
+  core::requireField(plot.height >= kMinHeight && plot.height <= kMaxSide, "LinePlot", "height", "180..16384 pixels",
+                     plot.height);
   for (std::size_t i = 0; i < plot.series.size(); ++i) {
     const PlotSeries& series = plot.series[i];
     if (series.x.size() == series.y.size()) continue;
     std::ostringstream message;
-    message << "LinePlot.series[" << i << "] ('" << series.label << "') has " << series.x.size()
-            << " x values but " << series.y.size() << " y values";
+    message << "LinePlot.series[" << i << "] ('" << series.label << "') has " << series.x.size() << " x values but "
+            << series.y.size() << " y values";
     throw core::Error(message.str());
   }
 }
@@ -48,16 +48,14 @@ void validate(const LinePlot& plot) {
 bool drawable(double value, bool log) { return std::isfinite(value) && (!log || value > 0.0); }
 
 // A series' drawable points in axis units, sorted by x so that its line runs left to right.
-std::vector<cv::Point2d> axisPoints(const PlotSeries& series, const PlotAxis& x,
-                                    const PlotAxis& y) {
+std::vector<cv::Point2d> axisPoints(const PlotSeries& series, const PlotAxis& x, const PlotAxis& y) {
   std::vector<cv::Point2d> points;
   for (std::size_t i = 0; i < series.x.size(); ++i) {
     if (drawable(series.x[i], x.log) && drawable(series.y[i], y.log)) {
       points.emplace_back(x.toAxis(series.x[i]), y.toAxis(series.y[i]));
     }
   }
-  std::stable_sort(points.begin(), points.end(),
-                   [](const cv::Point2d& a, const cv::Point2d& b) { return a.x < b.x; });
+  std::stable_sort(points.begin(), points.end(), [](const cv::Point2d& a, const cv::Point2d& b) { return a.x < b.x; });
   return points;
 }
 
@@ -82,7 +80,7 @@ std::pair<Range, Range> dataRanges(const LinePlot& plot, const PlotAxis& x, cons
   }
   if (xs.empty()) {
     throw core::Error(std::string("LinePlot '") + plot.title + "' has no finite point to draw" +
-                (x.log || y.log ? " (log axes skip values <= 0)" : ""));
+                      (x.log || y.log ? " (log axes skip values <= 0)" : ""));
   }
   return {xs, ys};
 }
@@ -176,10 +174,7 @@ struct Font {
 struct Fonts {
   Font tick, label, title, exponent;
   explicit Fonts(double s)
-      : tick{0.5 * s, 1},
-        label{0.6 * s, 1},
-        title{0.75 * s, std::max(1, cvRound(2 * s))},
-        exponent{0.38 * s, 1} {}
+      : tick{0.5 * s, 1}, label{0.6 * s, 1}, title{0.75 * s, std::max(1, cvRound(2 * s))}, exponent{0.38 * s, 1} {}
 };
 
 // Height counts only what is above the baseline: labels are placed by their cap height, the way
@@ -197,8 +192,7 @@ struct Anchor {
 void drawText(cv::Mat& image, const std::string& text, cv::Point2d at, Anchor anchor, Font font,
               const cv::Scalar& colour) {
   const cv::Size size = measure(text, font);
-  const cv::Point origin(cvRound(at.x - anchor.x * size.width),
-                         cvRound(at.y + (1.0 - anchor.y) * size.height));
+  const cv::Point origin(cvRound(at.x - anchor.x * size.width), cvRound(at.y + (1.0 - anchor.y) * size.height));
   cv::putText(image, text, origin, kFace, font.scale, colour, font.thickness, cv::LINE_AA);
 }
 
@@ -219,12 +213,12 @@ struct TickLabel {
     const double left = at.x - anchor.x * box.width;
     const double top = at.y - anchor.y * box.height;
     const cv::Size b = measure(base, fonts.tick);
-    cv::putText(image, base, cv::Point(cvRound(left), cvRound(top + box.height)), kFace,
-                fonts.tick.scale, kInk, fonts.tick.thickness, cv::LINE_AA);
+    cv::putText(image, base, cv::Point(cvRound(left), cvRound(top + box.height)), kFace, fonts.tick.scale, kInk,
+                fonts.tick.thickness, cv::LINE_AA);
     if (exponent.empty()) return;
     const cv::Size e = measure(exponent, fonts.exponent);
-    cv::putText(image, exponent, cv::Point(cvRound(left + b.width + 1), cvRound(top + e.height)),
-                kFace, fonts.exponent.scale, kInk, fonts.exponent.thickness, cv::LINE_AA);
+    cv::putText(image, exponent, cv::Point(cvRound(left + b.width + 1), cvRound(top + e.height)), kFace,
+                fonts.exponent.scale, kInk, fonts.exponent.thickness, cv::LINE_AA);
   }
 
  private:
@@ -271,8 +265,7 @@ std::vector<TickLabel> tickLabels(const PlotAxis& axis) {
     const bool plain = axis.ticks.front() >= -3.0 && axis.ticks.back() <= 4.0;
     for (double tick : axis.ticks) {
       const int exponent = static_cast<int>(std::lround(tick));
-      labels.push_back(plain ? TickLabel{plainDecade(exponent), ""}
-                             : TickLabel{"10", std::to_string(exponent)});
+      labels.push_back(plain ? TickLabel{plainDecade(exponent), ""} : TickLabel{"10", std::to_string(exponent)});
     }
     return labels;
   }
@@ -293,8 +286,7 @@ int widestLabel(const std::vector<TickLabel>& labels, const Fonts& fonts) {
 
 struct Spacing {
   int pad, gap, tick;
-  explicit Spacing(double s)
-      : pad(cvRound(14 * s)), gap(cvRound(6 * s)), tick(std::max(2, cvRound(5 * s))) {}
+  explicit Spacing(double s) : pad(cvRound(14 * s)), gap(cvRound(6 * s)), tick(std::max(2, cvRound(5 * s))) {}
 };
 
 // The y extent a chart starts from: zero included on a linear axis unless the data go negative,
@@ -313,14 +305,12 @@ void padEnds(PlotAxis& axis, Range data, bool keep_zero) {
 }
 
 // The x axis with as many ticks as fit without their labels touching.
-PlotAxis fitXAxis(bool log, Range range, int plot_width, const Fonts& fonts, const Spacing& sp,
-                  double s) {
+PlotAxis fitXAxis(bool log, Range range, int plot_width, const Fonts& fonts, const Spacing& sp, double s) {
   PlotAxis axis;
   for (int target = std::max(2, cvRound(plot_width / (95 * s))); target >= 1; --target) {
     axis = makeAxis(log, range, target);
-    const double per_tick = plot_width * (axis.ticks.size() > 1 ? (axis.ticks[1] - axis.ticks[0]) /
-                                                                      (axis.hi - axis.lo)
-                                                                : 1.0);
+    const double per_tick =
+        plot_width * (axis.ticks.size() > 1 ? (axis.ticks[1] - axis.ticks[0]) / (axis.hi - axis.lo) : 1.0);
     if (widestLabel(tickLabels(axis), fonts) + 2 * sp.gap <= per_tick) break;
   }
   return axis;
@@ -335,9 +325,7 @@ int textBlock(const std::string& text, Font font, int gap) {
 // -----------------------------------------------------------------------------------------------
 
 double PlotAxis::toAxis(double value) const { return log ? std::log10(value) : value; }
-double PlotAxis::fromAxis(double position) const {
-  return log ? std::pow(10.0, position) : position;
-}
+double PlotAxis::fromAxis(double position) const { return log ? std::pow(10.0, position) : position; }
 
 // Vertical margins depend only on fonts; the y ticks then follow from the plot height, the left
 // margin from the y labels, the plot width from that, and the x ticks last.
@@ -354,8 +342,7 @@ PlotFrame::PlotFrame(const LinePlot& plot) {
   const int tick_h = TickLabel{"10", "-8"}.size(fonts).height;
   const int top = sp.pad + textBlock(plot.title, fonts.title, sp.pad) +
                   textBlock(plot.y_label, fonts.label, 2 * sp.gap + tick_h / 2) + tick_h / 2;
-  const int bottom = sp.tick + sp.gap + tick_h + textBlock(plot.x_label, fonts.label, 2 * sp.gap) +
-                     sp.pad;
+  const int bottom = sp.tick + sp.gap + tick_h + textBlock(plot.x_label, fonts.label, 2 * sp.gap) + sp.pad;
   const int plot_height = plot.height - top - bottom;
   y_ = makeAxis(plot.log_y, withZero(ys, plot.log_y), std::max(2, cvRound(plot_height / (70 * s))));
   padEnds(y_, ys, !plot.log_y);
@@ -370,7 +357,7 @@ PlotFrame::PlotFrame(const LinePlot& plot) {
   area_ = cv::Rect(left, top, plot.width - left - right, plot_height);
   if (area_.width < 40 || area_.height < 40) {
     throw core::Error("LinePlot " + std::to_string(plot.width) + "x" + std::to_string(plot.height) +
-                " is too small for its labels");
+                      " is too small for its labels");
   }
 }
 
@@ -384,9 +371,8 @@ cv::Scalar seriesColour(std::size_t index) {
   // Okabe-Ito, in BGR, ordered so the first series get the colours that read best on white
   // (yellow last).
   static const std::array<cv::Scalar, 8> palette = {
-      cv::Scalar(178, 114, 0),   cv::Scalar(0, 159, 230),   cv::Scalar(115, 158, 0),
-      cv::Scalar(0, 94, 213),    cv::Scalar(167, 121, 204), cv::Scalar(233, 180, 86),
-      cv::Scalar(0, 0, 0),       cv::Scalar(66, 228, 240)};
+      cv::Scalar(178, 114, 0),   cv::Scalar(0, 159, 230),  cv::Scalar(115, 158, 0), cv::Scalar(0, 94, 213),
+      cv::Scalar(167, 121, 204), cv::Scalar(233, 180, 86), cv::Scalar(0, 0, 0),     cv::Scalar(66, 228, 240)};
   return palette[index % palette.size()];
 }
 
@@ -395,17 +381,14 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Drawing
 
-cv::Point fixedPoint(cv::Point2d p) {
-  return {cvRound(p.x * (1 << kShift)), cvRound(p.y * (1 << kShift))};
-}
+cv::Point fixedPoint(cv::Point2d p) { return {cvRound(p.x * (1 << kShift)), cvRound(p.y * (1 << kShift))}; }
 
-void drawLine(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour,
-              int thickness) {
+void drawLine(cv::Mat& image, cv::Point2d a, cv::Point2d b, const cv::Scalar& colour, int thickness) {
   cv::line(image, fixedPoint(a), fixedPoint(b), colour, thickness, cv::LINE_AA, kShift);
 }
 
-void fillPolygon(cv::Mat& image, cv::Point2d centre, double r,
-                 std::initializer_list<cv::Point2d> unit, const cv::Scalar& colour) {
+void fillPolygon(cv::Mat& image, cv::Point2d centre, double r, std::initializer_list<cv::Point2d> unit,
+                 const cv::Scalar& colour) {
   std::vector<cv::Point> corners;
   for (const cv::Point2d& u : unit) corners.push_back(fixedPoint(centre + r * u));
   cv::fillConvexPoly(image, corners, colour, cv::LINE_AA, kShift);
@@ -413,39 +396,26 @@ void fillPolygon(cv::Mat& image, cv::Point2d centre, double r,
 
 // Eight shapes, so that series stay apart in greyscale print and for readers who confuse colours.
 // Sizes are tuned by eye so that every shape looks about as heavy as the circle.
-void drawMarker(cv::Mat& image, cv::Point2d c, std::size_t index, double r,
-                const cv::Scalar& colour) {
+void drawMarker(cv::Mat& image, cv::Point2d c, std::size_t index, double r, const cv::Scalar& colour) {
   const int stroke = std::max(1, cvRound(r / 2.5));
   switch (index % 8) {
     case 0:
-      cv::circle(image, fixedPoint(c), cvRound(r * (1 << kShift)), colour, cv::FILLED, cv::LINE_AA,
-                 kShift);
+      cv::circle(image, fixedPoint(c), cvRound(r * (1 << kShift)), colour, cv::FILLED, cv::LINE_AA, kShift);
       break;
-    case 1:
-      fillPolygon(image, c, 0.9 * r, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, colour);
-      break;
-    case 2:
-      fillPolygon(image, c, 1.3 * r, {{0, -1}, {0.87, 0.55}, {-0.87, 0.55}}, colour);
-      break;
-    case 3:
-      fillPolygon(image, c, 1.3 * r, {{0, -1}, {1, 0}, {0, 1}, {-1, 0}}, colour);
-      break;
-    case 4:
-      fillPolygon(image, c, 1.3 * r, {{0, 1}, {0.87, -0.55}, {-0.87, -0.55}}, colour);
-      break;
+    case 1: fillPolygon(image, c, 0.9 * r, {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}, colour); break;
+    case 2: fillPolygon(image, c, 1.3 * r, {{0, -1}, {0.87, 0.55}, {-0.87, 0.55}}, colour); break;
+    case 3: fillPolygon(image, c, 1.3 * r, {{0, -1}, {1, 0}, {0, 1}, {-1, 0}}, colour); break;
+    case 4: fillPolygon(image, c, 1.3 * r, {{0, 1}, {0.87, -0.55}, {-0.87, -0.55}}, colour); break;
     case 5:
       drawLine(image, c + r * cv::Point2d(-1, -1), c + r * cv::Point2d(1, 1), colour, stroke);
       drawLine(image, c + r * cv::Point2d(-1, 1), c + r * cv::Point2d(1, -1), colour, stroke);
       break;
     case 6:
-      drawLine(image, c + 1.2 * r * cv::Point2d(-1, 0), c + 1.2 * r * cv::Point2d(1, 0), colour,
-               stroke);
-      drawLine(image, c + 1.2 * r * cv::Point2d(0, -1), c + 1.2 * r * cv::Point2d(0, 1), colour,
-               stroke);
+      drawLine(image, c + 1.2 * r * cv::Point2d(-1, 0), c + 1.2 * r * cv::Point2d(1, 0), colour, stroke);
+      drawLine(image, c + 1.2 * r * cv::Point2d(0, -1), c + 1.2 * r * cv::Point2d(0, 1), colour, stroke);
       break;
     default:  // a ring: hollow, so it still differs from the filled circle
-      cv::circle(image, fixedPoint(c), cvRound(0.9 * r * (1 << kShift)), colour, stroke,
-                 cv::LINE_AA, kShift);
+      cv::circle(image, fixedPoint(c), cvRound(0.9 * r * (1 << kShift)), colour, stroke, cv::LINE_AA, kShift);
       break;
   }
 }
@@ -455,8 +425,7 @@ struct Style {
   Spacing sp;
   double marker_r;
   int line_thickness;
-  explicit Style(double s)
-      : fonts(s), sp(s), marker_r(4.5 * s), line_thickness(std::max(1, cvRound(2 * s))) {}
+  explicit Style(double s) : fonts(s), sp(s), marker_r(4.5 * s), line_thickness(std::max(1, cvRound(2 * s))) {}
 };
 
 double pixelX(const PlotFrame& frame, double position) {
@@ -493,8 +462,7 @@ void drawAxes(cv::Mat& image, const PlotFrame& frame, const Style& style) {
   for (std::size_t i = 0; i < x_labels.size(); ++i) {
     const double px = pixelX(frame, frame.xAxis().ticks[i]);
     drawLine(image, {px, double(a.br().y)}, {px, double(a.br().y + tick)}, kInk, 1);
-    x_labels[i].draw(image, {px, double(a.br().y + tick + style.sp.gap)}, {0.5, 0.0},
-                     style.fonts);
+    x_labels[i].draw(image, {px, double(a.br().y + tick + style.sp.gap)}, {0.5, 0.0}, style.fonts);
   }
   const std::vector<TickLabel> y_labels = tickLabels(frame.yAxis());
   for (std::size_t i = 0; i < y_labels.size(); ++i) {
@@ -518,8 +486,7 @@ std::vector<std::vector<cv::Point2d>> pixelSeries(const LinePlot& plot, const Pl
 }
 
 // All lines first, then all markers, so that no line crosses over another series' marker.
-void drawSeries(cv::Mat& image, const std::vector<std::vector<cv::Point2d>>& series,
-                const Style& style) {
+void drawSeries(cv::Mat& image, const std::vector<std::vector<cv::Point2d>>& series, const Style& style) {
   for (std::size_t i = 0; i < series.size(); ++i) {
     for (std::size_t k = 1; k < series[i].size(); ++k) {
       drawLine(image, series[i][k - 1], series[i][k], seriesColour(i), style.line_thickness);
@@ -562,18 +529,16 @@ cv::Rect2d placeLegend(cv::Size2d box, const PlotFrame& frame, const Style& styl
   const double inset = style.sp.pad * 0.7;
   const double left = a.x + inset, right = a.br().x - inset - box.width;
   const double top = a.y + inset, bottom = a.br().y - inset - box.height;
-  const std::array<cv::Point2d, 4> corners = {
-      cv::Point2d(right, top), cv::Point2d(left, top), cv::Point2d(right, bottom),
-      cv::Point2d(left, bottom)};
+  const std::array<cv::Point2d, 4> corners = {cv::Point2d(right, top), cv::Point2d(left, top),
+                                              cv::Point2d(right, bottom), cv::Point2d(left, bottom)};
   cv::Rect2d best;
   double least = std::numeric_limits<double>::infinity();
   for (const cv::Point2d& corner : corners) {
     const cv::Rect2d candidate(corner, box);
     const double margin = style.marker_r;  // a marker just outside the box still touches it
-    const double hidden = coverage(
-        cv::Rect2d(candidate.x - margin, candidate.y - margin, candidate.width + 2 * margin,
-                   candidate.height + 2 * margin),
-        series);
+    const double hidden = coverage(cv::Rect2d(candidate.x - margin, candidate.y - margin, candidate.width + 2 * margin,
+                                              candidate.height + 2 * margin),
+                                   series);
     if (hidden < least) {
       least = hidden;
       best = candidate;
@@ -599,12 +564,9 @@ void drawLegend(cv::Mat& image, const LinePlot& plot, const PlotFrame& frame, co
   const cv::Size2d box(2 * pad + sample + gap + widest, 2 * pad + row * entries.size() - 4 * s);
 
   const cv::Rect2d at = placeLegend(box, frame, style, series);
-  cv::rectangle(image, cv::Rect(cvRound(at.x), cvRound(at.y), cvRound(at.width),
-                                cvRound(at.height)),
-                kWhite, cv::FILLED);
-  cv::rectangle(image, cv::Rect(cvRound(at.x), cvRound(at.y), cvRound(at.width),
-                                cvRound(at.height)),
-                kLegendEdge, 1);
+  cv::rectangle(image, cv::Rect(cvRound(at.x), cvRound(at.y), cvRound(at.width), cvRound(at.height)), kWhite,
+                cv::FILLED);
+  cv::rectangle(image, cv::Rect(cvRound(at.x), cvRound(at.y), cvRound(at.width), cvRound(at.height)), kLegendEdge, 1);
   for (std::size_t k = 0; k < entries.size(); ++k) {
     const double mid_y = at.y + pad + row * k + (row - 4 * s) / 2;
     const double x0 = at.x + pad;

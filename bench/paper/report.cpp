@@ -64,8 +64,8 @@ void partRows(std::ostringstream& out, const Tallies& tallies, const TableLayout
   }
 }
 
-std::string partsTable(const Tallies& tallies, const TableLayout& layout, const Figure& figure,
-                       const Format& format, bool relative_row) {
+std::string partsTable(const Tallies& tallies, const TableLayout& layout, const Figure& figure, const Format& format,
+                       bool relative_row) {
   std::ostringstream out;
   partRows(out, tallies, layout, [&](const Tally& t) { return format(figure(t)); });
   std::vector<double> averages;
@@ -101,12 +101,14 @@ std::string scenesRow(const Tallies& tallies, const TableLayout& layout) {
 }
 
 std::string recognitionTable(const Tallies& tallies, const TableLayout& layout) {
-  return partsTable(tallies, layout, [](const Tally& t) { return t.recognitionRate(); }, percent, false) +
+  return partsTable(
+             tallies, layout, [](const Tally& t) { return t.recognitionRate(); }, percent, false) +
          scenesRow(tallies, layout);
 }
 
 std::string speedTable(const Tallies& tallies, const TableLayout& layout) {
-  return partsTable(tallies, layout, [](const Tally& t) { return t.msPerObject(); }, milliseconds, true);
+  return partsTable(
+      tallies, layout, [](const Tally& t) { return t.msPerObject(); }, milliseconds, true);
 }
 
 std::string precisionRecallTable(const Tallies& tallies, const TableLayout& layout) {
@@ -125,9 +127,9 @@ std::string stageTable(const Tallies& tallies, const TableLayout& layout) {
       if (!t || !isBinpickMethod(method) || t->objects == 0) continue;
       const auto per_object = [&](double ms) { return milliseconds(ms / t->objects); };
       const estimation::StageTimings& s = t->stages;
-      out << "| " << part << " | " << method << " | " << per_object(s.prepare_scene) << " | "
-          << per_object(s.voting) << " | " << per_object(s.verification) << " | " << per_object(s.selection)
-          << " | " << per_object(s.icp) << " | " << per_object(s.total) << " |\n";
+      out << "| " << part << " | " << method << " | " << per_object(s.prepare_scene) << " | " << per_object(s.voting)
+          << " | " << per_object(s.verification) << " | " << per_object(s.selection) << " | " << per_object(s.icp)
+          << " | " << per_object(s.total) << " |\n";
     }
   }
   return out.str();

@@ -3,9 +3,9 @@
 #include <thread>
 
 #include "bench_scenes.hpp"
-#include "binpick/estimation/detector.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/core/thread_count.hpp"
+#include "binpick/estimation/detector.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "pose_method.hpp"
 
@@ -77,7 +77,7 @@ void detectInto(const estimation::Detector& detector, const simulation::Part& pa
   acc.scene_points += static_cast<double>(result.scene_points);
   acc.objects += static_cast<int>(scene.truth.objects.size());
   acc.correct += evaluation::scoreDetections(result.detections, scene.truth.objects, part.symmetry,
-                                       {detector.model().diameter / 10.0, 10.0})
+                                             {detector.model().diameter / 10.0, 10.0})
                      .correct;
   ++acc.scenes;
 }
@@ -114,7 +114,8 @@ void objectScaling(const simulation::Part& part, const estimation::PreparedModel
     const estimation::Detector detector = detectorWith(model, objects, p.threads);
     Accumulator acc;
     for (int s = 0; s < p.scenes; ++s) {
-      detectInto(detector, part, makeBenchScene(part, request(p, objects, s, simulation::makeVirtualRig())), false, acc);
+      detectInto(detector, part, makeBenchScene(part, request(p, objects, s, simulation::makeVirtualRig())), false,
+                 acc);
     }
     out.objects.push_back(acc.point(std::to_string(objects) + " objects", objects));
   }

@@ -82,19 +82,20 @@ SelectionCurves measureSelection(const estimation::PreparedModel& model, const i
   out.scene_points = scene.size();
   out.candidates = candidates.size();
   algorithm1Picks(candidates, scene.size(), picks, out);
-  exhaustivePicks(candidates, scene.size(), picks,
-                  [](const VerifiedCandidate& c, const std::vector<uint8_t>& exist) {
-                    return estimation::existingCount(c.support, exist);
-                  },
-                  out.rescore_all_ms, out.rescore_all_picks);
+  exhaustivePicks(
+      candidates, scene.size(), picks,
+      [](const VerifiedCandidate& c, const std::vector<uint8_t>& exist) {
+        return estimation::existingCount(c.support, exist);
+      },
+      out.rescore_all_ms, out.rescore_all_picks);
   // Verification as the detector runs it (normals not checked: max_normal_angle_deg = 180).
-  exhaustivePicks(candidates, scene.size(), picks,
-                  [&](const VerifiedCandidate& c, const std::vector<uint8_t>& exist) {
-                    return estimation::existingCount(
-                        estimation::correspondingScenePoints(model, c.T_camera_model, grid, scene.normals, -1.0f),
-                        exist);
-                  },
-                  out.reverify_all_ms, out.reverify_all_picks);
+  exhaustivePicks(
+      candidates, scene.size(), picks,
+      [&](const VerifiedCandidate& c, const std::vector<uint8_t>& exist) {
+        return estimation::existingCount(
+            estimation::correspondingScenePoints(model, c.T_camera_model, grid, scene.normals, -1.0f), exist);
+      },
+      out.reverify_all_ms, out.reverify_all_picks);
   return out;
 }
 

@@ -54,7 +54,8 @@ T parseWhole(const std::string& name, const std::string& text, const char* kind,
 }  // namespace
 
 int parseInteger(const std::string& name, const std::string& text) {
-  return parseWhole<int>(name, text, "a whole number", [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
+  return parseWhole<int>(name, text, "a whole number",
+                         [](const std::string& t, std::size_t* used) { return std::stoi(t, used); });
 }
 
 std::optional<int> Arguments::integer(const std::string& name) const {
@@ -66,7 +67,8 @@ std::optional<int> Arguments::integer(const std::string& name) const {
 std::optional<double> Arguments::number(const std::string& name) const {
   const auto v = value(name);
   if (!v) return std::nullopt;
-  return parseWhole<double>(name, *v, "a number", [](const std::string& t, std::size_t* used) { return std::stod(t, used); });
+  return parseWhole<double>(name, *v, "a number",
+                            [](const std::string& t, std::size_t* used) { return std::stod(t, used); });
 }
 
 }  // namespace binpick::cli

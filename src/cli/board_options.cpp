@@ -17,8 +17,7 @@ void parseSquares(const std::string& text, calibration::BoardLayout& layout) {
 }  // namespace
 
 const std::set<std::string>& boardOptionNames() {
-  static const std::set<std::string> names = {"--board", "--squares", "--square-mm", "--marker-mm",
-                                              "--dictionary"};
+  static const std::set<std::string> names = {"--board", "--squares", "--square-mm", "--marker-mm", "--dictionary"};
   return names;
 }
 

@@ -28,13 +28,11 @@ namespace {
 namespace fs = std::filesystem;
 
 // Given to the file mode as they are.
-const std::set<std::string> kCalibrationOptions = {"--calib", "--setup", "--method", "--min-views",
-                                                   "--out"};
+const std::set<std::string> kCalibrationOptions = {"--calib", "--setup", "--method", "--min-views", "--out"};
 
 std::set<std::string> optionNames() {
-  std::set<std::string> names = {"--record",  "--count",     "--replay",      "--timeout-ms",
-                                 "--port",    "--port-file", "--framing",     "--orientation",
-                                 "--byte-order"};
+  std::set<std::string> names = {"--record",    "--count",   "--replay",      "--timeout-ms", "--port",
+                                 "--port-file", "--framing", "--orientation", "--byte-order"};
   names.insert(kCalibrationOptions.begin(), kCalibrationOptions.end());
   names.insert(boardOptionNames().begin(), boardOptionNames().end());
   names.insert(cameraOptionNames().begin(), cameraOptionNames().end());
@@ -60,8 +58,7 @@ std::unique_ptr<ViewCamera> viewCameraFrom(const Arguments& args) {
   if (replay) return makeReplayViewCamera(*replay);
   acquisition::CameraParams camera = cameraParamsFromArguments(args);
   camera.trigger = acquisition::TriggerSource::Software;  // one frame per view, when asked
-  return makeLiveViewCamera(acquisition::makeAravisCamera(camera),
-                            args.integer("--timeout-ms").value_or(5000));
+  return makeLiveViewCamera(acquisition::makeAravisCamera(camera), args.integer("--timeout-ms").value_or(5000));
 }
 
 // Everything the session needs, checked before the robot is told to start.
@@ -72,12 +69,10 @@ GuidedSessionParams sessionParamsFrom(const Arguments& args) {
   params.camera = io::readRigCalibration(args.required("--calib")).camera;
   calibration::handEyeSetupFromName(args.required("--setup"));
   if (const auto method = args.value("--method")) calibration::handEyeMethodFromName(*method);
-  const int min_views =
-      args.integer("--min-views").value_or(calibration::HandEyeParams{}.min_views);
+  const int min_views = args.integer("--min-views").value_or(calibration::HandEyeParams{}.min_views);
   if (params.wanted < min_views) {
-    throw core::Error("--count must be at least the views the calibration needs (" +
-                std::to_string(min_views) + ", --min-views), got " +
-                std::to_string(params.wanted));
+    throw core::Error("--count must be at least the views the calibration needs (" + std::to_string(min_views) +
+                      ", --min-views), got " + std::to_string(params.wanted));
   }
   const fs::path out = fs::absolute(args.required("--out"));
   if (!fs::is_directory(out.parent_path())) {
@@ -131,8 +126,10 @@ int runCalibrateHandEyeGuided(const std::vector<std::string>& raw) {
   if (recorder.accepted() >= params.wanted) {
     spdlog::info("{} already holds {} views: calibrating", directory, recorder.accepted());
   } else if (!serveGuidedSession(params, server, recorder, *camera)) {
-    spdlog::error("stopped with {} of {} views recorded in {}; the same command continues the "
-                  "session", recorder.accepted(), params.wanted, directory);
+    spdlog::error(
+        "stopped with {} of {} views recorded in {}; the same command continues the "
+        "session",
+        recorder.accepted(), params.wanted, directory);
     return 1;
   }
   setStopSignalsBlocked(false);  // the calibration may be interrupted as any command

@@ -53,8 +53,7 @@ int runCalibrateHandEye(const std::vector<std::string>& raw) {
   const calibration::BoardLayout layout = boardLayoutFromArguments(args);
   const std::string out = args.required("--out");
   const io::RigCalibration rig = io::readRigCalibration(args.required("--calib"));
-  const std::vector<calibration::MeasuredView> views =
-      measureViews(args.required("--views"), layout, rig.camera);
+  const std::vector<calibration::MeasuredView> views = measureViews(args.required("--views"), layout, rig.camera);
 
   calibration::HandEyeResult result;
   try {

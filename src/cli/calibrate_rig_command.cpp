@@ -49,8 +49,8 @@ Arguments parseArguments(const std::vector<std::string>& rest) {
   std::set<std::string> valued = liveCaptureOptionNames();
   const std::set<std::string>& board = boardOptionNames();
   valued.insert(board.begin(), board.end());
-  valued.insert({"--sequence", "--record", "--count", "--min-views", "--outlier-factor",
-                 "--outlier-floor-px", "--corner-window", "--out"});
+  valued.insert({"--sequence", "--record", "--count", "--min-views", "--outlier-factor", "--outlier-floor-px",
+                 "--corner-window", "--out"});
   return Arguments(rest, valued, {"--drop-outliers"});
 }
 
@@ -73,8 +73,8 @@ calibration::RigViewParams viewParams(const Arguments& args) {
 
 // Exactly one source of views.
 void requireOneSource(const Arguments& args, bool has_views) {
-  const int sources = (args.value("--sequence") ? 1 : 0) + (has_views ? 1 : 0) +
-                      (args.value("--camera") ? 1 : 0) + (args.value("--fake-camera") ? 1 : 0);
+  const int sources = (args.value("--sequence") ? 1 : 0) + (has_views ? 1 : 0) + (args.value("--camera") ? 1 : 0) +
+                      (args.value("--fake-camera") ? 1 : 0);
   if (sources != 1) {
     throw core::Error("give exactly one of --sequence DIR, --views DIR..., --camera ID or --fake-camera DIR");
   }
@@ -82,8 +82,7 @@ void requireOneSource(const Arguments& args, bool has_views) {
 
 std::vector<calibration::RigView> gatherViews(const Arguments& args, const SplitArguments& split,
                                               const calibration::BoardLayout& layout,
-                                              const calibration::RigViewParams& params,
-                                              int min_views) {
+                                              const calibration::RigViewParams& params, int min_views) {
   if (split.has_views) return readViews(split.views, layout, params);
   if (const auto sequence = args.value("--sequence")) {
     return readViews(sequenceCaptures(*sequence), layout, params);
@@ -104,8 +103,7 @@ int runCalibrateRig(const std::vector<std::string>& raw) {
   const calibration::RigCalibrationParams params = calibrationParams(args);
   const calibration::RigViewParams view_params = viewParams(args);
 
-  const std::vector<calibration::RigView> views =
-      gatherViews(args, split, layout, view_params, params.min_views);
+  const std::vector<calibration::RigView> views = gatherViews(args, split, layout, view_params, params.min_views);
   const calibration::RigCalibrationResult result = calibration::calibrateRig(views, layout, params);
   for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
   printRigReport(std::cout, result);

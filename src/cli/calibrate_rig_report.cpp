@@ -30,16 +30,15 @@ void printViews(std::ostream& out, const io::RigCalibrationQuality& quality) {
     width = std::max(width, static_cast<int>(view.name.size()));
   }
   char line[512];
-  std::snprintf(line, sizeof line, "%-*s  %7s %9s  %7s %9s\n", width, "", "camera", "projector",
-                "camera", "projector");
+  std::snprintf(line, sizeof line, "%-*s  %7s %9s  %7s %9s\n", width, "", "camera", "projector", "camera", "projector");
   out << line;
-  std::snprintf(line, sizeof line, "%-*s  %7s %9s  %7s %9s  %7s\n", width, "view", "corners",
-                "corners", "RMS px", "RMS px", "outlier");
+  std::snprintf(line, sizeof line, "%-*s  %7s %9s  %7s %9s  %7s\n", width, "view", "corners", "corners", "RMS px",
+                "RMS px", "outlier");
   out << line;
   for (const io::RigViewQuality& view : quality.views) {
-    std::snprintf(line, sizeof line, "%-*s  %7d %9d  %7s %9s  %7s  ", width, view.name.c_str(),
-                  view.camera_corners, view.projector_corners, rms(view.camera_rms_px).c_str(),
-                  rms(view.projector_rms_px).c_str(), view.outlier ? "yes" : "no");
+    std::snprintf(line, sizeof line, "%-*s  %7d %9d  %7s %9s  %7s  ", width, view.name.c_str(), view.camera_corners,
+                  view.projector_corners, rms(view.camera_rms_px).c_str(), rms(view.projector_rms_px).c_str(),
+                  view.outlier ? "yes" : "no");
     out << line << status(view) << "\n";
   }
 }
@@ -49,9 +48,8 @@ void printLens(std::ostream& out, const char* device, const io::LensIntrinsics& 
   std::snprintf(line, sizeof line,
                 "%-9s %dx%d  fx %.2f  fy %.2f  cx %.2f  cy %.2f  k1 %.4f k2 %.4f p1 %.5f p2 %.5f"
                 " k3 %.4f\n",
-                device, lens.width, lens.height, lens.fx, lens.fy, lens.cx, lens.cy,
-                lens.distortion[0], lens.distortion[1], lens.distortion[2], lens.distortion[3],
-                lens.distortion[4]);
+                device, lens.width, lens.height, lens.fx, lens.fy, lens.cx, lens.cy, lens.distortion[0],
+                lens.distortion[1], lens.distortion[2], lens.distortion[3], lens.distortion[4]);
   out << line;
 }
 
@@ -61,10 +59,9 @@ void printRigReport(std::ostream& out, const calibration::RigCalibrationResult& 
   const io::RigCalibrationQuality& quality = result.quality;
   printViews(out, quality);
   char line[256];
-  std::snprintf(line, sizeof line,
-                "%d of %zu views used; RMS camera %.3f px, projector %.3f px, stereo %.3f px\n",
-                quality.viewsUsed(), quality.views.size(), quality.camera_rms_px,
-                quality.projector_rms_px, quality.stereo_rms_px);
+  std::snprintf(line, sizeof line, "%d of %zu views used; RMS camera %.3f px, projector %.3f px, stereo %.3f px\n",
+                quality.viewsUsed(), quality.views.size(), quality.camera_rms_px, quality.projector_rms_px,
+                quality.stereo_rms_px);
   out << line;
   printLens(out, "camera", result.rig.camera);
   printLens(out, "projector", result.rig.projector);

@@ -20,8 +20,8 @@ void reportView(const calibration::RigView& view) {
     std::cerr << view.name << ": board not found (" << view.board.problem << ")\n";
     return;
   }
-  std::cerr << view.name << ": " << view.board.ids.size() << " of " << view.board.expected
-            << " corners, " << view.projector.corners.size() << " with a projector pixel\n";
+  std::cerr << view.name << ": " << view.board.ids.size() << " of " << view.board.expected << " corners, "
+            << view.projector.corners.size() << " with a projector pixel\n";
 }
 
 std::string viewDirectory(const std::string& record, int index) {
@@ -79,23 +79,21 @@ std::vector<calibration::RigView> readViews(const std::vector<std::string>& dire
   return views;
 }
 
-std::vector<calibration::RigView> captureLiveViews(const Arguments& args, int count,
-                                                   const std::string& record,
+std::vector<calibration::RigView> captureLiveViews(const Arguments& args, int count, const std::string& record,
                                                    const calibration::BoardLayout& layout,
-                                                   const calibration::RigViewParams& params,
-                                                   std::istream& input) {
+                                                   const calibration::RigViewParams& params, std::istream& input) {
   const auto fake = args.value("--fake-camera");
   const std::vector<std::string> recorded = fake ? sequenceCaptures(*fake) : std::vector<std::string>{};
   if (fake && static_cast<int>(recorded.size()) < count) {
     throw core::Error(*fake + ": holds " + std::to_string(recorded.size()) + " captures, fewer than the " +
-                std::to_string(count) + " views asked for (--count)");
+                      std::to_string(count) + " views asked for (--count)");
   }
   const io::PatternSetSpec patterns = patternSetFromArguments(args);
   requireFreshRecord(record);
   std::vector<calibration::RigView> views;
   for (int i = 0; i < count && waitForUser(input, i, count); ++i) {
-    io::Capture capture = fake ? captureFromFake(args, io::readCapture(recorded[i]))
-                           : captureFromCamera(args, patterns);
+    io::Capture capture =
+        fake ? captureFromFake(args, io::readCapture(recorded[i])) : captureFromCamera(args, patterns);
     const std::string directory = viewDirectory(record, i);
     io::writeCapture(directory, capture);
     try {

@@ -25,10 +25,8 @@ std::vector<calibration::RigView> readViews(const std::vector<std::string>& dire
 // stops early), written to RECORD/view_NNN and then measured. A view that cannot be measured is
 // reported by its directory and left out. Throws core::Error when RECORD already holds
 // files, or on camera errors (the views recorded so far stay on disk).
-std::vector<calibration::RigView> captureLiveViews(const Arguments& args, int count,
-                                                   const std::string& record,
+std::vector<calibration::RigView> captureLiveViews(const Arguments& args, int count, const std::string& record,
                                                    const calibration::BoardLayout& layout,
-                                                   const calibration::RigViewParams& params,
-                                                   std::istream& input);
+                                                   const calibration::RigViewParams& params, std::istream& input);
 
 }  // namespace binpick::cli

@@ -4,8 +4,7 @@
 namespace binpick::cli {
 
 const std::set<std::string>& cameraOptionNames() {
-  static const std::set<std::string> names = {"--camera", "--pixel-format", "--exposure-us",
-                                              "--gain-db"};
+  static const std::set<std::string> names = {"--camera", "--pixel-format", "--exposure-us", "--gain-db"};
   return names;
 }
 

@@ -12,8 +12,8 @@
 #include <optional>
 
 #include "arguments.hpp"
-#include "binpick/io/capture.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/io/capture.hpp"
 #include "commands.hpp"
 #include "live_capture.hpp"
 
@@ -37,13 +37,14 @@ int runCapture(const std::vector<std::string>& raw) {
   const Arguments args(raw, valued, {"--no-rows"});
   const fs::path out = args.required("--out");
   const auto fake = args.value("--fake-camera");
-  if (fake.has_value() == args.value("--camera").has_value()) throw core::Error("give either --camera or --fake-camera");
-  io::Capture capture = fake ? captureFromFake(args, io::readCapture(*fake))
-                         : captureFromCamera(args, patternSetFromArguments(args));
+  if (fake.has_value() == args.value("--camera").has_value())
+    throw core::Error("give either --camera or --fake-camera");
+  io::Capture capture =
+      fake ? captureFromFake(args, io::readCapture(*fake)) : captureFromCamera(args, patternSetFromArguments(args));
   io::writeCapture(out.string(), std::move(capture));
   // A recording from the fake camera keeps the calibration of the capture it replayed.
-  const auto calibration = fake ? std::optional<std::string>((fs::path(*fake) / "calib.yaml").string())
-                                : args.value("--calib");
+  const auto calibration =
+      fake ? std::optional<std::string>((fs::path(*fake) / "calib.yaml").string()) : args.value("--calib");
   copyCalibration(calibration, out);
   return 0;
 }

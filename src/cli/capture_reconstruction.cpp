@@ -17,8 +17,7 @@ void printSummary(const reconstruction::Reconstruction& result, double read_ms) 
   char times[160];
   std::snprintf(times, sizeof times, "read %.0f ms, decode %.1f ms, triangulate %.1f ms, filter %.1f ms", read_ms,
                 result.timings.decode, result.timings.triangulate, result.timings.filter);
-  std::cerr << result.validPoints() << " points of " << result.cloud.size() << " pixels (" << times
-            << "); no point:";
+  std::cerr << result.validPoints() << " points of " << result.cloud.size() << " pixels (" << times << "); no point:";
   for (std::size_t status = 1; status < result.counts.size(); ++status) {
     if (result.counts[status] == 0) continue;
     std::cerr << " " << reconstruction::statusName(static_cast<reconstruction::PixelStatus>(status)) << " "

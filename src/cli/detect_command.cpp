@@ -7,11 +7,11 @@
 #include <iostream>
 
 #include "arguments.hpp"
+#include "binpick/core/error.hpp"
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/model_cache.hpp"
 #include "binpick/estimation/result_json.hpp"
-#include "binpick/core/error.hpp"
 #include "capture_reconstruction.hpp"
 #include "commands.hpp"
 
@@ -65,8 +65,9 @@ io::PointCloud sceneFrom(const Arguments& args) {
 }  // namespace
 
 int runDetect(const std::vector<std::string>& raw) {
-  const Arguments args(raw, {"--model", "--scene", "--capture", "--calib", "--max-objects", "--config", "--out",
-                             "--model-cache", "--threads", "--method"},
+  const Arguments args(raw,
+                       {"--model", "--scene", "--capture", "--calib", "--max-objects", "--config", "--out",
+                        "--model-cache", "--threads", "--method"},
                        {});
   const estimation::EstimationConfig config = configFrom(args);
   const estimation::Detector detector(modelFrom(args, config.model), config.detector);

@@ -9,11 +9,11 @@
 
 #include "arguments.hpp"
 #include "binpick/core/error.hpp"
-#include "binpick/io/geometry_io.hpp"
 #include "binpick/core/json_fields.hpp"
+#include "binpick/evaluation/evaluation.hpp"
+#include "binpick/io/geometry_io.hpp"
 #include "binpick/simulation/pile_truth.hpp"
 #include "commands.hpp"
-#include "binpick/evaluation/evaluation.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -59,22 +59,22 @@ int runEvaluate(const std::vector<std::string>& raw) {
   }
   const std::vector<simulation::ObjectTruth>& objects = truth.objects;
   const double diameter = meshDiameter(part.mesh);
-  const evaluation::Score score = evaluation::scoreDetections(detections, objects, part.symmetry, {diameter / 10.0, 10.0},
-                                                  args.number("--min-visible").value_or(0.5));
+  const evaluation::Score score = evaluation::scoreDetections(
+      detections, objects, part.symmetry, {diameter / 10.0, 10.0}, args.number("--min-visible").value_or(0.5));
   for (std::size_t d = 0; d < detections.size(); ++d) {
     const int o = score.matched_object[d];
     std::printf("detection %2zu  score %.3f  coverage %.2f  %s", d, detections[d].score, detections[d].coverage,
                 o >= 0 ? "correct" : "WRONG");
     if (o >= 0) {
-      const simulation::PoseError e = simulation::poseError(detections[d].T_camera_model.cast<double>(),
-                                              objects[o].T_camera_object, part.symmetry);
+      const simulation::PoseError e =
+          simulation::poseError(detections[d].T_camera_model.cast<double>(), objects[o].T_camera_object, part.symmetry);
       std::printf("  object %2d (%.0f%% visible)  error %.2f mm %.2f deg", o, 100.0 * objects[o].visible_fraction,
                   1000.0 * e.translation, e.rotation_deg);
     }
     std::printf("\n");
   }
-  std::printf("found %d of %d objects at least half visible; %d correct, %d wrong (%d in the first 10)\n",
-              score.found, score.findable, score.correct, score.wrong, score.wrong_in_first_10);
+  std::printf("found %d of %d objects at least half visible; %d correct, %d wrong (%d in the first 10)\n", score.found,
+              score.findable, score.correct, score.wrong, score.wrong_in_first_10);
   return 0;
 }
 

@@ -49,7 +49,8 @@ class Projection {
 };
 
 // Painter's algorithm: far triangles first, grey by how squarely they face the light.
-void drawModel(cv::Mat& image, const io::ModelGeometry& model, const Projection& project, const Eigen::Vector3d& forward) {
+void drawModel(cv::Mat& image, const io::ModelGeometry& model, const Projection& project,
+               const Eigen::Vector3d& forward) {
   const Eigen::Vector3d light = (-forward + Eigen::Vector3d(0.3, 0.2, 0.4)).normalized();
   if (!model.hasMesh()) {
     for (const Eigen::Vector3f& p : model.cloud.points) {
@@ -60,14 +61,15 @@ void drawModel(cv::Mat& image, const io::ModelGeometry& model, const Projection&
   std::vector<std::pair<double, std::size_t>> order;
   for (std::size_t t = 0; t < model.mesh.triangles.size(); ++t) {
     const Eigen::Vector3i& tri = model.mesh.triangles[t];
-    const Eigen::Vector3d centre = (model.mesh.vertices[tri[0]] + model.mesh.vertices[tri[1]] + model.mesh.vertices[tri[2]])
-                                       .cast<double>() / 3.0;
+    const Eigen::Vector3d centre =
+        (model.mesh.vertices[tri[0]] + model.mesh.vertices[tri[1]] + model.mesh.vertices[tri[2]]).cast<double>() / 3.0;
     order.emplace_back(-project.depth(centre), t);
   }
   std::sort(order.begin(), order.end());
   for (const auto& [depth, t] : order) {
     const Eigen::Vector3i& tri = model.mesh.triangles[t];
-    const Eigen::Vector3d a = model.mesh.vertices[tri[0]].cast<double>(), b = model.mesh.vertices[tri[1]].cast<double>(),
+    const Eigen::Vector3d a = model.mesh.vertices[tri[0]].cast<double>(),
+                          b = model.mesh.vertices[tri[1]].cast<double>(),
                           c = model.mesh.vertices[tri[2]].cast<double>();
     const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
     if (!normal.allFinite() || normal.dot(forward) > 0.0) continue;  // faces away
@@ -143,20 +145,23 @@ void drawGrasp(cv::Mat& image, const Projection& project, const picking::Grasp& 
     // The finger pads where they touch the part, either side of the grasp point along x.
     for (double side : {-1.0, 1.0}) {
       const double x = side * half_opening;
-      outlines.push_back(projectedLoop(project, {T * Eigen::Vector3d(x, -width, -depth), T * Eigen::Vector3d(x, width, -depth),
-                                                 T * Eigen::Vector3d(x, width, depth), T * Eigen::Vector3d(x, -width, depth)}));
+      outlines.push_back(
+          projectedLoop(project, {T * Eigen::Vector3d(x, -width, -depth), T * Eigen::Vector3d(x, width, -depth),
+                                  T * Eigen::Vector3d(x, width, depth), T * Eigen::Vector3d(x, -width, depth)}));
     }
     arrow_length = arrowLength(gripper);
   }
   cv::Mat overlay = image.clone();
-  for (const auto& outline : outlines) cv::fillPoly(overlay, std::vector<std::vector<cv::Point>>{outline}, colour, cv::LINE_AA);
+  for (const auto& outline : outlines)
+    cv::fillPoly(overlay, std::vector<std::vector<cv::Point>>{outline}, colour, cv::LINE_AA);
   cv::addWeighted(overlay, 0.45, image, 0.55, 0.0, image);
   for (const auto& outline : outlines) cv::polylines(image, outline, true, colour, 2, cv::LINE_AA);
   const cv::Point tip = project(T.translation());
   const cv::Point tail = project(T * Eigen::Vector3d(0, 0, -arrow_length));
   cv::arrowedLine(image, tail, tip, colour, 2, cv::LINE_AA, 0, 0.25);
   const std::string label = std::to_string(rank + 1);
-  cv::putText(image, label, tail + cv::Point(4, -4), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+  cv::putText(image, label, tail + cv::Point(4, -4), cv::FONT_HERSHEY_SIMPLEX, 0.55, cv::Scalar(0, 0, 0), 3,
+              cv::LINE_AA);
   cv::putText(image, label, tail + cv::Point(4, -4), cv::FONT_HERSHEY_SIMPLEX, 0.55, colour, 1, cv::LINE_AA);
 }
 
@@ -175,11 +180,10 @@ void writeGraspImage(const std::string& path, const io::ModelGeometry& model, co
   const Eigen::Vector3d centre = 0.5 * (low + high);
   // Room around the part for the approach arrows.
   const double radius = 0.5 * (high - low).norm() + 0.5 * arrowLength(gripper);
-  const std::vector<View> views{
-      lookingAlong("from +z (above)", -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()),
-      lookingAlong("from -z (below)", Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()),
-      lookingAlong("from +x -y +z", Eigen::Vector3d(-1, 1, -0.9), Eigen::Vector3d::UnitZ()),
-      lookingAlong("from -x +y -z", Eigen::Vector3d(1, -1, 0.9), -Eigen::Vector3d::UnitZ())};
+  const std::vector<View> views{lookingAlong("from +z (above)", -Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()),
+                                lookingAlong("from -z (below)", Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()),
+                                lookingAlong("from +x -y +z", Eigen::Vector3d(-1, 1, -0.9), Eigen::Vector3d::UnitZ()),
+                                lookingAlong("from -x +y -z", Eigen::Vector3d(1, -1, 0.9), -Eigen::Vector3d::UnitZ())};
   cv::Mat image(2 * kViewSize, 2 * kViewSize, CV_8UC3, cv::Scalar(255, 255, 255));
   for (std::size_t v = 0; v < views.size(); ++v) {
     const cv::Point origin(static_cast<int>(v % 2) * kViewSize, static_cast<int>(v / 2) * kViewSize);
@@ -189,19 +193,20 @@ void writeGraspImage(const std::string& path, const io::ModelGeometry& model, co
     // Worst first, so that the best grasps are drawn on top; only those approaching from this side.
     for (std::size_t i = grasps.size(); i-- > 0;) {
       if (grasps[i].T_model_grasp.linear().col(2).dot(forward) > 0.15) {
-        const double half_opening =
-            gripper.type == picking::GripperType::Parallel ? contactHalfWidth(model, grasps[i].T_model_grasp, gripper) : 0.0;
+        const double half_opening = gripper.type == picking::GripperType::Parallel
+                                        ? contactHalfWidth(model, grasps[i].T_model_grasp, gripper)
+                                        : 0.0;
         drawGrasp(image, project, grasps[i], i, grasps.size(), gripper, half_opening);
       }
     }
     cv::rectangle(image, cv::Rect(origin, cv::Size(kViewSize, kViewSize)), cv::Scalar(200, 200, 200), 1);
-    cv::putText(image, views[v].title, origin + cv::Point(10, 24), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(40, 40, 40), 1,
-                cv::LINE_AA);
+    cv::putText(image, views[v].title, origin + cv::Point(10, 24), cv::FONT_HERSHEY_SIMPLEX, 0.6,
+                cv::Scalar(40, 40, 40), 1, cv::LINE_AA);
   }
   const std::string legend = std::to_string(grasps.size()) + " " + picking::gripperTypeName(gripper.type) +
                              " grasps, numbered by rank (green best)";
-  cv::putText(image, legend, cv::Point(10, 2 * kViewSize - 12), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(40, 40, 40), 1,
-              cv::LINE_AA);
+  cv::putText(image, legend, cv::Point(10, 2 * kViewSize - 12), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(40, 40, 40),
+              1, cv::LINE_AA);
   if (!cv::imwrite(path, image)) throw core::Error(path + ": cannot write the image");
 }
 

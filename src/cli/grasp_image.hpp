@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "binpick/io/geometry_io.hpp"
 #include "binpick/picking/gripper.hpp"
 #include "binpick/picking/picking.hpp"
-#include "binpick/io/geometry_io.hpp"
 
 namespace binpick::cli {
 

@@ -5,10 +5,10 @@
 #include <sstream>
 
 #include "arguments.hpp"
-#include "binpick/picking/grasp_generation.hpp"
 #include "binpick/cell/grasps_file.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
+#include "binpick/picking/grasp_generation.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "commands.hpp"
 #include "grasp_image.hpp"
@@ -97,7 +97,8 @@ std::string describe(const Model& model, const picking::GripperParams& gripper, 
   if (gripper.type == picking::GripperType::Suction) {
     text << ", cup diameter " << gripper.cup_diameter << " m, seal tolerance " << gripper.seal_tolerance << " m";
   } else {
-    text << ", stroke " << gripper.stroke << " m, fingers " << gripper.finger_width << " x " << gripper.finger_depth << " m";
+    text << ", stroke " << gripper.stroke << " m, fingers " << gripper.finger_width << " x " << gripper.finger_depth
+         << " m";
   }
   text << ", tool radius " << gripper.tool_radius << " m\n"
        << "model frame, metres; rotation: quaternion w, x, y, z; z = approach into the part";
@@ -114,12 +115,12 @@ void printGrasp(std::size_t index, const picking::Grasp& grasp) {
 }  // namespace
 
 int runGrasps(const std::vector<std::string>& args_list) {
-  const Arguments args(args_list,
-                       {"--model", "--model-scale", "--part", "--gripper", "--cup-diameter", "--seal-tolerance",
-                        "--tool-radius", "--tool-length", "--stroke", "--finger-width", "--finger-depth",
-                        "--symmetry-order", "--symmetry-axis", "--continuous-axis", "--seed", "--max-grasps",
-                        "--spacing", "--out", "--image"},
-                       {});
+  const Arguments args(
+      args_list,
+      {"--model", "--model-scale", "--part", "--gripper", "--cup-diameter", "--seal-tolerance", "--tool-radius",
+       "--tool-length", "--stroke", "--finger-width", "--finger-depth", "--symmetry-order", "--symmetry-axis",
+       "--continuous-axis", "--seed", "--max-grasps", "--spacing", "--out", "--image"},
+      {});
   const std::string out = args.required("--out");
   Model model = modelFrom(args);
   addSymmetry(args, model.symmetry);

@@ -36,8 +36,7 @@ class ReplayViewCamera : public ViewCamera {
 
   cv::Mat grab() override {
     if (next_ == images_.size()) {
-      throw core::Error("replay: all " + std::to_string(images_.size()) + " images of " + directory_ +
-                  " were served");
+      throw core::Error("replay: all " + std::to_string(images_.size()) + " images of " + directory_ + " were served");
     }
     const std::string& path = images_[next_++];
     cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
@@ -69,9 +68,8 @@ class LiveViewCamera : public ViewCamera {
     Frame frame = camera_->grab(timeout_ms_);
     if (frame.status != FrameStatus::Ok) {
       closeQuietly();  // a late frame must not answer the next view
-      throw core::Error("camera " + camera_->description() + ": " +
-                  acquisition::frameStatusName(frame.status) +
-                  (frame.detail.empty() ? "" : ": " + frame.detail));
+      throw core::Error("camera " + camera_->description() + ": " + acquisition::frameStatusName(frame.status) +
+                        (frame.detail.empty() ? "" : ": " + frame.detail));
     }
     return frame.image;
   }
@@ -116,8 +114,7 @@ std::unique_ptr<ViewCamera> makeReplayViewCamera(const std::string& directory) {
   return std::make_unique<ReplayViewCamera>(directory);
 }
 
-std::unique_ptr<ViewCamera> makeLiveViewCamera(std::unique_ptr<acquisition::Camera> camera,
-                                               int timeout_ms) {
+std::unique_ptr<ViewCamera> makeLiveViewCamera(std::unique_ptr<acquisition::Camera> camera, int timeout_ms) {
   return std::make_unique<LiveViewCamera>(std::move(camera), timeout_ms);
 }
 

@@ -28,7 +28,6 @@ std::unique_ptr<ViewCamera> makeReplayViewCamera(const std::string& directory);
 // One frame per grab: trigger, then wait up to timeout_ms. The camera is opened on the first grab.
 // After any failed frame it is closed and opened afresh on the next grab, so that a frame that
 // arrives late is never taken for the next view's.
-std::unique_ptr<ViewCamera> makeLiveViewCamera(std::unique_ptr<acquisition::Camera> camera,
-                                               int timeout_ms);
+std::unique_ptr<ViewCamera> makeLiveViewCamera(std::unique_ptr<acquisition::Camera> camera, int timeout_ms);
 
 }  // namespace binpick::cli

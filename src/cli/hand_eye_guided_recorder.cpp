@@ -29,8 +29,8 @@ std::set<std::string> namesIn(const fs::path& path, core::Orientation orientatio
   const RobotPoseFile file = calibration::readRobotPoseFile(path.string());
   if (file.orientation != orientation) {
     throw core::Error(path.string() + ": its poses are in " + core::orientationName(file.orientation) +
-                " but the robot's are in " + core::orientationName(orientation) +
-                " (--orientation); continue with that convention or record to a new directory");
+                      " but the robot's are in " + core::orientationName(orientation) +
+                      " (--orientation); continue with that convention or record to a new directory");
   }
   for (const calibration::RobotPose& pose : file.poses) names.insert(pose.view);
   return names;
@@ -41,15 +41,13 @@ std::string header(core::Orientation orientation) {
   return calibration::formatRobotPoses(RobotPoseFile{orientation, {}});
 }
 
-std::string poseLine(const std::string& name, const Eigen::Isometry3d& T_base_flange,
-                     core::Orientation orientation) {
-  const std::string alone =
-      calibration::formatRobotPoses(RobotPoseFile{orientation, {{name, T_base_flange, 0}}});
+std::string poseLine(const std::string& name, const Eigen::Isometry3d& T_base_flange, core::Orientation orientation) {
+  const std::string alone = calibration::formatRobotPoses(RobotPoseFile{orientation, {{name, T_base_flange, 0}}});
   return alone.substr(header(orientation).size());
 }
 
-void appendPose(const fs::path& path, const std::string& name,
-                const Eigen::Isometry3d& T_base_flange, core::Orientation orientation) {
+void appendPose(const fs::path& path, const std::string& name, const Eigen::Isometry3d& T_base_flange,
+                core::Orientation orientation) {
   std::error_code error;
   const bool fresh = !fs::exists(path, error) || fs::file_size(path, error) == 0;
   std::ofstream out(path, std::ios::app);
@@ -79,8 +77,7 @@ void renameInto(const fs::path& from, const fs::path& to) {
 
 }  // namespace
 
-GuidedViewRecorder::GuidedViewRecorder(const std::string& directory,
-                                       core::Orientation orientation)
+GuidedViewRecorder::GuidedViewRecorder(const std::string& directory, core::Orientation orientation)
     : directory_(directory), orientation_(orientation) {
   std::error_code error;
   fs::create_directories(fs::path(directory) / kRejectedDirectory, error);
@@ -94,8 +91,7 @@ GuidedViewRecorder::GuidedViewRecorder(const std::string& directory,
 
 std::string GuidedViewRecorder::receive(const Eigen::Isometry3d& T_base_flange) {
   const fs::path root(directory_);
-  const std::string attempt =
-      freeName("attempt", next_attempt_, attempts_, root / kRejectedDirectory);
+  const std::string attempt = freeName("attempt", next_attempt_, attempts_, root / kRejectedDirectory);
   appendPose(root / kJournalFile, attempt, T_base_flange, orientation_);
   attempts_.insert(attempt);
   return attempt;
@@ -121,8 +117,7 @@ std::string GuidedViewRecorder::accept(const Eigen::Isometry3d& T_base_flange) {
   return view;
 }
 
-std::string GuidedViewRecorder::reject(const std::string& attempt,
-                                       const Eigen::Isometry3d& T_base_flange) {
+std::string GuidedViewRecorder::reject(const std::string& attempt, const Eigen::Isometry3d& T_base_flange) {
   const fs::path rejected = fs::path(directory_) / kRejectedDirectory;
   appendPose(rejected / kPosesFile, attempt, T_base_flange, orientation_);
   const fs::path image = rejected / (attempt + ".png");

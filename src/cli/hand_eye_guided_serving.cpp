@@ -9,8 +9,8 @@
 #include <fstream>
 #include <thread>
 
-#include "binpick/core/file.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/core/file.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -29,8 +29,7 @@ int waitForStopSignal(std::chrono::milliseconds timeout) {
 // RobotServer::run() on its own thread; stop() (or the destructor) ends it and joins.
 class ServingThread {
  public:
-  explicit ServingThread(robot::RobotServer& server)
-      : server_(server), thread_([this] { serve(); }) {}
+  explicit ServingThread(robot::RobotServer& server) : server_(server), thread_([this] { serve(); }) {}
   ~ServingThread() { stop(); }
   ServingThread(const ServingThread&) = delete;
   ServingThread& operator=(const ServingThread&) = delete;
@@ -72,19 +71,17 @@ bool serveGuidedSession(const GuidedSessionParams& params, const GuidedServerOpt
                         GuidedViewRecorder& recorder, ViewCamera& camera) {
   // Declared first, destroyed last: the session's thread replies through it until it stops.
   std::unique_ptr<robot::RobotServer> server;
-  HandEyeGuidedSession session(params, recorder, camera,
-                               [&server](robot::ClientId client, const robot::Reply& reply) {
-                                 server->reply(client, reply);
-                               });
+  HandEyeGuidedSession session(params, recorder, camera, [&server](robot::ClientId client, const robot::Reply& reply) {
+    server->reply(client, reply);
+  });
   server = std::make_unique<robot::RobotServer>(options.server, session);
   ServingThread serving(*server);
   // Atomically: a script polling for it never reads half a number.
   if (!options.port_file.empty()) core::writeFileAtomically(options.port_file, std::to_string(server->port()) + "\n");
-  spdlog::info("waiting for the robot on port {} ({}, {}): {} of {} views in {}; images: {}",
-               server->port(),
+  spdlog::info("waiting for the robot on port {} ({}, {}): {} of {} views in {}; images: {}", server->port(),
                options.server.codec.framing == robot::Framing::Ascii ? "ascii" : "binary",
-               core::orientationName(options.server.codec.orientation), recorder.accepted(),
-               params.wanted, recorder.directory(), camera.description());
+               core::orientationName(options.server.codec.orientation), recorder.accepted(), params.wanted,
+               recorder.directory(), camera.description());
   while (!session.finished() && !serving.failed()) {
     if (const int signal = waitForStopSignal(kTick)) {
       spdlog::warn("{}: stopping the session", strsignal(signal));

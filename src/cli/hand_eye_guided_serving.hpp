@@ -12,7 +12,7 @@ namespace binpick::cli {
 
 struct GuidedServerOptions {
   robot::RobotServerParams server;  // port, codec (framing, orientation, byte order), limits
-  std::string port_file;           // the bound port is written here once listening; "" none
+  std::string port_file;            // the bound port is written here once listening; "" none
 };
 
 // SIGINT and SIGTERM: they end the session. Block them in every thread before serving.

@@ -25,13 +25,11 @@ void GuidedSessionParams::validate() const {
   layout.validate();
   camera.validate("camera");
   check.validate();
-  core::requireField(final_reply_grace.count() >= 0, owner, "final_reply_grace", ">= 0 ms",
-               final_reply_grace.count());
+  core::requireField(final_reply_grace.count() >= 0, owner, "final_reply_grace", ">= 0 ms", final_reply_grace.count());
 }
 
-HandEyeGuidedSession::HandEyeGuidedSession(const GuidedSessionParams& params,
-                                           GuidedViewRecorder& recorder, ViewCamera& camera,
-                                           GuidedReplySink sink)
+HandEyeGuidedSession::HandEyeGuidedSession(const GuidedSessionParams& params, GuidedViewRecorder& recorder,
+                                           ViewCamera& camera, GuidedReplySink sink)
     : params_(params), recorder_(recorder), camera_(camera), sink_(std::move(sink)) {
   params_.validate();
   accepted_ = recorder_.accepted();
@@ -51,31 +49,26 @@ void HandEyeGuidedSession::handle(robot::ClientId client, const robot::Request& 
     // A robot is synchronous: a new request means it has read the reply to its last view.
     if (final_client_ == client) final_reply_read_ = true;
     switch (request.command) {
-      case Command::Ping:
-        reply = Reply{Command::Ping, Status::Ok};
-        break;
+      case Command::Ping: reply = Reply{Command::Ping, Status::Ok}; break;
       case Command::Status: {
         SessionState state = SessionState::Waiting;
         if (taking_ || !jobs_.empty()) state = SessionState::TakingView;
         if (completed_at_) state = SessionState::Done;
-        reply = Reply{Command::Status, Status::Ok,
-                      {static_cast<int32_t>(state), accepted_, params_.wanted}};
+        reply = Reply{Command::Status, Status::Ok, {static_cast<int32_t>(state), accepted_, params_.wanted}};
         break;
       }
       case Command::Pose:
         if (!request.T_base_flange) {  // the decoders never hand one over; a caller might
           reply = Reply{Command::Pose, Status::BadMessage};
         } else if (completed_at_ || stopping_) {
-          spdlog::info("POSE from client {} not recorded: the session has its {} views", client,
-                       params_.wanted);
+          spdlog::info("POSE from client {} not recorded: the session has its {} views", client, params_.wanted);
           reply = poseReply(Status::Busy);
         } else {
           jobs_.push_back({client, *request.T_base_flange});
           wakeup_.notify_one();
         }
         break;
-      default:
-        reply = Reply{request.command, Status::UnknownCommand};
+      default: reply = Reply{request.command, Status::UnknownCommand};
     }
   }
   if (reply) sink_(client, *reply);
@@ -86,8 +79,7 @@ void HandEyeGuidedSession::disconnected(robot::ClientId client) {
   if (final_client_ == client) final_reply_read_ = true;
   // Nobody waits for these any more, and the robot may be moving already: its pose is stale.
   const auto waiting = jobs_.size();
-  jobs_.erase(std::remove_if(jobs_.begin(), jobs_.end(),
-                             [client](const Job& job) { return job.client == client; }),
+  jobs_.erase(std::remove_if(jobs_.begin(), jobs_.end(), [client](const Job& job) { return job.client == client; }),
               jobs_.end());
   if (jobs_.size() != waiting) {
     spdlog::warn("client {} left before its POSE was served: that view is not taken", client);
@@ -106,8 +98,7 @@ bool HandEyeGuidedSession::complete() const {
 
 bool HandEyeGuidedSession::finished() const {
   const std::lock_guard<std::mutex> lock(mutex_);
-  return completed_at_ &&
-         (final_reply_read_ || Clock::now() - *completed_at_ >= params_.final_reply_grace);
+  return completed_at_ && (final_reply_read_ || Clock::now() - *completed_at_ >= params_.final_reply_grace);
 }
 
 void HandEyeGuidedSession::stop() {

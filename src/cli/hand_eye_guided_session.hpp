@@ -24,17 +24,17 @@
 
 #include "binpick/calibration/board_layout.hpp"
 #include "binpick/calibration/hand_eye_views.hpp"
-#include "binpick/robot/robot_server.hpp"
 #include "binpick/io/lens.hpp"
+#include "binpick/robot/robot_server.hpp"
 #include "hand_eye_guided_camera.hpp"
 #include "hand_eye_guided_recorder.hpp"
 
 namespace binpick::cli {
 
 struct GuidedSessionParams {
-  int wanted = 12;                     // views to accept (--count), those recorded before included
+  int wanted = 12;  // views to accept (--count), those recorded before included
   calibration::BoardLayout layout;
-  io::LensIntrinsics camera;               // the board pose check needs the intrinsics
+  io::LensIntrinsics camera;           // the board pose check needs the intrinsics
   calibration::BoardViewParams check;  // what makes a view usable: the file mode's own rule
   // Once the last view is accepted, how long the robot has to read its reply (it shows it has by
   // disconnecting or sending anything) before the session counts as finished.
@@ -47,8 +47,8 @@ using GuidedReplySink = std::function<void(robot::ClientId, const robot::Reply&)
 class HandEyeGuidedSession : public robot::RequestHandler {
  public:
   // The recorder and camera must outlive the session.
-  HandEyeGuidedSession(const GuidedSessionParams& params, GuidedViewRecorder& recorder,
-                       ViewCamera& camera, GuidedReplySink sink);
+  HandEyeGuidedSession(const GuidedSessionParams& params, GuidedViewRecorder& recorder, ViewCamera& camera,
+                       GuidedReplySink sink);
   ~HandEyeGuidedSession() override;  // stop()
   HandEyeGuidedSession(const HandEyeGuidedSession&) = delete;
   HandEyeGuidedSession& operator=(const HandEyeGuidedSession&) = delete;
@@ -84,7 +84,7 @@ class HandEyeGuidedSession : public robot::RequestHandler {
   std::condition_variable wakeup_;
   std::deque<Job> jobs_;
   int accepted_ = 0;
-  bool taking_ = false;   // a view is being taken
+  bool taking_ = false;  // a view is being taken
   bool stopping_ = false;
   std::optional<std::chrono::steady_clock::time_point> completed_at_;
   std::optional<robot::ClientId> final_client_;  // who sent the last view

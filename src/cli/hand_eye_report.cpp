@@ -15,8 +15,7 @@ std::string printed(const char* format, double a, double b = 0.0, double c = 0.0
   return text;
 }
 
-const calibration::HandEyeResidual* residualOf(const calibration::HandEyeResult* result,
-                                               const std::string& view) {
+const calibration::HandEyeResidual* residualOf(const calibration::HandEyeResult* result, const std::string& view) {
   if (result == nullptr) return nullptr;
   for (const calibration::HandEyeResidual& r : result->residuals) {
     if (r.name == view) return &r;
@@ -28,8 +27,7 @@ void printPose(std::ostream& out, const std::string& name, const Eigen::Isometry
   const Eigen::Vector3d t = T.translation() * 1000.0;
   const std::vector<double> q = core::orientationValues(T.linear(), core::Orientation::Quaternion);
   out << name << ": translation " << printed("[%.3f, %.3f, %.3f] mm", t.x(), t.y(), t.z())
-      << ", rotation (quaternion w x y z) " << printed("[%.6f, %.6f, %.6f, %.6f]", q[0], q[1], q[2], q[3])
-      << "\n";
+      << ", rotation (quaternion w x y z) " << printed("[%.6f, %.6f, %.6f, %.6f]", q[0], q[1], q[2], q[3]) << "\n";
 }
 
 }  // namespace
@@ -47,18 +45,16 @@ void printViewTable(std::ostream& out, const std::vector<calibration::MeasuredVi
     }
     out << printed("  %8.3f", v.rms_px);
     if (const calibration::HandEyeResidual* r = residualOf(result, v.name)) {
-      out << printed("  %11.3f  %12.4f", r->translation_mm, r->rotation_deg)
-          << (r->outlier ? "  outlier" : "");
+      out << printed("  %11.3f  %12.4f", r->translation_mm, r->rotation_deg) << (r->outlier ? "  outlier" : "");
     }
     out << "\n";
   }
 }
 
 void printHandEyeResult(std::ostream& out, const calibration::HandEyeResult& result) {
-  out << calibration::handEyeSetupName(result.setup) << ", method "
-      << calibration::handEyeMethodName(result.method) << ", " << result.residuals.size()
-      << " views: residual RMS " << printed("%.3f mm, %.4f deg", result.rms_mm, result.rms_deg)
-      << "\n";
+  out << calibration::handEyeSetupName(result.setup) << ", method " << calibration::handEyeMethodName(result.method)
+      << ", " << result.residuals.size() << " views: residual RMS "
+      << printed("%.3f mm, %.4f deg", result.rms_mm, result.rms_deg) << "\n";
   printPose(out, calibration::cameraTransformName(result.setup), result.T_mount_camera);
   printPose(out, calibration::boardTransformName(result.setup), result.T_mount_board);
 }

@@ -44,7 +44,7 @@ std::unique_ptr<ProjectorTrigger> projectorTrigger(const Arguments& args) {
 }
 
 io::Capture captureOnce(Camera& camera, ProjectorTrigger& projector, const Arguments& args,
-                    const io::PatternSetSpec& patterns) {
+                        const io::PatternSetSpec& patterns) {
   CaptureSequencer sequencer(camera, projector, sequencerParams(args));
   camera.open();
   camera.start();
@@ -59,8 +59,8 @@ io::Capture captureOnce(Camera& camera, ProjectorTrigger& projector, const Argum
 const std::set<std::string>& liveCaptureOptionNames() {
   static const std::set<std::string> names = [] {
     std::set<std::string> all = cameraOptionNames();
-    all.insert({"--fake-camera", "--trigger", "--pulse-us", "--settle-us", "--timeout-ms",
-                "--retries", "--projector", "--phase-steps"});
+    all.insert({"--fake-camera", "--trigger", "--pulse-us", "--settle-us", "--timeout-ms", "--retries", "--projector",
+                "--phase-steps"});
     return all;
   }();
   return names;

@@ -11,8 +11,8 @@
 #include "arguments.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
-#include "commands.hpp"
 #include "binpick/robot/robot_connection.hpp"
+#include "commands.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -105,8 +105,9 @@ int runRobotClient(const std::vector<std::string>& raw) {
   const int cycles = args.integer("--cycles").value_or(1);
   if (cycles < 1) throw core::Error("--cycles must be at least 1");
   robot::RobotConnection connection(args.value("--host").value_or("127.0.0.1"), port, codec,
-                             std::chrono::milliseconds(args.integer("--connect-timeout-ms").value_or(10000)));
-  Session session{connection, codec.orientation, std::chrono::milliseconds(args.integer("--timeout-ms").value_or(60000))};
+                                    std::chrono::milliseconds(args.integer("--connect-timeout-ms").value_or(10000)));
+  Session session{connection, codec.orientation,
+                  std::chrono::milliseconds(args.integer("--timeout-ms").value_or(60000))};
   if (const auto script = args.value("--send")) {
     std::istringstream requests(*script);
     std::string request;

@@ -17,9 +17,9 @@
 #include <iostream>
 
 #include "arguments.hpp"
-#include "binpick/emptying/emptying.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
+#include "binpick/emptying/emptying.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
 #include "binpick/simulation/parts.hpp"
@@ -124,20 +124,17 @@ int simulatePile(const Arguments& args) {
   } else {
     simulation::PileCapture simulated = simulation::generatePileCapture(part.mesh, params, patterns, photometry);
     scene = std::move(simulated.scene);
-    const std::string source = "binpick virtual cell (part " + part.name + ", " +
-                               std::to_string(params.objects) + " objects, seed " +
-                               std::to_string(params.seed) + ")";
+    const std::string source = "binpick virtual cell (part " + part.name + ", " + std::to_string(params.objects) +
+                               " objects, seed " + std::to_string(params.seed) + ")";
     io::writeCapture(out.string(),
-                 simulation::recordedCapture(std::move(simulated.images), params, patterns, photometry, source));
+                     simulation::recordedCapture(std::move(simulated.images), params, patterns, photometry, source));
   }
   io::writeRigCalibration((out / "calib.yaml").string(), scene.rig);
   simulation::writePileTruth(out.string(), scene, part.name, part.mesh);
-  std::cerr << "simulated " << scene.objects.size() << " x " << part.name << " into "
-            << out.string() << " (" << stopwatch.elapsedMs() / 1000 << " s"
-            << (scene.physics.settled ? "" : ", pile not settled") << ")\n";
+  std::cerr << "simulated " << scene.objects.size() << " x " << part.name << " into " << out.string() << " ("
+            << stopwatch.elapsedMs() / 1000 << " s" << (scene.physics.settled ? "" : ", pile not settled") << ")\n";
   if (scene.physics.lost > 0) {
-    std::cerr << scene.physics.lost << " of " << params.objects
-              << " parts did not stay in the bin and were left out\n";
+    std::cerr << scene.physics.lost << " of " << params.objects << " parts did not stay in the bin and were left out\n";
   }
   return 0;
 }
@@ -167,10 +164,9 @@ int runSimulate(const std::vector<std::string>& raw) {
     return 0;
   }
   const Arguments args(raw,
-                       {"--part", "--mesh", "--mesh-scale", "--objects", "--seed", "--out",
-                        "--bit-depth", "--threads", "--calibration-board", "--poses", "--bin-length",
-                        "--bin-width", "--bin-wall-height", "--camera-height", "--gripper", "--max-cycles",
-                        "--cup-diameter", "--tool-radius", "--stroke"},
+                       {"--part", "--mesh", "--mesh-scale", "--objects", "--seed", "--out", "--bit-depth", "--threads",
+                        "--calibration-board", "--poses", "--bin-length", "--bin-width", "--bin-wall-height",
+                        "--camera-height", "--gripper", "--max-cycles", "--cup-diameter", "--tool-radius", "--stroke"},
                        {"--cloud-only", "--empty-bin"});
   if (args.value("--calibration-board")) return simulateCalibration(args);
   if (args.flag("--empty-bin")) return emptyBin(args);

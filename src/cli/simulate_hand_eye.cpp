@@ -9,10 +9,8 @@
 namespace binpick::cli {
 
 int runSimulateHandEye(const std::vector<std::string>& raw) {
-  const Arguments args(raw,
-                       {"--hand-eye", "--views", "--seed", "--robot-noise-mm", "--robot-noise-deg",
-                        "--orientation", "--out"},
-                       {});
+  const Arguments args(
+      raw, {"--hand-eye", "--views", "--seed", "--robot-noise-mm", "--robot-noise-deg", "--orientation", "--out"}, {});
   simulation::HandEyeSessionParams params;
   params.setup = calibration::handEyeSetupFromName(args.required("--hand-eye"));
   params.views = args.integer("--views").value_or(params.views);

@@ -7,11 +7,11 @@
 #include <fstream>
 #include <thread>
 
-#include "binpick/core/file.hpp"
 #include "binpick/cell/cell_service.hpp"
-#include "binpick/robot/robot_server.hpp"
 #include "binpick/cell/systemd_notify.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/core/file.hpp"
+#include "binpick/robot/robot_server.hpp"
 #include "status_text.hpp"
 
 namespace binpick::daemon {
@@ -55,9 +55,10 @@ class Daemon {
   int run() {
     std::thread serving([this] { serve(); });
     // Atomically: a script polling for it never reads half a number.
-    if (!options_.port_file.empty()) core::writeFileAtomically(options_.port_file, std::to_string(server_->port()) + "\n");
-    spdlog::info("serving robots on {}:{} ({} recipe(s), source: {})", config_.robot.bind_address,
-                 server_->port(), config_.recipes.size(), config_.source.mode == SourceConfig::Mode::Replay ? "replay" : "live");
+    if (!options_.port_file.empty())
+      core::writeFileAtomically(options_.port_file, std::to_string(server_->port()) + "\n");
+    spdlog::info("serving robots on {}:{} ({} recipe(s), source: {})", config_.robot.bind_address, server_->port(),
+                 config_.recipes.size(), config_.source.mode == SourceConfig::Mode::Replay ? "replay" : "live");
     notifier_.ready(statusText(service_.snapshot(), server_->clientCount()));
     loop();
     notifier_.stopping("stopping");
@@ -82,16 +83,17 @@ class Daemon {
   // Signals, watchdog pings and the STATUS= line, until SIGTERM or SIGINT.
   void loop() {
     const auto interval = notifier_.watchdogInterval();
-    const auto tick = interval.count() > 0
-                          ? std::chrono::duration_cast<std::chrono::milliseconds>(interval / 2)
-                          : std::chrono::milliseconds(1000);
+    const auto tick = interval.count() > 0 ? std::chrono::duration_cast<std::chrono::milliseconds>(interval / 2)
+                                           : std::chrono::milliseconds(1000);
     std::string last_status;
     for (;;) {
       const int signal = waitForSignal(std::min(tick, std::chrono::milliseconds(1000)));
       if (signal == SIGTERM || signal == SIGINT) return;
       if (signal == SIGHUP) reload();
-      if (service_.healthy()) notifier_.watchdog();
-      else spdlog::error("a cycle stage hangs far past its deadline; the watchdog will restart the service");
+      if (service_.healthy())
+        notifier_.watchdog();
+      else
+        spdlog::error("a cycle stage hangs far past its deadline; the watchdog will restart the service");
       const std::string status = statusText(service_.snapshot(), server_->clientCount());
       if (status != last_status) notifier_.status(status);
       last_status = status;

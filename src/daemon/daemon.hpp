@@ -8,8 +8,8 @@ namespace binpick::daemon {
 
 struct DaemonOptions {
   std::string config_path;
-  int port_override = -1;   // >= 0: listen on this port instead of the settings' (0: any free)
-  std::string port_file;    // write the bound port here once listening (scripts, tests)
+  int port_override = -1;  // >= 0: listen on this port instead of the settings' (0: any free)
+  std::string port_file;   // write the bound port here once listening (scripts, tests)
 };
 
 // Blocks SIGTERM, SIGINT and SIGHUP in the calling thread and every thread started after it, so

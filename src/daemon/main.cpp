@@ -30,12 +30,18 @@ CommandLine parse(const std::vector<std::string>& args) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     const bool has_value = i + 1 < args.size();
-    if (arg == "--check") line.check = true;
-    else if (arg == "--verbose") line.verbose = true;
-    else if (arg == "--config" && has_value) line.options.config_path = args[++i];
-    else if (arg == "--port-file" && has_value) line.options.port_file = args[++i];
-    else if (arg == "--port" && has_value) line.options.port_override = std::stoi(args[++i]);
-    else throw binpick::core::Error("unknown or incomplete option '" + arg + "'");
+    if (arg == "--check")
+      line.check = true;
+    else if (arg == "--verbose")
+      line.verbose = true;
+    else if (arg == "--config" && has_value)
+      line.options.config_path = args[++i];
+    else if (arg == "--port-file" && has_value)
+      line.options.port_file = args[++i];
+    else if (arg == "--port" && has_value)
+      line.options.port_override = std::stoi(args[++i]);
+    else
+      throw binpick::core::Error("unknown or incomplete option '" + arg + "'");
   }
   if (line.options.config_path.empty()) throw binpick::core::Error("--config FILE is needed");
   return line;

@@ -28,16 +28,16 @@ struct FakeRigState {
   std::map<uint64_t, FrameStatus> frame_faults;  // frame number -> the status it gets instead of Ok
   int failing_pattern = -1;                      // every frame of this pattern times out
   uint64_t lose_connection_at = std::numeric_limits<uint64_t>::max();  // this frame and on, until open()
-  int failing_opens = 0;                         // the next open() calls that throw
+  int failing_opens = 0;                                               // the next open() calls that throw
 
   // What happened.
-  int shown = -1;                 // pattern on show
-  std::vector<int> shown_log;     // every showPattern() index
+  int shown = -1;              // pattern on show
+  std::vector<int> shown_log;  // every showPattern() index
   uint64_t grabs = 0;
-  int triggers = 0;               // trigger() calls that armed the camera
-  int pending_triggers = 0;       // armed and not yet grabbed
+  int triggers = 0;          // trigger() calls that armed the camera
+  int pending_triggers = 0;  // armed and not yet grabbed
   int open_attempts = 0;
-  int opens = 0;                  // successful
+  int opens = 0;  // successful
   int closes = 0;
   bool open = false;
   bool started = false;

@@ -13,7 +13,7 @@ namespace binpick::acquisition::testing {
 struct RenderedPile {
   io::PatternSetSpec patterns;
   std::vector<cv::Mat> images;  // patternSequence order, CV_8UC1
-  io::RigCalibration rig;           // the rig that saw them, to reconstruct recordings
+  io::RigCalibration rig;       // the rig that saw them, to reconstruct recordings
 };
 
 inline const RenderedPile& renderedPile() {
@@ -28,7 +28,8 @@ inline const RenderedPile& renderedPile() {
     out.patterns.row_codes = false;
     simulation::PhotometryParams photometry;
     photometry.seed = 3;
-    simulation::PileCapture capture = simulation::generatePileCapture(simulation::makePart("clamp").mesh, params, out.patterns, photometry);
+    simulation::PileCapture capture =
+        simulation::generatePileCapture(simulation::makePart("clamp").mesh, params, out.patterns, photometry);
     out.images = std::move(capture.images);
     out.rig = capture.scene.rig;
     return out;

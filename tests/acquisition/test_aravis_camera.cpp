@@ -65,7 +65,8 @@ std::vector<cv::Mat> patternImages(int width, int height, int bit_depth, int cou
   std::vector<simulation::PixelLighting> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
-      simulation::PixelLighting& p = pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+      simulation::PixelLighting& p =
+          pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
       p.projector_x = 0.9f * static_cast<float>(x) + 40.0f;
       p.projector_y = 0.7f * static_cast<float>(y) + 30.0f;
       p.blur_sigma = 0.6f;

@@ -9,10 +9,10 @@
 #include <limits>
 #include <string>
 
+#include "bench_test_support.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
-#include "binpick/evaluation/evaluation.hpp"
-#include "bench_test_support.hpp"
 #include "experiment.hpp"
 #include "opencv_ppf_method.hpp"
 
@@ -30,8 +30,7 @@ estimation::ModelParams coarseModel() {
 
 struct Fixture {
   simulation::Part part = simulation::makePart("l_bracket");
-  estimation::PreparedModel model =
-      estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, coarseModel());
+  estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, coarseModel());
   simulation::PileParams pile;
   simulation::PileScene scene;
 
@@ -91,8 +90,7 @@ TEST(OpenCvPpfMethod, ReturnsModelToCameraPosesInMetres) {
   const Fixture& f = fixture();
   estimation::ModelParams dense_params;
   dense_params.sampling_ratio = 0.04f;
-  const estimation::PreparedModel dense =
-      estimation::prepareModel(io::ModelGeometry{f.part.mesh, {}}, dense_params);
+  const estimation::PreparedModel dense = estimation::prepareModel(io::ModelGeometry{f.part.mesh, {}}, dense_params);
 
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
   const Eigen::Vector3f axis = Eigen::Vector3f(1.0f, -2.0f, 0.5f).normalized();

@@ -26,9 +26,9 @@ SceneOutcome outcome(const std::string& part, const std::string& method, int cor
 Tallies exampleTallies() {
   Tallies t;
   const auto add = [&t](const SceneOutcome& o) { t[{CloudInput::Exact, o.part, o.method}].add(o); };
-  add(outcome("gear", "binpick", 16, 18, 400.0));  // 80%, 20 ms per object
-  add(outcome("gear", "ppf5", 10, 20, 2000.0));    // 50%, 100 ms per object
-  add(outcome("bulge", "binpick", 18, 20, 200.0)); // 90%, 10 ms per object
+  add(outcome("gear", "binpick", 16, 18, 400.0));   // 80%, 20 ms per object
+  add(outcome("gear", "ppf5", 10, 20, 2000.0));     // 50%, 100 ms per object
+  add(outcome("bulge", "binpick", 18, 20, 200.0));  // 90%, 10 ms per object
   return t;
 }
 

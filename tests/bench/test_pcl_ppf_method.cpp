@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "bench_test_support.hpp"
 #include "binpick/estimation/detector.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
-#include "binpick/evaluation/evaluation.hpp"
-#include "bench_test_support.hpp"
 #include "experiment.hpp"
 #include "pcl_ppf_method.hpp"
 #include "thrown_message.hpp"
@@ -122,8 +122,7 @@ TEST(PclPpfMethod, RejectsAMissingModelAndBadParams) {
   EXPECT_TRUE(test::throwsNaming([] { PclPpfMethod method(MethodSetup{}); }, "prepared model"));
   PclPpfParams params;
   params.reference_fraction = 0.0f;
-  EXPECT_TRUE(test::throwsNaming([&] { PclPpfMethod method(setupFor(smallPile()), params); },
-                                 "reference_fraction"));
+  EXPECT_TRUE(test::throwsNaming([&] { PclPpfMethod method(setupFor(smallPile()), params); }, "reference_fraction"));
 }
 
 }  // namespace

@@ -73,8 +73,7 @@ TEST_F(PlotFile, PngEvenWhenTheNameSaysOtherwise) {
 }
 
 TEST(Plot, UnwritablePathThrowsNamingIt) {
-  EXPECT_TRUE(throwsNaming([] { writeLinePlot("/nonexistent_dir/x.png", twoSeriesPlot()); },
-                           "/nonexistent_dir/x.png"));
+  EXPECT_TRUE(throwsNaming([] { writeLinePlot("/nonexistent_dir/x.png", twoSeriesPlot()); }, "/nonexistent_dir/x.png"));
 }
 
 TEST(Plot, EachSeriesColourSitsOnItsPoints) {
@@ -99,8 +98,7 @@ TEST(Plot, EachSeriesColourSitsOnItsPoints) {
 TEST(Plot, LegendLeavesCrowdedCornerAlone) {
   // Points hug the top right and top left corners; the legend must go below and hide none.
   LinePlot plot;
-  plot.series = {{"a", {0, 1, 2, 8, 9, 10}, {10, 9.5, 9, 9, 9.5, 10}},
-                 {"b", {0, 1, 9, 10}, {9, 8.5, 8.5, 9}}};
+  plot.series = {{"a", {0, 1, 2, 8, 9, 10}, {10, 9.5, 9, 9, 9.5, 10}}, {"b", {0, 1, 9, 10}, {9, 8.5, 8.5, 9}}};
   const cv::Mat image = renderLinePlot(plot);
   const PlotFrame frame(plot);
   for (std::size_t s = 0; s < plot.series.size(); ++s) {
@@ -117,8 +115,7 @@ TEST(Plot, LogAxisPlacesDecadesAtEqualSpacing) {
   plot.log_y = true;
   plot.series = {{"", {1, 10, 100}, {1, 10, 100}}};
   const PlotFrame frame(plot);
-  const cv::Point2d p1 = frame.toPixel(1, 1), p10 = frame.toPixel(10, 10),
-                    p100 = frame.toPixel(100, 100);
+  const cv::Point2d p1 = frame.toPixel(1, 1), p10 = frame.toPixel(10, 10), p100 = frame.toPixel(100, 100);
   EXPECT_GT(p10.x - p1.x, 50.0);
   EXPECT_NEAR(p10.x - p1.x, p100.x - p10.x, 1e-9);
   EXPECT_GT(p1.y - p10.y, 50.0);
@@ -143,8 +140,7 @@ TEST(Plot, LogAxisSkipsNonPositiveValues) {
 
 bool isOneTwoFive(double step) {
   const double mantissa = step / std::pow(10.0, std::floor(std::log10(step)));
-  return std::abs(mantissa - 1.0) < 1e-9 || std::abs(mantissa - 2.0) < 1e-9 ||
-         std::abs(mantissa - 5.0) < 1e-9;
+  return std::abs(mantissa - 1.0) < 1e-9 || std::abs(mantissa - 2.0) < 1e-9 || std::abs(mantissa - 5.0) < 1e-9;
 }
 
 // Ticks evenly spaced by 1, 2 or 5 times a power of ten, covering the data, 3..12 of them.
@@ -196,9 +192,8 @@ TEST(Plot, HugeRangesKeepFewTicks) {
 }
 
 TEST(Plot, SinglePointAndConstantDataSitInsideTheFrame) {
-  for (const PlotSeries& series :
-       {PlotSeries{"one", {5.0}, {2.0}}, PlotSeries{"flat", {1, 2, 3}, {0, 0, 0}},
-        PlotSeries{"flat", {7, 7}, {-4, -4}}}) {
+  for (const PlotSeries& series : {PlotSeries{"one", {5.0}, {2.0}}, PlotSeries{"flat", {1, 2, 3}, {0, 0, 0}},
+                                   PlotSeries{"flat", {7, 7}, {-4, -4}}}) {
     LinePlot plot;
     plot.series = {series};
     const PlotFrame frame(plot);

@@ -37,8 +37,7 @@ inline cv::Mat boardImage(int shift = 0) {
   const calibration::BoardLayout layout;
   const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(
       layout.squares_x, layout.squares_y, static_cast<float>(layout.square_size),
-      static_cast<float>(layout.marker_size),
-      cv::aruco::getPredefinedDictionary(cv::aruco::DICT_5X5_100));
+      static_cast<float>(layout.marker_size), cv::aruco::getPredefinedDictionary(cv::aruco::DICT_5X5_100));
   cv::Mat drawn;
   board->draw(cv::Size(450, 350), drawn, 0, 1);
   cv::Mat image(480, 640, CV_8UC1, cv::Scalar(255));
@@ -109,8 +108,7 @@ class Replies {
   // The next reply to `client`; fails the test if none comes within a minute (a hang).
   robot::Reply next(robot::ClientId client) {
     std::unique_lock<std::mutex> lock(mutex_);
-    const bool arrived = arrived_.wait_for(lock, std::chrono::minutes(1),
-                                           [&] { return !replies_[client].empty(); });
+    const bool arrived = arrived_.wait_for(lock, std::chrono::minutes(1), [&] { return !replies_[client].empty(); });
     if (!arrived) {
       ADD_FAILURE() << "no reply to client " << client;
       return robot::Reply{robot::Command::Ping, robot::Status::InternalError};
@@ -133,8 +131,7 @@ class Replies {
 inline robot::Request pose(double x_m, double angle_deg = 0.0) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(x_m, -0.05, 0.4);
-  T.linear() = Eigen::AngleAxisd(angle_deg * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized())
-                   .toRotationMatrix();
+  T.linear() = Eigen::AngleAxisd(angle_deg * M_PI / 180.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   return robot::Request{robot::Command::Pose, std::nullopt, T};
 }
 

@@ -30,8 +30,7 @@ void writeExtraView(const simulation::CalibrationSequenceParams& params, const E
   io::writeCapture(directory, simulation::renderCalibrationCapture(board, pose, params, 99));
 }
 
-Eigen::Vector3d boardCentre(const simulation::CalibrationSequenceParams& params,
-                            const Eigen::Isometry3d& pose) {
+Eigen::Vector3d boardCentre(const simulation::CalibrationSequenceParams& params, const Eigen::Isometry3d& pose) {
   const simulation::CalibrationBoard board(params.board, params.texel_size);
   const Eigen::Vector2d centre = board.printedFace().center();
   return pose * Eigen::Vector3d(centre.x(), centre.y(), 0.0);
@@ -40,8 +39,7 @@ Eigen::Vector3d boardCentre(const simulation::CalibrationSequenceParams& params,
 // The sequence, then the views a calibration must not use as they are.
 void renderData(const std::string& directory) {
   const simulation::CalibrationSequenceParams params = rigTestParams();
-  const std::vector<Eigen::Isometry3d> poses =
-      simulation::writeCalibrationSequence(directory + "/sequence", params);
+  const std::vector<Eigen::Isometry3d> poses = simulation::writeCalibrationSequence(directory + "/sequence", params);
   const Eigen::Isometry3d& pose = poses.front();
   // 2 m sideways at under 1.1 m: far outside the camera's 0.8-wide field of view.
   writeExtraView(params, shifted(pose, 2.0), directory + "/no_board");
@@ -113,11 +111,9 @@ bool anyWarningNames(const calibration::RigCalibrationResult& result, const std:
   });
 }
 
-const io::RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
-                                const std::string& view) {
+const io::RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result, const std::string& view) {
   const auto& views = result.quality.views;
-  const auto it = std::find_if(views.begin(), views.end(),
-                               [&](const io::RigViewQuality& q) { return q.name == view; });
+  const auto it = std::find_if(views.begin(), views.end(), [&](const io::RigViewQuality& q) { return q.name == view; });
   if (it == views.end()) throw std::runtime_error("no quality entry for " + view);
   return *it;
 }

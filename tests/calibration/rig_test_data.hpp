@@ -16,11 +16,11 @@ namespace binpick::test {
 
 struct RigTestData {
   std::string directory;
-  std::string sequence;             // DIR/sequence: pose_000 ... and truth/
-  std::vector<std::string> views;   // the pose_NNN capture directories, in order
-  std::string no_board;             // the board outside the camera's view
-  std::string half_out;             // the board half out of the camera image, on its left
-  std::string no_rows;              // a good pose captured without row codes
+  std::string sequence;                          // DIR/sequence: pose_000 ... and truth/
+  std::vector<std::string> views;                // the pose_NNN capture directories, in order
+  std::string no_board;                          // the board outside the camera's view
+  std::string half_out;                          // the board half out of the camera image, on its left
+  std::string no_rows;                           // a good pose captured without row codes
   simulation::CalibrationSequenceParams params;  // what rendered the sequence (rig = the truth)
   calibration::BoardLayout layout;
 };
@@ -31,15 +31,12 @@ simulation::CalibrationSequenceParams rigTestParams();
 // Rendered on first use (some 20 s), then read from disk.
 const RigTestData& rigTestData();
 
-
 // Capture directories read and measured with the default view params.
 std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& directories);
 
 // Whether a warning names `view` and contains `text`.
-bool anyWarningNames(const calibration::RigCalibrationResult& result, const std::string& view,
-                     const std::string& text);
+bool anyWarningNames(const calibration::RigCalibrationResult& result, const std::string& view, const std::string& text);
 // The quality entry of `view`; throws std::runtime_error when there is none.
-const io::RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result,
-                                const std::string& view);
+const io::RigViewQuality& qualityOf(const calibration::RigCalibrationResult& result, const std::string& view);
 
 }  // namespace binpick::test

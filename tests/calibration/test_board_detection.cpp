@@ -168,8 +168,7 @@ TEST(BoardDetection, SmallSquaresStayOnTheTruth) {
   for (std::size_t i = 0; i < detection.ids.size(); ++i) {
     // Pixel centres at integers: a full-resolution pixel p lies at (p + 0.5) / 2 - 0.5.
     const Eigen::Vector2d truth =
-        (view.truth.at(detection.ids[i]).camera_pixel + Eigen::Vector2d(0.5, 0.5)) / 2.0 -
-        Eigen::Vector2d(0.5, 0.5);
+        (view.truth.at(detection.ids[i]).camera_pixel + Eigen::Vector2d(0.5, 0.5)) / 2.0 - Eigen::Vector2d(0.5, 0.5);
     errors.push_back((detection.pixels[i] - truth).norm());
   }
   RecordProperty("max_corner_error_px", std::to_string(*std::max_element(errors.begin(), errors.end())));
@@ -182,8 +181,7 @@ TEST(BoardDetection, NoBoardSaysWhy) {
   BoardLayout layout;
   EXPECT_NE(detectBoard(grey, layout).problem.find("no ArUco marker"), std::string::npos);
   layout.type = BoardType::Chessboard;
-  EXPECT_NE(detectBoard(grey, layout).problem.find("no complete 8x6 chessboard"),
-            std::string::npos);
+  EXPECT_NE(detectBoard(grey, layout).problem.find("no complete 8x6 chessboard"), std::string::npos);
 }
 
 TEST(BoardDetection, SixteenBitImagesGiveTheSameCorners) {
@@ -200,12 +198,12 @@ TEST(BoardDetection, SixteenBitImagesGiveTheSameCorners) {
 
 TEST(BoardDetection, UnusableImagesThrow) {
   EXPECT_TRUE(test::throwsNaming([] { detectBoard(cv::Mat(), BoardLayout{}); }, "image"));
-  EXPECT_TRUE(test::throwsNaming(
-      [] { detectBoard(cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(0)), BoardLayout{}); }, "image"));
+  EXPECT_TRUE(
+      test::throwsNaming([] { detectBoard(cv::Mat(8, 8, CV_8UC3, cv::Scalar::all(0)), BoardLayout{}); }, "image"));
   BoardDetectionParams params;
   params.min_corners = 3;
-  EXPECT_TRUE(test::throwsNaming([&] { detectBoard(cv::Mat(8, 8, CV_8UC1), {}, params); },
-                                 "BoardDetectionParams.min_corners"));
+  EXPECT_TRUE(
+      test::throwsNaming([&] { detectBoard(cv::Mat(8, 8, CV_8UC1), {}, params); }, "BoardDetectionParams.min_corners"));
 }
 
 TEST(BoardPose, PoseOfTheDetectedBoardIsTheTruth) {
@@ -215,10 +213,8 @@ TEST(BoardPose, PoseOfTheDetectedBoardIsTheTruth) {
     const auto pose = estimateBoardPose(detection, view.spec.layout(), view.rig.camera);
     ASSERT_TRUE(pose.has_value());
     EXPECT_LT(pose->rms_px, 0.2);
-    const Eigen::AngleAxisd difference(pose->T_camera_board.linear().transpose() *
-                                       view.T_camera_board.linear());
-    EXPECT_LT(1e3 * (pose->T_camera_board.translation() - view.T_camera_board.translation()).norm(),
-              0.5);
+    const Eigen::AngleAxisd difference(pose->T_camera_board.linear().transpose() * view.T_camera_board.linear());
+    EXPECT_LT(1e3 * (pose->T_camera_board.translation() - view.T_camera_board.translation()).norm(), 0.5);
     EXPECT_LT(std::abs(difference.angle()), 0.1 * kDegree);
   }
 }

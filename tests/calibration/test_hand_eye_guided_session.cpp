@@ -26,8 +26,7 @@ constexpr robot::ClientId kMonitor = 2;
 
 bool sameImage(const cv::Mat& a, const std::string& path) {
   const cv::Mat b = cv::imread(path, cv::IMREAD_UNCHANGED);
-  return !b.empty() && a.size() == b.size() && a.type() == b.type() &&
-         cv::norm(a, b, cv::NORM_INF) == 0;
+  return !b.empty() && a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
 }
 
 std::vector<std::string> pngsIn(const fs::path& directory) {
@@ -92,8 +91,7 @@ TEST_F(GuidedSession, AnImageWithoutABoardIsKeptAsideAndAnswered) {
   expectPoseReply(ask(lost), Status::BoardNotFound, 0, 2);
   EXPECT_TRUE(pngsIn(root()).empty());  // the file mode would take any DIR/*.png for a view
   EXPECT_TRUE(sameImage(testing::blankImage(), pathOf("rejected/attempt_001.png")));
-  const calibration::RobotPoseFile rejected =
-      calibration::readRobotPoseFile(pathOf("rejected/poses.txt"));
+  const calibration::RobotPoseFile rejected = calibration::readRobotPoseFile(pathOf("rejected/poses.txt"));
   ASSERT_EQ(rejected.poses.size(), 1u);
   EXPECT_EQ(rejected.poses[0].view, "attempt_001");
   EXPECT_TRUE(rejected.poses[0].T_base_flange.isApprox(*lost.T_base_flange, 1e-7));
@@ -133,8 +131,7 @@ TEST_F(GuidedSession, PingAndStatusAreAnsweredWhileAViewIsTaken) {
 
 TEST_F(GuidedSession, OtherCommandsAreUnknownAndViewsBeyondTheCountAreNotTaken) {
   start(1);
-  for (Command command : {Command::Trigger, Command::NextPick, Command::PickFailed,
-                          Command::SelectModel}) {
+  for (Command command : {Command::Trigger, Command::NextPick, Command::PickFailed, Command::SelectModel}) {
     const robot::Reply reply = ask(request(command));
     EXPECT_EQ(reply.command, command);
     EXPECT_EQ(reply.status, Status::UnknownCommand);
@@ -172,8 +169,8 @@ TEST_F(GuidedSession, StoppingFinishesTheViewInHandAndDropsTheWaitingOnes) {
   camera.queue(boardImage(20));
   session->handle(kRobot, pose(0.5));
   camera.waitUntilGrabbing();
-  session->handle(kMonitor, pose(0.6));   // waits behind the first
-  session->disconnected(kMonitor);        // ... and is dropped: that robot has gone
+  session->handle(kMonitor, pose(0.6));  // waits behind the first
+  session->disconnected(kMonitor);       // ... and is dropped: that robot has gone
   std::thread stopping([this] { session->stop(); });
   camera.release();
   stopping.join();
@@ -194,8 +191,7 @@ TEST_F(GuidedSession, ASecondSessionContinuesTheFirst) {
   expectPoseReply(ask(pose(0.7)), Status::Ok, 2, 3);
   EXPECT_EQ(pngsIn(root()), (std::vector<std::string>{"view_000.png", "view_001.png"}));
   EXPECT_TRUE(fs::exists(pathOf("rejected/attempt_002.png")));
-  EXPECT_EQ(calibration::readRobotPoseFile(pathOf("received.txt")).poses.back().view,
-            "attempt_003");
+  EXPECT_EQ(calibration::readRobotPoseFile(pathOf("received.txt")).poses.back().view, "attempt_003");
   // Poses in another convention would make a file that is not one: refused.
   session.reset();
   EXPECT_THROW(GuidedViewRecorder(root(), core::Orientation::Quaternion), core::Error);

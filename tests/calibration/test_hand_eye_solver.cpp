@@ -18,7 +18,7 @@ using test::throwsNaming;
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 simulation::HandEyeSession session(HandEyeSetup setup, double noise_mm = 0.0, double noise_deg = 0.0,
-                            uint64_t seed = 3) {
+                                   uint64_t seed = 3) {
   simulation::HandEyeSessionParams params;
   params.setup = setup;
   params.seed = seed;
@@ -48,8 +48,7 @@ Eigen::Isometry3d measured(const Eigen::Isometry3d& T, std::mt19937& rng, double
   return out;
 }
 
-std::vector<HandEyeView> viewsOf(const simulation::HandEyeSession& s, double board_mm = 0.0,
-                                 double board_deg = 0.0) {
+std::vector<HandEyeView> viewsOf(const simulation::HandEyeSession& s, double board_mm = 0.0, double board_deg = 0.0) {
   std::mt19937 rng(7);
   std::vector<HandEyeView> views;
   for (const simulation::HandEyeSessionView& v : s.views) {
@@ -86,22 +85,21 @@ TEST_P(ExactPoses, RecoverTheTruth) {
 
 // Not Tsai: OpenCV 4.6's Tsai breaks on motions near half a turn (opencv/opencv#24871) and gives
 // this eye-to-hand session half a turn off; the fit check then fails it (docs/hand-eye.md).
-INSTANTIATE_TEST_SUITE_P(
-    Methods, ExactPoses,
-    ::testing::Combine(::testing::Values(HandEyeSetup::EyeToHand, HandEyeSetup::EyeInHand),
-                       ::testing::Values(HandEyeMethod::Shah, HandEyeMethod::Li,
-                                         HandEyeMethod::Park, HandEyeMethod::Horaud,
-                                         HandEyeMethod::Andreff, HandEyeMethod::Daniilidis)),
-    [](const auto& param_info) {
-      std::string name = handEyeSetupName(std::get<0>(param_info.param)) + "_" +
-                         handEyeMethodName(std::get<1>(param_info.param));
-      std::replace(name.begin(), name.end(), '-', '_');
-      return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Methods, ExactPoses,
+                         ::testing::Combine(::testing::Values(HandEyeSetup::EyeToHand, HandEyeSetup::EyeInHand),
+                                            ::testing::Values(HandEyeMethod::Shah, HandEyeMethod::Li,
+                                                              HandEyeMethod::Park, HandEyeMethod::Horaud,
+                                                              HandEyeMethod::Andreff, HandEyeMethod::Daniilidis)),
+                         [](const auto& param_info) {
+                           std::string name = handEyeSetupName(std::get<0>(param_info.param)) + "_" +
+                                              handEyeMethodName(std::get<1>(param_info.param));
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 TEST(HandEyeSolver, TsaisBreakdownIsCaughtNotWritten) {
-  const HandEyeResult result = solveHandEye(viewsOf(session(HandEyeSetup::EyeToHand)),
-                                            paramsFor(HandEyeSetup::EyeToHand, HandEyeMethod::Tsai));
+  const HandEyeResult result =
+      solveHandEye(viewsOf(session(HandEyeSetup::EyeToHand)), paramsFor(HandEyeSetup::EyeToHand, HandEyeMethod::Tsai));
   EXPECT_FALSE(result.ok());
   EXPECT_NE(result.failure.find("exceed 10 mm or 1 deg"), std::string::npos) << result.failure;
 }
@@ -151,15 +149,15 @@ TEST(HandEyeSolver, InvertedPosesAreDetected) {
   for (const HandEyeSetup setup : {HandEyeSetup::EyeToHand, HandEyeSetup::EyeInHand}) {
     std::vector<HandEyeView> views = viewsOf(session(setup, 0.1, 0.05));
     for (HandEyeView& view : views) view.T_base_flange = view.T_base_flange.inverse();
-    EXPECT_TRUE(throwsNaming([&] { solveHandEye(views, paramsFor(setup)); },
-                             "robot poses look inverted (flange->base)"));
+    EXPECT_TRUE(
+        throwsNaming([&] { solveHandEye(views, paramsFor(setup)); }, "robot poses look inverted (flange->base)"));
   }
 }
 
 TEST(HandEyeSolver, TheWrongSetupIsDetected) {
   const std::vector<HandEyeView> views = viewsOf(session(HandEyeSetup::EyeToHand));
-  EXPECT_TRUE(throwsNaming([&] { solveHandEye(views, paramsFor(HandEyeSetup::EyeInHand)); },
-                           "the poses also fit eye-to-hand"));
+  EXPECT_TRUE(
+      throwsNaming([&] { solveHandEye(views, paramsFor(HandEyeSetup::EyeInHand)); }, "the poses also fit eye-to-hand"));
 }
 
 // Eye-in-hand views whose flange only turns about the base's vertical axis (joint 1 alone).
@@ -195,8 +193,8 @@ TEST(HandEyeSolver, TooLittleRotationIsReported) {
 TEST(HandEyeSolver, TooFewViewsAreAnError) {
   std::vector<HandEyeView> views = viewsOf(session(HandEyeSetup::EyeToHand));
   views.resize(5);
-  EXPECT_TRUE(throwsNaming([&] { solveHandEye(views, paramsFor(HandEyeSetup::EyeToHand)); },
-                           "needs at least 6 views, got 5"));
+  EXPECT_TRUE(
+      throwsNaming([&] { solveHandEye(views, paramsFor(HandEyeSetup::EyeToHand)); }, "needs at least 6 views, got 5"));
 }
 
 TEST(HandEyeSolver, ANonRigidPoseIsNamed) {
@@ -206,8 +204,8 @@ TEST(HandEyeSolver, ANonRigidPoseIsNamed) {
                            "view view_04: the robot pose is not a finite rigid motion"));
   views[4] = viewsOf(session(HandEyeSetup::EyeToHand))[4];
   views[2].T_camera_board.translation().x() = std::nan("");
-  EXPECT_TRUE(throwsNaming([&] { solveHandEye(views, paramsFor(HandEyeSetup::EyeToHand)); },
-                           "view view_02: the board pose"));
+  EXPECT_TRUE(
+      throwsNaming([&] { solveHandEye(views, paramsFor(HandEyeSetup::EyeToHand)); }, "view view_02: the board pose"));
 }
 
 TEST(HandEyeSolver, AnOutlierViewIsNamed) {
@@ -237,8 +235,7 @@ TEST(HandEyeSolver, TheViewsThatSpoilAFitAreNamed) {
   std::swap(views[1].T_camera_board, views[2].T_camera_board);
   const HandEyeResult result = solveHandEye(views, paramsFor(HandEyeSetup::EyeToHand));
   EXPECT_FALSE(result.ok());
-  EXPECT_NE(result.failure.find("without view_01 view_02: check their images and robot poses"),
-            std::string::npos)
+  EXPECT_NE(result.failure.find("without view_01 view_02: check their images and robot poses"), std::string::npos)
       << result.failure;
 }
 

@@ -28,8 +28,7 @@ using test::throwsNaming;
 // corners are still all found). Rendered once per build tree and shared by every test process,
 // the first process rendering while the others wait on a lock.
 std::string sessionDirectory(HandEyeSetup setup) {
-  const fs::path directory =
-      fs::path(BINPICK_TEST_DATA_DIR) / ("hand_eye_v1_" + handEyeSetupName(setup));
+  const fs::path directory = fs::path(BINPICK_TEST_DATA_DIR) / ("hand_eye_v1_" + handEyeSetupName(setup));
   fs::create_directories(directory.parent_path());
   const int lock = ::open((directory.string() + ".lock").c_str(), O_CREAT | O_RDWR, 0644);
   ::flock(lock, LOCK_EX);
@@ -100,8 +99,7 @@ class HandEyeBadViews : public test::TempDirectoryTest {
     const cv::Mat image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
     cv::Mat moved;
     const cv::Mat warp = (cv::Mat_<double>(2, 3) << 1, 0, dx, 0, 1, 0);
-    cv::warpAffine(image, moved, warp, image.size(), cv::INTER_NEAREST, cv::BORDER_CONSTANT,
-                   cv::Scalar(40));
+    cv::warpAffine(image, moved, warp, image.size(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(40));
     cv::imwrite(image_path, moved);
   }
   // How far right the board reaches in the image: its rightmost corner's column.
@@ -142,8 +140,7 @@ TEST_F(HandEyeBadViews, ABoardMostlyOutOfTheImageIsLeftOutAPartlyOutOneNoted) {
   }
   const std::vector<MeasuredView> views = measureAll(dir);
   EXPECT_FALSE(views[1].usable());
-  EXPECT_NE(views[1].problem.find("board mostly out of the image or hidden"), std::string::npos)
-      << views[1].problem;
+  EXPECT_NE(views[1].problem.find("board mostly out of the image or hidden"), std::string::npos) << views[1].problem;
   ASSERT_TRUE(views[4].usable()) << views[4].problem;
   EXPECT_NE(views[4].note.find("partial board"), std::string::npos);
   EXPECT_LT(views[4].corners, views[4].expected);
@@ -155,9 +152,10 @@ TEST_F(HandEyeBadViews, AnImageOfAnotherSizeOrKindIsAnErrorNamingTheView) {
   cv::imwrite(dir + "/view_03.png", cv::Mat(100, 200, CV_8UC1, cv::Scalar(60)));
   const std::vector<HandEyeViewFile> files = listHandEyeViews(dir);
   EXPECT_TRUE(throwsNaming([&] { measureView(files[3], BoardLayout{}, rig.camera); },
-                           "view view_03 (" + dir + "/view_03.png): the image is 200x100 but the "
-                           "camera calibration is " + std::to_string(rig.camera.width) + "x" +
-                           std::to_string(rig.camera.height)));
+                           "view view_03 (" + dir +
+                               "/view_03.png): the image is 200x100 but the "
+                               "camera calibration is " +
+                               std::to_string(rig.camera.width) + "x" + std::to_string(rig.camera.height)));
   cv::imwrite(dir + "/view_03.png", cv::Mat(rig.camera.height, rig.camera.width, CV_8UC3));
   EXPECT_TRUE(throwsNaming([&] { measureView(files[3], BoardLayout{}, rig.camera); },
                            "view view_03 (" + dir + "/view_03.png): the image must be 8- or 16-bit grey"));

@@ -32,8 +32,7 @@ double quantile(std::vector<double> values, double q) {
 }
 
 // Projector-pixel errors of the corners found in one view.
-std::vector<double> errorsAgainstTruth(const ProjectorCorners& found,
-                                       const simulation::CalibrationTruthPose& pose) {
+std::vector<double> errorsAgainstTruth(const ProjectorCorners& found, const simulation::CalibrationTruthPose& pose) {
   const std::map<int, Eigen::Vector2d> truth = trueProjectorPixels(pose);
   std::vector<double> errors;
   for (const ProjectorCorner& corner : found.corners) {
@@ -118,8 +117,7 @@ TEST(ProjectorCorners, CornersAtTheEdgeOfTheDecodedAreaAreDroppedNotExtrapolated
   const ProjectorCorners found = findProjectorCorners(decoded, board, params);
   ASSERT_GE(found.corners.size(), 12u);
   for (const ProjectorCorner& corner : found.corners) {
-    EXPECT_LT(corner.camera.x(), cut - params.min_hull_depth)
-        << "corner " << corner.id << " was extrapolated";
+    EXPECT_LT(corner.camera.x(), cut - params.min_hull_depth) << "corner " << corner.id << " was extrapolated";
   }
   EXPECT_GT(found.outside_data + found.too_few_decoded, 0);
   EXPECT_EQ(static_cast<std::size_t>(found.dropped()) + found.corners.size(), board.ids.size());

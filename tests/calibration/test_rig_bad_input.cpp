@@ -20,8 +20,7 @@ using test::rigTestData;
 
 TEST(RigCalibrationBadInput, TooFewUsableViewsIsAnErrorNamingTheUnusableOnes) {
   const test::RigTestData& data = rigTestData();
-  const std::vector<RigView> views =
-      readTestViews({data.views[0], data.no_board, data.views[1], data.views[2]});
+  const std::vector<RigView> views = readTestViews({data.views[0], data.no_board, data.views[1], data.views[2]});
   const std::string message = test::thrownMessage([&] { calibrateRig(views, data.layout); });
   EXPECT_NE(message.find("3 usable views of 4, at least 8 needed"), std::string::npos) << message;
   EXPECT_NE(message.find(data.no_board + " (board not found"), std::string::npos) << message;
@@ -30,8 +29,7 @@ TEST(RigCalibrationBadInput, TooFewUsableViewsIsAnErrorNamingTheUnusableOnes) {
 
 TEST(RigCalibrationBadInput, ACaptureWithoutRowCodesIsRefusedNamingIt) {
   const test::RigTestData& data = rigTestData();
-  const std::string message =
-      test::thrownMessage([&] { readRigView(data.no_rows, data.layout); });
+  const std::string message = test::thrownMessage([&] { readRigView(data.no_rows, data.layout); });
   EXPECT_EQ(message.rfind(data.no_rows + ": the capture has no row codes", 0), 0u) << message;
 }
 
@@ -49,8 +47,7 @@ TEST_F(RigCalibrationBadFiles, ACorruptCaptureIsRefusedNamingIt) {
   std::filesystem::remove(missing + "/images/010_gray_col_04.png");
   EXPECT_TRUE(test::throwsNaming([&] { readRigView(missing, data.layout); }, missing));
 
-  EXPECT_TRUE(test::throwsNaming([&] { readRigView(pathOf("nothing_here"), data.layout); },
-                                 pathOf("nothing_here")));
+  EXPECT_TRUE(test::throwsNaming([&] { readRigView(pathOf("nothing_here"), data.layout); }, pathOf("nothing_here")));
 }
 
 TEST(RigCalibrationBadInput, ViewsOfAnotherRigAreRefusedNamingThem) {

@@ -55,8 +55,8 @@ TEST(RobotPoseFile, EveryConventionRoundTrips) {
 }
 
 TEST(RobotPoseFile, MistakesNameTheLineAndView) {
-  EXPECT_TRUE(throwsNaming([] { parse("view_1 1 2 3 0 0 0\n"); },
-                           "poses.txt:1: the first line must be 'orientation: NAME'"));
+  EXPECT_TRUE(
+      throwsNaming([] { parse("view_1 1 2 3 0 0 0\n"); }, "poses.txt:1: the first line must be 'orientation: NAME'"));
   EXPECT_TRUE(throwsNaming([] { parse("orientation: euler_zxz\n"); }, "poses.txt:1: "));
   EXPECT_TRUE(throwsNaming([] { parse("orientation: euler_zxz\n"); }, "euler_zyx"));  // the names
   EXPECT_TRUE(throwsNaming([] { parse("# only comments\n"); }, "no 'orientation: NAME' line"));
@@ -79,12 +79,8 @@ TEST(RobotPoseFile, MistakesNameTheLineAndView) {
 
 class HandEyeViewsDirectory : public test::TempDirectoryTest {
  protected:
-  void write(const std::string& name, const std::string& text) {
-    std::ofstream(pathOf(name)) << text;
-  }
-  void image(const std::string& view) {
-    cv::imwrite(pathOf(view + ".png"), cv::Mat(8, 8, CV_8UC1, cv::Scalar(128)));
-  }
+  void write(const std::string& name, const std::string& text) { std::ofstream(pathOf(name)) << text; }
+  void image(const std::string& view) { cv::imwrite(pathOf(view + ".png"), cv::Mat(8, 8, CV_8UC1, cv::Scalar(128))); }
 };
 
 TEST_F(HandEyeViewsDirectory, PairsEveryPoseWithItsImage) {
@@ -101,16 +97,14 @@ TEST_F(HandEyeViewsDirectory, PairsEveryPoseWithItsImage) {
 TEST_F(HandEyeViewsDirectory, APoseWithoutImageIsNamed) {
   write("poses.txt", "orientation: euler_zyx\nv1 1 2 3 0 0 0\nv2 1 2 3 0 0 0\n");
   image("v1");
-  EXPECT_TRUE(throwsNaming([&] { listHandEyeViews(root()); },
-                           "poses.txt:3: view v2 has a robot pose but no image"));
+  EXPECT_TRUE(throwsNaming([&] { listHandEyeViews(root()); }, "poses.txt:3: view v2 has a robot pose but no image"));
 }
 
 TEST_F(HandEyeViewsDirectory, AnImageWithoutPoseIsNamed) {
   write("poses.txt", "orientation: euler_zyx\nv1 1 2 3 0 0 0\n");
   image("v1");
   image("v9");
-  EXPECT_TRUE(throwsNaming([&] { listHandEyeViews(root()); },
-                           "view v9 has an image but no robot pose"));
+  EXPECT_TRUE(throwsNaming([&] { listHandEyeViews(root()); }, "view v9 has an image but no robot pose"));
   EXPECT_TRUE(throwsNaming([&] { listHandEyeViews(root()); }, "(1 image(s) without a pose, 1 pose(s))"));
 }
 

@@ -20,12 +20,11 @@ double angleBetweenDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 TEST(PoseYaml, ReadsEveryConventionToTheSameRotation) {
   // A quarter turn about z, as each controller's pendant shows it.
   const Eigen::Matrix3d expected = Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  for (const std::string& rotation :
-       {std::string("rotation: [0.7071067811865476, 0, 0, 0.7071067811865476]"),
-        std::string("rotation: [90, 0, 0], convention: euler_zyx"),
-        std::string("rotation: [0, 0, 90], convention: fixed_xyz"),
-        std::string("rotation: [0, 0, 1.5707963267948966], convention: rotation_vector"),
-        std::string("rotation: [0, 0, 90], convention: euler_xyz")}) {
+  for (const std::string& rotation : {std::string("rotation: [0.7071067811865476, 0, 0, 0.7071067811865476]"),
+                                      std::string("rotation: [90, 0, 0], convention: euler_zyx"),
+                                      std::string("rotation: [0, 0, 90], convention: fixed_xyz"),
+                                      std::string("rotation: [0, 0, 1.5707963267948966], convention: rotation_vector"),
+                                      std::string("rotation: [0, 0, 90], convention: euler_xyz")}) {
     const Eigen::Isometry3d pose = readPose(sectionOf("{translation: [0.6, -0.1, 0.25], " + rotation + "}"));
     EXPECT_LT(angleBetweenDeg(pose.linear(), expected), 1e-9) << rotation;
     EXPECT_LT((pose.translation() - Eigen::Vector3d(0.6, -0.1, 0.25)).norm(), 1e-12) << rotation;
@@ -49,8 +48,7 @@ TEST(PoseYaml, RequiredFieldsMustBeThere) {
 TEST(PoseYaml, BadValuesAreNamed) {
   EXPECT_TRUE(test::throwsNaming([] { readPose(sectionOf("{translation: [0, .nan, 1]}")); }, "translation"));
   EXPECT_TRUE(test::throwsNaming([] { readPose(sectionOf("{rotation: [0, 0, 0, 0]}")); }, "rotation"));
-  EXPECT_TRUE(test::throwsNaming([] { readPose(sectionOf("{rotation: [1, 2], convention: euler_zyx}")); },
-                                 "rotation"));
+  EXPECT_TRUE(test::throwsNaming([] { readPose(sectionOf("{rotation: [1, 2], convention: euler_zyx}")); }, "rotation"));
   EXPECT_TRUE(test::throwsNaming([] { readPose(sectionOf("{rotation: [1, 0, 0], convention: abb}")); }, "rotation"));
   EXPECT_TRUE(test::throwsNaming([] { readPose(sectionOf("{translation: [0, 0, 0], scale: 2}")); }, "scale"));
 }

@@ -27,9 +27,7 @@ class DaemonTest : public test::TempDirectoryTest {
     daemon_ = std::make_unique<DaemonProcess>(options);
     port_ = daemon_->port();
   }
-  void writeConfig(const std::string& extra) {
-    std::ofstream(config_path_) << cellConfigYaml(cellScene(), extra);
-  }
+  void writeConfig(const std::string& extra) { std::ofstream(config_path_) << cellConfigYaml(cellScene(), extra); }
   std::string daemonStderr() const {
     std::ifstream file(pathOf("stderr"));
     return std::string(std::istreambuf_iterator<char>(file), {});

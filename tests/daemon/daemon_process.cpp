@@ -25,8 +25,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 int millisecondsLeft(Clock::time_point deadline) {
-  return static_cast<int>(std::max<long long>(
-      0, std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count()));
+  return static_cast<int>(
+      std::max<long long>(0, std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count()));
 }
 
 bool readable(int fd, Clock::time_point deadline) {

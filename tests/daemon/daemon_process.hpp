@@ -29,9 +29,9 @@ class NotifySocket {
 struct DaemonOptions {
   std::string config_path;
   std::string port_file;
-  std::string notify_socket;   // "" : none
-  long watchdog_usec = 0;      // 0 : no watchdog
-  std::string stderr_file;     // "" : inherit
+  std::string notify_socket;  // "" : none
+  long watchdog_usec = 0;     // 0 : no watchdog
+  std::string stderr_file;    // "" : inherit
 };
 
 class DaemonProcess {

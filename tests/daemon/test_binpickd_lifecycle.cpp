@@ -4,8 +4,8 @@
 
 #include <thread>
 
-#include "daemon_fixture.hpp"
 #include "binpick/robot/protocol.hpp"
+#include "daemon_fixture.hpp"
 
 namespace binpick::cell::testing {
 namespace {
@@ -40,7 +40,8 @@ TEST_F(DaemonTest, ReloadsOnSighupDuringACycleWithoutDroppingTheRobot) {
   EXPECT_EQ(triggered->status, Status::Ok);
 
   // The next cycle runs with the reloaded settings: one pick at most.
-  while (robot.ask(request(Command::NextPick)).status == Status::Ok) {}
+  while (robot.ask(request(Command::NextPick)).status == Status::Ok) {
+  }
   ASSERT_EQ(robot.ask(request(Command::Trigger)).status, Status::Ok);
   const robot::Reply only = robot.ask(request(Command::NextPick));
   EXPECT_EQ(only.status, Status::Ok);

@@ -4,8 +4,8 @@
 #include <random>
 #include <thread>
 
-#include "daemon_fixture.hpp"
 #include "binpick/robot/protocol.hpp"
+#include "daemon_fixture.hpp"
 
 namespace binpick::cell::testing {
 namespace {
@@ -109,7 +109,8 @@ TEST_F(DaemonTest, SoakWithoutLeaksOrLostReplies) {
   RobotClient robot(port_);
   auto fullCycle = [&] {
     ASSERT_EQ(robot.ask(request(Command::Trigger)).status, Status::Ok);
-    while (robot.ask(request(Command::NextPick)).status == Status::Ok) {}
+    while (robot.ask(request(Command::NextPick)).status == Status::Ok) {
+    }
   };
   for (int i = 0; i < 3; ++i) fullCycle();
   const long warm_rss = daemon_->rssKilobytes();

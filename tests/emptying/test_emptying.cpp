@@ -5,8 +5,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "binpick/emptying/emptying.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/emptying/emptying.hpp"
 #include "temp_directory_test.hpp"
 
 namespace binpick::emptying {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "binpick/emptying/pick_truth.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/emptying/pick_truth.hpp"
 #include "binpick/simulation/parts.hpp"
 
 namespace binpick::emptying {

@@ -11,8 +11,8 @@
 #include <string>
 #include <utility>
 
-#include "binpick/estimation/model.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/estimation/model.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "thrown_message.hpp"
 

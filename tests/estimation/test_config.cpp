@@ -1,9 +1,9 @@
 // Estimation settings from YAML and the result's JSON schema.
 #include <gtest/gtest.h>
 
+#include "binpick/core/error.hpp"
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/result_json.hpp"
-#include "binpick/core/error.hpp"
 #include "estimation_test_support.hpp"
 
 namespace binpick::estimation {
@@ -53,16 +53,22 @@ TEST(EstimationConfig, ErrorsNameTheFileAndTheKey) {
   const auto message = [](const std::string& yaml) {
     return binpick::estimation::testing::errorMessage([&] { parseEstimationConfig(yaml, "cell.yaml"); });
   };
-  EXPECT_NE(message("detection:\n  voting:\n    reference_fractoin: 0.2\n").find("cell.yaml: detection.voting.reference_fractoin"),
+  EXPECT_NE(message("detection:\n  voting:\n    reference_fractoin: 0.2\n")
+                .find("cell.yaml: detection.voting.reference_fractoin"),
             std::string::npos);
-  EXPECT_NE(message("detection:\n  selection:\n    max_objects: many\n").find("detection.selection.max_objects has the wrong type"),
+  EXPECT_NE(message("detection:\n  selection:\n    max_objects: many\n")
+                .find("detection.selection.max_objects has the wrong type"),
             std::string::npos);
-  EXPECT_NE(message("detection:\n  voting:\n    reference_fraction: 0\n").find("reference_fraction"), std::string::npos);
-  EXPECT_NE(message("detection:\n  scene:\n    crop: {centre: [0, 0], half_extents: [1, 1, 1]}\n").find("centre needs three numbers"),
+  EXPECT_NE(message("detection:\n  voting:\n    reference_fraction: 0\n").find("reference_fraction"),
+            std::string::npos);
+  EXPECT_NE(message("detection:\n  scene:\n    crop: {centre: [0, 0], half_extents: [1, 1, 1]}\n")
+                .find("centre needs three numbers"),
             std::string::npos);
   EXPECT_NE(message("detection: [1, 2\n").find("not valid YAML"), std::string::npos);
   EXPECT_NE(message("detection:\n  method: magic\n").find("method 'magic' is unknown"), std::string::npos);
-  EXPECT_NE(binpick::estimation::testing::errorMessage([] { loadEstimationConfig("/no/such/cell.yaml"); }).find("/no/such/cell.yaml"),
+  EXPECT_NE(binpick::estimation::testing::errorMessage([] {
+              loadEstimationConfig("/no/such/cell.yaml");
+            }).find("/no/such/cell.yaml"),
             std::string::npos);
 }
 
@@ -80,7 +86,8 @@ TEST(ResultJson, KeepsTheDocumentedSchema) {
   EXPECT_FLOAT_EQ(pose[0][3].get<float>(), 0.1f);
   EXPECT_FLOAT_EQ(pose[2][3].get<float>(), 0.8f);
   EXPECT_EQ(pose[3], nlohmann::json({0.0, 0.0, 0.0, 1.0}));
-  for (const char* key : {"score", "coverage", "icp_rmse", "votes"}) EXPECT_TRUE(j["detections"][0].contains(key)) << key;
+  for (const char* key : {"score", "coverage", "icp_rmse", "votes"})
+    EXPECT_TRUE(j["detections"][0].contains(key)) << key;
   for (const char* key : {"prepare_scene", "voting", "verification", "selection", "icp", "total"}) {
     EXPECT_TRUE(j.at("timing_ms").contains(key)) << key;
   }

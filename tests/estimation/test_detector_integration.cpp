@@ -9,9 +9,9 @@
 #include <tuple>
 
 #include "binpick/estimation/detector.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
-#include "binpick/evaluation/evaluation.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -48,9 +48,9 @@ DetectorParams paramsFor(const Pile& pile, DetectorParams params = {}) {
 }
 
 evaluation::Score score(const std::string& part, const PreparedModel& model, const Pile& pile,
-                  const DetectionResult& result) {
+                        const DetectionResult& result) {
   return evaluation::scoreDetections(result.detections, pile.scene.objects, simulation::makePart(part).symmetry,
-                               {model.diameter / 10.0, 10.0});
+                                     {model.diameter / 10.0, 10.0});
 }
 
 std::string describe(const evaluation::Score& s, const DetectionResult& r) {
@@ -66,9 +66,7 @@ struct PileCase {
   uint64_t seed;
 };
 
-void PrintTo(const PileCase& c, std::ostream* os) {
-  *os << c.part << ", " << c.objects << " objects, seed " << c.seed;
-}
+void PrintTo(const PileCase& c, std::ostream* os) { *os << c.part << ", " << c.objects << " objects, seed " << c.seed; }
 
 class DetectorOnPiles : public ::testing::TestWithParam<PileCase> {};
 
@@ -111,8 +109,8 @@ INSTANTIATE_TEST_SUITE_P(Piles, DetectorOnPiles,
                          ::testing::Values(PileCase{"l_bracket", 10, 11}, PileCase{"l_bracket", 12, 12},
                                            PileCase{"clamp", 10, 11}, PileCase{"clamp", 12, 12}),
                          [](const ::testing::TestParamInfo<PileCase>& case_info) {
-                           return case_info.param.part + "_" + std::to_string(case_info.param.objects) + "_objects_seed_" +
-                                  std::to_string(case_info.param.seed);
+                           return case_info.param.part + "_" + std::to_string(case_info.param.objects) +
+                                  "_objects_seed_" + std::to_string(case_info.param.seed);
                          });
 
 TEST(DetectorDrost, FindsTheMostVisibleObject) {

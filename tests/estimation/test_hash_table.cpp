@@ -80,13 +80,15 @@ TEST(PpfHashTable, CapKeepsAnEvenSubsetOfCrowdedKeys) {
   bool some_key_was_capped = false;
   for (int64_t key = 0; key < q.keyCount(); ++key) {
     const auto all = full.lookup(key), kept = capped.lookup(key);
-    const auto n_all = static_cast<uint32_t>(all.end - all.begin), n_kept = static_cast<uint32_t>(kept.end - kept.begin);
+    const auto n_all = static_cast<uint32_t>(all.end - all.begin),
+               n_kept = static_cast<uint32_t>(kept.end - kept.begin);
     ASSERT_EQ(n_kept, std::min(n_all, cap)) << "key " << key;
     some_key_was_capped |= n_all > cap;
     // The kept pairs are pairs of the full key, taken in order and spread over all of them.
     const PairEntry* cursor = all.begin;
     for (const PairEntry* e = kept.begin; e != kept.end; ++e) {
-      while (cursor != all.end && (cursor->reference != e->reference || cursor->reference_angle != e->reference_angle)) ++cursor;
+      while (cursor != all.end && (cursor->reference != e->reference || cursor->reference_angle != e->reference_angle))
+        ++cursor;
       ASSERT_NE(cursor, all.end) << "key " << key << ": a kept pair is not in the full table";
       ++cursor;
     }

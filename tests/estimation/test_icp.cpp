@@ -41,8 +41,7 @@ double viewConditioning(const PreparedScene& scene, double radius) {
     j << (scene.points[i].cast<double>() - centre).cross(n) / radius, n;
     information += j * j.transpose();
   }
-  const auto eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(information)
-                               .eigenvalues();
+  const auto eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(information).eigenvalues();
   return eigenvalues.minCoeff() / eigenvalues.maxCoeff();
 }
 
@@ -59,9 +58,8 @@ SinglePart renderSinglePart(const std::string& part, uint64_t seed) {
   std::normal_distribution<double> normal(0.0, 1.0);
   for (int attempt = 0; attempt < 50; ++attempt) {
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.linear() = Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng))
-                        .normalized()
-                        .toRotationMatrix();
+    pose.linear() =
+        Eigen::Quaterniond(normal(rng), normal(rng), normal(rng), normal(rng)).normalized().toRotationMatrix();
     pose.translation() = Eigen::Vector3d(0.02, -0.01, 0.85);
     const simulation::RayCaster caster({{&built.mesh, pose, 0}});
     const simulation::SensorGeometry geometry = simulation::computeSensorGeometry(rig, caster);

@@ -10,10 +10,10 @@
 
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/model_cache.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
-#include "binpick/evaluation/evaluation.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -58,8 +58,7 @@ class ModelCache : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() /
-          ("binpick_test_estimation_" + std::to_string(::getpid()) + "_" + info->name());
+    dir = fs::temp_directory_path() / ("binpick_test_estimation_" + std::to_string(::getpid()) + "_" + info->name());
     fs::remove_all(dir);
     fs::create_directories(dir);
   }
@@ -117,9 +116,9 @@ TEST_F(ModelCache, RejectsDamagedFilesWithTheirName) {
   ASSERT_GT(bytes.size(), 1000u);
 
   // Truncated at several lengths, down to inside the magic.
-  for (std::size_t length : {std::size_t{3}, std::size_t{8}, std::size_t{12}, std::size_t{19}, std::size_t{20},
-                             std::size_t{40}, std::size_t{100}, bytes.size() / 2, bytes.size() - 9,
-                             bytes.size() - 8, bytes.size() - 1}) {
+  for (std::size_t length :
+       {std::size_t{3}, std::size_t{8}, std::size_t{12}, std::size_t{19}, std::size_t{20}, std::size_t{40},
+        std::size_t{100}, bytes.size() / 2, bytes.size() - 9, bytes.size() - 8, bytes.size() - 1}) {
     const fs::path path = dir / ("truncated_" + std::to_string(length) + ".bpmodel");
     writeBytes(path, std::vector<uint8_t>(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(length)));
     expectRejected(path, "truncated to " + std::to_string(length));

@@ -5,10 +5,10 @@
 #include <random>
 
 #include "binpick/estimation/detector.hpp"
+#include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
-#include "binpick/evaluation/evaluation.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -51,13 +51,12 @@ TEST(ModelFromCloud, CloudWithNormalsFindsTheHalfVisibleParts) {
   params.selection.max_objects = pile.objects;
   params.scene.crop = evaluation::binInterior(scene, pile);
   const DetectionResult result = Detector(model, params).detect(scene.cloud);
-  const DetectionResult from_mesh =
-      Detector(estimation::testing::cachedModel("l_bracket"), params).detect(scene.cloud);
+  const DetectionResult from_mesh = Detector(estimation::testing::cachedModel("l_bracket"), params).detect(scene.cloud);
 
-  const evaluation::Score score = evaluation::scoreDetections(result.detections, scene.objects, part.symmetry,
-                                                  {model.diameter / 10.0, 10.0});
-  const evaluation::Score mesh_score = evaluation::scoreDetections(from_mesh.detections, scene.objects,
-                                                       part.symmetry, {model.diameter / 10.0, 10.0});
+  const evaluation::Score score =
+      evaluation::scoreDetections(result.detections, scene.objects, part.symmetry, {model.diameter / 10.0, 10.0});
+  const evaluation::Score mesh_score =
+      evaluation::scoreDetections(from_mesh.detections, scene.objects, part.symmetry, {model.diameter / 10.0, 10.0});
   ASSERT_GT(score.findable, 3);
   // A densely sampled cloud with normals is as good a model as the mesh it was sampled from.
   EXPECT_GE(score.found, mesh_score.found - 1);

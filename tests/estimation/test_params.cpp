@@ -114,12 +114,16 @@ TEST(Params, DetectorRejectsBadParams) {
     change(p);
     return errorMessage([&] { Detector(smallModel(), p); });
   };
-  EXPECT_NE(detectorError([](auto& p) { p.voting.reference_fraction = 0.0f; }).find("reference_fraction"), std::string::npos);
-  EXPECT_NE(detectorError([](auto& p) { p.scene.min_normal_neighbours = 0; }).find("min_normal_neighbours"), std::string::npos);
-  EXPECT_NE(detectorError([](auto& p) { p.verification.voxel_size_ratio = 100.0f; }).find("voxel_size_ratio"), std::string::npos);
+  EXPECT_NE(detectorError([](auto& p) { p.voting.reference_fraction = 0.0f; }).find("reference_fraction"),
+            std::string::npos);
+  EXPECT_NE(detectorError([](auto& p) { p.scene.min_normal_neighbours = 0; }).find("min_normal_neighbours"),
+            std::string::npos);
+  EXPECT_NE(detectorError([](auto& p) { p.verification.voxel_size_ratio = 100.0f; }).find("voxel_size_ratio"),
+            std::string::npos);
   EXPECT_NE(detectorError([](auto& p) { p.selection.max_objects = -3; }).find("max_objects"), std::string::npos);
   EXPECT_NE(detectorError([](auto& p) { p.icp.huber_ratio = 0.0f; }).find("huber_ratio"), std::string::npos);
-  EXPECT_NE(detectorError([](auto& p) { p.clustering.max_rotation_deg = 0.0f; }).find("max_rotation_deg"), std::string::npos);
+  EXPECT_NE(detectorError([](auto& p) { p.clustering.max_rotation_deg = 0.0f; }).find("max_rotation_deg"),
+            std::string::npos);
   EXPECT_NE(detectorError([](auto& p) { p.threads = -1; }).find("threads"), std::string::npos);
   EXPECT_NE(errorMessage([] { Detector(PreparedModel{}, DetectorParams{}); }), "") << "a model without points";
 
@@ -151,7 +155,9 @@ TEST(Params, PrepareModelRejectsEmptyAndDegenerateGeometry) {
   EXPECT_NE(errorMessage([&] { prepareModel(few, ModelParams{}); }), "");
   ModelParams bad;
   bad.sampling_ratio = 0.0f;
-  EXPECT_NE(errorMessage([&] { prepareModel(io::ModelGeometry{simulation::makePart("clamp").mesh, {}}, bad); }).find("sampling_ratio"),
+  EXPECT_NE(errorMessage([&] {
+              prepareModel(io::ModelGeometry{simulation::makePart("clamp").mesh, {}}, bad);
+            }).find("sampling_ratio"),
             std::string::npos);
 }
 

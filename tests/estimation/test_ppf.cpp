@@ -211,8 +211,8 @@ TEST(PpfQuantizer, AlphaBinsCoverOneTurnAndWrapAnyAngle) {
       ASSERT_GE(bin, 0);
       ASSERT_LT(bin, n);
     }
-    for (float edge : {-kTwoPi, std::nextafter(0.0f, -1.0f), std::nextafter(kTwoPi, 0.0f),
-                       std::nextafter(-kTwoPi, 0.0f)}) {
+    for (float edge :
+         {-kTwoPi, std::nextafter(0.0f, -1.0f), std::nextafter(kTwoPi, 0.0f), std::nextafter(-kTwoPi, 0.0f)}) {
       EXPECT_GE(q.alphaBin(edge), 0);
       EXPECT_LT(q.alphaBin(edge), n);
     }
@@ -289,7 +289,8 @@ TEST(ReferenceFrame, MapsPointToOriginAndNormalToPlusX) {
   expectReferenceFrame({0.1f, -0.2f, 0.3f}, -Eigen::Vector3f::UnitX());
   expectReferenceFrame({0, 0, 0}, -Eigen::Vector3f::UnitX());
   // Exactly +x and -x: exact frames (the antiparallel case is a half turn about a perpendicular).
-  for (const Eigen::Vector3f& n : {Eigen::Vector3f(Eigen::Vector3f::UnitX()), Eigen::Vector3f(-Eigen::Vector3f::UnitX())}) {
+  for (const Eigen::Vector3f& n :
+       {Eigen::Vector3f(Eigen::Vector3f::UnitX()), Eigen::Vector3f(-Eigen::Vector3f::UnitX())}) {
     const Eigen::Isometry3f T = referenceFrame({0.3f, 0.1f, 0.7f}, n);
     EXPECT_LT((T.linear() * n - Eigen::Vector3f::UnitX()).norm(), 1e-6f);
     EXPECT_LT((T.linear().transpose() * T.linear() - Eigen::Matrix3f::Identity()).norm(), 1e-6f);

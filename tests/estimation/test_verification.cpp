@@ -215,10 +215,8 @@ TEST_F(Eq4, NormalGateDropsOpposingSurfaces) {
   scene_normals[4] = (pose.linear() * Eigen::Vector3f(0.0f, 1.0f, 0.0f));  // 90 degrees off
   const SceneVoxelGrid grid(scene_points, kL);
   EXPECT_EQ(correspondingScenePoints(model, pose, grid, scene_normals, -2.0f).size(), 6u) << "gate off";
-  EXPECT_EQ(correspondingScenePoints(model, pose, grid, scene_normals, 0.5f),
-            (std::vector<uint32_t>{5, 3, 2, 0}));
-  EXPECT_EQ(correspondingScenePoints(model, pose, grid, scene_normals, -0.5f),
-            (std::vector<uint32_t>{5, 4, 3, 2, 0}));
+  EXPECT_EQ(correspondingScenePoints(model, pose, grid, scene_normals, 0.5f), (std::vector<uint32_t>{5, 3, 2, 0}));
+  EXPECT_EQ(correspondingScenePoints(model, pose, grid, scene_normals, -0.5f), (std::vector<uint32_t>{5, 4, 3, 2, 0}));
 
   // verify() with the gate at 60 degrees gives the same, per candidate, with score = |support|.
   PreparedScene scene;

@@ -71,7 +71,8 @@ std::vector<std::vector<Cell>> bruteForceVote(const PreparedModel& model, const 
     }
     std::vector<uint32_t> cells(accumulator.size());
     std::iota(cells.begin(), cells.end(), 0u);
-    std::stable_sort(cells.begin(), cells.end(), [&](uint32_t a, uint32_t b) { return accumulator[a] > accumulator[b]; });
+    std::stable_sort(cells.begin(), cells.end(),
+                     [&](uint32_t a, uint32_t b) { return accumulator[a] > accumulator[b]; });
     for (std::size_t k = 0; k < keep && k < cells.size() && accumulator[cells[k]] > 0; ++k) {
       result[r].push_back({accumulator[cells[k]], cells[k] / static_cast<uint32_t>(bins),
                            static_cast<int>(cells[k] % static_cast<uint32_t>(bins))});
@@ -103,9 +104,9 @@ void expectSameAsBruteForce(const PreparedModel& model, const PreparedScene& sce
       EXPECT_EQ(c.scene_reference, r);
       EXPECT_EQ(c.model_reference, cell.model_point);
       EXPECT_EQ(c.votes, cell.votes);
-      const Eigen::Isometry3f pose = poseFromLocalCoordinate(
-          T_s, referenceFrame(model.points[cell.model_point], model.normals[cell.model_point]),
-          q.alphaBinCentre(cell.alpha_bin));
+      const Eigen::Isometry3f pose =
+          poseFromLocalCoordinate(T_s, referenceFrame(model.points[cell.model_point], model.normals[cell.model_point]),
+                                  q.alphaBinCentre(cell.alpha_bin));
       EXPECT_LT((pose.matrix() - c.T_camera_model.matrix()).cwiseAbs().maxCoeff(), 1e-5f);
     }
   }
@@ -140,10 +141,12 @@ TEST_F(VotingVsBruteForce, WinnerOfEveryReferenceMatches) {
   const double half_bin_deg = 180.0 / model.quantizer().alphaBinCount();
   EXPECT_LE(rotationErrorDeg(best->T_camera_model.linear(), truth.linear()), half_bin_deg + 0.01);
   // The reference point itself is mapped exactly, the model origin within the half-bin turn.
-  EXPECT_LT((best->T_camera_model * model.points[best->model_reference] - scene.points[best->scene_reference]).norm(), 1e-5f);
+  EXPECT_LT((best->T_camera_model * model.points[best->model_reference] - scene.points[best->scene_reference]).norm(),
+            1e-5f);
   EXPECT_EQ(best->model_reference, best->scene_reference) << "scene point k is model point k";
   const float arm = (model.points[best->model_reference]).norm();  // model origin to the reference
-  EXPECT_LE(translationError(best->T_camera_model, truth), arm * 2.0 * std::sin(testing::rad(half_bin_deg) / 2.0) + 1e-5);
+  EXPECT_LE(translationError(best->T_camera_model, truth),
+            arm * 2.0 * std::sin(testing::rad(half_bin_deg) / 2.0) + 1e-5);
   EXPECT_LT(translationError(best->T_camera_model, truth), 0.006) << "a few mm";
 
   // Most references vote for their own model point.

@@ -35,8 +35,7 @@ class IoTest : public TempDirectoryTest {
  protected:
   std::string writeFile(const std::string& name, const std::string& bytes) const {
     const std::string path = pathOf(name);
-    std::ofstream(path, std::ios::binary)
-        .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    std::ofstream(path, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     return path;
   }
 
@@ -60,8 +59,7 @@ void appendBytes(std::string& out, T value, bool bigEndian = false) {
 // Passes when `action` throws core::Error whose message starts with "PATH: " and contains
 // `fragment`.
 template <typename Action>
-::testing::AssertionResult failsWith(Action&& action, const std::string& path,
-                                     const std::string& fragment) {
+::testing::AssertionResult failsWith(Action&& action, const std::string& path, const std::string& fragment) {
   try {
     action();
   } catch (const core::Error& error) {
@@ -76,8 +74,7 @@ template <typename Action>
   } catch (const std::exception& other) {
     return ::testing::AssertionFailure() << "threw a non-binpick exception: " << other.what();
   }
-  return ::testing::AssertionFailure()
-         << "did not throw; expected an error with '" << fragment << "'";
+  return ::testing::AssertionFailure() << "did not throw; expected an error with '" << fragment << "'";
 }
 
 // Deterministic noise standing in for a corrupt file.
@@ -103,8 +100,7 @@ inline io::PointCloud organizedCloudWithHoles() {
   cloud.height = 3;
   for (int row = 0; row < cloud.height; ++row) {
     for (int column = 0; column < cloud.width; ++column) {
-      cloud.points.emplace_back(0.001f * column - 0.123456789f, 0.002f * row + 1e-7f,
-                                0.75f + 1e-3f * row * column);
+      cloud.points.emplace_back(0.001f * column - 0.123456789f, 0.002f * row + 1e-7f, 0.75f + 1e-3f * row * column);
       cloud.normals.push_back(Eigen::Vector3f(column - 1.5f, row + 0.25f, -3.0f).normalized());
     }
   }
@@ -129,8 +125,7 @@ inline float nanWithPayload() {
 inline io::PointCloud withIntensities(io::PointCloud cloud) {
   cloud.intensities.resize(cloud.size());
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    cloud.intensities[i] =
-        cloud.points[i].allFinite() ? 1.0f / static_cast<float>(i + 3) : nanWithPayload();
+    cloud.intensities[i] = cloud.points[i].allFinite() ? 1.0f / static_cast<float>(i + 3) : nanWithPayload();
   }
   return cloud;
 }

@@ -70,9 +70,7 @@ class CaptureTest : public IoTest {
     std::ofstream(metadata_path_, std::ios::binary | std::ios::trunc) << document.dump(2);
   }
 
-  std::string imagePath(const std::string& file) const {
-    return (fs::path(directory_) / "images" / file).string();
-  }
+  std::string imagePath(const std::string& file) const { return (fs::path(directory_) / "images" / file).string(); }
 
   std::string directory_;
   std::string metadata_path_;
@@ -120,8 +118,8 @@ TEST_F(CaptureTest, MetadataRoundTrips) {
     EXPECT_EQ(b.pattern_set.phase_steps, 3);
     EXPECT_EQ(b.pattern_set.phase_period, 24);
     EXPECT_EQ(b.patterns, a.patterns);
-    EXPECT_EQ(b.images, (std::vector<std::string>{"images/000_white.png", "images/001_black.png",
-                                                  "images/002_gray_col_00.png"}));
+    EXPECT_EQ(b.images,
+              (std::vector<std::string>{"images/000_white.png", "images/001_black.png", "images/002_gray_col_00.png"}));
   }
 }
 
@@ -134,8 +132,8 @@ TEST_F(CaptureTest, FrameTimesAreOptionalAndRoundTrip) {
   io::writeCapture(timed, written);
   EXPECT_EQ(io::readCaptureMetadata(timed).frame_times_ms, written.metadata.frame_times_ms);
   writeSampleWithMetadata([](json& d) { d["frame_times_ms"] = {1.0, 2.0}; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "'frame_times_ms' has 2 entries for 3 patterns"));
+  EXPECT_TRUE(
+      failsWith([&] { io::readCapture(directory_); }, metadata_path_, "'frame_times_ms' has 2 entries for 3 patterns"));
   writeSampleWithMetadata([](json& d) { d["frame_times_ms"] = {1.0, "late", 3.0}; });
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "frame_times_ms"));
 }
@@ -147,16 +145,14 @@ TEST_F(CaptureTest, WriterLeavesNoTemporaryFiles) {
     names.push_back(fs::relative(entry.path(), directory_).string());
   }
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"capture.json", "images", "images/000_white.png",
-                                             "images/001_black.png",
+  EXPECT_EQ(names, (std::vector<std::string>{"capture.json", "images", "images/000_white.png", "images/001_black.png",
                                              "images/002_gray_col_00.png"}));
 }
 
 TEST_F(CaptureTest, WriterRejectsImagesThatDoNotMatchTheMetadata) {
   io::Capture capture = smallCapture(8);
   capture.images.pop_back();
-  EXPECT_TRUE(failsWith([&] { io::writeCapture(directory_, capture); }, directory_,
-                        "2 images for 3 patterns"));
+  EXPECT_TRUE(failsWith([&] { io::writeCapture(directory_, capture); }, directory_, "2 images for 3 patterns"));
 
   capture = smallCapture(8);
   capture.images[1] = cv::Mat::zeros(48, 64, CV_16UC1);
@@ -172,8 +168,8 @@ TEST_F(CaptureTest, WriterRejectsImagesThatDoNotMatchTheMetadata) {
 TEST_F(CaptureTest, AnExistingCaptureIsNeverOverwritten) {
   io::writeCapture(directory_, smallCapture(8));
   const std::string before = readFile(metadata_path_);
-  EXPECT_TRUE(failsWith([&] { io::writeCapture(directory_, smallCapture(16)); }, directory_,
-                        "already holds a capture"));
+  EXPECT_TRUE(
+      failsWith([&] { io::writeCapture(directory_, smallCapture(16)); }, directory_, "already holds a capture"));
   EXPECT_EQ(readFile(metadata_path_), before);
   EXPECT_EQ(io::readCapture(directory_).metadata.bit_depth, 8);
 }
@@ -192,53 +188,42 @@ TEST_F(CaptureTest, MalformedJsonIsAnError) {
 }
 
 TEST_F(CaptureTest, EachMissingKeyIsNamed) {
-  for (const char* key : {"format_version", "source", "timestamp", "image_width", "image_height",
-                          "bit_depth", "exposure_us", "gain_db", "pattern_set", "patterns",
-                          "images"}) {
+  for (const char* key : {"format_version", "source", "timestamp", "image_width", "image_height", "bit_depth",
+                          "exposure_us", "gain_db", "pattern_set", "patterns", "images"}) {
     SCOPED_TRACE(key);
     writeSampleWithMetadata([&](json& d) { d.erase(key); });
-    EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                          std::string("missing key '") + key + "'"));
+    EXPECT_TRUE(
+        failsWith([&] { io::readCapture(directory_); }, metadata_path_, std::string("missing key '") + key + "'"));
   }
   writeSampleWithMetadata([&](json& d) { d["pattern_set"].erase("phase_period"); });
-  EXPECT_TRUE(
-      failsWith([&] { io::readCapture(directory_); }, metadata_path_, "missing key 'phase_period'"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "missing key 'phase_period'"));
 }
 
 TEST_F(CaptureTest, WrongTypesAreNamed) {
   writeSampleWithMetadata([](json& d) { d["image_width"] = "64"; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'image_width' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'image_width' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["patterns"] = "white"; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'patterns' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'patterns' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["images"][1] = 7; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'images' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'images' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["pattern_set"]["row_codes"] = 0; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'row_codes' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'row_codes' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["pattern_set"] = 3; });
-  EXPECT_TRUE(
-      failsWith([&] { io::readCapture(directory_); }, metadata_path_, "'pattern_set' must be an object"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "'pattern_set' must be an object"));
   writeSampleWithMetadata([](json& d) { d["exposure_us"] = "8000"; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'exposure_us' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'exposure_us' has the wrong type"));
 }
 
 TEST_F(CaptureTest, IntegersAreNotSilentlyTruncatedOrTakenFromOtherTypes) {
   writeSampleWithMetadata([](json& d) { d["image_width"] = 64.5; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'image_width' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'image_width' has the wrong type"));
   writeSampleWithMetadata([](json& d) { d["image_height"] = true; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'image_height' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'image_height' has the wrong type"));
   // 2^32 + 64 would wrap to 64 in an int.
   writeSampleWithMetadata([](json& d) { d["image_width"] = 4294967360LL; });
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "'image_width'"));
   writeSampleWithMetadata([](json& d) { d["gain_db"] = false; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "key 'gain_db' has the wrong type"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "key 'gain_db' has the wrong type"));
   // An integral value is a fine number of microseconds.
   writeSampleWithMetadata([](json& d) { d["exposure_us"] = 8000; });
   EXPECT_EQ(io::readCapture(directory_).metadata.exposure_us, 8000.0);
@@ -246,14 +231,12 @@ TEST_F(CaptureTest, IntegersAreNotSilentlyTruncatedOrTakenFromOtherTypes) {
 
 TEST_F(CaptureTest, UnsupportedVersionIsNamed) {
   writeSampleWithMetadata([](json& d) { d["format_version"] = 2; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "format_version 2 is not supported"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "format_version 2 is not supported"));
 }
 
 TEST_F(CaptureTest, BadPatternSetIsNamed) {
   writeSampleWithMetadata([](json& d) { d["pattern_set"]["phase_steps"] = 2; });
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                        "PatternSetSpec.phase_steps"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "PatternSetSpec.phase_steps"));
 }
 
 TEST_F(CaptureTest, BadImageGeometryInMetadataIsNamed) {
@@ -296,8 +279,7 @@ TEST_F(CaptureTest, ImageOfTheWrongSizeIsNamed) {
   io::writeCapture(directory_, smallCapture(8));
   const std::string path = imagePath("000_white.png");
   ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 32, CV_8UC1)));
-  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path,
-                        "image is 32x48, capture.json says 64x48"));
+  EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "image is 32x48, capture.json says 64x48"));
 }
 
 TEST_F(CaptureTest, ImageOfTheWrongBitDepthIsNamed) {
@@ -332,21 +314,18 @@ TEST_F(CaptureTest, ImageNamesCannotLeaveTheDirectory) {
   const std::string outside = pathOf("x.png");
   ASSERT_TRUE(cv::imwrite(outside, cv::Mat::zeros(48, 64, CV_8UC1)));
   for (const std::string& name :
-       {std::string("../x.png"), std::string("images/../../x.png"), std::string("images/../x.png"),
-        outside, std::string("/images/000_white.png"), std::string("000_white.png"),
-        std::string("images/sub/000_white.png"), std::string("images/000_white.tiff"),
-        std::string("images/..png"), std::string("images/")}) {
+       {std::string("../x.png"), std::string("images/../../x.png"), std::string("images/../x.png"), outside,
+        std::string("/images/000_white.png"), std::string("000_white.png"), std::string("images/sub/000_white.png"),
+        std::string("images/000_white.tiff"), std::string("images/..png"), std::string("images/")}) {
     SCOPED_TRACE(name);
     writeSampleWithMetadata([&](json& d) { d["images"][0] = name; });
-    EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_,
-                          "must be images/<name>.png"));
+    EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, metadata_path_, "must be images/<name>.png"));
   }
 }
 
 TEST(CaptureTimestamp, IsIso8601UtcWithMilliseconds) {
   const std::string now = io::utcTimestamp();
-  EXPECT_TRUE(std::regex_match(now, std::regex(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}\.\d{3}Z)")))
-      << now;
+  EXPECT_TRUE(std::regex_match(now, std::regex(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}\.\d{3}Z)"))) << now;
 }
 
 }  // namespace

@@ -33,30 +33,27 @@ TEST_F(GeometryIo, DirectoryIsNotAFile) {
 TEST_F(GeometryIo, EmptyFileIsRejectedInEveryFormat) {
   for (const char* extension : kExtensions) {
     const std::string path = writeFile(std::string("empty") + extension, "");
-    EXPECT_TRUE(failsWith([&] { io::readModelGeometry(path); }, path, "the file is empty"))
-        << extension;
+    EXPECT_TRUE(failsWith([&] { io::readModelGeometry(path); }, path, "the file is empty")) << extension;
   }
 }
 
 TEST_F(GeometryIo, BinaryGarbageIsRejectedInEveryFormat) {
   for (std::uint32_t seed = 1; seed <= 5; ++seed) {
     for (const char* extension : kExtensions) {
-      const std::string path = writeFile("garbage" + std::to_string(seed) + extension,
-                                         garbageBytes(1000 + 997 * seed, seed));
-      EXPECT_TRUE(failsWith([&] { io::readModelGeometry(path); }, path, ""))
-          << extension << " " << seed;
+      const std::string path =
+          writeFile("garbage" + std::to_string(seed) + extension, garbageBytes(1000 + 997 * seed, seed));
+      EXPECT_TRUE(failsWith([&] { io::readModelGeometry(path); }, path, "")) << extension << " " << seed;
     }
   }
 }
 
 TEST_F(GeometryIo, UnknownOrMissingExtensionIsNamed) {
   const std::string unknown = writeFile("scan.xyz", "0 0 0\n");
-  EXPECT_TRUE(
-      failsWith([&] { io::readModelGeometry(unknown); }, unknown, "unknown file extension '.xyz'"));
+  EXPECT_TRUE(failsWith([&] { io::readModelGeometry(unknown); }, unknown, "unknown file extension '.xyz'"));
   const std::string none = writeFile("scan", "0 0 0\n");
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(none); }, none, "no file extension"));
-  EXPECT_TRUE(failsWith([&] { io::writePointCloud(pathOf("out.xyz"), awkwardCloud()); },
-                        pathOf("out.xyz"), "unknown file extension"));
+  EXPECT_TRUE(failsWith([&] { io::writePointCloud(pathOf("out.xyz"), awkwardCloud()); }, pathOf("out.xyz"),
+                        "unknown file extension"));
 }
 
 TEST_F(GeometryIo, ExtensionIsCaseInsensitive) {
@@ -101,8 +98,7 @@ TEST_F(GeometryIo, FunctionsRefuseFormatsTheyDoNotRead) {
   const std::string stl = pathOf("mesh.stl");
   io::writeMesh(stl, mesh);
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(stl); }, stl, "readPointCloud reads .ply and .pcd"));
-  EXPECT_TRUE(
-      failsWith([&] { io::writePointCloud(stl, awkwardCloud()); }, stl, "writePointCloud writes"));
+  EXPECT_TRUE(failsWith([&] { io::writePointCloud(stl, awkwardCloud()); }, stl, "writePointCloud writes"));
   EXPECT_TRUE(failsWith([&] { io::writeMesh(pcd, mesh); }, pcd, "writeMesh writes"));
 }
 
@@ -120,8 +116,7 @@ TEST_F(GeometryIo, WritersRefuseWhatReadersWouldReject) {
   io::PointCloud withNan = awkwardCloud();
   withNan.points[1].y() = NAN;
   const std::string cloudPath = pathOf("nan.ply");
-  EXPECT_TRUE(
-      failsWith([&] { io::writePointCloud(cloudPath, withNan); }, cloudPath, "point 1 is not finite"));
+  EXPECT_TRUE(failsWith([&] { io::writePointCloud(cloudPath, withNan); }, cloudPath, "point 1 is not finite"));
   EXPECT_FALSE(std::filesystem::exists(cloudPath));
 
   EXPECT_TRUE(failsWith([&] { io::writePointCloud(cloudPath, io::PointCloud{}); }, cloudPath, "no points"));
@@ -130,8 +125,7 @@ TEST_F(GeometryIo, WritersRefuseWhatReadersWouldReject) {
   broken.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   broken.triangles = {{0, 1, 3}};
   const std::string meshPath = pathOf("broken.stl");
-  EXPECT_TRUE(
-      failsWith([&] { io::writeMesh(meshPath, broken); }, meshPath, "triangle 0 refers to vertex 3"));
+  EXPECT_TRUE(failsWith([&] { io::writeMesh(meshPath, broken); }, meshPath, "triangle 0 refers to vertex 3"));
 }
 
 TEST_F(GeometryIo, WritingIntoMissingDirectoryIsNamed) {

@@ -111,8 +111,8 @@ TEST(Lens, ProjectAgreesWithOpenCvProjectPoints) {
       for (double y = -0.35; y <= 0.35; y += 0.05) points.emplace_back(x * 1.3, y * 1.3, 1.3);
     }
     std::vector<cv::Point2d> expected;
-    cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), cameraMatrix(lens),
-                      distortionVector(lens), expected);
+    cv::projectPoints(points, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), cameraMatrix(lens), distortionVector(lens),
+                      expected);
     ASSERT_EQ(expected.size(), points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
       const Eigen::Vector2d pixel = lens.project({points[i].x, points[i].y, points[i].z});
@@ -131,8 +131,7 @@ TEST(Lens, UndistortAgreesWithOpenCvUndistortPoints) {
   cv::undistortPoints(distorted, expected, cameraMatrix(lens), distortionVector(lens));
   ASSERT_EQ(expected.size(), pixels.size());
   for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const Eigen::Vector2d normalised((pixels[i].x() - lens.cx) / lens.fx,
-                                     (pixels[i].y() - lens.cy) / lens.fy);
+    const Eigen::Vector2d normalised((pixels[i].x() - lens.cx) / lens.fx, (pixels[i].y() - lens.cy) / lens.fy);
     const Eigen::Vector2d ours = lens.undistort(normalised);
     // Normalised coordinates. OpenCV stops after a few fixed-point iterations by default (ours
     // runs Newton to machine precision); for this mild lens both agree far below 1e-6 (~2e-3 px).
@@ -147,8 +146,7 @@ TEST(Lens, UndistortMatchesOpenCvRunToConvergence) {
   std::vector<cv::Point2d> distorted;
   for (const Eigen::Vector2d& p : pixels) distorted.emplace_back(p.x(), p.y());
   std::vector<cv::Point2d> expected;
-  cv::undistortPoints(distorted, expected, cameraMatrix(lens), distortionVector(lens),
-                      cv::noArray(), cv::noArray(),
+  cv::undistortPoints(distorted, expected, cameraMatrix(lens), distortionVector(lens), cv::noArray(), cv::noArray(),
                       cv::TermCriteria(cv::TermCriteria::COUNT, 200, 0.0));
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const Eigen::Vector3d ray = lens.rayThroughPixel(pixels[i]);

@@ -34,8 +34,7 @@ TEST_F(Obj, ReadsAllCornerFormsNegativeIndicesAndQuads) {
   const io::TriangleMesh mesh = io::readMesh(path);
   ASSERT_EQ(mesh.vertices.size(), 5u);
   EXPECT_EQ(mesh.vertices[4], Eigen::Vector3f(0.5f, 0.5f, 1));
-  const std::vector<Eigen::Vector3i> expected = {
-      {0, 1, 2}, {0, 2, 3}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}};
+  const std::vector<Eigen::Vector3i> expected = {{0, 1, 2}, {0, 2, 3}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}};
   EXPECT_EQ(mesh.triangles, expected);
 }
 
@@ -54,10 +53,9 @@ TEST_F(Obj, RoundTripKeepsMesh) {
 }
 
 TEST_F(Obj, RejectsIndexBeyondTheVerticesWithItsLine) {
-  const std::string path =
-      writeFile("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 9\n");
-  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path,
-                        "line 6: face refers to vertex 9 but the file has 4 vertices"));
+  const std::string path = writeFile("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 9\n");
+  EXPECT_TRUE(
+      failsWith([&] { io::readMesh(path); }, path, "line 6: face refers to vertex 9 but the file has 4 vertices"));
 }
 
 TEST_F(Obj, RejectsNegativeIndexBeforeFirstVertex) {
@@ -74,8 +72,7 @@ TEST_F(Obj, RejectsZeroIndexAndShortFaces) {
 
 TEST_F(Obj, RejectsBadCoordinate) {
   const std::string path = writeFile("coord.obj", "v 0 0 0\nv 1 zero 0\n");
-  EXPECT_TRUE(
-      failsWith([&] { io::readModelGeometry(path); }, path, "line 2: vertex coordinate 'zero'"));
+  EXPECT_TRUE(failsWith([&] { io::readModelGeometry(path); }, path, "line 2: vertex coordinate 'zero'"));
 }
 
 TEST_F(Obj, VerticesWithoutFacesAreACloud) {

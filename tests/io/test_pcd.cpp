@@ -63,8 +63,7 @@ TEST_P(PcdRoundTrip, OrganizedCloudKeepsIntensities) {
   const io::PointCloud written = withIntensities(organizedCloudWithHoles());
   const std::string path = pathOf("intensities.pcd");
   io::writePointCloud(path, written, GetParam());
-  EXPECT_NE(readFile(path).find("FIELDS x y z normal_x normal_y normal_z intensity\n"),
-            std::string::npos);
+  EXPECT_NE(readFile(path).find("FIELDS x y z normal_x normal_y normal_z intensity\n"), std::string::npos);
 
   const io::PointCloud read = io::readPointCloud(path);
   EXPECT_EQ(read.height, 3);
@@ -150,8 +149,7 @@ TEST_F(Pcd, ReadsIntegerIntensityAsciiAndBinary) {
   const std::string header =
       "VERSION 0.7\nFIELDS intensity x y z\nSIZE 2 4 4 4\nTYPE U F F F\nCOUNT 1 1 1 1\n"
       "WIDTH 2\nHEIGHT 1\nPOINTS 2\n";
-  const std::string ascii =
-      writeFile("ascii.pcd", header + "DATA ascii\n0 1 2 3\n65535 4 5 6\n");
+  const std::string ascii = writeFile("ascii.pcd", header + "DATA ascii\n0 1 2 3\n65535 4 5 6\n");
   std::string bytes = header + "DATA binary\n";
   for (int v = 0; v < 2; ++v) {
     appendBytes<std::uint16_t>(bytes, static_cast<std::uint16_t>(v * 65535));
@@ -169,9 +167,8 @@ TEST_F(Pcd, ReadsIntegerIntensityAsciiAndBinary) {
 TEST_F(Pcd, ReadsSignedAndDoubleIntensity) {
   for (const char* sizeAndType : {"8 F", "1 I"}) {
     const std::string type = std::string(sizeAndType).substr(2);
-    const std::string header = "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 " +
-                               std::string(1, sizeAndType[0]) + "\nTYPE F F F " + type +
-                               "\nCOUNT 1 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary\n";
+    const std::string header = "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 " + std::string(1, sizeAndType[0]) +
+                               "\nTYPE F F F " + type + "\nCOUNT 1 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA binary\n";
     std::string bytes = header;
     for (int axis = 0; axis < 3; ++axis) appendBytes(bytes, static_cast<float>(axis));
     if (type == "F") {
@@ -185,40 +182,35 @@ TEST_F(Pcd, ReadsSignedAndDoubleIntensity) {
 }
 
 TEST_F(Pcd, RejectsNanIntensityOfAValidPointAndIntensityWithCount) {
-  const std::string nan = writeFile(
-      "nan.pcd",
-      "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
-      "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n0 0 0 nan\n1 1 1 0.5\n");
-  EXPECT_TRUE(failsWith([&] { io::readPointCloud(nan); }, nan,
-                        "intensity of point 0 is not finite (nan)"));
+  const std::string nan = writeFile("nan.pcd",
+                                    "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                                    "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n0 0 0 nan\n1 1 1 0.5\n");
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(nan); }, nan, "intensity of point 0 is not finite (nan)"));
 
-  const std::string counted = writeFile(
-      "count.pcd",
-      "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 2\n"
-      "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n0 0 0 0.5 0.5\n");
-  EXPECT_TRUE(failsWith([&] { io::readPointCloud(counted); }, counted,
-                        "PCD field 'intensity' must be a single number"));
+  const std::string counted =
+      writeFile("count.pcd",
+                "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 2\n"
+                "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n0 0 0 0.5 0.5\n");
+  EXPECT_TRUE(
+      failsWith([&] { io::readPointCloud(counted); }, counted, "PCD field 'intensity' must be a single number"));
 }
 
 TEST_F(Pcd, RefusesToWriteWrongIntensityCount) {
   io::PointCloud cloud = withIntensities(organizedCloudWithHoles());
   cloud.intensities.resize(13, 0.5f);
   const std::string path = pathOf("bad.pcd");
-  EXPECT_TRUE(
-      failsWith([&] { io::writePointCloud(path, cloud); }, path, "13 intensities for 12 points"));
+  EXPECT_TRUE(failsWith([&] { io::writePointCloud(path, cloud); }, path, "13 intensities for 12 points"));
 }
 
 std::string xyzHeader(const std::string& data, const std::string& size) {
-  return "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " + size +
-         "\nHEIGHT 1\nPOINTS " + size + "\nDATA " + data + "\n";
+  return "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " + size + "\nHEIGHT 1\nPOINTS " +
+         size + "\nDATA " + data + "\n";
 }
 
 TEST_F(Pcd, RejectsAbsurdPointCountWithoutAllocating) {
   for (const char* data : {"binary", "ascii"}) {
-    const std::string path =
-        writeFile(std::string(data) + ".pcd", xyzHeader(data, "100000000") + "1 2 3\n");
-    EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "header claims 100000000 points"))
-        << data;
+    const std::string path = writeFile(std::string(data) + ".pcd", xyzHeader(data, "100000000") + "1 2 3\n");
+    EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "header claims 100000000 points")) << data;
   }
   const std::string huge = writeFile("huge.pcd", xyzHeader("binary", "1000000000000"));
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(huge); }, huge, "too large"));
@@ -252,10 +244,9 @@ TEST_F(Pcd, RejectsMissingCoordinateField) {
 }
 
 TEST_F(Pcd, RejectsMismatchedHeaderCounts) {
-  const std::string path =
-      writeFile("sizes.pcd",
-                "VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
-                "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n");
+  const std::string path = writeFile("sizes.pcd",
+                                     "VERSION 0.7\nFIELDS x y z\nSIZE 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                                     "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n1 2 3\n");
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "SIZE has 2 values for 3 FIELDS"));
 }
 
@@ -266,21 +257,17 @@ TEST_F(Pcd, RejectsNanInUnorganizedCloud) {
 
 // PCL itself would skip such lines with a warning and leave zero points behind.
 TEST_F(Pcd, RejectsMalformedAsciiLines) {
-  const std::string merged =
-      writeFile("merged.pcd", xyzHeader("ascii", "3") + "1 2 3 4 5 6 7 8 9 10 11 12 13\n");
+  const std::string merged = writeFile("merged.pcd", xyzHeader("ascii", "3") + "1 2 3 4 5 6 7 8 9 10 11 12 13\n");
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(merged); }, merged,
                         "line 10 (point 0): 13 values but the header declares 3 per point"));
 
-  const std::string extra =
-      writeFile("extra.pcd", xyzHeader("ascii", "3") + "1 2 3\n4 5 6 7\n7 8 9\n");
+  const std::string extra = writeFile("extra.pcd", xyzHeader("ascii", "3") + "1 2 3\n4 5 6 7\n7 8 9\n");
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(extra); }, extra, "line 11 (point 1): 4 values"));
 
   const std::string word = writeFile("word.pcd", xyzHeader("ascii", "2") + "1 2 3\n4 five 6\n");
-  EXPECT_TRUE(
-      failsWith([&] { io::readPointCloud(word); }, word, "line 11 (point 1): 'five' is not a number"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(word); }, word, "line 11 (point 1): 'five' is not a number"));
 
-  const std::string few =
-      writeFile("few.pcd", xyzHeader("ascii", "3") + "1.5 2.5 3.5\n\n4.5 5.5 6.5\n");
+  const std::string few = writeFile("few.pcd", xyzHeader("ascii", "3") + "1.5 2.5 3.5\n\n4.5 5.5 6.5\n");
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(few); }, few, "ends before point 2 of 3"));
 }
 

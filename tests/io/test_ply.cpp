@@ -60,8 +60,7 @@ TEST_P(PlyRoundTrip, OrganizedCloudKeepsIntensitiesAfterNormals) {
   const io::PointCloud written = withIntensities(organizedCloudWithHoles());
   const std::string path = pathOf("intensities.ply");
   io::writePointCloud(path, written, GetParam());
-  EXPECT_NE(readFile(path).find("property float nz\nproperty float intensity\n"),
-            std::string::npos);
+  EXPECT_NE(readFile(path).find("property float nz\nproperty float intensity\n"), std::string::npos);
 
   const io::PointCloud read = io::readPointCloud(path);
   EXPECT_EQ(read.width, 4);
@@ -83,8 +82,7 @@ TEST_P(PlyRoundTrip, UnorganizedCloudKeepsIntensitiesWithoutNormals) {
   const io::PointCloud written = withIntensities(awkwardCloud());
   const std::string path = pathOf("intensities.ply");
   io::writePointCloud(path, written, GetParam());
-  EXPECT_NE(readFile(path).find("property float z\nproperty float intensity\n"),
-            std::string::npos);
+  EXPECT_NE(readFile(path).find("property float z\nproperty float intensity\n"), std::string::npos);
 
   const io::PointCloud read = io::readPointCloud(path);
   EXPECT_FALSE(read.hasNormals());
@@ -177,24 +175,23 @@ TEST_F(Ply, ReadsBigEndianDoublesSkippingOtherPropertiesAndElements) {
 }
 
 TEST_F(Ply, ReadsAsciiWithCrLfCommentsQuadsAndNormalisesNormals) {
-  const std::string path =
-      writeFile("ascii.ply",
-                "ply\r\n"
-                "format ascii 1.0\r\n"
-                "comment exported by hand\r\n"
-                "obj_info some free text\r\n"
-                "element vertex 4\r\n"
-                "property float x\r\nproperty float y\r\nproperty float z\r\n"
-                "property float nx\r\nproperty float ny\r\nproperty float nz\r\n"
-                "property uchar red\r\n"
-                "element face 1\r\n"
-                "property list uchar int vertex_indices\r\n"
-                "end_header\r\n"
-                "0 0 0 0 0 2 255\r\n"
-                "1 0 0 0 0 1 255\r\n"
-                "1 1 0 0 3 4 255\r\n"
-                "+0 1e0 -0.0 0 0 1 255\r\n"
-                "4 0 1 2 3\r\n");
+  const std::string path = writeFile("ascii.ply",
+                                     "ply\r\n"
+                                     "format ascii 1.0\r\n"
+                                     "comment exported by hand\r\n"
+                                     "obj_info some free text\r\n"
+                                     "element vertex 4\r\n"
+                                     "property float x\r\nproperty float y\r\nproperty float z\r\n"
+                                     "property float nx\r\nproperty float ny\r\nproperty float nz\r\n"
+                                     "property uchar red\r\n"
+                                     "element face 1\r\n"
+                                     "property list uchar int vertex_indices\r\n"
+                                     "end_header\r\n"
+                                     "0 0 0 0 0 2 255\r\n"
+                                     "1 0 0 0 0 1 255\r\n"
+                                     "1 1 0 0 3 4 255\r\n"
+                                     "+0 1e0 -0.0 0 0 1 255\r\n"
+                                     "4 0 1 2 3\r\n");
   const io::ModelGeometry geometry = io::readModelGeometry(path);
   ASSERT_EQ(geometry.mesh.triangles.size(), 2u);
   ASSERT_TRUE(geometry.cloud.hasNormals());
@@ -208,8 +205,7 @@ TEST_F(Ply, ReadsUcharIntensityAsciiAndBinary) {
   const std::string header =
       "element vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
       "property uchar intensity\nend_header\n";
-  const std::string ascii =
-      writeFile("ascii.ply", "ply\nformat ascii 1.0\n" + header + "0 0 0 0\n1 2 3 255\n");
+  const std::string ascii = writeFile("ascii.ply", "ply\nformat ascii 1.0\n" + header + "0 0 0 0\n1 2 3 255\n");
   std::string bytes = "ply\nformat binary_little_endian 1.0\n" + header;
   for (int v = 0; v < 2; ++v) {
     for (int axis = 0; axis < 3; ++axis) appendBytes(bytes, static_cast<float>(v + axis));
@@ -228,8 +224,7 @@ TEST_F(Ply, ReadsDoubleIntensityBeforeTheCoordinates) {
   const std::string header =
       "element vertex 2\nproperty double intensity\nproperty float x\nproperty float y\n"
       "property float z\nend_header\n";
-  const std::string ascii =
-      writeFile("ascii.ply", "ply\nformat ascii 1.0\n" + header + "0.7 0 0 0\n0.25 1 2 3\n");
+  const std::string ascii = writeFile("ascii.ply", "ply\nformat ascii 1.0\n" + header + "0.7 0 0 0\n0.25 1 2 3\n");
   std::string bytes = "ply\nformat binary_big_endian 1.0\n" + header;
   for (int v = 0; v < 2; ++v) {
     appendBytes(bytes, v == 0 ? 0.7 : 0.25, true);
@@ -250,16 +245,14 @@ TEST_F(Ply, RejectsNanIntensityOfAValidPoint) {
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "property float intensity\nend_header\n"
                                      "0 0 0 0.5\n1 0 0 nan\n");
-  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path,
-                        "intensity of point 1 is not finite (nan)"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "intensity of point 1 is not finite (nan)"));
 }
 
 TEST_F(Ply, RefusesToWriteWrongIntensityCountOrNanIntensity) {
   io::PointCloud cloud = withIntensities(awkwardCloud());
   cloud.intensities.pop_back();
   const std::string path = pathOf("bad.ply");
-  EXPECT_TRUE(
-      failsWith([&] { io::writePointCloud(path, cloud); }, path, "2 intensities for 3 points"));
+  EXPECT_TRUE(failsWith([&] { io::writePointCloud(path, cloud); }, path, "2 intensities for 3 points"));
   cloud = withIntensities(awkwardCloud());
   cloud.intensities[0] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_TRUE(failsWith([&] { io::writePointCloud(path, cloud, io::Encoding::Ascii); }, path,
@@ -269,8 +262,7 @@ TEST_F(Ply, RefusesToWriteWrongIntensityCountOrNanIntensity) {
 
 std::string binaryCloudPly(const std::string& extraHeader, int vertices) {
   std::string bytes = "ply\nformat binary_little_endian 1.0\n" + extraHeader + "element vertex " +
-                      std::to_string(vertices) +
-                      "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+                      std::to_string(vertices) + "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
   for (int v = 0; v < vertices; ++v) {
     for (int axis = 0; axis < 3; ++axis) appendBytes(bytes, static_cast<float>(v + axis));
   }
@@ -286,11 +278,11 @@ TEST_F(Ply, RejectsTruncatedBinaryBody) {
 
 TEST_F(Ply, RejectsAbsurdVertexCountWithoutAllocating) {
   for (const char* format : {"binary_little_endian", "ascii"}) {
-    const std::string path = writeFile(std::string(format) + ".ply",
-                                       std::string("ply\nformat ") + format +
-                                           " 1.0\nelement vertex 1000000000000\n"
-                                           "property float x\nproperty float y\nproperty float z\n"
-                                           "end_header\n0 0 0\n");
+    const std::string path =
+        writeFile(std::string(format) + ".ply", std::string("ply\nformat ") + format +
+                                                    " 1.0\nelement vertex 1000000000000\n"
+                                                    "property float x\nproperty float y\nproperty float z\n"
+                                                    "end_header\n0 0 0\n");
     EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "1000000000000")) << format;
   }
 }
@@ -309,8 +301,7 @@ TEST_F(Ply, RejectsFaceIndexOutOfRange) {
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "element face 2\nproperty list uchar int vertex_indices\n"
                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 9\n");
-  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path,
-                        "face 1 refers to vertex 9 but the file has 4 vertices"));
+  EXPECT_TRUE(failsWith([&] { io::readMesh(path); }, path, "face 1 refers to vertex 9 but the file has 4 vertices"));
 }
 
 TEST_F(Ply, RejectsNanInUnorganizedCloudNamingThePoint) {
@@ -344,10 +335,9 @@ TEST_F(Ply, RejectsOrganizedSizeThatDoesNotMatchVertexCount) {
 }
 
 TEST_F(Ply, RejectsMalformedHeaders) {
-  const std::string unknownType = writeFile(
-      "type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\nend_header\n0\n");
-  EXPECT_TRUE(failsWith([&] { io::readPointCloud(unknownType); }, unknownType,
-                        "unknown property type 'flaot'"));
+  const std::string unknownType =
+      writeFile("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty flaot x\nend_header\n0\n");
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(unknownType); }, unknownType, "unknown property type 'flaot'"));
 
   const std::string noEnd = writeFile("no_end.ply", "ply\nformat ascii 1.0\nelement vertex 1\n");
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(noEnd); }, noEnd, "end_header"));
@@ -366,8 +356,7 @@ TEST_F(Ply, RejectsBadAsciiValueWithItsLine) {
                                      "ply\nformat ascii 1.0\nelement vertex 2\n"
                                      "property float x\nproperty float y\nproperty float z\n"
                                      "end_header\n0 0 0\n1 zero 0\n");
-  EXPECT_TRUE(
-      failsWith([&] { io::readPointCloud(path); }, path, "line 9 (vertex 1): 'zero' is not a number"));
+  EXPECT_TRUE(failsWith([&] { io::readPointCloud(path); }, path, "line 9 (vertex 1): 'zero' is not a number"));
 }
 
 // Token-based reading would silently shift every later value by one.
@@ -376,8 +365,8 @@ TEST_F(Ply, RejectsAsciiRecordsWithTooManyOrTooFewValues) {
       "ply\nformat ascii 1.0\nelement vertex 3\n"
       "property float x\nproperty float y\nproperty float z\nend_header\n";
   const std::string extra = writeFile("extra.ply", header + "0 0 0\n1 0 0 5\n0 1 0\n");
-  EXPECT_TRUE(failsWith([&] { io::readPointCloud(extra); }, extra,
-                        "line 9 (vertex 1): more values than the header declares"));
+  EXPECT_TRUE(
+      failsWith([&] { io::readPointCloud(extra); }, extra, "line 9 (vertex 1): more values than the header declares"));
   const std::string missing = writeFile("missing.ply", header + "0 0 0\n1 0\n0 1 0\n0 0 1\n");
   EXPECT_TRUE(failsWith([&] { io::readPointCloud(missing); }, missing,
                         "line 9 (vertex 1): fewer values than the header declares"));

@@ -5,14 +5,14 @@
 
 #include <Eigen/Geometry>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
-#include <optional>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/core/eigen.hpp>
+#include <optional>
 #include <string>
 
 #include "binpick/core/error.hpp"
@@ -34,8 +34,7 @@ io::RigCalibration sampleRig() {
   rig.camera.fy = 1601.987654321098;
   rig.camera.cx = 641.3000000000001;
   rig.camera.cy = 509.8123456789;
-  rig.camera.distortion = {-0.0812345678901234, 0.1211111111111, 4.00000001e-4, -3.3e-4,
-                           -0.0123456789};
+  rig.camera.distortion = {-0.0812345678901234, 0.1211111111111, 4.00000001e-4, -3.3e-4, -0.0123456789};
   rig.projector.width = 1280;
   rig.projector.height = 800;
   rig.projector.fx = 1450.5;
@@ -44,8 +43,7 @@ io::RigCalibration sampleRig() {
   rig.projector.cy = 799.125;  // projectors usually have their axis at the image's edge
   rig.projector.distortion = {0.021, -0.043, 0.0, 1e-17, 0.0};
   rig.T_projector_camera.linear() =
-      Eigen::AngleAxisd(0.2617993877991494, Eigen::Vector3d(0.1, 0.98, -0.05).normalized())
-          .toRotationMatrix();
+      Eigen::AngleAxisd(0.2617993877991494, Eigen::Vector3d(0.1, 0.98, -0.05).normalized()).toRotationMatrix();
   rig.T_projector_camera.translation() = Eigen::Vector3d(-0.2134567890123, 0.0123, 0.0456789);
   return rig;
 }
@@ -66,13 +64,11 @@ void writeWithOpenCv(const std::string& path, const std::map<std::string, KeyWri
   cv::Rodrigues(r, rvec);
   cv::Rodrigues(rvec, r);
   const cv::Mat t = (cv::Mat_<double>(3, 1) << rig.T_projector_camera.translation().x(),
-                     rig.T_projector_camera.translation().y(),
-                     rig.T_projector_camera.translation().z());
+                     rig.T_projector_camera.translation().y(), rig.T_projector_camera.translation().z());
   const std::map<std::string, KeyWriter> standard{
       {"camera_width", [&](cv::FileStorage& fs, const std::string& k) { fs << k << 1280; }},
       {"camera_height", [&](cv::FileStorage& fs, const std::string& k) { fs << k << 1024; }},
-      {"camera_matrix",
-       [&](cv::FileStorage& fs, const std::string& k) { fs << k << openCvCameraMatrix(rig.camera); }},
+      {"camera_matrix", [&](cv::FileStorage& fs, const std::string& k) { fs << k << openCvCameraMatrix(rig.camera); }},
       {"camera_distortion",
        [&](cv::FileStorage& fs, const std::string& k) {
          fs << k << cv::Mat(1, 5, CV_64F, const_cast<double*>(rig.camera.distortion.data()));
@@ -80,9 +76,7 @@ void writeWithOpenCv(const std::string& path, const std::map<std::string, KeyWri
       {"projector_width", [&](cv::FileStorage& fs, const std::string& k) { fs << k << 1280; }},
       {"projector_height", [&](cv::FileStorage& fs, const std::string& k) { fs << k << 800; }},
       {"projector_matrix",
-       [&](cv::FileStorage& fs, const std::string& k) {
-         fs << k << openCvCameraMatrix(rig.projector);
-       }},
+       [&](cv::FileStorage& fs, const std::string& k) { fs << k << openCvCameraMatrix(rig.projector); }},
       {"projector_distortion",
        [&](cv::FileStorage& fs, const std::string& k) {
          fs << k << (cv::Mat_<double>(4, 1) << 0.021, -0.043, 0.0, 1e-17);
@@ -92,9 +86,8 @@ void writeWithOpenCv(const std::string& path, const std::map<std::string, KeyWri
   };
   cv::FileStorage fs(path, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
   ASSERT_TRUE(fs.isOpened());
-  for (const char* key : {"camera_width", "camera_height", "camera_matrix", "camera_distortion",
-                          "projector_width", "projector_height", "projector_matrix",
-                          "projector_distortion", "R", "T"}) {
+  for (const char* key : {"camera_width", "camera_height", "camera_matrix", "camera_distortion", "projector_width",
+                          "projector_height", "projector_matrix", "projector_distortion", "R", "T"}) {
     const auto it = replace.find(key);
     (it != replace.end() ? it->second : standard.at(key))(fs, key);
   }
@@ -125,8 +118,7 @@ TEST_F(RigCalibrationTest, WriteThenReadGivesTheSameRig) {
   const io::RigCalibration back = io::readRigCalibration(path);
   expectSameLens(back.camera, rig.camera);
   expectSameLens(back.projector, rig.projector);
-  EXPECT_LT((back.T_projector_camera.matrix() - rig.T_projector_camera.matrix()).cwiseAbs().maxCoeff(),
-            1e-12);
+  EXPECT_LT((back.T_projector_camera.matrix() - rig.T_projector_camera.matrix()).cwiseAbs().maxCoeff(), 1e-12);
   // Written through a temporary file that is renamed: nothing else is left beside it.
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(path).parent_path())) {
     EXPECT_EQ(entry.path().filename(), "calib.yaml");
@@ -180,10 +172,7 @@ TEST_F(RigCalibrationTest, QualityIsWrittenBesideTheRigAndReadsBack) {
   // The rig reads as from any other file.
   const io::RigCalibration rig = io::readRigCalibration(path);
   expectSameLens(rig.camera, sampleRig().camera);
-  EXPECT_LT((rig.T_projector_camera.matrix() - sampleRig().T_projector_camera.matrix())
-                .cwiseAbs()
-                .maxCoeff(),
-            1e-12);
+  EXPECT_LT((rig.T_projector_camera.matrix() - sampleRig().T_projector_camera.matrix()).cwiseAbs().maxCoeff(), 1e-12);
   const std::optional<io::RigCalibrationQuality> quality = io::readRigCalibrationQuality(path);
   ASSERT_TRUE(quality.has_value());
   const io::RigCalibrationQuality expected = sampleQuality();
@@ -254,10 +243,7 @@ TEST_F(RigCalibrationTest, ReadsAFileWrittenByPlainOpenCv) {
   EXPECT_EQ(rig.projector.distortion[3], 1e-17);
   EXPECT_EQ(rig.projector.distortion[4], 0.0);  // four coefficients: k3 = 0
   // R went through Rodrigues and back, so only to rounding.
-  EXPECT_LT((rig.T_projector_camera.matrix() - expected.T_projector_camera.matrix())
-                .cwiseAbs()
-                .maxCoeff(),
-            1e-12);
+  EXPECT_LT((rig.T_projector_camera.matrix() - expected.T_projector_camera.matrix()).cwiseAbs().maxCoeff(), 1e-12);
 }
 
 TEST_F(RigCalibrationTest, ReadsSinglePrecisionMatrices) {
@@ -336,20 +322,25 @@ TEST_F(RigCalibrationTest, GarbageIsAnErrorNotACrash) {
 
 TEST_F(RigCalibrationTest, MalformedMatricesAreNamed) {
   const std::string path = pathOf("calib.yaml");
-  const KeyWriter list = [](cv::FileStorage& fs, const std::string& k) {
-    fs << k << "[" << 1 << 2 << 3 << "]";
-  };
+  const KeyWriter list = [](cv::FileStorage& fs, const std::string& k) { fs << k << "[" << 1 << 2 << 3 << "]"; };
   writeWithOpenCv(path, {{"camera_matrix", list}});
   EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'camera_matrix'"));
 
   const KeyWriter no_data = [](cv::FileStorage& fs, const std::string& k) {
-    fs << k << "{" << "rows" << 3 << "cols" << 1 << "dt" << "d" << "}";
+    fs << k << "{"
+       << "rows" << 3 << "cols" << 1 << "dt"
+       << "d"
+       << "}";
   };
   writeWithOpenCv(path, {{"T", no_data}});
   EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'T'"));
 
   const KeyWriter too_little_data = [](cv::FileStorage& fs, const std::string& k) {
-    fs << k << "{" << "rows" << 3 << "cols" << 1 << "dt" << "d" << "data" << "[" << 1.0 << "]"
+    fs << k << "{"
+       << "rows" << 3 << "cols" << 1 << "dt"
+       << "d"
+       << "data"
+       << "[" << 1.0 << "]"
        << "}";
   };
   writeWithOpenCv(path, {{"T", too_little_data}});
@@ -362,14 +353,12 @@ TEST_F(RigCalibrationTest, NonYamlTextNamesTheProblem) {
 }
 
 TEST_F(RigCalibrationTest, EachMissingKeyIsNamed) {
-  for (const char* key : {"camera_width", "camera_height", "camera_matrix", "camera_distortion",
-                          "projector_width", "projector_height", "projector_matrix",
-                          "projector_distortion", "R", "T"}) {
+  for (const char* key : {"camera_width", "camera_height", "camera_matrix", "camera_distortion", "projector_width",
+                          "projector_height", "projector_matrix", "projector_distortion", "R", "T"}) {
     SCOPED_TRACE(key);
     const std::string path = pathOf(std::string("no_") + key + ".yaml");
     writeWithOpenCv(path, {{key, dropKey()}});
-    EXPECT_TRUE(
-        failsWith([&] { io::readRigCalibration(path); }, path, std::string("missing key '") + key + "'"));
+    EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, std::string("missing key '") + key + "'"));
   }
 }
 
@@ -391,11 +380,9 @@ TEST_F(RigCalibrationTest, WrongMatrixSizesAreNamed) {
 TEST_F(RigCalibrationTest, UnsupportedDistortionModelsAreRejected) {
   const std::string path = pathOf("calib.yaml");
   writeWithOpenCv(path, {{"camera_distortion", writeMat(cv::Mat::zeros(1, 8, CV_64F))}});
-  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path,
-                        "'camera_distortion' must hold 4 or 5 values"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'camera_distortion' must hold 4 or 5 values"));
   writeWithOpenCv(path, {{"projector_distortion", writeMat(cv::Mat::zeros(2, 5, CV_64F))}});
-  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path,
-                        "'projector_distortion' must hold 4 or 5 values"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'projector_distortion' must hold 4 or 5 values"));
 }
 
 TEST_F(RigCalibrationTest, CameraMatrixWithSkewIsRejected) {
@@ -425,26 +412,18 @@ TEST_F(RigCalibrationTest, NonFiniteValuesAreRejected) {
   cv::Mat k = openCvCameraMatrix(sampleRig().projector);
   k.at<double>(0, 0) = std::numeric_limits<double>::infinity();
   writeWithOpenCv(path, {{"projector_matrix", writeMat(k)}});
-  EXPECT_TRUE(
-      failsWith([&] { io::readRigCalibration(path); }, path, "'projector_matrix' holds a non-finite value"));
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'projector_matrix' holds a non-finite value"));
 }
 
 TEST_F(RigCalibrationTest, BadImageSizesAreNamed) {
   const std::string path = pathOf("calib.yaml");
-  writeWithOpenCv(path, {{"camera_width", [](cv::FileStorage& fs, const std::string& k) {
-                            fs << k << -1280;
-                          }}});
+  writeWithOpenCv(path, {{"camera_width", [](cv::FileStorage& fs, const std::string& k) { fs << k << -1280; }}});
   EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "camera.width must be in"));
 
-  writeWithOpenCv(path, {{"projector_height", [](cv::FileStorage& fs, const std::string& k) {
-                            fs << k << 800.5;
-                          }}});
-  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path,
-                        "'projector_height' must be an integer"));
+  writeWithOpenCv(path, {{"projector_height", [](cv::FileStorage& fs, const std::string& k) { fs << k << 800.5; }}});
+  EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'projector_height' must be an integer"));
 
-  writeWithOpenCv(path, {{"camera_height", [](cv::FileStorage& fs, const std::string& k) {
-                            fs << k << "1024";
-                          }}});
+  writeWithOpenCv(path, {{"camera_height", [](cv::FileStorage& fs, const std::string& k) { fs << k << "1024"; }}});
   EXPECT_TRUE(failsWith([&] { io::readRigCalibration(path); }, path, "'camera_height' must be an integer"));
 }
 

@@ -16,8 +16,7 @@ class Stl : public IoTest {};
 
 // The unit cube as 12 outward-facing triangles.
 std::vector<std::array<Eigen::Vector3f, 3>> cubeTriangles() {
-  const Eigen::Vector3f c[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                                {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const Eigen::Vector3f c[8] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                             {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
   std::vector<std::array<Eigen::Vector3f, 3>> triangles;
@@ -28,13 +27,12 @@ std::vector<std::array<Eigen::Vector3f, 3>> cubeTriangles() {
 std::string asciiCube() {
   std::string text = "solid unit cube\n";
   for (const auto& triangle : cubeTriangles()) {
-    const Eigen::Vector3f normal =
-        (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
-    text += "  facet normal " + std::to_string(normal.x()) + " " + std::to_string(normal.y()) +
-            " " + std::to_string(normal.z()) + "\n    outer loop\n";
+    const Eigen::Vector3f normal = (triangle[1] - triangle[0]).cross(triangle[2] - triangle[0]).normalized();
+    text += "  facet normal " + std::to_string(normal.x()) + " " + std::to_string(normal.y()) + " " +
+            std::to_string(normal.z()) + "\n    outer loop\n";
     for (const auto& corner : triangle) {
-      text += "      vertex " + std::to_string(corner.x()) + " " + std::to_string(corner.y()) +
-              " " + std::to_string(corner.z()) + "\n";
+      text += "      vertex " + std::to_string(corner.x()) + " " + std::to_string(corner.y()) + " " +
+              std::to_string(corner.z()) + "\n";
     }
     text += "    endloop\n  endfacet\n";
   }
@@ -82,8 +80,7 @@ TEST_F(Stl, BinaryCubeMergesSharedCorners) {
 }
 
 TEST_F(Stl, BinaryWhoseHeaderStartsWithSolidIsReadAsBinary) {
-  const std::string path =
-      writeFile("solid_header.stl", binaryCube("solid exported by a CAD tool"));
+  const std::string path = writeFile("solid_header.stl", binaryCube("solid exported by a CAD tool"));
   expectSharedVertexCube(io::readMesh(path));
 }
 
@@ -92,8 +89,7 @@ TEST_F(Stl, UppercaseKeywordsAndModelGeometryCloud) {
   for (const char* keyword : {"solid", "facet", "vertex"}) {
     std::string upper = keyword;
     for (char& c : upper) c = static_cast<char>(std::toupper(c));
-    for (std::size_t at = text.find(keyword); at != std::string::npos;
-         at = text.find(keyword, at)) {
+    for (std::size_t at = text.find(keyword); at != std::string::npos; at = text.find(keyword, at)) {
       text.replace(at, upper.size(), upper);
     }
   }
@@ -113,8 +109,7 @@ TEST_F(Stl, RoundTripKeepsTriangles) {
   ASSERT_EQ(read.triangles.size(), written.triangles.size());
   for (std::size_t t = 0; t < read.triangles.size(); ++t) {
     for (int corner = 0; corner < 3; ++corner) {
-      EXPECT_TRUE(sameBits(read.vertices[read.triangles[t][corner]],
-                           written.vertices[written.triangles[t][corner]]));
+      EXPECT_TRUE(sameBits(read.vertices[read.triangles[t][corner]], written.vertices[written.triangles[t][corner]]));
     }
   }
 }

@@ -42,8 +42,7 @@ TEST(Validate, NormalsMustMatchAndBeFiniteForValidPoints) {
 
   cloud = organizedCloudWithHoles();
   cloud.normals[3] = Eigen::Vector3f(kNan, 0, 1);
-  EXPECT_TRUE(
-      failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "normal of point 3 is not finite"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "normal of point 3 is not finite"));
 }
 
 TEST(Validate, IntensitiesOfInvalidPixelsMayBeNan) {
@@ -55,23 +54,20 @@ TEST(Validate, IntensitiesOfInvalidPixelsMayBeNan) {
 TEST(Validate, IntensitiesMustMatchAndBeFiniteForValidPoints) {
   io::PointCloud cloud = withIntensities(organizedCloudWithHoles());
   cloud.intensities.pop_back();
-  EXPECT_TRUE(
-      failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "11 intensities for 12 points"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "11 intensities for 12 points"));
 
   cloud = withIntensities(awkwardCloud());
   cloud.intensities.push_back(0.5f);
-  EXPECT_TRUE(
-      failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "4 intensities for 3 points"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "4 intensities for 3 points"));
 
   cloud = withIntensities(organizedCloudWithHoles());
   cloud.intensities[3] = kNan;
-  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan",
-                        "intensity of point 3 is not finite (nan)"));
+  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "intensity of point 3 is not finite (nan)"));
 
   cloud = withIntensities(awkwardCloud());
   cloud.intensities[1] = -kInf;
-  EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan",
-                        "intensity of point 1 is not finite (-inf)"));
+  EXPECT_TRUE(
+      failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "intensity of point 1 is not finite (-inf)"));
 }
 
 TEST(Validate, MeshIndicesAndVerticesAreChecked) {

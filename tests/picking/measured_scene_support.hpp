@@ -4,8 +4,8 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "binpick/picking/tool_collision.hpp"
 #include "binpick/io/point_cloud.hpp"
+#include "binpick/picking/tool_collision.hpp"
 
 namespace binpick::picking::test {
 

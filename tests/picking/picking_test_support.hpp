@@ -33,9 +33,7 @@ inline Eigen::Isometry3d pose(const Eigen::Vector3d& translation,
 }
 
 // Tool z (the approach) along model -z, tool x along model x.
-inline Grasp topGrasp(const std::string& name = "top") {
-  return {name, pose({0, 0, 0.02}, rotX(180))};
-}
+inline Grasp topGrasp(const std::string& name = "top") { return {name, pose({0, 0, 0.02}, rotX(180))}; }
 
 inline PickParams topGraspParams() {
   PickParams params;
@@ -44,8 +42,7 @@ inline PickParams topGraspParams() {
 }
 
 inline DetectedPart part(const Eigen::Vector3d& translation,
-                         const Eigen::Matrix3d& rotation = Eigen::Matrix3d::Identity(),
-                         double score = 1.0) {
+                         const Eigen::Matrix3d& rotation = Eigen::Matrix3d::Identity(), double score = 1.0) {
   return {pose(translation, rotation), score};
 }
 
@@ -54,24 +51,23 @@ inline double angleBetweenDeg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b
   return degrees(Eigen::AngleAxisd(a.transpose() * b).angle());
 }
 
-inline ::testing::AssertionResult samePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
-                                           double tolerance_mm, double tolerance_deg) {
+inline ::testing::AssertionResult samePose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double tolerance_mm,
+                                           double tolerance_deg) {
   const double distance_mm = 1000.0 * (a.translation() - b.translation()).norm();
   const double angle_deg = angleBetweenDeg(a.linear(), b.linear());
   if (distance_mm <= tolerance_mm && angle_deg <= tolerance_deg) {
     return ::testing::AssertionSuccess();
   }
-  return ::testing::AssertionFailure()
-         << "poses differ by " << distance_mm << " mm and " << angle_deg << " deg";
+  return ::testing::AssertionFailure() << "poses differ by " << distance_mm << " mm and " << angle_deg << " deg";
 }
 
 // The single pick of a one-part plan, or a failure saying why there is none.
 inline ::testing::AssertionResult picksOne(const PickPlan& plan) {
   if (plan.picks.size() == 1) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure()
-         << plan.picks.size() << " picks; rejected tilt " << plan.rejected.tilt << ", bin "
-         << plan.rejected.bin << ", cloud " << plan.rejected.cloud
-         << ", avoided " << plan.rejected.avoided << ", invalid " << plan.rejected.invalid;
+  return ::testing::AssertionFailure() << plan.picks.size() << " picks; rejected tilt " << plan.rejected.tilt
+                                       << ", bin " << plan.rejected.bin << ", cloud " << plan.rejected.cloud
+                                       << ", avoided " << plan.rejected.avoided << ", invalid "
+                                       << plan.rejected.invalid;
 }
 
 }  // namespace binpick::picking::test

@@ -89,7 +89,7 @@ TEST(picking_bin, ApproachFromBelowTheFloorIsRejected) {
   PickParams params = wideToolParams();
   params.max_tilt_deg = 180;
   const DetectedPart upside_down = part({0, 0, 0.05}, rotX(180));  // grasp point 30 mm up
-  EXPECT_FALSE(reachable(params, upside_down));  // pre-grasp point 70 mm below the floor
+  EXPECT_FALSE(reachable(params, upside_down));                    // pre-grasp point 70 mm below the floor
   params.approach_distance = 0.02;
   EXPECT_TRUE(reachable(params, upside_down));  // pre-grasp point 10 mm above the floor
 }

@@ -2,8 +2,8 @@
 // per symmetry class, ranked.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "binpick/picking/grasp_generation.hpp"
@@ -24,7 +24,8 @@ io::TriangleMesh makeBox(double x, double y, double z) {
 
 // A closed cylinder about z, centred on the origin.
 io::TriangleMesh makeCylinder(double radius, double length, int segments) {
-  return simulation::makeLathe({{0, -length / 2}, {radius, -length / 2}, {radius, length / 2}, {0, length / 2}}, segments);
+  return simulation::makeLathe({{0, -length / 2}, {radius, -length / 2}, {radius, length / 2}, {0, length / 2}},
+                               segments);
 }
 
 Eigen::Vector3d approachOf(const Grasp& grasp) { return grasp.T_model_grasp.linear().col(2); }
@@ -70,7 +71,8 @@ TEST(SuctionGrasps, EveryFaceOfABoxAwayFromItsEdges) {
     EXPECT_NEAR(std::abs(point[axis]), size[axis] / 2, 0.1 * kMm) << grasp.name << ": not on its face";
     for (int other = 0; other < 3; ++other) {
       if (other == axis) continue;
-      EXPECT_GE(size[other] / 2 - std::abs(point[other]), cup_radius - 0.1 * kMm) << grasp.name << ": the cup crosses an edge";
+      EXPECT_GE(size[other] / 2 - std::abs(point[other]), cup_radius - 0.1 * kMm)
+          << grasp.name << ": the cup crosses an edge";
     }
     EXPECT_GE(grasp.quality, 0.0);
     EXPECT_LE(grasp.quality, 1.0);
@@ -118,7 +120,8 @@ TEST(SuctionGrasps, ACylinderSideOnlyWhenItsCurvatureLetsTheCupSeal) {
 TEST(SuctionGrasps, ASymmetricPartKeepsOneGraspPerClass) {
   const io::TriangleMesh box = makeBox(0.040, 0.040, 0.020);
   PartSymmetry four_fold;
-  for (int k = 1; k < 4; ++k) four_fold.discrete.push_back(Eigen::AngleAxisd(k * M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix());
+  for (int k = 1; k < 4; ++k)
+    four_fold.discrete.push_back(Eigen::AngleAxisd(k * M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix());
   GraspGenerationParams params;
   params.max_grasps = 1000;
   const auto plain = generateGrasps(box, GripperParams{}, {}, params);
@@ -129,8 +132,10 @@ TEST(SuctionGrasps, ASymmetricPartKeepsOneGraspPerClass) {
     for (std::size_t j = i + 1; j < symmetric.size(); ++j) {
       for (const Eigen::Matrix3d& S : four_fold.discrete) {
         const Eigen::Vector3d moved_point = S * symmetric[i].T_model_grasp.translation();
-        const bool same_place = (moved_point - symmetric[j].T_model_grasp.translation()).norm() <= params.min_separation;
-        const bool same_approach = angleDeg(S * approachOf(symmetric[i]), approachOf(symmetric[j])) <= params.symmetry_angle_deg;
+        const bool same_place =
+            (moved_point - symmetric[j].T_model_grasp.translation()).norm() <= params.min_separation;
+        const bool same_approach =
+            angleDeg(S * approachOf(symmetric[i]), approachOf(symmetric[j])) <= params.symmetry_angle_deg;
         EXPECT_FALSE(same_place && same_approach) << symmetric[i].name << " and " << symmetric[j].name;
       }
     }
@@ -210,7 +215,8 @@ TEST(ParallelGrasps, OppositeFacesOfABoxNarrowerThanTheStroke) {
     closing_axes.insert(axis);
     // Both contacts on the opposite faces: the grasp point midway.
     const Eigen::Vector3d centre = grasp.T_model_grasp.translation();
-    const Eigen::Vector3d contact_a = centre + size[axis] / 2 * R.col(0), contact_b = centre - size[axis] / 2 * R.col(0);
+    const Eigen::Vector3d contact_a = centre + size[axis] / 2 * R.col(0),
+                          contact_b = centre - size[axis] / 2 * R.col(0);
     EXPECT_NEAR(std::abs(contact_a[axis]), size[axis] / 2, 0.1 * kMm) << grasp.name;
     EXPECT_NEAR(contact_a[axis], -contact_b[axis], 0.1 * kMm) << grasp.name;
     EXPECT_NE(grasp.name.find("parallel"), std::string::npos);

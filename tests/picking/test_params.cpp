@@ -16,8 +16,7 @@ using binpick::test::throwsNaming;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Validates topGraspParams() after `spoil`; the message must name `field`.
-::testing::AssertionResult rejects(const std::function<void(PickParams&)>& spoil,
-                                   const std::string& field) {
+::testing::AssertionResult rejects(const std::function<void(PickParams&)>& spoil, const std::string& field) {
   PickParams params = topGraspParams();
   spoil(params);
   return throwsNaming([&] { params.validate(); }, "picking." + field + " must be");
@@ -33,8 +32,7 @@ TEST(picking_params, DefaultsWithAGraspAreValid) {
 
 TEST(picking_params, GraspsMustBeGivenAndRigid) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.grasps.clear(); }, "grasps"));
-  EXPECT_TRUE(rejects([](PickParams& p) { p.grasps[0].T_model_grasp.translation().x() = kNaN; },
-                      "grasps"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.grasps[0].T_model_grasp.translation().x() = kNaN; }, "grasps"));
   PickParams scaled = topGraspParams();
   scaled.grasps[0].T_model_grasp.linear() *= 1.1;
   EXPECT_TRUE(throwsNaming([&] { scaled.validate(); }, "(got top)"));  // names the grasp
@@ -42,16 +40,13 @@ TEST(picking_params, GraspsMustBeGivenAndRigid) {
 
 TEST(picking_params, SymmetriesMustBeRotationsHoldingTheIdentity) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.discrete.clear(); }, "symmetry.discrete"));
-  EXPECT_TRUE(rejects(
-      [](PickParams& p) { p.symmetry.discrete.push_back(Eigen::Vector3d(1, 1, -1).asDiagonal()); },
-      "symmetry.discrete"));  // a mirror
-  EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.discrete = {rotZ(90), rotZ(270)}; },
-                      "symmetry.discrete"));
-  EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.continuous_axis = Eigen::Vector3d::Zero(); },
+  EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.discrete.push_back(Eigen::Vector3d(1, 1, -1).asDiagonal()); },
+                      "symmetry.discrete"));  // a mirror
+  EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.discrete = {rotZ(90), rotZ(270)}; }, "symmetry.discrete"));
+  EXPECT_TRUE(
+      rejects([](PickParams& p) { p.symmetry.continuous_axis = Eigen::Vector3d::Zero(); }, "symmetry.continuous_axis"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.continuous_axis = Eigen::Vector3d(kNaN, 0, 1); },
                       "symmetry.continuous_axis"));
-  EXPECT_TRUE(rejects(
-      [](PickParams& p) { p.symmetry.continuous_axis = Eigen::Vector3d(kNaN, 0, 1); },
-      "symmetry.continuous_axis"));
 }
 
 TEST(picking_params, BinMustBeARigidPoseAndPositiveSizes) {
@@ -68,10 +63,8 @@ TEST(picking_params, DistancesAnglesAndStepsMustBeInRange) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.wall_clearance = -0.001; }, "wall_clearance"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.max_tilt_deg = 181; }, "max_tilt_deg"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.max_tilt_deg = -1; }, "max_tilt_deg"));
-  EXPECT_TRUE(rejects([](PickParams& p) { p.continuous_symmetry_steps = 0; },
-                      "continuous_symmetry_steps"));
-  EXPECT_TRUE(rejects([](PickParams& p) { p.continuous_symmetry_steps = 4000; },
-                      "continuous_symmetry_steps"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.continuous_symmetry_steps = 0; }, "continuous_symmetry_steps"));
+  EXPECT_TRUE(rejects([](PickParams& p) { p.continuous_symmetry_steps = 4000; }, "continuous_symmetry_steps"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.avoid_radius = -0.02; }, "avoid_radius"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.collision_margin = -0.001; }, "collision_margin"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.finger_clearance = kNaN; }, "finger_clearance"));

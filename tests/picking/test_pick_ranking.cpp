@@ -30,8 +30,7 @@ DetectedPart partWithTop(const Eigen::Vector3d& top, CloudBuilder& cloud) {
 TEST(picking_ranking, APartCoveredByAnotherPartsPointsLosesToAFreeOne) {
   CloudBuilder cloud;
   cloud.slab(-0.19, 0.19, -0.14, 0.14, 0.0);  // the floor
-  const std::vector<DetectedPart> parts = {partWithTop({-0.08, 0, 0.07}, cloud),
-                                           partWithTop({0.08, 0, 0.07}, cloud)};
+  const std::vector<DetectedPart> parts = {partWithTop({-0.08, 0, 0.07}, cloud), partWithTop({0.08, 0, 0.07}, cloud)};
   PickParams params = topGraspParams();
   params.gripper.tool_radius = 0.025;
   EXPECT_EQ(pickedObjects(planPicks(parts, {}, params, nullptr)), (std::vector<int>{0, 1}));
@@ -58,8 +57,8 @@ TEST(picking_ranking, RejectionsAreCountedByReason) {
   PickParams params = topGraspParams();
   params.grasps.push_back({"steep", pose({0, 0, 0.02}, rotY(70) * rotX(180))});  // always > 60 deg
   CloudBuilder cloud;
-  const DetectedPart tilted = part({0, -0.08, 0.05}, rotY(90));      // top 90, steep 160 degrees
-  const DetectedPart at_wall = part({0.185, 0, 0.04});                 // top hits the wall
+  const DetectedPart tilted = part({0, -0.08, 0.05}, rotY(90));         // top 90, steep 160 degrees
+  const DetectedPart at_wall = part({0.185, 0, 0.04});                  // top hits the wall
   const DetectedPart buried = partWithTop({-0.08, 0.05, 0.07}, cloud);  // top hits the cloud
   const DetectedPart free = partWithTop({0.05, 0.05, 0.07}, cloud);
   cloud.point(-0.08 + 0.003, 0.05, 0.075);  // 5 mm above the buried part's grasp point, in the cup
@@ -183,8 +182,8 @@ TEST(picking_ranking, TwentyPartsOnAFullSizeCloud) {
   const double plan_ms = stopwatch.lapMs();
   RecordProperty("scene_build_ms", std::to_string(build_ms));
   RecordProperty("plan_ms", std::to_string(plan_ms));
-  std::printf("measured scene: %zu points, built in %.1f ms; 20 parts x 72 grasps planned in %.2f ms\n",
-              scene.size(), build_ms, plan_ms);
+  std::printf("measured scene: %zu points, built in %.1f ms; 20 parts x 72 grasps planned in %.2f ms\n", scene.size(),
+              build_ms, plan_ms);
 
   ASSERT_FALSE(plan.picks.empty());
   EXPECT_EQ(plan.picks.size() + static_cast<std::size_t>(plan.rejected.total()), parts.size());

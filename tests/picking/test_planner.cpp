@@ -128,8 +128,11 @@ TEST(picking_planner, NoDetectionsGiveAnEmptyPlan) {
 TEST(picking_planner, BadParamsThrowNamingTheField) {
   PickParams params = topGraspParams();
   params.gripper.tool_radius = -0.01;
-  EXPECT_TRUE(binpick::test::throwsNaming([&] { planPicks({part({0, 0, 0.05})}, {}, params); },
-                                          "picking.gripper.tool_radius"));
+  EXPECT_TRUE(binpick::test::throwsNaming(
+      [&] {
+        planPicks({part({0, 0, 0.05})}, {}, params);
+      },
+      "picking.gripper.tool_radius"));
 }
 
 }  // namespace

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "binpick/picking/seal_check.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/picking/seal_check.hpp"
 #include "picking_test_support.hpp"
 
 namespace binpick::picking {
@@ -95,8 +95,7 @@ TEST(picking_seal, AnUnmeasuredRimNextToTheFarSideOfAnEdgeFails) {
   // A band along the plateau's +x edge measured nothing (a shadow): a few of the 49 samples fall
   // in it, fewer than the share allowed unseen here, but the floor measured beside them shows
   // the edge.
-  const io::PointCloud shadowed =
-      plateauCloud(camera, [](double x, double) { return x > 0.0093 && x < 0.0105; });
+  const io::PointCloud shadowed = plateauCloud(camera, [](double x, double) { return x > 0.0093 && x < 0.0105; });
   const MeasuredSurface surface(shadowed, camera, Eigen::Isometry3d::Identity());
   SealCheckParams params;
   params.min_seen_share = 0.8;
@@ -111,7 +110,7 @@ TEST(picking_seal, ACupJustOverTheEdgeSlidesBackOntoTheFace) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud cloud = plateauCloud(camera);
   const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
-  const SealCheckParams params;  // up to 2 mm in 1 mm steps
+  const SealCheckParams params;                                        // up to 2 mm in 1 mm steps
   const Eigen::Isometry3d over_edge = pose({0.0075, 0.0, kPlateauZ});  // 1 mm too far out
   ASSERT_FALSE(checkAt(surface, 0.0075, 0.0).seals);
   const auto slid = surface.findSeal(over_edge, 0.003, 0.0008, params);
@@ -119,7 +118,7 @@ TEST(picking_seal, ACupJustOverTheEdgeSlidesBackOntoTheFace) {
   const Eigen::Vector3d moved = slid->translation() - over_edge.translation();
   EXPECT_LE(1e3 * moved.norm(), 2.0 + 1e-9);
   EXPECT_LT(slid->translation().x(), over_edge.translation().x());  // back towards the face
-  EXPECT_NEAR(moved.z(), 0.0, 1e-12);                                // along the face only
+  EXPECT_NEAR(moved.z(), 0.0, 1e-12);                               // along the face only
   EXPECT_TRUE(surface.check(*slid, 0.003, 0.0008, params).seals);
   // 3 mm out is further than it may slide; a cup that seals where it is stays there.
   EXPECT_FALSE(surface.findSeal(pose({0.0095, 0.0, kPlateauZ}), 0.003, 0.0008, params).has_value());

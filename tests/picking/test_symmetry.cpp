@@ -31,8 +31,7 @@ TEST(picking_symmetry, FourFoldPartTurnedAQuarterGetsTheSamePick) {
     const PickPlan turned = planPicks({{T_base_turned, 1.0}}, {}, params);
     ASSERT_TRUE(picksOne(plan)) << "trial " << trial;
     ASSERT_TRUE(picksOne(turned)) << "trial " << trial;
-    EXPECT_TRUE(samePose(plan.picks[0].T_base_grasp, turned.picks[0].T_base_grasp, 1e-3, 1e-3))
-        << "trial " << trial;
+    EXPECT_TRUE(samePose(plan.picks[0].T_base_grasp, turned.picks[0].T_base_grasp, 1e-3, 1e-3)) << "trial " << trial;
   }
 }
 
@@ -83,8 +82,7 @@ TEST(picking_symmetry, ContinuousAxisGivesACanonicalWristAngle) {
     const Eigen::Isometry3d& pick = plan.picks[0].T_base_grasp;
     // The nearest of the turns lies within half a step of the canonical angle.
     EXPECT_LE(wristAngleDeg(pick), step_deg / 2 + 1e-6) << "trial " << trial;
-    EXPECT_TRUE(samePose(pick, reference.picks[0].T_base_grasp, 1e-3, step_deg))
-        << "trial " << trial;
+    EXPECT_TRUE(samePose(pick, reference.picks[0].T_base_grasp, 1e-3, step_deg)) << "trial " << trial;
     const Eigen::Vector3d top = spun.T_base_model * Eigen::Vector3d(0, 0, 0.02);
     EXPECT_LE(1000.0 * (pick.translation() - top).norm(), 1e-3) << "trial " << trial;
   }

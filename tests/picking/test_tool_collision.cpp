@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
-#include "binpick/picking/tool_collision.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/picking/tool_collision.hpp"
 #include "measured_scene_support.hpp"
 #include "picking_test_support.hpp"
 
@@ -114,9 +114,9 @@ class picking_parallel_fingers : public ::testing::Test {
     gripper.type = GripperType::Parallel;
     gripper.finger_depth = 0.03;
     sweep.opening = 0.04;
-    block.slab(-0.1, 0.1, -0.1, 0.1, kPlaneZ - 0.03);              // floor
-    block.slab(-0.015, 0.015, -0.015, 0.015, kPlaneZ + 0.01);      // top
-    for (const double x : {-0.015, 0.015}) {                       // sides
+    block.slab(-0.1, 0.1, -0.1, 0.1, kPlaneZ - 0.03);          // floor
+    block.slab(-0.015, 0.015, -0.015, 0.015, kPlaneZ + 0.01);  // top
+    for (const double x : {-0.015, 0.015}) {                   // sides
       for (double y = -0.015; y <= 0.015; y += kSampleStep) block.column(x, y, kPlaneZ - 0.03, kPlaneZ + 0.01);
     }
   }

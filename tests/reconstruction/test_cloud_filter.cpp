@@ -23,9 +23,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 struct Grid {
   io::PointCloud cloud;
   cv::Mat status;
-  Eigen::Vector3f& at(int x, int y) {
-    return cloud.points[static_cast<std::size_t>(y) * cloud.width + x];
-  }
+  Eigen::Vector3f& at(int x, int y) { return cloud.points[static_cast<std::size_t>(y) * cloud.width + x]; }
   uint8_t statusAt(int x, int y) const { return status.at<uint8_t>(y, x); }
 };
 
@@ -64,9 +62,7 @@ void expectRemovedExactly(const Grid& before, const Grid& after, PixelStatus rea
       EXPECT_TRUE(after.cloud.points[i].array().isNaN().all()) << i;
       EXPECT_EQ(status, static_cast<uint8_t>(reason)) << i;
     } else {
-      EXPECT_TRUE(after.cloud.points[i] == p ||
-                  (!p.allFinite() && !after.cloud.points[i].allFinite()))
-          << i;
+      EXPECT_TRUE(after.cloud.points[i] == p || (!p.allFinite() && !after.cloud.points[i].allFinite())) << i;
       EXPECT_EQ(status, before.status.ptr<uint8_t>(0)[i]) << i;
     }
   }
@@ -88,8 +84,7 @@ TEST(CloudFilter, CropBoxRemovesPointsOutsideIt) {
   const Grid before = tiltedPlane();
   Grid after = before;
   CloudFilterParams params = noSpeckle();
-  params.crop =
-      Eigen::AlignedBox3d(Eigen::Vector3d(-0.1, -0.2, 0.0), Eigen::Vector3d(0.2, 0.1, 2.0));
+  params.crop = Eigen::AlignedBox3d(Eigen::Vector3d(-0.1, -0.2, 0.0), Eigen::Vector3d(0.2, 0.1, 2.0));
   filterCloud(after.cloud, after.status, params);
   const Eigen::AlignedBox3d crop = params.crop;
   expectRemovedExactly(before, after, PixelStatus::OutsideCrop,
@@ -102,8 +97,7 @@ TEST(CloudFilter, DefaultsKeepEveryPointOfASmoothSurface) {
   const Grid before = tiltedPlane();
   Grid after = before;
   filterCloud(after.cloud, after.status, CloudFilterParams{});
-  expectRemovedExactly(before, after, PixelStatus::Valid,
-                       [](const Eigen::Vector3f&) { return false; });
+  expectRemovedExactly(before, after, PixelStatus::Valid, [](const Eigen::Vector3f&) { return false; });
 }
 
 TEST(CloudFilter, PixelsWithoutPointsKeepTheirStatus) {
@@ -116,8 +110,7 @@ TEST(CloudFilter, PixelsWithoutPointsKeepTheirStatus) {
   params.max_depth = 0.75;
   filterCloud(g.cloud, g.status, params);
   EXPECT_GT(count(g, PixelStatus::OutOfDepthRange), 1000u);
-  for (int x = 0; x < 100; ++x)
-    EXPECT_EQ(g.statusAt(x, 10), static_cast<uint8_t>(PixelStatus::Unlit));
+  for (int x = 0; x < 100; ++x) EXPECT_EQ(g.statusAt(x, 10), static_cast<uint8_t>(PixelStatus::Unlit));
 }
 
 // A surface with stray patches: one floating 3 cm in front of it, one cut off by a ring of
@@ -148,8 +141,7 @@ TEST(CloudFilter, SpeckleRemovalRemovesSmallIsolatedPatchesAndKeepsLargeSurfaces
   params.speckle_max_step = 0.002;
   filterCloud(g.cloud, g.status, params);
   auto speckle = [&](int x, int y) {
-    return g.statusAt(x, y) == static_cast<uint8_t>(PixelStatus::Speckle) &&
-           g.at(x, y).array().isNaN().all();
+    return g.statusAt(x, y) == static_cast<uint8_t>(PixelStatus::Speckle) && g.at(x, y).array().isNaN().all();
   };
   EXPECT_TRUE(speckle(22, 22));
   EXPECT_TRUE(speckle(63, 53));

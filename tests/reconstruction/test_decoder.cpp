@@ -29,11 +29,11 @@ double percentile(std::vector<double> values, double q) {
 }
 
 struct DecodeScore {
-  double valid_fraction = 0.0;   // of the pixels an ideal sensor measures
-  double median_error = 0.0;     // projector pixels, column
+  double valid_fraction = 0.0;  // of the pixels an ideal sensor measures
+  double median_error = 0.0;    // projector pixels, column
   double p99_error = 0.0;
   double median_row_error = 0.0;
-  std::size_t wrong = 0;         // valid pixels more than 2 projector pixels off
+  std::size_t wrong = 0;  // valid pixels more than 2 projector pixels off
   std::size_t valid = 0;
 };
 

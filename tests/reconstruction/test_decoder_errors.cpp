@@ -8,8 +8,8 @@
 
 #include "binpick/core/error.hpp"
 #include "binpick/reconstruction/decoder.hpp"
-#include "virtual_capture.hpp"
 #include "thrown_message.hpp"
+#include "virtual_capture.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -53,8 +53,7 @@ TEST(DecoderErrors, RefusesImagesOfMixedSizesOrTypes) {
   EXPECT_NE(decodeError(resized).find("image 5 (gray_col_01_inv) is 100x80"), std::string::npos);
   io::Capture retyped = smallCapture();
   retyped.images[7].convertTo(retyped.images[7], CV_16U);
-  EXPECT_NE(decodeError(retyped).find("image 7 (gray_col_02_inv) is not a single-channel 8-bit"),
-            std::string::npos);
+  EXPECT_NE(decodeError(retyped).find("image 7 (gray_col_02_inv) is not a single-channel 8-bit"), std::string::npos);
 }
 
 TEST(DecoderErrors, RefusesACaptureWithoutColumnCodes) {
@@ -97,8 +96,7 @@ TEST(DecoderErrors, NoticesFramesOutOfOrder) {
 TEST(DecoderErrors, RefusesParamsNamingTheField) {
   DecodeParams params;
   params.bit_margin = 1.5;
-  EXPECT_NE(decodeError(smallCapture(), params).find("decode params.bit_margin must be in [0, 1)"),
-            std::string::npos);
+  EXPECT_NE(decodeError(smallCapture(), params).find("decode params.bit_margin must be in [0, 1)"), std::string::npos);
   DecodeParams unwrappable;
   unwrappable.max_code_run_with_phase = 16;
   EXPECT_NE(decodeError(smallCapture(), unwrappable).find("too short to unwrap"), std::string::npos);

@@ -128,8 +128,7 @@ TEST(PatternSet, GrayBitsDecodeToTheirColumnAndRow) {
     spec.projector_width = width;
     spec.projector_height = width == 912 ? 1140 : 800;
     for (int c = 0; c < spec.projector_width; ++c) {
-      ASSERT_EQ(decodeFromPatterns(PatternAxis::Columns, spec, c), static_cast<unsigned>(c))
-          << "width " << width;
+      ASSERT_EQ(decodeFromPatterns(PatternAxis::Columns, spec, c), static_cast<unsigned>(c)) << "width " << width;
     }
     for (int r = 0; r < spec.projector_height; ++r) {
       ASSERT_EQ(decodeFromPatterns(PatternAxis::Rows, spec, r), static_cast<unsigned>(r))

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "binpick/core/error.hpp"
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/core/error.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "virtual_capture.hpp"
 
@@ -73,8 +73,8 @@ TEST(Reconstruction, ReportsEveryPixelOnceWithItsIntensity) {
   std::size_t total = 0;
   for (std::size_t count : r.counts) total += count;
   EXPECT_EQ(total, r.cloud.size());
-  const auto finite = static_cast<std::size_t>(
-      std::count_if(r.cloud.points.begin(), r.cloud.points.end(), [](const Eigen::Vector3f& p) { return p.allFinite(); }));
+  const auto finite = static_cast<std::size_t>(std::count_if(r.cloud.points.begin(), r.cloud.points.end(),
+                                                             [](const Eigen::Vector3f& p) { return p.allFinite(); }));
   EXPECT_EQ(r.validPoints(), finite);
   ASSERT_TRUE(r.cloud.hasIntensities());
   EXPECT_FLOAT_EQ(r.cloud.intensities[1000], v.capture.images[0].ptr<uint8_t>(0)[1000] / 255.0f);
@@ -134,11 +134,11 @@ TEST(Reconstruction, DetectionOnTheReconstructedCloudMatchesTheIdealSensor) {
   params.scene.crop = evaluation::binInterior(v.scene, v.params);
   const estimation::Detector detector(model, params);
   const evaluation::Thresholds thresholds{model.diameter / 10.0, 10.0};
-  const evaluation::Score ideal = evaluation::scoreDetections(detector.detect(v.scene.cloud).detections, v.scene.objects,
-                                                  part.symmetry, thresholds);
+  const evaluation::Score ideal = evaluation::scoreDetections(detector.detect(v.scene.cloud).detections,
+                                                              v.scene.objects, part.symmetry, thresholds);
   const io::PointCloud reconstructed = Reconstructor(v.scene.rig).reconstruct(v.capture).cloud;
-  const evaluation::Score measured = evaluation::scoreDetections(detector.detect(reconstructed).detections, v.scene.objects,
-                                                     part.symmetry, thresholds);
+  const evaluation::Score measured = evaluation::scoreDetections(detector.detect(reconstructed).detections,
+                                                                 v.scene.objects, part.symmetry, thresholds);
   SCOPED_TRACE("ideal sensor: found " + std::to_string(ideal.found) + " of " + std::to_string(ideal.findable) +
                ", reconstructed: found " + std::to_string(measured.found));
   ASSERT_GE(ideal.found, 3);

@@ -38,8 +38,7 @@ const simulation::PileScene& pile(bool distortion) {
   params.seed = 11;
   params.rig.camera = params.rig.camera.scaled(0.5);
   if (!distortion) params.rig = withoutDistortion(params.rig);
-  return cache.emplace(distortion, simulation::generatePile(simulation::makePart("clamp").mesh, params))
-      .first->second;
+  return cache.emplace(distortion, simulation::generatePile(simulation::makePart("clamp").mesh, params)).first->second;
 }
 
 const Eigen::Vector3f& exactPoint(const simulation::PileScene& scene, std::size_t pixel) {
@@ -47,8 +46,7 @@ const Eigen::Vector3f& exactPoint(const simulation::PileScene& scene, std::size_
 }
 
 // Where a camera-frame point lands in the projector image; false behind the projector.
-bool projectorPixel(const io::RigCalibration& rig, const Eigen::Vector3d& point,
-                    Eigen::Vector2d& pixel) {
+bool projectorPixel(const io::RigCalibration& rig, const Eigen::Vector3d& point, Eigen::Vector2d& pixel) {
   const Eigen::Vector3d in_projector = rig.T_projector_camera * point;
   if (!(in_projector.z() > 0.0)) return false;
   pixel = rig.projector.project(in_projector);
@@ -56,8 +54,7 @@ bool projectorPixel(const io::RigCalibration& rig, const Eigen::Vector3d& point,
 }
 
 bool insideImage(const io::LensIntrinsics& lens, const Eigen::Vector2d& pixel) {
-  return pixel.x() >= -0.5 && pixel.x() < lens.width - 0.5 && pixel.y() >= -0.5 &&
-         pixel.y() < lens.height - 0.5;
+  return pixel.x() >= -0.5 && pixel.x() < lens.width - 0.5 && pixel.y() >= -0.5 && pixel.y() < lens.height - 0.5;
 }
 
 // What an ideal decoder reports: the exact projector pixel of every surface point that projects
@@ -70,13 +67,11 @@ DecodedCapture perfectDecoding(const simulation::PileScene& scene, bool rows, co
   decoded.height = camera.height;
   decoded.column = cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(NAN));
   if (rows) decoded.row = cv::Mat(camera.height, camera.width, CV_32FC1, cv::Scalar(NAN));
-  decoded.status = cv::Mat(camera.height, camera.width, CV_8UC1,
-                           cv::Scalar(static_cast<int>(PixelStatus::Unlit)));
+  decoded.status = cv::Mat(camera.height, camera.width, CV_8UC1, cv::Scalar(static_cast<int>(PixelStatus::Unlit)));
   for (std::size_t i = 0; i < scene.exact_cloud.size(); ++i) {
     const Eigen::Vector3f& point = exactPoint(scene, i);
     Eigen::Vector2d pixel;
-    if (!point.allFinite() || !projectorPixel(rig, point.cast<double>(), pixel) ||
-        !insideImage(rig.projector, pixel)) {
+    if (!point.allFinite() || !projectorPixel(rig, point.cast<double>(), pixel) || !insideImage(rig.projector, pixel)) {
       continue;
     }
     decoded.column.ptr<float>(0)[i] = static_cast<float>(pixel.x());
@@ -107,8 +102,7 @@ struct Comparison {
   std::size_t others = 0;
 };
 
-Comparison compare(const simulation::PileScene& scene, const DecodedCapture& decoded,
-                   const TriangulatedCloud& result) {
+Comparison compare(const simulation::PileScene& scene, const DecodedCapture& decoded, const TriangulatedCloud& result) {
   Comparison c;
   for (std::size_t i = 0; i < scene.exact_cloud.size(); ++i) {
     const Eigen::Vector3f& point = result.cloud.points[i];
@@ -162,18 +156,17 @@ TEST(Triangulation, PerfectDecodingWorksForAnyProjectorPlacement) {
   scene.rig.projector.distortion = {-0.06, 0.03, 0.001, -0.0005, 0.0};
   Eigen::Isometry3d T_camera_projector = Eigen::Isometry3d::Identity();
   T_camera_projector.translation() = Eigen::Vector3d(-0.22, -0.08, 0.03);
-  T_camera_projector.linear() = (Eigen::AngleAxisd(0.25, Eigen::Vector3d::UnitY()) *
-                                 Eigen::AngleAxisd(-0.09, Eigen::Vector3d::UnitX()) *
-                                 Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ()))
-                                    .matrix();
+  T_camera_projector.linear() =
+      (Eigen::AngleAxisd(0.25, Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(-0.09, Eigen::Vector3d::UnitX()) *
+       Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitZ()))
+          .matrix();
   scene.rig.T_projector_camera = T_camera_projector.inverse();
   const io::LensIntrinsics& camera = scene.rig.camera;
   scene.exact_cloud.width = camera.width;
   scene.exact_cloud.height = camera.height;
   for (int y = 0; y < camera.height; ++y) {
     for (int x = 0; x < camera.width; ++x) {
-      const Eigen::Vector3d ray =
-          camera.rayThroughPixel({static_cast<double>(x), static_cast<double>(y)});
+      const Eigen::Vector3d ray = camera.rayThroughPixel({static_cast<double>(x), static_cast<double>(y)});
       const Eigen::Vector3d direction = ray / ray.z();
       const double bump = 0.05 * std::exp(-direction.head<2>().squaredNorm() / 0.02);
       const double z = 0.8 + 0.15 * direction.x() - 0.1 * direction.y() - bump;
@@ -210,8 +203,7 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
       if (status == static_cast<uint8_t>(PixelStatus::Inconsistent)) ++inconsistent;
       if (status != kValid) continue;
       ++valid;
-      max_moved = std::max(
-          max_moved, static_cast<double>((result.cloud.points[i] - truth.cloud.points[i]).norm()));
+      max_moved = std::max(max_moved, static_cast<double>((result.cloud.points[i] - truth.cloud.points[i]).norm()));
     }
     if (std::abs(shift) > 1.5f) {
       EXPECT_EQ(inconsistent, inputs);
@@ -227,9 +219,8 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
 TEST(Triangulation, KeepsTheDecodersVerdictOnPixelsItRejected) {
   const simulation::PileScene& scene = pile(true);
   DecodedCapture decoded = perfectDecoding(scene, true);
-  const PixelStatus rejected[] = {PixelStatus::Unlit, PixelStatus::Saturated,
-                                  PixelStatus::UncertainCode, PixelStatus::PhaseMismatch,
-                                  PixelStatus::CodeOutOfRange};
+  const PixelStatus rejected[] = {PixelStatus::Unlit, PixelStatus::Saturated, PixelStatus::UncertainCode,
+                                  PixelStatus::PhaseMismatch, PixelStatus::CodeOutOfRange};
   // Their coordinates stay finite: only the status says they are not to be used.
   std::size_t marked = 0;
   for (std::size_t i = 0; i < scene.exact_cloud.size(); i += 7) {
@@ -297,13 +288,10 @@ TEST(Triangulation, ColumnsBeyondTheRaysVanishingPointGiveNoIntersection) {
     std::size_t moved = 0;
     for (std::size_t i = 0; i < scene.exact_cloud.size(); ++i) {
       if (statusAt(decoded.status, i) != kValid) continue;
-      const Eigen::Vector2d pixel(static_cast<double>(i % camera.width),
-                                  static_cast<double>(i / camera.width));
-      const Eigen::Vector3d far_away =
-          scene.rig.T_projector_camera.linear() * camera.rayThroughPixel(pixel);
+      const Eigen::Vector2d pixel(static_cast<double>(i % camera.width), static_cast<double>(i / camera.width));
+      const Eigen::Vector3d far_away = scene.rig.T_projector_camera.linear() * camera.rayThroughPixel(pixel);
       const Eigen::Vector2d vanishing = scene.rig.projector.project(far_away);
-      const bool row_inside =
-          vanishing.y() >= 0.0 && vanishing.y() <= scene.rig.projector.height - 1;
+      const bool row_inside = vanishing.y() >= 0.0 && vanishing.y() <= scene.rig.projector.height - 1;
       if (vanishing.x() + 40.0 > scene.rig.projector.width - 1 || !row_inside) {
         decoded.status.ptr<uint8_t>(0)[i] = static_cast<uint8_t>(PixelStatus::Unlit);
         continue;
@@ -355,12 +343,8 @@ TEST(Triangulation, CoordinatesOutsideTheProjectorImageAreOutOfRange) {
     for (std::size_t i = 0; i < scene.exact_cloud.size(); i += 3) {
       if (statusAt(decoded.status, i) != kValid) continue;
       switch (changed++ % 3) {
-        case 0:
-          at(decoded.column, i) = scene.rig.projector.width + 20.0f;
-          break;
-        case 1:
-          at(decoded.column, i) = NAN;
-          break;
+        case 0: at(decoded.column, i) = scene.rig.projector.width + 20.0f; break;
+        case 1: at(decoded.column, i) = NAN; break;
         default:
           if (rows)
             at(decoded.row, i) = -30.0f;
@@ -393,9 +377,7 @@ TEST(Triangulation, ResultsDoNotDependOnTheThreadCount) {
     const TriangulatedCloud a = Triangulator(scene.rig, singleThreaded()).triangulate(input);
     const TriangulatedCloud b = Triangulator(scene.rig, two).triangulate(input);
     ASSERT_EQ(a.cloud.size(), b.cloud.size());
-    EXPECT_EQ(std::memcmp(a.cloud.points.data(), b.cloud.points.data(),
-                          a.cloud.size() * sizeof(Eigen::Vector3f)),
-              0);
+    EXPECT_EQ(std::memcmp(a.cloud.points.data(), b.cloud.points.data(), a.cloud.size() * sizeof(Eigen::Vector3f)), 0);
     EXPECT_EQ(cv::countNonZero(a.status != b.status), 0);
   }
 }

@@ -35,7 +35,8 @@ VirtualCapture render(const CaptureOptions& options) {
   photometry.bit_depth = options.bit_depth;
   photometry.global_light = options.global_light;
   photometry.ambient = options.ambient;
-  simulation::PileCapture pile = simulation::generatePileCapture(simulation::makePart(options.part).mesh, v.params, patterns, photometry);
+  simulation::PileCapture pile =
+      simulation::generatePileCapture(simulation::makePart(options.part).mesh, v.params, patterns, photometry);
   v.scene = std::move(pile.scene);
   v.capture = simulation::recordedCapture(std::move(pile.images), v.params, patterns, photometry, "test");
   return v;

@@ -25,8 +25,7 @@ inline std::string closedManifoldProblem(const io::TriangleMesh& mesh) {
       return "edge " + std::to_string(edge.first) + "->" + std::to_string(edge.second) + " used " +
              std::to_string(count) + " times in the same direction";
     if (directed.count({edge.second, edge.first}) == 0) {
-      return "edge " + std::to_string(edge.first) + "-" + std::to_string(edge.second) +
-             " has no opposite";
+      return "edge " + std::to_string(edge.first) + "-" + std::to_string(edge.second) + " has no opposite";
     }
   }
   return {};
@@ -35,8 +34,7 @@ inline std::string closedManifoldProblem(const io::TriangleMesh& mesh) {
 inline double signedVolume(const io::TriangleMesh& mesh) {
   double sum = 0.0;
   for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
-                          b = mesh.vertices[t[1]].cast<double>(),
+    const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(), b = mesh.vertices[t[1]].cast<double>(),
                           c = mesh.vertices[t[2]].cast<double>();
     sum += a.dot(b.cross(c));
   }
@@ -65,9 +63,8 @@ inline PlacedMesh place(const io::TriangleMesh& mesh, const Eigen::Isometry3d& p
 }
 
 // Möller-Trumbore; the ray parameter of the hit, or nullopt-like NaN when it misses.
-inline double rayTriangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
-                          const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                          const Eigen::Vector3d& c) {
+inline double rayTriangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
+                          const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
   const Eigen::Vector3d e1 = b - a, e2 = c - a, p = dir.cross(e2);
   const double det = e1.dot(p);
   if (std::abs(det) < 1e-18) return std::numeric_limits<double>::quiet_NaN();
@@ -85,16 +82,15 @@ inline bool insideMesh(const PlacedMesh& mesh, const Eigen::Vector3d& point) {
   const Eigen::Vector3d dir = Eigen::Vector3d(0.3141, 0.5926, 0.7358).normalized();
   int crossings = 0;
   for (const auto& t : mesh.triangles) {
-    const double hit =
-        rayTriangle(point, dir, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+    const double hit = rayTriangle(point, dir, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
     if (hit > 0.0) ++crossings;
   }
   return crossings % 2 == 1;
 }
 
 // Closest point on triangle abc to p (Ericson, Real-Time Collision Detection 5.1.5).
-inline Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
-                                         const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+inline Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                         const Eigen::Vector3d& c) {
   const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0) return a;
@@ -109,8 +105,7 @@ inline Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
   const double denom = 1.0 / (va + vb + vc);
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
@@ -118,8 +113,7 @@ inline Eigen::Vector3d closestOnTriangle(const Eigen::Vector3d& p, const Eigen::
 inline double distanceToSurface(const PlacedMesh& mesh, const Eigen::Vector3d& point) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d q =
-        closestOnTriangle(point, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+    const Eigen::Vector3d q = closestOnTriangle(point, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
     best = std::min(best, (q - point).norm());
   }
   return best;

@@ -18,8 +18,7 @@ inline io::TriangleMesh boxMesh(const Eigen::Vector3d& half) {
                                static_cast<float>((i & 4) ? half.z() : -half.z()));
   }
   // Each face as a quad, counter-clockwise seen from outside.
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
   for (const auto& q : quads) {
     mesh.triangles.emplace_back(q[0], q[1], q[2]);
     mesh.triangles.emplace_back(q[0], q[2], q[3]);
@@ -48,7 +47,7 @@ inline io::LensIntrinsics pinholeLens(int width, int height, double f) {
 // The projector `baseline` metres along the camera's +x, turned about y so that its axis crosses
 // the camera's at `working_distance`.
 inline io::RigCalibration toedInRig(const io::LensIntrinsics& camera, const io::LensIntrinsics& projector,
-                                double baseline = 0.25, double working_distance = 0.9) {
+                                    double baseline = 0.25, double working_distance = 0.9) {
   io::RigCalibration rig;
   rig.camera = camera;
   rig.projector = projector;
@@ -60,9 +59,7 @@ inline io::RigCalibration toedInRig(const io::LensIntrinsics& camera, const io::
 }
 
 // Distortion-free quarter-resolution rig (camera 320 x 256, projector 320 x 200).
-inline io::RigCalibration simpleRig() {
-  return toedInRig(pinholeLens(320, 256, 400.0), pinholeLens(320, 200, 390.0));
-}
+inline io::RigCalibration simpleRig() { return toedInRig(pinholeLens(320, 256, 400.0), pinholeLens(320, 200, 390.0)); }
 
 // The same with lenses distorting like real ones (barrel camera, slight pincushion projector).
 inline io::RigCalibration distortingRig() {

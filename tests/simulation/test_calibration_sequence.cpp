@@ -79,13 +79,12 @@ double median(std::vector<double> values) {
 }
 
 // Rotation angle between two poses and distance between their origins.
-void expectSamePose(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth,
-                    double max_distance, double max_angle) {
+void expectSamePose(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth, double max_distance,
+                    double max_angle) {
   const Eigen::AngleAxisd difference(estimate.linear().transpose() * truth.linear());
   const double distance = (estimate.translation() - truth.translation()).norm();
   ::testing::Test::RecordProperty("pose_error_mm", std::to_string(1e3 * distance));
-  ::testing::Test::RecordProperty("pose_error_deg",
-                                  std::to_string(std::abs(difference.angle()) / kDegree));
+  ::testing::Test::RecordProperty("pose_error_deg", std::to_string(std::abs(difference.angle()) / kDegree));
   EXPECT_LT(distance, max_distance);
   EXPECT_LT(std::abs(difference.angle()), max_angle);
 }
@@ -108,16 +107,16 @@ TEST(CalibrationSequence, OpenCvFindsTheCharucoCornersAndPoseOfTheTruth) {
   const Eigen::Isometry3d T = mostTiltedPose(board, rig);
   const cv::Mat white = whiteImage(renderCalibrationCapture(board, T, params, 7));
   // OpenCV's own board definition, not the library's.
-  const auto reference = cv::aruco::CharucoBoard::create(
-      9, 7, 0.03f, 0.022f, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_5X5_100));
+  const auto reference =
+      cv::aruco::CharucoBoard::create(9, 7, 0.03f, 0.022f, cv::aruco::getPredefinedDictionary(cv::aruco::DICT_5X5_100));
   std::vector<std::vector<cv::Point2f>> markers;
   std::vector<int> marker_ids;
   cv::aruco::detectMarkers(white, reference->dictionary, markers, marker_ids);
   EXPECT_EQ(marker_ids.size(), reference->ids.size());
   std::vector<cv::Point2f> corners;
   std::vector<int> ids;
-  cv::aruco::interpolateCornersCharuco(markers, marker_ids, white, reference, corners, ids,
-                                       cameraMatrix(rig.camera), distortion(rig.camera));
+  cv::aruco::interpolateCornersCharuco(markers, marker_ids, white, reference, corners, ids, cameraMatrix(rig.camera),
+                                       distortion(rig.camera));
   ASSERT_EQ(ids.size(), board.corners().size());
   // interpolateCornersCharuco of OpenCV 4.5.4 to 4.x shifts its refined corners by +0.5 pixel
   // (opencv/opencv#25539): refining them again with cornerSubPix, which converges to the saddle
@@ -135,11 +134,10 @@ TEST(CalibrationSequence, OpenCvFindsTheCharucoCornersAndPoseOfTheTruth) {
     interpolation_bias += Eigen::Vector2d(interpolated[i].x, interpolated[i].y) - true_pixel;
   }
   interpolation_bias /= static_cast<double>(ids.size());
-  RecordProperty("interpolation_bias_px", std::to_string(interpolation_bias.x()) + " " +
-                                              std::to_string(interpolation_bias.y()));
+  RecordProperty("interpolation_bias_px",
+                 std::to_string(interpolation_bias.x()) + " " + std::to_string(interpolation_bias.y()));
   RecordProperty("median_corner_error_px", std::to_string(median(errors)));
-  RecordProperty("max_corner_error_px",
-                 std::to_string(*std::max_element(errors.begin(), errors.end())));
+  RecordProperty("max_corner_error_px", std::to_string(*std::max_element(errors.begin(), errors.end())));
   EXPECT_LT(median(errors), 0.1);
   EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 0.3);
 
@@ -171,8 +169,7 @@ TEST(CalibrationSequence, OpenCvFindsTheChessboardCornersAndPoseOfTheTruth) {
   std::vector<double> errors;
   for (std::size_t i = 0; i < corners.size(); ++i) errors.push_back(error(i, i));
   RecordProperty("median_corner_error_px", std::to_string(median(errors)));
-  RecordProperty("max_corner_error_px",
-                 std::to_string(*std::max_element(errors.begin(), errors.end())));
+  RecordProperty("max_corner_error_px", std::to_string(*std::max_element(errors.begin(), errors.end())));
   EXPECT_LT(median(errors), 0.1);
   EXPECT_LT(*std::max_element(errors.begin(), errors.end()), 0.3);
 
@@ -182,8 +179,7 @@ TEST(CalibrationSequence, OpenCvFindsTheChessboardCornersAndPoseOfTheTruth) {
     for (int col = 0; col < 8; ++col) object_points.emplace_back(col * 0.03f, row * 0.03f, 0.0f);
   }
   cv::Mat rvec, tvec;
-  ASSERT_TRUE(cv::solvePnP(object_points, corners, cameraMatrix(rig.camera), distortion(rig.camera),
-                           rvec, tvec));
+  ASSERT_TRUE(cv::solvePnP(object_points, corners, cameraMatrix(rig.camera), distortion(rig.camera), rvec, tvec));
   expectSamePose(poseFrom(rvec, tvec), T, 0.25e-3, 0.1 * kDegree);
 }
 
@@ -222,9 +218,8 @@ TEST(CalibrationSequence, TheWhiteImageAloneIsTheCapturesFirst) {
 class CalibrationSequenceFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = (fs::temp_directory_path() /
-                  ("binpick_calibration_" + std::to_string(::getpid()) + "_" +
-                   ::testing::UnitTest::GetInstance()->current_test_info()->name()))
+    directory_ = (fs::temp_directory_path() / ("binpick_calibration_" + std::to_string(::getpid()) + "_" +
+                                               ::testing::UnitTest::GetInstance()->current_test_info()->name()))
                      .string();
     fs::remove_all(directory_);
   }
@@ -247,8 +242,7 @@ TEST_F(CalibrationSequenceFiles, WrittenSequenceReadsBack) {
     EXPECT_GT(capture.metadata.exposure_us, 0.0);
   }
   const io::RigCalibration rig = io::readRigCalibration(directory_ + "/truth/rig.yaml");
-  EXPECT_LT((rig.T_projector_camera.matrix() - params.rig.T_projector_camera.matrix()).norm(),
-            1e-12);
+  EXPECT_LT((rig.T_projector_camera.matrix() - params.rig.T_projector_camera.matrix()).norm(), 1e-12);
   EXPECT_EQ(rig.camera.fx, params.rig.camera.fx);
 
   const CalibrationTruth truth = readCalibrationTruth(directory_);
@@ -280,28 +274,23 @@ TEST(CalibrationSequence, BadParamsThrowNamingTheField) {
     try {
       params.validate();
     } catch (const core::Error& e) {
-      return std::string(e.what()).find(text) != std::string::npos
-                 ? ::testing::AssertionSuccess()
-                 : ::testing::AssertionFailure() << e.what();
+      return std::string(e.what()).find(text) != std::string::npos ? ::testing::AssertionSuccess()
+                                                                   : ::testing::AssertionFailure() << e.what();
     }
     return ::testing::AssertionFailure() << "did not throw";
   };
   using P = CalibrationSequenceParams;
-  EXPECT_TRUE(fails([](P& p) { p.board.squares_x = 1; },
-                    "CalibrationSequenceParams.board: BoardLayout.squares_x"));
-  EXPECT_TRUE(fails([](P& p) { p.poses.count = -2; },
-                    "CalibrationSequenceParams.poses: BoardPoseParams.count"));
+  EXPECT_TRUE(fails([](P& p) { p.board.squares_x = 1; }, "CalibrationSequenceParams.board: BoardLayout.squares_x"));
+  EXPECT_TRUE(fails([](P& p) { p.poses.count = -2; }, "CalibrationSequenceParams.poses: BoardPoseParams.count"));
   EXPECT_TRUE(fails([](P& p) { p.photometry.bit_depth = 12; },
                     "CalibrationSequenceParams.photometry: PhotometryParams.bit_depth"));
   EXPECT_TRUE(fails([](P& p) { p.pattern_set.projector_width = 1920; },
                     "CalibrationSequenceParams.pattern_set.projector_width"));
   EXPECT_TRUE(fails([](P& p) { p.pixel_samples = 0; }, "CalibrationSequenceParams.pixel_samples"));
   EXPECT_TRUE(fails([](P& p) { p.texel_size = -1.0; }, "CalibrationSequenceParams.texel_size"));
-  EXPECT_TRUE(fails([](P& p) { p.background_distance = 1.0; },
-                    "CalibrationSequenceParams.background_distance"));
+  EXPECT_TRUE(fails([](P& p) { p.background_distance = 1.0; }, "CalibrationSequenceParams.background_distance"));
   EXPECT_TRUE(fails([](P& p) { p.exposure_us = 0.0; }, "CalibrationSequenceParams.exposure_us"));
-  EXPECT_TRUE(
-      fails([](P& p) { p.max_white_counts = -1.0; }, "CalibrationSequenceParams.max_white_counts"));
+  EXPECT_TRUE(fails([](P& p) { p.max_white_counts = -1.0; }, "CalibrationSequenceParams.max_white_counts"));
 }
 
 }  // namespace

@@ -32,9 +32,7 @@ io::TriangleMesh tiltedTriangle() {
   return mesh;
 }
 
-std::size_t index(const PinholeCamera& camera, int u, int v) {
-  return static_cast<std::size_t>(v) * camera.width + u;
-}
+std::size_t index(const PinholeCamera& camera, int u, int v) { return static_cast<std::size_t>(v) * camera.width + u; }
 
 TEST(RenderDepth, SingleTriangleGivesExactRayPlaneDepthInsideAndInfOutside) {
   const PinholeCamera camera = smallCamera();
@@ -91,15 +89,14 @@ TEST(RenderDepth, NearestSurfaceWinsAndTriangleFansHaveNoCracks) {
   const int spokes = 97;
   for (int k = 0; k < spokes; ++k) {
     const double angle = 2.0 * 3.14159265358979323846 * k / spokes;
-    fan.vertices.emplace_back(static_cast<float>(3.0 * std::cos(angle)),
-                              static_cast<float>(3.0 * std::sin(angle)), 1.0f);
+    fan.vertices.emplace_back(static_cast<float>(3.0 * std::cos(angle)), static_cast<float>(3.0 * std::sin(angle)),
+                              1.0f);
   }
   for (int k = 0; k < spokes; ++k) fan.triangles.emplace_back(0, 1 + k, 1 + (k + 1) % spokes);
   io::TriangleMesh near_triangle = tiltedTriangle();
   for (auto& v : near_triangle.vertices) v.z() *= 0.5f;  // in front of the fan
-  const DepthImage image =
-      renderDepth(camera, {{&fan, Eigen::Isometry3d::Identity(), 1},
-                           {&near_triangle, Eigen::Isometry3d::Identity(), 2}});
+  const DepthImage image = renderDepth(
+      camera, {{&fan, Eigen::Isometry3d::Identity(), 1}, {&near_triangle, Eigen::Isometry3d::Identity(), 2}});
   int near_pixels = 0;
   for (std::size_t i = 0; i < image.depth.size(); ++i) {
     ASSERT_TRUE(std::isfinite(image.depth[i])) << "crack at pixel " << i;
@@ -145,8 +142,8 @@ TEST(RenderDepth, ClosedPartRendersOnlyItsFrontSurface) {
       const Eigen::Vector3d ray = pixelRay(camera, u, v);
       double first = std::numeric_limits<double>::infinity();
       for (const auto& t : placed.triangles) {
-        const double s = test::rayTriangle(Eigen::Vector3d::Zero(), ray, placed.vertices[t[0]],
-                                           placed.vertices[t[1]], placed.vertices[t[2]]);
+        const double s = test::rayTriangle(Eigen::Vector3d::Zero(), ray, placed.vertices[t[0]], placed.vertices[t[1]],
+                                           placed.vertices[t[2]]);
         if (s > 0.0) first = std::min(first, s);
       }
       if (std::isfinite(first)) {

@@ -33,9 +33,9 @@ TEST(HandEyeSession, TrueRobotPosesPutTheBoardWhereTheCameraSeesIt) {
     ASSERT_EQ(s.views.size(), 12u);
     EXPECT_EQ(s.views[11].name, "view_11");
     for (const HandEyeSessionView& v : s.views) {
-      const Eigen::Isometry3d base_board =
-          setup == HandEyeSetup::EyeToHand ? s.T_mount_camera * v.T_camera_board
-                                           : v.T_base_flange_true * s.T_mount_camera * v.T_camera_board;
+      const Eigen::Isometry3d base_board = setup == HandEyeSetup::EyeToHand
+                                               ? s.T_mount_camera * v.T_camera_board
+                                               : v.T_base_flange_true * s.T_mount_camera * v.T_camera_board;
       const Eigen::Isometry3d expected =
           setup == HandEyeSetup::EyeToHand ? v.T_base_flange_true * s.T_mount_board : s.T_mount_board;
       EXPECT_LT(poseDifference(base_board, expected).translation_mm, 1e-9);
@@ -61,8 +61,7 @@ TEST(HandEyeSession, RobotNoiseHasTheAskedSizeAndSeed) {
   const HandEyeSession again = simulateHandEyeSession(params);
   EXPECT_TRUE(again.views[17].T_base_flange.isApprox(s.views[17].T_base_flange, 0.0));
   params.seed = 2;
-  EXPECT_FALSE(simulateHandEyeSession(params).views[17].T_base_flange.isApprox(
-      s.views[17].T_base_flange, 1e-6));
+  EXPECT_FALSE(simulateHandEyeSession(params).views[17].T_base_flange.isApprox(s.views[17].T_base_flange, 1e-6));
 }
 
 // The rendered image holds the whole board, and its pose from the image is the truth's.
@@ -113,12 +112,10 @@ TEST_F(HandEyeSessionFiles, WritesTheViewsDirectoryAndTheTruth) {
 TEST(HandEyeSession, BadParamsNameTheField) {
   HandEyeSessionParams noisy;
   noisy.robot_noise_deg = -1.0;
-  EXPECT_TRUE(test::throwsNaming([&] { simulateHandEyeSession(noisy); },
-                                 "HandEyeSessionParams.robot_noise_deg"));
+  EXPECT_TRUE(test::throwsNaming([&] { simulateHandEyeSession(noisy); }, "HandEyeSessionParams.robot_noise_deg"));
   HandEyeSessionParams scaled;
   scaled.T_flange_board.linear() *= 2.0;
-  EXPECT_TRUE(test::throwsNaming([&] { simulateHandEyeSession(scaled); },
-                                 "HandEyeSessionParams.T_flange_board"));
+  EXPECT_TRUE(test::throwsNaming([&] { simulateHandEyeSession(scaled); }, "HandEyeSessionParams.T_flange_board"));
 }
 
 }  // namespace

@@ -22,8 +22,7 @@ double facetedDiscArea(double r, int n) { return 0.5 * n * r * r * std::sin(2.0 
 double smallestTriangleArea(const io::TriangleMesh& mesh) {
   double smallest = std::numeric_limits<double>::infinity();
   for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
-                          b = mesh.vertices[t[1]].cast<double>(),
+    const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(), b = mesh.vertices[t[1]].cast<double>(),
                           c = mesh.vertices[t[2]].cast<double>();
     smallest = std::min(smallest, 0.5 * (b - a).cross(c - a).norm());
   }
@@ -33,8 +32,7 @@ double smallestTriangleArea(const io::TriangleMesh& mesh) {
 // For a convex solid of revolution centred on the origin, every face normal points away from it.
 void expectEveryFaceFacesAwayFromTheOrigin(const io::TriangleMesh& mesh) {
   for (const auto& t : mesh.triangles) {
-    const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
-                          b = mesh.vertices[t[1]].cast<double>(),
+    const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(), b = mesh.vertices[t[1]].cast<double>(),
                           c = mesh.vertices[t[2]].cast<double>();
     EXPECT_GT((b - a).cross(c - a).dot((a + b + c) / 3.0), 0.0);
   }
@@ -43,8 +41,7 @@ void expectEveryFaceFacesAwayFromTheOrigin(const io::TriangleMesh& mesh) {
 TEST(MakeLathe, CylinderIsClosedOutwardWithTheRevolvedVolume) {
   // r = 10 mm, h = 20 mm: the rectangle r in [0, 10], z in [-10, 10] mm, two points on the axis.
   constexpr int kSegments = 48;
-  const io::TriangleMesh mesh =
-      makeLathe({{0.0, -0.010}, {0.010, -0.010}, {0.010, 0.010}, {0.0, 0.010}}, kSegments);
+  const io::TriangleMesh mesh = makeLathe({{0.0, -0.010}, {0.010, -0.010}, {0.010, 0.010}, {0.0, 0.010}}, kSegments);
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_EQ(mesh.vertices.size(), 2u + 2u * kSegments);  // axis points collapse to one vertex
   EXPECT_EQ(mesh.triangles.size(), 4u * kSegments);      // two fans and one band of quads
@@ -66,8 +63,7 @@ TEST(MakeLathe, AnnulusWithoutAxisPointsHasTheRevolvedVolume) {
   EXPECT_EQ(closedManifoldProblem(mesh), "");
   EXPECT_EQ(mesh.vertices.size(), 4u * kSegments);
   EXPECT_GT(smallestTriangleArea(mesh), 1e-9);
-  const double faceted =
-      (facetedDiscArea(0.025, kSegments) - facetedDiscArea(0.012, kSegments)) * 0.010;
+  const double faceted = (facetedDiscArea(0.025, kSegments) - facetedDiscArea(0.012, kSegments)) * 0.010;
   EXPECT_NEAR(signedVolume(mesh), faceted, 1e-12);
   const double analytic = kPi * (0.025 * 0.025 - 0.012 * 0.012) * 0.010;
   EXPECT_NEAR(signedVolume(mesh), analytic, 0.005 * analytic);
@@ -106,7 +102,7 @@ TEST(MakeLathe, RejectsInvalidInput) {
   EXPECT_NO_THROW(makeLathe(square, 3));
   EXPECT_THROW(makeLathe({{-0.5, 0}, {1, 0}, {1, 1}}, 16), core::Error);  // r < 0
   EXPECT_THROW(makeLathe({{0, 0}, {1, 0}}, 16), core::Error);
-  EXPECT_THROW(makeLathe({{0, 0}, {1, 0}, {2, 0}}, 16), core::Error);  // zero area
+  EXPECT_THROW(makeLathe({{0, 0}, {1, 0}, {2, 0}}, 16), core::Error);          // zero area
   EXPECT_THROW(makeLathe({{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 16), core::Error);  // self-intersecting
   try {
     makeLathe({{-0.5, 0}, {1, 0}, {1, 1}}, 16);

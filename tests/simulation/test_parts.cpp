@@ -25,9 +25,8 @@ bool mapsVerticesOntoThemselves(const io::TriangleMesh& mesh, const Eigen::Matri
   const auto vertices = verticesOf(mesh);
   for (const auto& v : vertices) {
     const Eigen::Vector3d image = rotation * v;
-    const bool found = std::any_of(vertices.begin(), vertices.end(), [&](const Eigen::Vector3d& w) {
-      return (w - image).norm() < 1e-6;
-    });
+    const bool found = std::any_of(vertices.begin(), vertices.end(),
+                                   [&](const Eigen::Vector3d& w) { return (w - image).norm() < 1e-6; });
     if (!found) return false;
   }
   return true;
@@ -40,16 +39,15 @@ bool mapsVerticesOntoThemselves(const io::TriangleMesh& mesh, const Eigen::Matri
 // facets of radius r the turned surface strays at most the sagitta r (1 - cos(pi / n)) from the
 // original, 0.03 mm for the 64-facet, 25 mm ring magnet, so a 0.1 mm tolerance accepts the
 // faceting but rejects any real asymmetry (which moves points by millimetres).
-bool turningAboutAxisKeepsTheSurface(const io::TriangleMesh& mesh, const Eigen::Vector3d& axis,
-                                     double angle, double tolerance) {
+bool turningAboutAxisKeepsTheSurface(const io::TriangleMesh& mesh, const Eigen::Vector3d& axis, double angle,
+                                     double tolerance) {
   const test::PlacedMesh placed = test::place(mesh, Eigen::Isometry3d::Identity());
   std::vector<Eigen::Vector3d> points = placed.vertices;
   for (const auto& t : placed.triangles)
     points.push_back((placed.vertices[t[0]] + placed.vertices[t[1]] + placed.vertices[t[2]]) / 3.0);
   const Eigen::Matrix3d turn(Eigen::AngleAxisd(angle, axis.normalized()));
-  return std::all_of(points.begin(), points.end(), [&](const Eigen::Vector3d& p) {
-    return test::distanceToSurface(placed, turn * p) < tolerance;
-  });
+  return std::all_of(points.begin(), points.end(),
+                     [&](const Eigen::Vector3d& p) { return test::distanceToSurface(placed, turn * p) < tolerance; });
 }
 
 constexpr double kContinuousAxisTolerance = 1e-4;  // 0.1 mm, see turningAboutAxisKeepsTheSurface
@@ -114,8 +112,7 @@ TEST(Parts, ModelOriginIsTheVolumeCentroid) {
     Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
     double six_volume = 0.0;
     for (const auto& t : mesh.triangles) {
-      const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
-                            b = mesh.vertices[t[1]].cast<double>(),
+      const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(), b = mesh.vertices[t[1]].cast<double>(),
                             c = mesh.vertices[t[2]].cast<double>();
       const double v = a.dot(b.cross(c));
       six_volume += v;
@@ -140,13 +137,11 @@ TEST(Parts, DeclaredSymmetriesMapThePartOntoItself) {
       const Eigen::Vector3d axis = *part.symmetry.continuous_axis;
       EXPECT_NEAR(axis.norm(), 1.0, 1e-12);
       for (const double angle : kTestAngles) {
-        EXPECT_TRUE(
-            turningAboutAxisKeepsTheSurface(part.mesh, axis, angle, kContinuousAxisTolerance))
+        EXPECT_TRUE(turningAboutAxisKeepsTheSurface(part.mesh, axis, angle, kContinuousAxisTolerance))
             << "angle " << angle;
       }
       // The discrete rotations must map the axis onto itself (either way round).
-      for (const auto& s : part.symmetry.discrete)
-        EXPECT_NEAR(std::abs((s * axis).dot(axis)), 1.0, 1e-9);
+      for (const auto& s : part.symmetry.discrete) EXPECT_NEAR(std::abs((s * axis).dot(axis)), 1.0, 1e-9);
     }
   }
 }
@@ -173,8 +168,8 @@ TEST(Parts, ContinuousAxisCheckRejectsPartsWithoutOne) {
   for (const char* name : {"gear", "l_bracket", "bulge"}) {
     SCOPED_TRACE(name);
     const Part part = makePart(name);
-    EXPECT_FALSE(turningAboutAxisKeepsTheSurface(part.mesh, Eigen::Vector3d::UnitZ(), 0.1234,
-                                                 kContinuousAxisTolerance));
+    EXPECT_FALSE(
+        turningAboutAxisKeepsTheSurface(part.mesh, Eigen::Vector3d::UnitZ(), 0.1234, kContinuousAxisTolerance));
   }
 }
 
@@ -189,8 +184,8 @@ TEST(Parts, GearHasExactlyTheDihedralSymmetryOfItsTwelveTeeth) {
   const Eigen::Matrix3d half_pitch(Eigen::AngleAxisd(0.5 * pitch, Eigen::Vector3d::UnitZ()));
   EXPECT_FALSE(mapsVerticesOntoThemselves(gear.mesh, half_pitch));
   const Eigen::Vector3d between(std::cos(0.25 * pitch), std::sin(0.25 * pitch), 0.0);
-  EXPECT_FALSE(mapsVerticesOntoThemselves(
-      gear.mesh, Eigen::Matrix3d(Eigen::AngleAxisd(3.14159265358979323846, between))));
+  EXPECT_FALSE(
+      mapsVerticesOntoThemselves(gear.mesh, Eigen::Matrix3d(Eigen::AngleAxisd(3.14159265358979323846, between))));
   // Every declared rotation keeps z an axis (turns fix it, flips reverse it), 12 of each.
   int flips = 0;
   for (const auto& s : gear.symmetry.discrete) flips += (s * Eigen::Vector3d::UnitZ()).z() < 0;
@@ -205,8 +200,7 @@ TEST(Parts, RingMagnetIsTurnedWithAFlip) {
   EXPECT_NEAR(ring.symmetry.continuous_axis->dot(Eigen::Vector3d::UnitZ()), 1.0, 1e-12);
   ASSERT_EQ(ring.symmetry.discrete.size(), 2u);
   EXPECT_TRUE(ring.symmetry.discrete[1].isApprox(
-      Eigen::Matrix3d(Eigen::AngleAxisd(3.14159265358979323846, Eigen::Vector3d::UnitX())),
-      1e-12));
+      Eigen::Matrix3d(Eigen::AngleAxisd(3.14159265358979323846, Eigen::Vector3d::UnitX())), 1e-12));
   const auto box = test::bounds(verticesOf(ring.mesh));
   EXPECT_NEAR(box.sizes().x(), 0.050, 1e-6);
   EXPECT_NEAR(box.sizes().z(), 0.010, 1e-6);
@@ -228,10 +222,8 @@ TEST(Parts, PartsDeclaredAsymmetricHaveNoHiddenRotationalSymmetry) {
     ASSERT_GT(values(1) - values(0), 0.01 * values(2));
     ASSERT_GT(values(2) - values(1), 0.01 * values(2));
     for (int axis = 0; axis < 3; ++axis) {
-      const Eigen::Matrix3d half_turn(
-          Eigen::AngleAxisd(3.14159265358979323846, solver.eigenvectors().col(axis)));
-      EXPECT_FALSE(mapsVerticesOntoThemselves(part.mesh, half_turn))
-          << "half-turn about principal axis " << axis;
+      const Eigen::Matrix3d half_turn(Eigen::AngleAxisd(3.14159265358979323846, solver.eigenvectors().col(axis)));
+      EXPECT_FALSE(mapsVerticesOntoThemselves(part.mesh, half_turn)) << "half-turn about principal axis " << axis;
     }
   }
 }

@@ -48,8 +48,8 @@ std::vector<PixelLighting> variedLighting(int width, int height, unsigned seed) 
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::vector<PixelLighting> pixels;
   for (int i = 0; i < width * height; ++i) {
-    pixels.push_back(lit(1279.0f * unit(rng), 799.0f * unit(rng), 3.0f * unit(rng),
-                         250.0f * unit(rng), 20.0f * unit(rng), 10.0f * unit(rng)));
+    pixels.push_back(lit(1279.0f * unit(rng), 799.0f * unit(rng), 3.0f * unit(rng), 250.0f * unit(rng),
+                         20.0f * unit(rng), 10.0f * unit(rng)));
   }
   return pixels;
 }
@@ -78,17 +78,16 @@ std::string grayName(const char* axis, int bit, bool inverse) {
 bool identical(const std::vector<cv::Mat>& a, const std::vector<cv::Mat>& b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (a[i].type() != b[i].type() || a[i].size() != b[i].size() ||
-        cv::norm(a[i], b[i], cv::NORM_INF) != 0.0) {
+    if (a[i].type() != b[i].type() || a[i].size() != b[i].size() || cv::norm(a[i], b[i], cv::NORM_INF) != 0.0) {
       return false;
     }
   }
   return true;
 }
 
-::testing::AssertionResult throwsNaming(const std::vector<PixelLighting>& pixels, int width,
-                                        int height, const io::PatternSetSpec& spec,
-                                        const PhotometryParams& params, const std::string& text) {
+::testing::AssertionResult throwsNaming(const std::vector<PixelLighting>& pixels, int width, int height,
+                                        const io::PatternSetSpec& spec, const PhotometryParams& params,
+                                        const std::string& text) {
   return binpick::test::throwsNaming([&] { renderPatternImages(pixels, width, height, spec, params); }, text);
 }
 
@@ -113,8 +112,8 @@ TEST(PatternRenderer, SharpPixelReadsEachGrayBitOfItsColumnAndRow) {
       lit(100.0f, 37.0f, kSharp, 160.0f, 6.0f), lit(1279.0f, 799.0f, kSharp, 160.0f, 6.0f),
       lit(0.0f, 0.0f, kSharp, 160.0f, 6.0f), lit(682.0f, 341.0f, kSharp, 160.0f, 6.0f)};
   const std::vector<cv::Mat> images = renderPatternImages(pixels, 4, 1, spec, noiseless());
-  const int on = 166;   // ambient + direct
-  const int off = 8;    // ambient + direct * black level (7.6)
+  const int on = 166;  // ambient + direct
+  const int off = 8;   // ambient + direct * black level (7.6)
   for (int px = 0; px < 4; ++px) {
     const int column = static_cast<int>(pixels[px].projector_x);
     const int row = static_cast<int>(pixels[px].projector_y);
@@ -225,8 +224,7 @@ TEST(PatternRenderer, DarkPixelsClampAtZeroInsteadOfWrapping) {
   params.read_noise = 3.0;
   for (int depth : {8, 16}) {
     params.bit_depth = depth;
-    const cv::Mat black =
-        renderPatternImages(pixels, 32, 32, spec, params)[indexOf(spec, "black")];
+    const cv::Mat black = renderPatternImages(pixels, 32, 32, spec, params)[indexOf(spec, "black")];
     double low = 0.0, high = 0.0;
     cv::minMaxLoc(black, &low, &high);
     EXPECT_EQ(low, 0.0) << depth << " bit";
@@ -272,9 +270,8 @@ TEST(PatternRenderer, UnlitPixelReadsTheSameUnderABitAndItsInverse) {
   images = renderPatternImages(pixels, kSide, kSide, spec, params);
   for (int bit = 0; bit < 11; ++bit) {
     cv::Mat difference;
-    cv::subtract(images[indexOf(spec, grayName("col", bit, false))],
-                 images[indexOf(spec, grayName("col", bit, true))], difference, cv::noArray(),
-                 CV_32F);
+    cv::subtract(images[indexOf(spec, grayName("col", bit, false))], images[indexOf(spec, grayName("col", bit, true))],
+                 difference, cv::noArray(), CV_32F);
     EXPECT_NEAR(cv::mean(difference)[0], 0.0, 0.25) << "bit " << bit;
     EXPECT_LT(cv::norm(difference, cv::NORM_INF), 10.0) << "bit " << bit;
   }

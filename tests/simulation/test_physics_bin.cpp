@@ -26,8 +26,7 @@ double lowestZ(const io::TriangleMesh& part, const Eigen::Isometry3d& T_bin_obje
 }
 
 // The part highest in the pile, and the part that holds it up: the one its surface comes closest to.
-std::pair<int, int> topAndSupport(const io::TriangleMesh& part,
-                                  const std::vector<Eigen::Isometry3d>& poses) {
+std::pair<int, int> topAndSupport(const io::TriangleMesh& part, const std::vector<Eigen::Isometry3d>& poses) {
   std::vector<test::PlacedMesh> placed;
   for (const auto& pose : poses) placed.push_back(test::place(part, pose));
   int top = 0;
@@ -88,8 +87,7 @@ TEST(PhysicsBin, PartAboveMovesDownWhenItsSupportIsRemoved) {
   ASSERT_EQ(after.size(), 4u);
   // The order is kept with the removed part left out.
   const int moved_index = supported > support ? supported - 1 : supported;
-  const double drop_mm =
-      1e3 * (lowestZ(part, before[supported]) - lowestZ(part, after[moved_index]));
+  const double drop_mm = 1e3 * (lowestZ(part, before[supported]) - lowestZ(part, after[moved_index]));
   EXPECT_GT(drop_mm, 5.0) << "the part above stayed in the air";
 }
 
@@ -170,8 +168,7 @@ TEST(PileView, ViewAtThePhysicsPosesIsTheGeneratedPile) {
   const PileScene viewed = viewPile(part, params, generated.physics.T_bin_object);
   ASSERT_EQ(viewed.objects.size(), generated.objects.size());
   for (std::size_t i = 0; i < viewed.objects.size(); ++i) {
-    EXPECT_TRUE(viewed.objects[i].T_camera_object.matrix() ==
-                generated.objects[i].T_camera_object.matrix());
+    EXPECT_TRUE(viewed.objects[i].T_camera_object.matrix() == generated.objects[i].T_camera_object.matrix());
     EXPECT_EQ(viewed.objects[i].visible_pixels, generated.objects[i].visible_pixels);
     EXPECT_EQ(viewed.objects[i].unoccluded_pixels, generated.objects[i].unoccluded_pixels);
   }
@@ -183,8 +180,8 @@ TEST(PileView, ViewAtThePhysicsPosesIsTheGeneratedPile) {
 
 TEST(PileView, EmptyBinShowsTheBinOnly) {
   const PileParams params = smallView(0);
-  const PileCapture capture = renderPileCaptureAt(makePart("clamp").mesh, params, {},
-                                                  io::PatternSetSpec{}, PhotometryParams{});
+  const PileCapture capture =
+      renderPileCaptureAt(makePart("clamp").mesh, params, {}, io::PatternSetSpec{}, PhotometryParams{});
   EXPECT_TRUE(capture.scene.objects.empty());
   EXPECT_FALSE(capture.images.empty());
   int bin_pixels = 0;

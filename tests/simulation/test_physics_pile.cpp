@@ -23,8 +23,7 @@ constexpr double kSampleSpacing = 1e-3;    // metres between surface samples of 
 io::TriangleMesh userTorus() {
   constexpr int kAround = 32, kSection = 16;
   constexpr double kPi = 3.14159265358979323846, kRing = 0.022, kTube = 0.007;
-  const Eigen::Matrix3d tilt =
-      Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, 2.0, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, 2.0, 0.5).normalized()).toRotationMatrix();
   const Eigen::Vector3d origin_offset(0.015, -0.004, 0.002);
   io::TriangleMesh mesh;
   for (int i = 0; i < kAround; ++i) {
@@ -53,8 +52,8 @@ std::vector<test::PlacedMesh> placeAll(const io::TriangleMesh& part, const Physi
 
 bool insideBin(const test::PlacedMesh& part, const BinInterior& bin) {
   const double x = 0.5 * bin.length + kInsideTolerance, y = 0.5 * bin.width + kInsideTolerance;
-  return part.box.min().x() >= -x && part.box.max().x() <= x && part.box.min().y() >= -y &&
-         part.box.max().y() <= y && part.box.min().z() >= -kInsideTolerance;
+  return part.box.min().x() >= -x && part.box.max().x() <= x && part.box.min().y() >= -y && part.box.max().y() <= y &&
+         part.box.min().z() >= -kInsideTolerance;
 }
 
 Eigen::AlignedBox3d grown(Eigen::AlignedBox3d box, double by) {
@@ -84,8 +83,7 @@ int expectNoInterpenetration(const std::vector<test::PlacedMesh>& placed) {
     for (std::size_t j = 0; j < placed.size(); ++j) {
       if (i == j || !placed[i].box.intersects(placed[j].box)) continue;
       ++close_pairs;
-      EXPECT_LT(test::sampledPenetrationDepth(placed[i], placed[j], kSampleSpacing),
-                kMaxPenetration)
+      EXPECT_LT(test::sampledPenetrationDepth(placed[i], placed[j], kSampleSpacing), kMaxPenetration)
           << "part " << i << " into part " << j;
     }
   }
@@ -102,8 +100,7 @@ void expectSettledPhysicalPile(const io::TriangleMesh& part, int objects) {
   ASSERT_EQ(pile.T_bin_object.size(), static_cast<std::size_t>(objects));
   EXPECT_GT(pile.simulated_time, 0.0);
   EXPECT_LE(pile.simulated_time, params.max_simulated_time);
-  EXPECT_EQ(pile.steps,
-            std::lround(pile.simulated_time / params.time_step) * static_cast<long>(params.substeps));
+  EXPECT_EQ(pile.steps, std::lround(pile.simulated_time / params.time_step) * static_cast<long>(params.substeps));
   EXPECT_GE(pile.layers, 1);
   const std::vector<test::PlacedMesh> placed = placeAll(part, pile);
   for (std::size_t i = 0; i < placed.size(); ++i) {
@@ -139,9 +136,7 @@ TEST(PhysicsPile, RingMagnetsSettleInsideSupportedAndApart) {
   expectSettledPhysicalPile(makePart("ring_magnet").mesh, 12);
 }
 
-TEST(PhysicsPile, UserMeshSettlesInsideSupportedAndApart) {
-  expectSettledPhysicalPile(userTorus(), 10);
-}
+TEST(PhysicsPile, UserMeshSettlesInsideSupportedAndApart) { expectSettledPhysicalPile(userTorus(), 10); }
 
 // A part resting on its own inside the ring's hole proves that the hole is not filled in.
 TEST(PhysicsPile, RingMagnetPiecesLeaveTheHoleOpen) {
@@ -169,8 +164,7 @@ TEST(PhysicsPile, ChecksDetectOverlapHoveringAndEscape) {
   resting.translation() = Eigen::Vector3d(0.0, 0.0, 0.016);  // 30 mm wide along z: on the floor
   Eigen::Isometry3d overlapping = resting;
   overlapping.translation() += Eigen::Vector3d(0.004, 0.003, 0.005);
-  EXPECT_GT(test::sampledPenetrationDepth(test::place(part, resting),
-                                          test::place(part, overlapping), kSampleSpacing),
+  EXPECT_GT(test::sampledPenetrationDepth(test::place(part, resting), test::place(part, overlapping), kSampleSpacing),
             kMaxPenetration);
   Eigen::Isometry3d hovering = resting;
   hovering.translation() += Eigen::Vector3d(0.0, 0.0, 0.01);
@@ -215,25 +209,17 @@ TEST(PhysicsParams, ValidateNamesTheBadField) {
     change(params);
     return validationMessage(params, "PhysicsParams");
   };
-  EXPECT_NE(message([](PhysicsParams& p) { p.friction = -0.1; }).find("PhysicsParams.friction"),
-            std::string::npos);
-  EXPECT_NE(message([](PhysicsParams& p) { p.restitution = 1.5; }).find("restitution"),
-            std::string::npos);
-  EXPECT_NE(message([](PhysicsParams& p) { p.drop_height_max = 0.01; }).find("drop_height_max"),
-            std::string::npos);
-  EXPECT_NE(message([](PhysicsParams& p) { p.time_step = 0.0; }).find("time_step"),
-            std::string::npos);
+  EXPECT_NE(message([](PhysicsParams& p) { p.friction = -0.1; }).find("PhysicsParams.friction"), std::string::npos);
+  EXPECT_NE(message([](PhysicsParams& p) { p.restitution = 1.5; }).find("restitution"), std::string::npos);
+  EXPECT_NE(message([](PhysicsParams& p) { p.drop_height_max = 0.01; }).find("drop_height_max"), std::string::npos);
+  EXPECT_NE(message([](PhysicsParams& p) { p.time_step = 0.0; }).find("time_step"), std::string::npos);
   EXPECT_NE(message([](PhysicsParams& p) { p.substeps = 0; }).find("substeps"), std::string::npos);
-  EXPECT_NE(message([](PhysicsParams& p) { p.settle_angular_velocity = std::nan(""); })
-                .find("settle_angular_velocity"),
+  EXPECT_NE(message([](PhysicsParams& p) { p.settle_angular_velocity = std::nan(""); }).find("settle_angular_velocity"),
             std::string::npos);
-  EXPECT_NE(message([](PhysicsParams& p) { p.decomposition_tolerance = 0.0; })
-                .find("decomposition_tolerance"),
+  EXPECT_NE(message([](PhysicsParams& p) { p.decomposition_tolerance = 0.0; }).find("decomposition_tolerance"),
             std::string::npos);
-  EXPECT_NE(message([](PhysicsParams& p) { p.max_convex_pieces = 0; }).find("max_convex_pieces"),
-            std::string::npos);
-  EXPECT_NE(message([](PhysicsParams& p) { p.collision_margin = -1.0; }).find("collision_margin"),
-            std::string::npos);
+  EXPECT_NE(message([](PhysicsParams& p) { p.max_convex_pieces = 0; }).find("max_convex_pieces"), std::string::npos);
+  EXPECT_NE(message([](PhysicsParams& p) { p.collision_margin = -1.0; }).find("collision_margin"), std::string::npos);
   // simulatePile validates too, under the name of the struct.
   PhysicsParams bad;
   bad.max_simulated_time = -1.0;

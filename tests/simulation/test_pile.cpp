@@ -26,8 +26,7 @@ Eigen::Isometry3d binPose(const PileScene& scene, const ObjectTruth& truth) {
 
 bool sameBits(const io::PointCloud& a, const io::PointCloud& b) {
   return a.points.size() == b.points.size() &&
-         std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(Eigen::Vector3f)) ==
-             0;
+         std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(Eigen::Vector3f)) == 0;
 }
 
 TEST(Pile, SameSeedGivesBitIdenticalSceneAndOtherSeedsDiffer) {
@@ -40,8 +39,7 @@ TEST(Pile, SameSeedGivesBitIdenticalSceneAndOtherSeedsDiffer) {
   EXPECT_EQ(first.instance, again.instance);
   ASSERT_EQ(first.objects.size(), again.objects.size());
   for (std::size_t i = 0; i < first.objects.size(); ++i) {
-    EXPECT_TRUE(first.objects[i].T_camera_object.matrix() ==
-                again.objects[i].T_camera_object.matrix());
+    EXPECT_TRUE(first.objects[i].T_camera_object.matrix() == again.objects[i].T_camera_object.matrix());
     EXPECT_EQ(first.objects[i].visible_pixels, again.objects[i].visible_pixels);
   }
   params.seed = 43;
@@ -59,20 +57,16 @@ TEST(Pile, OutputShapesAndCameraConvention) {
   EXPECT_EQ(scene.instance.size(), scene.cloud.size());
   EXPECT_EQ(scene.objects.size(), 5u);
   // Floor centre straight ahead at camera_height; the bin's z (up) points back at the camera.
-  EXPECT_TRUE(
-      scene.T_camera_bin.translation().isApprox(Eigen::Vector3d(0, 0, params.camera_height)));
-  EXPECT_TRUE(
-      (scene.T_camera_bin.linear() * Eigen::Vector3d::UnitZ()).isApprox(-Eigen::Vector3d::UnitZ()));
+  EXPECT_TRUE(scene.T_camera_bin.translation().isApprox(Eigen::Vector3d(0, 0, params.camera_height)));
+  EXPECT_TRUE((scene.T_camera_bin.linear() * Eigen::Vector3d::UnitZ()).isApprox(-Eigen::Vector3d::UnitZ()));
   EXPECT_NEAR(scene.T_camera_bin.linear().determinant(), 1.0, 1e-12);
   // The centre pixel sees the floor (or a part) about camera_height away; outside the bin nothing.
   const std::size_t centre =
-      static_cast<std::size_t>(params.rig.camera.height / 2) * params.rig.camera.width +
-      params.rig.camera.width / 2;
+      static_cast<std::size_t>(params.rig.camera.height / 2) * params.rig.camera.width + params.rig.camera.width / 2;
   EXPECT_LE(scene.cloud.points[centre].z(), params.camera_height + 0.005);
   EXPECT_EQ(scene.instance[0], -1);
   EXPECT_TRUE(std::isnan(scene.cloud.points[0].z()));
-  const int bin_pixels =
-      static_cast<int>(std::count(scene.instance.begin(), scene.instance.end(), -2));
+  const int bin_pixels = static_cast<int>(std::count(scene.instance.begin(), scene.instance.end(), -2));
   EXPECT_GT(bin_pixels, 10000);
 }
 
@@ -109,15 +103,13 @@ TEST(Pile, PartsDoNotInterpenetrate) {
     params.bin_width = 0.16;
     const PileScene scene = generatePile(part, params);
     std::vector<test::PlacedMesh> placed;
-    for (const auto& object : scene.objects)
-      placed.push_back(test::place(part, binPose(scene, object)));
+    for (const auto& object : scene.objects) placed.push_back(test::place(part, binPose(scene, object)));
     int touching_pairs = 0;
     for (std::size_t i = 0; i < placed.size(); ++i) {
       for (std::size_t j = 0; j < placed.size(); ++j) {
         if (i == j || !placed[i].box.intersects(placed[j].box)) continue;
         ++touching_pairs;
-        EXPECT_LT(test::penetrationDepth(placed[i], placed[j]), 1e-3)
-            << "part " << i << " into part " << j;
+        EXPECT_LT(test::penetrationDepth(placed[i], placed[j]), 1e-3) << "part " << i << " into part " << j;
       }
     }
     EXPECT_GT(touching_pairs, 10);  // the check only means something if parts are close
@@ -144,8 +136,7 @@ TEST(Pile, VisibleFractionsAreConsistent) {
     EXPECT_LE(truth.visible_fraction, 1.0);
     EXPECT_LE(truth.visible_pixels, truth.unoccluded_pixels);
     EXPECT_GT(truth.unoccluded_pixels, 0);
-    const int count =
-        static_cast<int>(std::count(scene.instance.begin(), scene.instance.end(), int32_t(i)));
+    const int count = static_cast<int>(std::count(scene.instance.begin(), scene.instance.end(), int32_t(i)));
     // Visible pixels are those the camera sees lit: a subset of the pixels labelled with it.
     EXPECT_LE(truth.visible_pixels, count);
     EXPECT_GE(truth.visible_pixels, count / 2);
@@ -170,14 +161,12 @@ TEST(Pile, NoiseFreePixelsLieOnTheLabelledSurface) {
   params.depth_noise = 0.0;
   const PileScene scene = generatePile(part, params);
   std::vector<test::PlacedMesh> in_camera;
-  for (const auto& object : scene.objects)
-    in_camera.push_back(test::place(part, object.T_camera_object));
+  for (const auto& object : scene.objects) in_camera.push_back(test::place(part, object.T_camera_object));
   int checked = 0;
   for (std::size_t i = 0; i < scene.instance.size(); i += 97) {
     const int32_t id = scene.instance[i];
     if (id < 0) continue;
-    EXPECT_LT(test::distanceToSurface(in_camera[id], scene.exact_cloud.points[i].cast<double>()),
-              1e-5);
+    EXPECT_LT(test::distanceToSurface(in_camera[id], scene.exact_cloud.points[i].cast<double>()), 1e-5);
     // The measured cloud holds the lit ones among them, at the same place.
     if (scene.cloud.points[i].allFinite()) {
       EXPECT_EQ(scene.cloud.points[i], scene.exact_cloud.points[i]);
@@ -197,8 +186,7 @@ TEST(Pile, DepthNoiseMovesPointsAlongTheirRays) {
   double sum = 0.0, sum_squares = 0.0;
   int n = 0;
   for (std::size_t i = 0; i < clean.cloud.size(); ++i) {
-    const Eigen::Vector3d p = clean.cloud.points[i].cast<double>(),
-                          q = noisy.cloud.points[i].cast<double>();
+    const Eigen::Vector3d p = clean.cloud.points[i].cast<double>(), q = noisy.cloud.points[i].cast<double>();
     ASSERT_EQ(std::isnan(p.z()), std::isnan(q.z()));
     if (std::isnan(p.z())) continue;
     EXPECT_LT(p.normalized().cross(q.normalized()).norm(), 1e-6);

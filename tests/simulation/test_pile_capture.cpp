@@ -41,16 +41,13 @@ const RenderedPile& renderedPile() {
   return pile;
 }
 
-int value(const cv::Mat& image, std::size_t index) {
-  return image.ptr<uint8_t>(0)[index];
-}
+int value(const cv::Mat& image, std::size_t index) { return image.ptr<uint8_t>(0)[index]; }
 
 TEST(PileCapture, ShadowsInTheImagesAreWhereTheGeometryHasThem) {
   const RenderedPile& p = renderedPile();
   const cv::Mat& white = p.images[0];
   const cv::Mat& black = p.images[1];
-  const Eigen::Vector3f projector_centre =
-      p.scene.rig.T_projector_camera.inverse().translation().cast<float>();
+  const Eigen::Vector3f projector_centre = p.scene.rig.T_projector_camera.inverse().translation().cast<float>();
   int lit = 0, lit_bright = 0, shadowed = 0, shadowed_dark = 0;
   for (std::size_t i = 0; i < p.scene.instance.size(); ++i) {
     const Eigen::Vector3f point = p.scene.exact_cloud.points[i];
@@ -84,8 +81,7 @@ TEST(PileCapture, GrayCodeSpellsTheColumnTheExactPointProjectsTo) {
   for (std::size_t i = 0; i < p.scene.instance.size(); i += 7) {
     if (!p.scene.cloud.points[i].allFinite()) continue;
     const Eigen::Vector3d point = p.scene.exact_cloud.points[i].cast<double>();
-    const Eigen::Vector2d projector =
-        p.scene.rig.projector.project(p.scene.rig.T_projector_camera * point);
+    const Eigen::Vector2d projector = p.scene.rig.projector.project(p.scene.rig.T_projector_camera * point);
     const int truth = static_cast<int>(std::lround(projector.x()));
     unsigned code = 0;
     for (int b = 0; b < bits; ++b) {
@@ -109,8 +105,7 @@ TEST(PileCapture, SameSeedSameImages) {
   const RenderedPile& p = renderedPile();
   PhotometryParams photometry;
   photometry.seed = 5;
-  const auto again =
-      renderPileImages(makePart("clamp").mesh, p.scene, p.params, p.patterns, photometry);
+  const auto again = renderPileImages(makePart("clamp").mesh, p.scene, p.params, p.patterns, photometry);
   ASSERT_EQ(again.size(), p.images.size());
   for (std::size_t k = 0; k < again.size(); ++k) {
     EXPECT_EQ(cv::norm(again[k], p.images[k], cv::NORM_INF), 0.0) << "image " << k;

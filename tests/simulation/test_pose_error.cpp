@@ -18,8 +18,7 @@ Eigen::Isometry3d rotationOnly(double degrees, const Eigen::Vector3d& axis) {
   return pose(Eigen::AngleAxisd(degrees * kPi / 180.0, axis.normalized()), Eigen::Vector3d::Zero());
 }
 
-const Eigen::Isometry3d kTruth =
-    pose(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()), {0.1, -0.2, 0.8});
+const Eigen::Isometry3d kTruth = pose(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()), {0.1, -0.2, 0.8});
 
 TEST(PoseError, ZeroForIdenticalPoses) {
   const PoseError error = poseError(kTruth, kTruth, Symmetry{});
@@ -71,8 +70,7 @@ TEST(PoseError, ContinuousAxisCombinesWithDiscreteFlip) {
   Symmetry capped_cylinder;
   capped_cylinder.continuous_axis = Eigen::Vector3d::UnitZ();
   capped_cylinder.discrete.push_back(rotationOnly(180.0, {1, 0, 0}).linear());
-  const Eigen::Isometry3d upside_down =
-      kTruth * rotationOnly(180.0, {0, 1, 0}) * rotationOnly(5.0, {1, 0, 0});
+  const Eigen::Isometry3d upside_down = kTruth * rotationOnly(180.0, {0, 1, 0}) * rotationOnly(5.0, {1, 0, 0});
   EXPECT_NEAR(poseError(upside_down, kTruth, capped_cylinder).rotation_deg, 5.0, 1e-6);
   Symmetry plain_cylinder;
   plain_cylinder.continuous_axis = Eigen::Vector3d::UnitZ();

@@ -22,8 +22,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 const Eigen::Vector3d kHalf(0.10, 0.05, 0.02);
 
 Eigen::Isometry3d tiltedPose() {
-  return pose(Eigen::Vector3d(0.05, -0.02, 1.0),
-              Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()));
+  return pose(Eigen::Vector3d(0.05, -0.02, 1.0), Eigen::AngleAxisd(0.7, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()));
 }
 
 Ray rayBetween(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
@@ -70,8 +69,7 @@ TEST(RayCaster, HitsOnEveryBoxFaceMatchTheAnalyticGeometry) {
           ASSERT_LT(hit.triangle, 12);
           // The triangle reported lies on that face.
           for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d corner =
-                box.vertices[box.triangles[hit.triangle][k]].cast<double>();
+            const Eigen::Vector3d corner = box.vertices[box.triangles[hit.triangle][k]].cast<double>();
             EXPECT_NEAR(corner.dot(local_normal), kHalf[axis], 1e-6);
           }
           ++checked;
@@ -132,8 +130,8 @@ TEST(RayCaster, InstancesOfOneMeshKeepTheirIdsAndTheMeshNeedNotOutliveTheCaster)
   }
   ASSERT_EQ(caster->objectCount(), 5);
   for (int i = 0; i < 5; ++i) {
-    const RayHit hit = caster->closestHit(
-        rayBetween(Eigen::Vector3d::Zero(), poses[i] * Eigen::Vector3d(0.01, 0.01, 0.0)));
+    const RayHit hit =
+        caster->closestHit(rayBetween(Eigen::Vector3d::Zero(), poses[i] * Eigen::Vector3d(0.01, 0.01, 0.0)));
     ASSERT_TRUE(hit.hit());
     EXPECT_EQ(hit.object_index, i);
     EXPECT_EQ(hit.object_id, 100 + i);
@@ -146,8 +144,7 @@ TEST(RayCaster, InstancesOfOneMeshKeepTheirIdsAndTheMeshNeedNotOutliveTheCaster)
 
 TEST(RayCaster, AloneQueriesIgnoreTheOtherObjects) {
   const io::TriangleMesh box = boxMesh(kHalf);
-  const RayCaster caster(
-      {{&box, pose(Eigen::Vector3d(0, 0, 0.5)), 7}, {&box, pose(Eigen::Vector3d(0, 0, 1.0)), 8}});
+  const RayCaster caster({{&box, pose(Eigen::Vector3d(0, 0, 0.5)), 7}, {&box, pose(Eigen::Vector3d(0, 0, 1.0)), 8}});
   Ray ray;
   EXPECT_EQ(caster.closestHit(ray).object_id, 7);
   const RayHit back = caster.closestHitAlone(1, ray);
@@ -176,8 +173,7 @@ TEST(RayCaster, EmptySceneAndEmptyMeshesAreNeverHit) {
 
   const io::TriangleMesh empty;
   const io::TriangleMesh box = boxMesh(kHalf);
-  const RayCaster mixed(
-      {{&empty, pose(Eigen::Vector3d(0, 0, 0.5)), 1}, {&box, pose(Eigen::Vector3d(0, 0, 1)), 2}});
+  const RayCaster mixed({{&empty, pose(Eigen::Vector3d(0, 0, 0.5)), 1}, {&box, pose(Eigen::Vector3d(0, 0, 1)), 2}});
   EXPECT_EQ(mixed.closestHit(ray).object_index, 1);
   EXPECT_FALSE(mixed.closestHitAlone(0, ray).hit());
   EXPECT_FALSE(mixed.occludedAlone(0, ray));

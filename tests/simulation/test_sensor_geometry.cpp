@@ -27,8 +27,7 @@ struct Floor {
 };
 
 Eigen::Isometry3d partPose() {
-  return pose(Eigen::Vector3d(0.01, -0.005, 0.5),
-              Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, 1.0, 0.3).normalized()));
+  return pose(Eigen::Vector3d(0.01, -0.005, 0.5), Eigen::AngleAxisd(0.6, Eigen::Vector3d(1.0, 1.0, 0.3).normalized()));
 }
 
 SensorGeometryParams withThreads(int threads) {
@@ -38,8 +37,7 @@ SensorGeometryParams withThreads(int threads) {
 }
 
 // Whether the segment from `a` to `b` passes through the axis-aligned box (slab test).
-bool segmentMeetsBox(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                     const Eigen::AlignedBox3d& box) {
+bool segmentMeetsBox(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::AlignedBox3d& box) {
   double enter = 0.0, leave = 1.0;
   for (int k = 0; k < 3; ++k) {
     const double d = b[k] - a[k];
@@ -61,13 +59,11 @@ bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
 }
 
 bool sameBits(const SensorGeometry& a, const SensorGeometry& b) {
-  return a.width == b.width && a.height == b.height && sameBits(a.depth, b.depth) &&
-         sameBits(a.point, b.point) && sameBits(a.normal, b.normal) &&
-         sameBits(a.object_point, b.object_point) && sameBits(a.object_id, b.object_id) &&
-         sameBits(a.object_index, b.object_index) && sameBits(a.camera_cosine, b.camera_cosine) &&
-         sameBits(a.projector_pixel, b.projector_pixel) &&
-         sameBits(a.in_projector_image, b.in_projector_image) &&
-         sameBits(a.projector_cosine, b.projector_cosine) &&
+  return a.width == b.width && a.height == b.height && sameBits(a.depth, b.depth) && sameBits(a.point, b.point) &&
+         sameBits(a.normal, b.normal) && sameBits(a.object_point, b.object_point) &&
+         sameBits(a.object_id, b.object_id) && sameBits(a.object_index, b.object_index) &&
+         sameBits(a.camera_cosine, b.camera_cosine) && sameBits(a.projector_pixel, b.projector_pixel) &&
+         sameBits(a.in_projector_image, b.in_projector_image) && sameBits(a.projector_cosine, b.projector_cosine) &&
          sameBits(a.projector_distance, b.projector_distance) && sameBits(a.lit, b.lit);
 }
 
@@ -110,8 +106,7 @@ TEST(SensorGeometry, WithDistortionEveryHitProjectsBackToItsPixel) {
   const io::RigCalibration rig = test::distortingRig();
   const Part part = makePart("l_bracket");
   const Floor floor;
-  const SensorGeometry g =
-      computeSensorGeometry(rig, RayCaster({{&part.mesh, partPose(), 3}, floor.at(0.6)}));
+  const SensorGeometry g = computeSensorGeometry(rig, RayCaster({{&part.mesh, partPose(), 3}, floor.at(0.6)}));
   int hits = 0;
   double worst = 0.0;
   for (int v = 0; v < g.height; ++v) {
@@ -135,13 +130,10 @@ TEST(SensorGeometry, ShadowOfAPlateMatchesTheAnalyticShadow) {
   const Floor floor;
   const Eigen::Vector3d plate_half(0.025, 0.025, 0.002), plate_centre(0.05, 0.0, 0.8);
   const io::TriangleMesh plate = boxMesh(plate_half);
-  const SensorGeometry g =
-      computeSensorGeometry(rig, RayCaster({floor.at(1.0, 0), {&plate, pose(plate_centre), 1}}));
+  const SensorGeometry g = computeSensorGeometry(rig, RayCaster({floor.at(1.0, 0), {&plate, pose(plate_centre), 1}}));
   const Eigen::AlignedBox3d plate_box(plate_centre - plate_half, plate_centre + plate_half);
   const Eigen::Vector3d projector = test::projectorCentre(rig);
-  const auto inShadow = [&](const Eigen::Vector3d& p) {
-    return segmentMeetsBox(p, projector, plate_box);
-  };
+  const auto inShadow = [&](const Eigen::Vector3d& p) { return segmentMeetsBox(p, projector, plate_box); };
   int shadowed = 0, lit = 0, mismatches = 0;
   for (std::size_t i = 0; i < g.lit.size(); ++i) {
     if (g.object_index[i] != 0) continue;
@@ -167,8 +159,7 @@ TEST(SensorGeometry, ProjectorQuantitiesAgreeWithComputingThemByHand) {
   const io::RigCalibration rig = test::distortingRig();
   const Part part = makePart("clamp");
   const Floor floor;
-  const SensorGeometry g =
-      computeSensorGeometry(rig, RayCaster({{&part.mesh, partPose(), 3}, floor.at(0.7)}));
+  const SensorGeometry g = computeSensorGeometry(rig, RayCaster({{&part.mesh, partPose(), 3}, floor.at(0.7)}));
   const Eigen::Vector3d centre = test::projectorCentre(rig);
   int inside = 0, outside = 0, lit = 0;
   for (std::size_t i = 0; i < g.lit.size(); ++i) {
@@ -182,12 +173,10 @@ TEST(SensorGeometry, ProjectorQuantitiesAgreeWithComputingThemByHand) {
     EXPECT_NEAR(g.projector_cosine[i], n.dot((centre - p).normalized()), 1e-5);
     EXPECT_NEAR(g.camera_cosine[i], -n.dot(p.normalized()), 1e-5);
     const double margin = 1e-3;  // pixels: a point this close to the border may go either way
-    const bool clearly_inside =
-        pixel.x() > -0.5 + margin && pixel.x() < rig.projector.width - 0.5 - margin &&
-        pixel.y() > -0.5 + margin && pixel.y() < rig.projector.height - 0.5 - margin;
-    const bool clearly_outside =
-        pixel.x() < -0.5 - margin || pixel.x() > rig.projector.width - 0.5 + margin ||
-        pixel.y() < -0.5 - margin || pixel.y() > rig.projector.height - 0.5 + margin;
+    const bool clearly_inside = pixel.x() > -0.5 + margin && pixel.x() < rig.projector.width - 0.5 - margin &&
+                                pixel.y() > -0.5 + margin && pixel.y() < rig.projector.height - 0.5 - margin;
+    const bool clearly_outside = pixel.x() < -0.5 - margin || pixel.x() > rig.projector.width - 0.5 + margin ||
+                                 pixel.y() < -0.5 - margin || pixel.y() > rig.projector.height - 0.5 + margin;
     if (clearly_inside) {
       EXPECT_TRUE(g.in_projector_image[i]);
       ++inside;
@@ -216,15 +205,13 @@ TEST(SensorGeometry, PointsFoldedBackByTheProjectorDistortionAreNotLit) {
   rig.projector.distortion = {-0.4, 0.0, 0.0, 0.0, 0.0};
   rig.T_projector_camera = pose(Eigen::Vector3d(-0.25, 0.0, 0.0));
   const io::TriangleMesh floor = boxMesh(Eigen::Vector3d(5.0, 5.0, 0.01));
-  const SensorGeometry g =
-      computeSensorGeometry(rig, RayCaster({{&floor, pose(Eigen::Vector3d(0, 0, 1.01)), 0}}));
+  const SensorGeometry g = computeSensorGeometry(rig, RayCaster({{&floor, pose(Eigen::Vector3d(0, 0, 1.01)), 0}}));
   int folded = 0, lit = 0;
   for (std::size_t i = 0; i < g.lit.size(); ++i) {
     const Eigen::Vector3d q = rig.T_projector_camera * g.point[i].cast<double>();
     const double radius = q.head<2>().norm() / q.z();
     const Eigen::Vector2d pixel = rig.projector.project(q);
-    const bool lands_in_image =
-        pixel.x() > 0 && pixel.x() < 319 && pixel.y() > 0 && pixel.y() < 199;
+    const bool lands_in_image = pixel.x() > 0 && pixel.x() < 319 && pixel.y() > 0 && pixel.y() < 199;
     if (radius > 1.3 && lands_in_image) {
       ++folded;
       EXPECT_FALSE(g.in_projector_image[i]);
@@ -239,10 +226,9 @@ TEST(SensorGeometry, PointsFoldedBackByTheProjectorDistortionAreNotLit) {
 TEST(ObjectVisibility, ALoneObjectInViewIsFullyVisible) {
   const io::RigCalibration rig = test::simpleRig();
   const io::TriangleMesh box = boxMesh(Eigen::Vector3d(0.04, 0.03, 0.02));
-  const RayCaster scene({{&box,
-                          pose(Eigen::Vector3d(0.02, 0.01, 0.6),
-                               Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized())),
-                          5}});
+  const RayCaster scene(
+      {{&box, pose(Eigen::Vector3d(0.02, 0.01, 0.6), Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized())),
+        5}});
   const SensorGeometry g = computeSensorGeometry(rig, scene);
   const std::vector<ObjectVisibility> visibility = computeObjectVisibility(rig, scene, g);
   ASSERT_EQ(visibility.size(), 1u);
@@ -267,14 +253,12 @@ TEST(ObjectVisibility, APlateCoveringHalfAnObjectHalvesItsFraction) {
   const ObjectVisibility& half = visibility[0];
   EXPECT_GT(half.alone_lit_pixels, 1000);
   EXPECT_NEAR(half.visible_fraction, 0.5, 0.05);
-  EXPECT_EQ(half.visible_fraction,
-            static_cast<double>(half.visible_lit_pixels) / half.alone_lit_pixels);
+  EXPECT_EQ(half.visible_fraction, static_cast<double>(half.visible_lit_pixels) / half.alone_lit_pixels);
   EXPECT_EQ(visibility[1].visible_fraction, 1.0);  // nothing covers or shadows the plate
   EXPECT_LT(visibility[2].visible_fraction, 0.9);  // the floor loses to both
 
   // A chosen subset, in the order asked for.
-  const std::vector<ObjectVisibility> subset =
-      computeObjectVisibilityOf(rig, scene, g, {2, 0, 2});
+  const std::vector<ObjectVisibility> subset = computeObjectVisibilityOf(rig, scene, g, {2, 0, 2});
   ASSERT_EQ(subset.size(), 3u);
   EXPECT_EQ(subset[0].alone_lit_pixels, visibility[2].alone_lit_pixels);
   EXPECT_EQ(subset[1].visible_lit_pixels, visibility[0].visible_lit_pixels);
@@ -292,11 +276,10 @@ TEST(ObjectVisibility, AloneCountsMatchRenderingEachObjectAloneInAHeap) {
   std::vector<RenderObject> objects;
   for (int i = 0; i < 8; ++i) {
     // Overlapping in the camera's view, some near the image border where distortion is largest.
-    const Eigen::Vector3d position(0.09 * std::cos(1.9 * i), 0.07 * std::sin(2.3 * i),
-                                   0.55 + 0.012 * i);
+    const Eigen::Vector3d position(0.09 * std::cos(1.9 * i), 0.07 * std::sin(2.3 * i), 0.55 + 0.012 * i);
     const Eigen::Vector3d axis(std::sin(0.7 * i), std::cos(1.3 * i), 0.5);
-    objects.push_back({&part.mesh, pose(position, Eigen::AngleAxisd(0.9 * i, axis.normalized())),
-                       static_cast<int32_t>(i)});
+    objects.push_back(
+        {&part.mesh, pose(position, Eigen::AngleAxisd(0.9 * i, axis.normalized())), static_cast<int32_t>(i)});
   }
   objects.push_back({&part.mesh, pose(Eigen::Vector3d(0.21, 0.16, 0.6)), 8});  // a corner
   objects.push_back(floor.at(0.66));
@@ -304,10 +287,8 @@ TEST(ObjectVisibility, AloneCountsMatchRenderingEachObjectAloneInAHeap) {
   const SensorGeometry one = computeSensorGeometry(rig, scene, withThreads(1));
   const SensorGeometry two = computeSensorGeometry(rig, scene, withThreads(2));
   EXPECT_TRUE(sameBits(one, two));
-  const std::vector<ObjectVisibility> visibility =
-      computeObjectVisibility(rig, scene, one, withThreads(1));
-  const std::vector<ObjectVisibility> again =
-      computeObjectVisibility(rig, scene, one, withThreads(2));
+  const std::vector<ObjectVisibility> visibility = computeObjectVisibility(rig, scene, one, withThreads(1));
+  const std::vector<ObjectVisibility> again = computeObjectVisibility(rig, scene, one, withThreads(2));
   ASSERT_EQ(visibility.size(), objects.size());
   int partly_hidden = 0;
   for (std::size_t i = 0; i < objects.size(); ++i) {

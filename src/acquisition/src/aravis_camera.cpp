@@ -82,7 +82,8 @@ Frame statusFrame(FrameStatus status, std::string detail) {
 class AravisCamera final : public Camera {
  public:
   explicit AravisCamera(const CameraParams& params)
-      : params_(params), layout_(detail::pixelLayout(params.pixel_format)),
+      : params_(params),
+        layout_(detail::pixelLayout(params.pixel_format)),
         name_("camera '" + (params.id.empty() ? std::string("(first found)") : params.id) + "'") {}
   ~AravisCamera() override { close(); }
   AravisCamera(const AravisCamera&) = delete;

@@ -46,7 +46,7 @@ void setRegion(ArvCamera* camera, const CameraParams& params, const std::string&
   const cv::Rect roi = params.roi.empty() ? sensor : params.roi;
   if ((roi & sensor) != roi) {
     throw core::Error(cannotSet(name, "roi", regionText(roi)) + ": outside the " + std::to_string(sensor.width) + "x" +
-                std::to_string(sensor.height) + " sensor");
+                      std::to_string(sensor.height) + " sensor");
   }
   GErrorSlot error;
   arv_camera_set_region(camera, roi.x, roi.y, roi.width, roi.height, error.out());
@@ -54,7 +54,8 @@ void setRegion(ArvCamera* camera, const CameraParams& params, const std::string&
   cv::Rect actual;
   arv_camera_get_region(camera, &actual.x, &actual.y, &actual.width, &actual.height, error.out());
   error.throwIfSet(name + ": cannot read the region back");
-  if (actual != roi) throw core::Error(cannotSet(name, "roi", regionText(roi)) + ": the camera made it " + regionText(actual));
+  if (actual != roi)
+    throw core::Error(cannotSet(name, "roi", regionText(roi)) + ": the camera made it " + regionText(actual));
 }
 
 // Aravis 0.8 writes a value outside the feature's bounds without complaint (the fake camera
@@ -84,7 +85,8 @@ void setExposure(ArvCamera* camera, const CameraParams& params, const std::strin
 void setGain(ArvCamera* camera, const CameraParams& params, const std::string& name) {
   GErrorSlot error;
   if (!arv_camera_is_gain_available(camera, nullptr)) {
-    if (params.gain_db != 0.0) throw core::Error(cannotSet(name, "gain_db", params.gain_db) + ": the camera has no gain");
+    if (params.gain_db != 0.0)
+      throw core::Error(cannotSet(name, "gain_db", params.gain_db) + ": the camera has no gain");
     return;
   }
   if (arv_camera_is_gain_auto_available(camera, nullptr)) {

@@ -1,11 +1,11 @@
 // Aravis buffer -> Frame: status mapping and the pixel copy.
 #include "aravis_frame.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <algorithm>
 
 #include "binpick/core/error.hpp"
 
@@ -115,8 +115,10 @@ Frame frameFromBuffer(ArvBuffer* buffer, const PixelLayout& layout) {
   arv_buffer_get_image_padding(buffer, &x_padding, &y_padding);
   size_t size = 0;
   const auto* data = static_cast<const uint8_t*>(arv_buffer_get_image_data(buffer, &size));
-  const size_t stride = static_cast<size_t>(width) * layout.bytes_per_pixel + static_cast<size_t>(std::max(x_padding, 0));
-  const size_t needed = height > 0 ? stride * static_cast<size_t>(height - 1) + static_cast<size_t>(width) * layout.bytes_per_pixel : 0;
+  const size_t stride =
+      static_cast<size_t>(width) * layout.bytes_per_pixel + static_cast<size_t>(std::max(x_padding, 0));
+  const size_t needed =
+      height > 0 ? stride * static_cast<size_t>(height - 1) + static_cast<size_t>(width) * layout.bytes_per_pixel : 0;
   if (data == nullptr || width <= 0 || height <= 0 || size < needed) {
     return failed(std::move(frame), "frame holds no " + std::to_string(width) + "x" + std::to_string(height) +
                                         " image (" + std::to_string(size) + " bytes)");

@@ -11,7 +11,7 @@ namespace binpick::acquisition {
 Backoff::Backoff(std::chrono::milliseconds initial, std::chrono::milliseconds max) : initial_(initial), max_(max) {
   if (initial.count() <= 0 || max < initial) {
     throw core::Error("backoff: needs 0 < initial <= max (got " + std::to_string(initial.count()) + " ms and " +
-                std::to_string(max.count()) + " ms)");
+                      std::to_string(max.count()) + " ms)");
   }
 }
 

@@ -56,7 +56,7 @@ void requirePortFree(const std::string& address) {
   ::close(fd);
   if (result != 0 && bind_errno == EADDRINUSE) {
     throw core::Error("fake GigE camera: UDP port 3956 on " + address +
-                " is taken (another fake camera or GigE Vision tool is running)");
+                      " is taken (another fake camera or GigE Vision tool is running)");
   }
 }
 
@@ -64,8 +64,8 @@ void requirePortFree(const std::string& address) {
 
 struct FakeGigECamera::State {
   FakeCameraParams params;
-  detail::ServedImage served;  // read by Aravis's thread through the fill callback
-  std::mutex control;          // server lifetime and fault switches
+  detail::ServedImage served;          // read by Aravis's thread through the fill callback
+  std::mutex control;                  // server lifetime and fault switches
   GObjectPtr<ArvGvFakeCamera> server;  // null while suspended
   double packet_loss = 0.0;
 
@@ -79,7 +79,7 @@ void FakeGigECamera::State::startServer() {
   GObjectPtr<ArvGvFakeCamera> fake(arv_gv_fake_camera_new(params.address.c_str(), params.serial.c_str()));
   if (fake == nullptr || !arv_gv_fake_camera_is_running(fake.get())) {
     throw core::Error("fake GigE camera: cannot listen on '" + params.address +
-                "': no network interface with that address or name");
+                      "': no network interface with that address or name");
   }
   ArvFakeCamera* camera = arv_gv_fake_camera_get_fake_camera(fake.get());
   const auto width = static_cast<guint32>(params.width);

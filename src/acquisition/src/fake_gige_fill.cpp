@@ -16,9 +16,9 @@ void ServedImage::set(const cv::Mat& image) {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (image.size() != size_ || image.type() != type_) {
     throw core::Error("fake camera: served image must be " + std::to_string(size_.width) + "x" +
-                std::to_string(size_.height) + (type_ == CV_8UC1 ? " 8-bit" : " 16-bit") + " grey (got " +
-                std::to_string(image.cols) + "x" + std::to_string(image.rows) + ", OpenCV type " +
-                std::to_string(image.type()) + ")");
+                      std::to_string(size_.height) + (type_ == CV_8UC1 ? " 8-bit" : " 16-bit") + " grey (got " +
+                      std::to_string(image.cols) + "x" + std::to_string(image.rows) + ", OpenCV type " +
+                      std::to_string(image.type()) + ")");
   }
   image.copyTo(image_);
 }

@@ -25,7 +25,6 @@ class ServedImage {
 };
 
 // ArvFakeCameraFillPattern with `data` = the ServedImage. Runs on Aravis's fake camera thread.
-void fillFromServedImage(ArvBuffer* buffer, void* data, guint32 exposure_time_us, guint32 gain,
-                         ArvPixelFormat format);
+void fillFromServedImage(ArvBuffer* buffer, void* data, guint32 exposure_time_us, guint32 gain, ArvPixelFormat format);
 
 }  // namespace binpick::acquisition::detail

@@ -14,8 +14,6 @@ class FreeRunningProjector : public ProjectorTrigger {
 
 }  // namespace
 
-std::unique_ptr<ProjectorTrigger> makeFreeRunningProjector() {
-  return std::make_unique<FreeRunningProjector>();
-}
+std::unique_ptr<ProjectorTrigger> makeFreeRunningProjector() { return std::make_unique<FreeRunningProjector>(); }
 
 }  // namespace binpick::acquisition

@@ -31,9 +31,9 @@ std::string lineName(const GpioTriggerParams& params) {
 
 // What went wrong opening a chip, in the words an installer looks for.
 const char* openProblem(int error) {
-  if (error == ENOENT) return "no such chip";            // wrong name, or no GPIO driver loaded
+  if (error == ENOENT) return "no such chip";                        // wrong name, or no GPIO driver loaded
   if (error == ENOTTY || error == ENODEV) return "not a GPIO chip";  // a path to another device
-  return "cannot open it";                                // e.g. EACCES: not in the gpio group
+  return "cannot open it";                                           // e.g. EACCES: not in the gpio group
 }
 
 // chip() throws std::system_error (errno) when the chip cannot be opened: name the chip.
@@ -64,8 +64,9 @@ class GpioTrigger : public ProjectorTrigger {
  public:
   explicit GpioTrigger(const GpioTriggerParams& params)
       : params_(params), chip_(openChip(params.chip)), line_(requestLine(chip_, params)) {
-    detail::componentLogger("gpio trigger")->info("{}: pulses of {} us, active {}", lineName(params_),
-                                                  params_.pulse_us, params_.active_high ? "high" : "low");
+    detail::componentLogger("gpio trigger")
+        ->info("{}: pulses of {} us, active {}", lineName(params_), params_.pulse_us,
+               params_.active_high ? "high" : "low");
   }
 
   ~GpioTrigger() override {
@@ -82,8 +83,8 @@ class GpioTrigger : public ProjectorTrigger {
       std::this_thread::sleep_for(std::chrono::microseconds(params_.pulse_us));
       line_.set_value(0);
     } catch (const std::exception& e) {
-      throw core::Error(lineName(params_) + ": cannot pulse it for pattern " + std::to_string(index) + " (" +
-                  e.what() + ")");
+      throw core::Error(lineName(params_) + ": cannot pulse it for pattern " + std::to_string(index) + " (" + e.what() +
+                        ")");
     }
   }
 

@@ -19,7 +19,7 @@ void validateLive(const LiveParams& params) {
   const std::string owner = "live params";
   core::requireField(params.reopen_backoff_ms >= 1, owner, "reopen_backoff_ms", ">= 1", params.reopen_backoff_ms);
   core::requireField(params.max_reopen_backoff_ms >= params.reopen_backoff_ms, owner, "max_reopen_backoff_ms",
-               ">= reopen_backoff_ms", params.max_reopen_backoff_ms);
+                     ">= reopen_backoff_ms", params.max_reopen_backoff_ms);
   params.patterns.validate();
   params.sequencer.validate();
 }
@@ -131,8 +131,7 @@ class LiveSource : public CaptureSource {
 }  // namespace
 
 std::unique_ptr<CaptureSource> makeLiveSource(std::unique_ptr<Camera> camera,
-                                              std::unique_ptr<ProjectorTrigger> projector,
-                                              const LiveParams& params) {
+                                              std::unique_ptr<ProjectorTrigger> projector, const LiveParams& params) {
   if (!camera) throw core::Error("live source: no camera");
   if (!projector) throw core::Error("live source: no projector trigger");
   validateLive(params);

@@ -36,8 +36,9 @@ std::vector<std::string> listCaptures(const std::string& path) {
   std::vector<std::string> captures;
   for (const fs::path& directory : directories) {
     if (!isCapture(directory)) {
-      throw core::Error("replay: " + directory.string() +
-                  " has no capture.json (a recording that did not finish?); remove it or replay another directory");
+      throw core::Error(
+          "replay: " + directory.string() +
+          " has no capture.json (a recording that did not finish?); remove it or replay another directory");
     }
     captures.push_back(directory.string());
   }

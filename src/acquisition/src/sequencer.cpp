@@ -67,8 +67,7 @@ void dropLateFrames(Camera& camera) {
 
 // One whole frame of the pattern on show, re-triggering up to max_retries times. A lost
 // connection ends the capture at once: retrying cannot help until the camera is reopened.
-cv::Mat takeFrame(Camera& camera, const SequencerParams& params, const std::string& label,
-                  SequencerReport& report) {
+cv::Mat takeFrame(Camera& camera, const SequencerParams& params, const std::string& label, SequencerReport& report) {
   Frame frame;
   for (int attempt = 0; attempt <= params.max_retries; ++attempt) {
     if (attempt > 0) {
@@ -100,14 +99,13 @@ cv::Mat takeFrame(Camera& camera, const SequencerParams& params, const std::stri
 // pixel by pixel.
 void checkFormat(const cv::Mat& image, const cv::Mat& first, const std::string& label) {
   if (bitDepth(image) == 0) {
-    throw CaptureError(label + ": the camera delivered a " + formatText(image) +
-                           " image; captures take 8- or 16-bit grey",
-                       false);
+    throw CaptureError(
+        label + ": the camera delivered a " + formatText(image) + " image; captures take 8- or 16-bit grey", false);
   }
   if (image.size() != first.size() || image.type() != first.type()) {
-    throw CaptureError(label + ": the camera delivered a " + formatText(image) + " image after a " +
-                           formatText(first) + " one",
-                       false);
+    throw CaptureError(
+        label + ": the camera delivered a " + formatText(image) + " image after a " + formatText(first) + " one",
+        false);
   }
 }
 
@@ -164,10 +162,10 @@ void SequencerParams::validate() const {
   // Bounds catch unit mistakes (seconds for microseconds) rather than limit real rigs.
   core::requireField(settle_us >= 0 && settle_us <= 10000000, owner, "settle_us", "in [0, 10000000]", settle_us);
   core::requireField(frame_timeout_ms >= 1 && frame_timeout_ms <= 600000, owner, "frame_timeout_ms", "in [1, 600000]",
-               frame_timeout_ms);
+                     frame_timeout_ms);
   core::requireField(max_retries >= 0 && max_retries <= 100, owner, "max_retries", "in [0, 100]", max_retries);
   core::requireField(order == TriggerOrder::ProjectorThenCamera || order == TriggerOrder::CameraOnly, owner, "order",
-               "ProjectorThenCamera or CameraOnly", static_cast<int>(order));
+                     "ProjectorThenCamera or CameraOnly", static_cast<int>(order));
 }
 
 }  // namespace binpick::acquisition

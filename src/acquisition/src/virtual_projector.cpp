@@ -11,13 +11,12 @@ namespace {
 
 class VirtualProjector final : public ProjectorTrigger {
  public:
-  VirtualProjector(FakeGigECamera& camera, std::vector<cv::Mat> images)
-      : camera_(camera), images_(std::move(images)) {}
+  VirtualProjector(FakeGigECamera& camera, std::vector<cv::Mat> images) : camera_(camera), images_(std::move(images)) {}
 
   void showPattern(int index) override {
     if (index < 0 || index >= static_cast<int>(images_.size())) {
       throw core::Error("virtual projector: pattern " + std::to_string(index) + " out of range (it holds " +
-                  std::to_string(images_.size()) + " images)");
+                        std::to_string(images_.size()) + " images)");
     }
     try {
       camera_.serve(images_[static_cast<std::size_t>(index)]);

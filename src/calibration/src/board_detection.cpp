@@ -28,10 +28,9 @@ cv::Mat eightBit(const cv::Mat& image) {
 }
 
 cv::Ptr<cv::aruco::CharucoBoard> charucoBoard(const BoardLayout& layout) {
-  return cv::aruco::CharucoBoard::create(
-      layout.squares_x, layout.squares_y, static_cast<float>(layout.square_size),
-      static_cast<float>(layout.marker_size),
-      cv::aruco::getPredefinedDictionary(arucoDictionaryId(layout.dictionary)));
+  return cv::aruco::CharucoBoard::create(layout.squares_x, layout.squares_y, static_cast<float>(layout.square_size),
+                                         static_cast<float>(layout.marker_size),
+                                         cv::aruco::getPredefinedDictionary(arucoDictionaryId(layout.dictionary)));
 }
 
 std::string findCharuco(const cv::Mat& image8, const BoardLayout& layout, Corners& found) {
@@ -40,8 +39,7 @@ std::string findCharuco(const cv::Mat& image8, const BoardLayout& layout, Corner
   std::vector<int> marker_ids;
   cv::aruco::detectMarkers(image8, board->dictionary, markers, marker_ids);
   if (marker_ids.empty()) return "no ArUco marker of " + layout.dictionary + " in the image";
-  cv::aruco::interpolateCornersCharuco(markers, marker_ids, image8, board, found.pixels,
-                                       found.ids);
+  cv::aruco::interpolateCornersCharuco(markers, marker_ids, image8, board, found.pixels, found.ids);
   if (found.ids.empty()) return "ArUco markers found but no ChArUco corner between them";
   return {};
 }
@@ -104,16 +102,13 @@ void refine(const cv::Mat& image, std::vector<cv::Point2f>& pixels, int half_win
 }
 
 // Corners by ascending id, without those too near the border for the refinement window.
-void keepInside(const cv::Mat& image, double margin, const Corners& corners,
-                BoardDetection& detection) {
+void keepInside(const cv::Mat& image, double margin, const Corners& corners, BoardDetection& detection) {
   std::vector<std::size_t> order(corners.ids.size());
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return corners.ids[a] < corners.ids[b]; });
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return corners.ids[a] < corners.ids[b]; });
   for (const std::size_t i : order) {
     const cv::Point2f& p = corners.pixels[i];
-    if (p.x < margin || p.y < margin || p.x > image.cols - 1 - margin ||
-        p.y > image.rows - 1 - margin) {
+    if (p.x < margin || p.y < margin || p.x > image.cols - 1 - margin || p.y > image.rows - 1 - margin) {
       continue;
     }
     detection.ids.push_back(corners.ids[i]);
@@ -125,18 +120,16 @@ void keepInside(const cv::Mat& image, double margin, const Corners& corners,
 
 void BoardDetectionParams::validate() const {
   core::requireField(subpixel_half_window >= 2, "BoardDetectionParams", "subpixel_half_window", ">= 2",
-               subpixel_half_window);
+                     subpixel_half_window);
   core::requireField(min_corners >= 4, "BoardDetectionParams", "min_corners", ">= 4", min_corners);
-  core::requireField(std::isfinite(border_margin) && border_margin >= 0.0, "BoardDetectionParams",
-               "border_margin", ">= 0", border_margin);
+  core::requireField(std::isfinite(border_margin) && border_margin >= 0.0, "BoardDetectionParams", "border_margin",
+                     ">= 0", border_margin);
 }
 
-BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout,
-                           const BoardDetectionParams& params) {
+BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout, const BoardDetectionParams& params) {
   params.validate();
   layout.validate();
-  if (image.empty() || image.channels() != 1 ||
-      (image.depth() != CV_8U && image.depth() != CV_16U)) {
+  if (image.empty() || image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {
     throw core::Error("board detection needs a non-empty 8- or 16-bit single-channel image");
   }
   BoardDetection detection;
@@ -149,9 +142,8 @@ BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout,
   refine(image, corners.pixels, refinementHalfWindow(layout, corners, params.subpixel_half_window));
   keepInside(image, params.border_margin, corners, detection);
   if (static_cast<int>(detection.ids.size()) < params.min_corners) {
-    detection.problem = "only " + std::to_string(detection.ids.size()) + " of " +
-                        std::to_string(detection.expected) + " board corners found (at least " +
-                        std::to_string(params.min_corners) + " needed)";
+    detection.problem = "only " + std::to_string(detection.ids.size()) + " of " + std::to_string(detection.expected) +
+                        " board corners found (at least " + std::to_string(params.min_corners) + " needed)";
   }
   return detection;
 }

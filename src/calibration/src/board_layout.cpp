@@ -54,18 +54,15 @@ void validateMarkers(const BoardLayout& layout) {
   const int available = arucoDictionarySize(id);
   if (markers > available) {
     std::ostringstream message;
-    message << "BoardLayout.dictionary " << layout.dictionary << " holds " << available
-            << " markers; a " << layout.squares_x << "x" << layout.squares_y << " board needs "
-            << markers;
+    message << "BoardLayout.dictionary " << layout.dictionary << " holds " << available << " markers; a "
+            << layout.squares_x << "x" << layout.squares_y << " board needs " << markers;
     throw core::Error(message.str());
   }
 }
 
 }  // namespace
 
-std::string boardTypeName(BoardType type) {
-  return type == BoardType::Chessboard ? "chessboard" : "charuco";
-}
+std::string boardTypeName(BoardType type) { return type == BoardType::Chessboard ? "chessboard" : "charuco"; }
 
 BoardType boardTypeFromName(const std::string& name) {
   if (name == "chessboard") return BoardType::Chessboard;
@@ -92,8 +89,8 @@ std::string arucoDictionaryNames() {
 }
 
 void BoardLayout::validate() const {
-  require(type == BoardType::Chessboard || type == BoardType::Charuco, "type",
-          "chessboard or charuco", static_cast<int>(type));
+  require(type == BoardType::Chessboard || type == BoardType::Charuco, "type", "chessboard or charuco",
+          static_cast<int>(type));
   // Fewer squares leave a single row of inner corners, which OpenCV's detectors reject.
   require(squares_x >= 3, "squares_x", ">= 3", squares_x);
   require(squares_y >= 3, "squares_y", ">= 3", squares_y);
@@ -103,8 +100,7 @@ void BoardLayout::validate() const {
 
 Eigen::Vector3d BoardLayout::cornerPoint(int id) const {
   if (id < 0 || id >= cornerCount()) {
-    throw core::Error("board corner id " + std::to_string(id) + " is outside 0.." +
-                std::to_string(cornerCount() - 1));
+    throw core::Error("board corner id " + std::to_string(id) + " is outside 0.." + std::to_string(cornerCount() - 1));
   }
   const int columns = squares_x - 1;
   const int row = id / columns, column = id % columns;

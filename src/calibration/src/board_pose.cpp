@@ -20,8 +20,7 @@ Eigen::Isometry3d isometry(const cv::Mat& rvec, const cv::Mat& tvec) {
 
 }  // namespace
 
-std::optional<BoardPose> estimateBoardPose(const BoardDetection& detection,
-                                           const BoardLayout& layout,
+std::optional<BoardPose> estimateBoardPose(const BoardDetection& detection, const BoardLayout& layout,
                                            const io::LensIntrinsics& camera) {
   if (!detection.found() || detection.ids.size() < 4) return std::nullopt;
   std::vector<cv::Point3d> object;
@@ -32,8 +31,7 @@ std::optional<BoardPose> estimateBoardPose(const BoardDetection& detection,
     image.emplace_back(detection.pixels[i].x(), detection.pixels[i].y());
   }
   const cv::Mat K = cameraMatrix(camera);
-  const cv::Mat distortion(std::vector<double>(camera.distortion.begin(), camera.distortion.end()),
-                           true);
+  const cv::Mat distortion(std::vector<double>(camera.distortion.begin(), camera.distortion.end()), true);
   cv::Mat rvec, tvec;
   // IPPE is the planar solver: no ambiguity from a poor start for a board seen head-on.
   if (!cv::solvePnP(object, image, K, distortion, rvec, tvec, false, cv::SOLVEPNP_IPPE)) {

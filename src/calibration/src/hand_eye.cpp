@@ -35,8 +35,8 @@ HandEyeSetup handEyeSetupFromName(const std::string& name) {
   if (name == "eye-to-hand") return HandEyeSetup::EyeToHand;
   if (name == "eye-in-hand") return HandEyeSetup::EyeInHand;
   throw core::Error("unknown hand-eye setup '" + name +
-              "' (eye-to-hand: fixed camera, board on the flange; eye-in-hand: camera on the "
-              "flange, board fixed)");
+                    "' (eye-to-hand: fixed camera, board on the flange; eye-in-hand: camera on the "
+                    "flange, board fixed)");
 }
 
 std::string cameraTransformName(HandEyeSetup setup) {
@@ -83,14 +83,13 @@ bool nonNegative(double v) { return std::isfinite(v) && v >= 0.0; }
 void HandEyeParams::validate() const {
   // OpenCV's solvers need 3 views; fewer than 4 leave no residual to judge a view by.
   require(min_views >= 4, "min_views", ">= 4", min_views);
-  require(nonNegative(min_rotation_deg) && min_rotation_deg < 180.0, "min_rotation_deg",
-          "in [0, 180)", min_rotation_deg);
-  require(nonNegative(min_axis_spread_deg) && min_axis_spread_deg < 180.0, "min_axis_spread_deg",
-          "in [0, 180)", min_axis_spread_deg);
-  require(std::isfinite(inverted_fit_ratio) && inverted_fit_ratio > 1.0, "inverted_fit_ratio",
-          "> 1", inverted_fit_ratio);
-  require(std::isfinite(outlier_factor) && outlier_factor > 1.0, "outlier_factor", "> 1",
-          outlier_factor);
+  require(nonNegative(min_rotation_deg) && min_rotation_deg < 180.0, "min_rotation_deg", "in [0, 180)",
+          min_rotation_deg);
+  require(nonNegative(min_axis_spread_deg) && min_axis_spread_deg < 180.0, "min_axis_spread_deg", "in [0, 180)",
+          min_axis_spread_deg);
+  require(std::isfinite(inverted_fit_ratio) && inverted_fit_ratio > 1.0, "inverted_fit_ratio", "> 1",
+          inverted_fit_ratio);
+  require(std::isfinite(outlier_factor) && outlier_factor > 1.0, "outlier_factor", "> 1", outlier_factor);
   require(nonNegative(outlier_floor_mm), "outlier_floor_mm", ">= 0", outlier_floor_mm);
   require(nonNegative(outlier_floor_deg), "outlier_floor_deg", ">= 0", outlier_floor_deg);
   require(positive(max_rms_mm), "max_rms_mm", "positive", max_rms_mm);
@@ -99,8 +98,7 @@ void HandEyeParams::validate() const {
 
 namespace detail {
 
-HandEyeProblem makeProblem(const std::vector<HandEyeView>& views, HandEyeSetup setup,
-                           bool inverted) {
+HandEyeProblem makeProblem(const std::vector<HandEyeView>& views, HandEyeSetup setup, bool inverted) {
   // Eye-in-hand wants T_base_flange, eye-to-hand its inverse; inverting the given poses flips
   // which one each setup gets.
   const bool invert = (setup == HandEyeSetup::EyeToHand) != inverted;
@@ -119,8 +117,7 @@ Eigen::Isometry3d predictedBoard(const HandEyeProblem& problem, std::size_t view
   return problem.robot[view] * T_mount_camera * problem.camera[view];
 }
 
-std::vector<HandEyeResidual> residualsOf(const HandEyeProblem& problem,
-                                         const MountTransforms& mounts) {
+std::vector<HandEyeResidual> residualsOf(const HandEyeProblem& problem, const MountTransforms& mounts) {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   std::vector<HandEyeResidual> residuals;
   for (std::size_t i = 0; i < problem.robot.size(); ++i) {
@@ -149,8 +146,7 @@ PoseDifference rmsOf(const std::vector<HandEyeResidual>& residuals) {
 
 }  // namespace detail
 
-std::vector<HandEyeResidual> handEyeResiduals(const std::vector<HandEyeView>& views,
-                                              HandEyeSetup setup,
+std::vector<HandEyeResidual> handEyeResiduals(const std::vector<HandEyeView>& views, HandEyeSetup setup,
                                               const Eigen::Isometry3d& T_mount_camera,
                                               const Eigen::Isometry3d& T_mount_board) {
   const detail::HandEyeProblem problem = detail::makeProblem(views, setup, false);

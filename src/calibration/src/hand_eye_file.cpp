@@ -4,11 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "binpick/io/capture.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
 #include "binpick/core/pose_yaml.hpp"
 #include "binpick/core/yaml_section.hpp"
+#include "binpick/io/capture.hpp"
 
 namespace binpick::calibration {
 
@@ -30,15 +30,13 @@ void writeHandEyeFile(const std::string& path, const HandEyeFile& file) {
   std::string text =
       "# Hand-eye calibration (binpick calibrate hand-eye, docs/hand-eye.md). binpickd reads it\n"
       "# with `hand_eye: {file: PATH}`; `details` is the calibration's record, not a setting.\n"
-      "hand_eye:\n  " + cameraTransformName(file.setup) + ":\n" +
-      core::poseYaml(file.T_mount_camera, "    ") + "  details:\n" +
-      "    setup: " + handEyeSetupName(file.setup) + "\n" +
-      "    method: " + file.method + "\n" +
-      "    date: " + file.date + "\n" +
-      "    views: " + std::to_string(file.views) + "\n" +
+      "hand_eye:\n  " +
+      cameraTransformName(file.setup) + ":\n" + core::poseYaml(file.T_mount_camera, "    ") + "  details:\n" +
+      "    setup: " + handEyeSetupName(file.setup) + "\n" + "    method: " + file.method + "\n" +
+      "    date: " + file.date + "\n" + "    views: " + std::to_string(file.views) + "\n" +
       "    residual_rms_mm: " + core::yamlNumber(file.rms_mm) + "\n" +
-      "    residual_rms_deg: " + core::yamlNumber(file.rms_deg) + "\n" +
-      "    " + boardTransformName(file.setup) + ":\n" + core::poseYaml(file.T_mount_board, "      ");
+      "    residual_rms_deg: " + core::yamlNumber(file.rms_deg) + "\n" + "    " + boardTransformName(file.setup) +
+      ":\n" + core::poseYaml(file.T_mount_board, "      ");
   core::writeFileAtomically(path, text, core::ParentDirectory::Create);
 }
 
@@ -59,7 +57,8 @@ HandEyeFile readHandEyeFile(const std::string& path) {
   if (!section.has(camera.c_str())) section.fail(camera, "is missing (setup " + setup + ")");
   file.T_mount_camera = core::readPose(section.child(camera.c_str()), core::PoseFields::Required);
   section.finish();
-  file.T_mount_board = core::readPose(details.child(boardTransformName(file.setup).c_str()), core::PoseFields::Required);
+  file.T_mount_board =
+      core::readPose(details.child(boardTransformName(file.setup).c_str()), core::PoseFields::Required);
   details.read("method", file.method);
   details.read("date", file.date);
   details.read("views", file.views);

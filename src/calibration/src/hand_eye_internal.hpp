@@ -21,8 +21,7 @@ struct HandEyeProblem {
 };
 
 // `inverted`: the poses as if they had been given flange->base.
-HandEyeProblem makeProblem(const std::vector<HandEyeView>& views, HandEyeSetup setup,
-                           bool inverted);
+HandEyeProblem makeProblem(const std::vector<HandEyeView>& views, HandEyeSetup setup, bool inverted);
 
 struct MountTransforms {
   Eigen::Isometry3d camera = Eigen::Isometry3d::Identity();  // T_mount_camera
@@ -38,8 +37,7 @@ MountTransforms refineMounts(const HandEyeProblem& problem, const MountTransform
 Eigen::Isometry3d predictedBoard(const HandEyeProblem& problem, std::size_t view,
                                  const Eigen::Isometry3d& T_mount_camera);
 // Per view and RMS; NaN transforms give infinite residuals.
-std::vector<HandEyeResidual> residualsOf(const HandEyeProblem& problem,
-                                         const MountTransforms& mounts);
+std::vector<HandEyeResidual> residualsOf(const HandEyeProblem& problem, const MountTransforms& mounts);
 PoseDifference rmsOf(const std::vector<HandEyeResidual>& residuals);
 
 // The mean of rigid transforms: mean translation, and the rotation nearest the mean matrix.

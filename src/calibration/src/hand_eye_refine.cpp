@@ -19,8 +19,8 @@ namespace {
 // A robot's orientation error against its position error: 0.05 degrees against 0.1 mm.
 constexpr double kRotationLever = 0.115;  // metres per radian
 constexpr int kMaxIterations = 20;
-constexpr double kStep = 1e-7;          // numerical derivative step, radians or metres
-constexpr double kConverged = 1e-14;    // squared parameter update that ends the iterations
+constexpr double kStep = 1e-7;        // numerical derivative step, radians or metres
+constexpr double kConverged = 1e-14;  // squared parameter update that ends the iterations
 
 using Vector12 = Eigen::Matrix<double, 12, 1>;
 
@@ -66,8 +66,8 @@ MountTransforms refineMounts(const HandEyeProblem& problem, const MountTransform
     for (int k = 0; k < 12; ++k) {
       Vector12 step = Vector12::Zero();
       step(k) = kStep;
-      J.col(k) = (residualVector(problem, apply(current, step)) -
-                  residualVector(problem, apply(current, -step))) / (2.0 * kStep);
+      J.col(k) = (residualVector(problem, apply(current, step)) - residualVector(problem, apply(current, -step))) /
+                 (2.0 * kStep);
     }
     const Vector12 update = (J.transpose() * J).ldlt().solve(-J.transpose() * r);
     if (!update.allFinite()) break;
@@ -98,17 +98,17 @@ constexpr int kMaxSolves = 2000;
 struct Fit {
   double rms_mm = 0.0;
   double rms_deg = 0.0;
-  bool within(const HandEyeParams& p) const {
-    return rms_mm <= p.max_rms_mm && rms_deg <= p.max_rms_deg;
-  }
+  bool within(const HandEyeParams& p) const { return rms_mm <= p.max_rms_mm && rms_deg <= p.max_rms_deg; }
 };
 
 bool fitWithout(const std::vector<HandEyeView>& views, const std::vector<std::size_t>& dropped,
                 const HandEyeParams& params, Fit& fit) {
   std::vector<HandEyeView> rest;
   for (std::size_t i = 0, d = 0; i < views.size(); ++i) {
-    if (d < dropped.size() && dropped[d] == i) ++d;
-    else rest.push_back(views[i]);
+    if (d < dropped.size() && dropped[d] == i)
+      ++d;
+    else
+      rest.push_back(views[i]);
   }
   try {
     const HandEyeProblem problem = makeProblem(rest, params.setup, false);
@@ -133,8 +133,7 @@ bool nextCombination(std::vector<std::size_t>& chosen, std::size_t n) {
   return false;
 }
 
-std::string sentence(const std::vector<HandEyeView>& views, const std::vector<std::size_t>& dropped,
-                     const Fit& fit) {
+std::string sentence(const std::vector<HandEyeView>& views, const std::vector<std::size_t>& dropped, const Fit& fit) {
   std::ostringstream text;
   text.precision(3);
   text << "the other views fit (" << fit.rms_mm << " mm, " << fit.rms_deg << " deg RMS) without";
@@ -156,8 +155,7 @@ std::string blameViews(std::vector<HandEyeView> views, const HandEyeParams& para
     do {
       if (++solves > kMaxSolves) return "";
       Fit fit;
-      if (fitWithout(views, dropped, params, fit) && fit.within(params) &&
-          (!found || fit.rms_mm < best_fit.rms_mm)) {
+      if (fitWithout(views, dropped, params, fit) && fit.within(params) && (!found || fit.rms_mm < best_fit.rms_mm)) {
         found = true;
         best = dropped;
         best_fit = fit;

@@ -21,15 +21,14 @@ constexpr double kRotationTolerance = 1e-6;
 
 bool isRigid(const Eigen::Isometry3d& T) {
   const Eigen::Matrix3d& R = T.linear();
-  return T.matrix().allFinite() &&
-         (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < kRotationTolerance &&
+  return T.matrix().allFinite() && (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() < kRotationTolerance &&
          R.determinant() > 0.0;
 }
 
 void requireViews(const std::vector<HandEyeView>& views, const HandEyeParams& params) {
   if (static_cast<int>(views.size()) < params.min_views) {
-    throw core::Error("hand-eye needs at least " + std::to_string(params.min_views) +
-                " views, got " + std::to_string(views.size()));
+    throw core::Error("hand-eye needs at least " + std::to_string(params.min_views) + " views, got " +
+                      std::to_string(views.size()));
   }
   for (const HandEyeView& view : views) {
     if (!isRigid(view.T_base_flange)) {
@@ -69,12 +68,13 @@ void rejectInvertedPoses(const std::vector<HandEyeView>& views, const HandEyePar
         as_given.rotation_deg > ratio * inverted.rotation_deg)) {
     return;
   }
-  const HandEyeSetup other = params.setup == HandEyeSetup::EyeToHand ? HandEyeSetup::EyeInHand
-                                                                     : HandEyeSetup::EyeToHand;
-  throw core::Error("hand-eye: the robot poses look inverted (flange->base): they fit with " +
-              describe(inverted) + " inverted but " + describe(as_given) +
-              " as given. Give T_base_flange, the flange in the base frame as the teach pendant "
-              "shows it, or check the setup: the poses also fit " + handEyeSetupName(other));
+  const HandEyeSetup other =
+      params.setup == HandEyeSetup::EyeToHand ? HandEyeSetup::EyeInHand : HandEyeSetup::EyeToHand;
+  throw core::Error("hand-eye: the robot poses look inverted (flange->base): they fit with " + describe(inverted) +
+                    " inverted but " + describe(as_given) +
+                    " as given. Give T_base_flange, the flange in the base frame as the teach pendant "
+                    "shows it, or check the setup: the poses also fit " +
+                    handEyeSetupName(other));
 }
 
 double median(std::vector<double> values) {
@@ -102,13 +102,12 @@ void markOutliers(HandEyeResult& result, const HandEyeParams& params) {
   }
 }
 
-void judgeFit(HandEyeResult& result, const std::vector<HandEyeView>& views,
-              const HandEyeParams& params) {
+void judgeFit(HandEyeResult& result, const std::vector<HandEyeView>& views, const HandEyeParams& params) {
   if (result.rms_mm <= params.max_rms_mm && result.rms_deg <= params.max_rms_deg) return;
   std::ostringstream text;
   text.precision(3);
-  text << "the residuals (" << describe({result.rms_mm, result.rms_deg}) << ") exceed "
-       << params.max_rms_mm << " mm or " << params.max_rms_deg
+  text << "the residuals (" << describe({result.rms_mm, result.rms_deg}) << ") exceed " << params.max_rms_mm
+       << " mm or " << params.max_rms_deg
        << " deg: wrong robot poses, board size or camera intrinsics, or something moved";
   for (const HandEyeResidual& r : result.residuals) {
     if (r.outlier) text << "; outlier " << r.name;
@@ -169,8 +168,7 @@ RotationSpread rotationSpread(const HandEyeProblem& problem) {
   int pairs = 0;
   for (std::size_t i = 0; i < problem.robot.size(); ++i) {
     for (std::size_t j = i + 1; j < problem.robot.size(); ++j) {
-      const Eigen::AngleAxisd motion(problem.robot[i].linear().transpose() *
-                                     problem.robot[j].linear());
+      const Eigen::AngleAxisd motion(problem.robot[i].linear().transpose() * problem.robot[j].linear());
       const Eigen::Vector3d w = motion.angle() * motion.axis() * kDegreesPerRadian;
       scatter += w * w.transpose();
       ++pairs;
@@ -193,16 +191,15 @@ void requireRotationSpread(const HandEyeProblem& problem, const HandEyeParams& p
   std::ostringstream message;
   message.precision(3);
   if (spread.largest_deg < params.min_rotation_deg) {
-    message << "hand-eye: too little rotation between the views: the largest is "
-            << spread.largest_deg << " deg (" << spread.largest_pair << "), needs at least "
-            << params.min_rotation_deg
+    message << "hand-eye: too little rotation between the views: the largest is " << spread.largest_deg << " deg ("
+            << spread.largest_pair << "), needs at least " << params.min_rotation_deg
             << " deg; tilt and turn the flange between views, the rotation is otherwise"
                " unobservable";
     throw core::Error(message.str());
   }
   if (spread.second_axis_deg < params.min_axis_spread_deg) {
-    message << "hand-eye: the robot rotates about one axis only (spread about a second axis "
-            << spread.second_axis_deg << " deg RMS, needs " << params.min_axis_spread_deg
+    message << "hand-eye: the robot rotates about one axis only (spread about a second axis " << spread.second_axis_deg
+            << " deg RMS, needs " << params.min_axis_spread_deg
             << "); the rotation about it and the translation along it are unobservable: turn"
                " the flange about at least two different axes between views";
     throw core::Error(message.str());
@@ -250,9 +247,7 @@ Eigen::Isometry3d fromCv(const cv::Mat& R, const cv::Mat& t) {
   return T;
 }
 
-bool isRobotWorld(HandEyeMethod method) {
-  return method == HandEyeMethod::Shah || method == HandEyeMethod::Li;
-}
+bool isRobotWorld(HandEyeMethod method) { return method == HandEyeMethod::Shah || method == HandEyeMethod::Li; }
 
 cv::HandEyeCalibrationMethod handEyeFlag(HandEyeMethod method) {
   switch (method) {
@@ -273,10 +268,8 @@ MountTransforms robotWorld(const HandEyeProblem& problem, HandEyeMethod method) 
   }
   cv::Mat R_x, t_x, R_z, t_z;
   cv::calibrateRobotWorldHandEye(
-      world2cam.rotations, world2cam.translations, base2gripper.rotations,
-      base2gripper.translations, R_x, t_x, R_z, t_z,
-      method == HandEyeMethod::Shah ? cv::CALIB_ROBOT_WORLD_HAND_EYE_SHAH
-                                    : cv::CALIB_ROBOT_WORLD_HAND_EYE_LI);
+      world2cam.rotations, world2cam.translations, base2gripper.rotations, base2gripper.translations, R_x, t_x, R_z,
+      t_z, method == HandEyeMethod::Shah ? cv::CALIB_ROBOT_WORLD_HAND_EYE_SHAH : cv::CALIB_ROBOT_WORLD_HAND_EYE_LI);
   return {fromCv(R_z, t_z).inverse(), fromCv(R_x, t_x).inverse()};
 }
 
@@ -288,8 +281,8 @@ MountTransforms handEye(const HandEyeProblem& problem, HandEyeMethod method) {
     target2cam.add(problem.camera[i]);
   }
   cv::Mat R, t;
-  cv::calibrateHandEye(gripper2base.rotations, gripper2base.translations, target2cam.rotations,
-                       target2cam.translations, R, t, handEyeFlag(method));
+  cv::calibrateHandEye(gripper2base.rotations, gripper2base.translations, target2cam.rotations, target2cam.translations,
+                       R, t, handEyeFlag(method));
   MountTransforms mounts;
   mounts.camera = fromCv(R, t);
   std::vector<Eigen::Isometry3d> boards;
@@ -313,7 +306,7 @@ MountTransforms solveWithOpenCv(const HandEyeProblem& problem, HandEyeMethod met
   }
   if (!finite(mounts.camera) || !finite(mounts.board)) {
     throw core::Error("hand-eye (" + handEyeMethodName(method) +
-                "): OpenCV's solution is not finite; the views do not determine the transforms");
+                      "): OpenCV's solution is not finite; the views do not determine the transforms");
   }
   return mounts;
 }

@@ -46,16 +46,15 @@ std::vector<HandEyeViewFile> listHandEyeViews(const std::string& directory) {
     const fs::path image = root / (pose.view + ".png");
     if (images.erase(pose.view) == 0) {
       throw core::Error(poses_path + ":" + std::to_string(pose.line) + ": view " + pose.view +
-                  " has a robot pose but no image " + image.string());
+                        " has a robot pose but no image " + image.string());
     }
     views.push_back({pose.view, pose.T_base_flange, image.string()});
   }
   if (!images.empty()) {
     const std::string view = *images.begin();
-    throw core::Error((root / (view + ".png")).string() + ": view " + view +
-                " has an image but no robot pose in " + poses_path + " (" +
-                std::to_string(images.size()) + " image(s) without a pose, " +
-                std::to_string(poses.poses.size()) + " pose(s))");
+    throw core::Error((root / (view + ".png")).string() + ": view " + view + " has an image but no robot pose in " +
+                      poses_path + " (" + std::to_string(images.size()) + " image(s) without a pose, " +
+                      std::to_string(poses.poses.size()) + " pose(s))");
   }
   return views;
 }
@@ -74,9 +73,9 @@ cv::Mat readViewImage(const HandEyeViewFile& file, const io::LensIntrinsics& cam
     throw core::Error(prefix + "the image must be 8- or 16-bit grey");
   }
   if (image.cols != camera.width || image.rows != camera.height) {
-    throw core::Error(prefix + "the image is " + std::to_string(image.cols) + "x" +
-                std::to_string(image.rows) + " but the camera calibration is " +
-                std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    throw core::Error(prefix + "the image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                      " but the camera calibration is " + std::to_string(camera.width) + "x" +
+                      std::to_string(camera.height));
   }
   return image;
 }
@@ -92,13 +91,13 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
 void BoardViewParams::validate() const {
   detection.validate();
   core::requireField(std::isfinite(min_corner_share) && min_corner_share > 0.0 && min_corner_share <= 1.0,
-               "BoardViewParams", "min_corner_share", "in (0, 1]", min_corner_share);
-  core::requireField(std::isfinite(max_rms_px) && max_rms_px > 0.0, "BoardViewParams", "max_rms_px",
-               "positive", max_rms_px);
+                     "BoardViewParams", "min_corner_share", "in (0, 1]", min_corner_share);
+  core::requireField(std::isfinite(max_rms_px) && max_rms_px > 0.0, "BoardViewParams", "max_rms_px", "positive",
+                     max_rms_px);
 }
 
-MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
-                         const io::LensIntrinsics& camera, const BoardViewParams& params) {
+MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout, const io::LensIntrinsics& camera,
+                         const BoardViewParams& params) {
   params.validate();
   MeasuredView view;
   view.name = file.name;
@@ -112,8 +111,10 @@ MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
   }
   const double share = static_cast<double>(view.corners) / std::max(view.expected, 1);
   if (share < params.min_corner_share) {
-    view.problem = format("board mostly out of the image or hidden: %.0f of %.0f corners seen, "
-                          "needs %.0f%%", view.corners, view.expected, 100.0 * params.min_corner_share);
+    view.problem = format(
+        "board mostly out of the image or hidden: %.0f of %.0f corners seen, "
+        "needs %.0f%%",
+        view.corners, view.expected, 100.0 * params.min_corner_share);
     return view;
   }
   const std::optional<BoardPose> pose = estimateBoardPose(detection, layout, camera);
@@ -123,8 +124,10 @@ MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
   }
   view.rms_px = pose->rms_px;
   if (!(pose->rms_px <= params.max_rms_px)) {
-    view.problem = format("the board pose fits its corners to %.2f px RMS (max %.2f): wrong camera "
-                          "intrinsics or board layout, or a blurred image", pose->rms_px, params.max_rms_px);
+    view.problem = format(
+        "the board pose fits its corners to %.2f px RMS (max %.2f): wrong camera "
+        "intrinsics or board layout, or a blurred image",
+        pose->rms_px, params.max_rms_px);
     return view;
   }
   view.T_camera_board = pose->T_camera_board;
@@ -134,8 +137,7 @@ MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
   return view;
 }
 
-HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views,
-                                 const HandEyeParams& params) {
+HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views, const HandEyeParams& params) {
   std::vector<HandEyeView> usable;
   std::ostringstream unusable;
   for (const MeasuredView& view : views) {
@@ -146,9 +148,8 @@ HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views,
     }
   }
   if (static_cast<int>(usable.size()) < params.min_views) {
-    throw core::Error("hand-eye needs at least " + std::to_string(params.min_views) +
-                " usable views, got " + std::to_string(usable.size()) + " of " +
-                std::to_string(views.size()) + unusable.str());
+    throw core::Error("hand-eye needs at least " + std::to_string(params.min_views) + " usable views, got " +
+                      std::to_string(usable.size()) + " of " + std::to_string(views.size()) + unusable.str());
   }
   return solveHandEye(usable, params);
 }

@@ -19,8 +19,8 @@ struct WindowSamples {
   std::vector<cv::Point2f> projector;
 };
 
-WindowSamples decodedPixelsAround(const reconstruction::DecodedCapture& decoded,
-                                  const Eigen::Vector2d& corner, int half_window) {
+WindowSamples decodedPixelsAround(const reconstruction::DecodedCapture& decoded, const Eigen::Vector2d& corner,
+                                  int half_window) {
   const int cx = static_cast<int>(std::lround(corner.x()));
   const int cy = static_cast<int>(std::lround(corner.y()));
   const int x0 = std::max(0, cx - half_window), x1 = std::min(decoded.width - 1, cx + half_window);
@@ -31,8 +31,7 @@ WindowSamples decodedPixelsAround(const reconstruction::DecodedCapture& decoded,
     const float* row = decoded.row.ptr<float>(y);
     for (int x = x0; x <= x1; ++x) {
       if (!std::isfinite(column[x]) || !std::isfinite(row[x])) continue;
-      samples.camera.emplace_back(static_cast<float>(x - corner.x()),
-                                  static_cast<float>(y - corner.y()));
+      samples.camera.emplace_back(static_cast<float>(x - corner.x()), static_cast<float>(y - corner.y()));
       samples.projector.emplace_back(column[x], row[x]);
     }
   }
@@ -76,8 +75,8 @@ CornerFit fitCorner(const reconstruction::DecodedCapture& decoded, const Eigen::
   fit.decoded = static_cast<int>(samples.camera.size());
   if (fit.decoded < params.min_decoded_pixels) return fit;
   std::vector<uchar> inlier;
-  const cv::Mat homography = cv::findHomography(samples.camera, samples.projector, cv::RANSAC,
-                                                params.ransac_threshold, inlier);
+  const cv::Mat homography =
+      cv::findHomography(samples.camera, samples.projector, cv::RANSAC, params.ransac_threshold, inlier);
   const std::optional<Eigen::Vector2d> projector = mapOrigin(homography);
   fit.inliers = homography.empty() ? 0 : cv::countNonZero(inlier);
   fit.outcome = CornerOutcome::PoorFit;
@@ -93,20 +92,18 @@ CornerFit fitCorner(const reconstruction::DecodedCapture& decoded, const Eigen::
 
 void ProjectorCornerParams::validate() const {
   const std::string owner = "ProjectorCornerParams";
-  core::requireField(half_window >= 3 && half_window <= 500, owner, "half_window", "in [3, 500]",
-               half_window);
+  core::requireField(half_window >= 3 && half_window <= 500, owner, "half_window", "in [3, 500]", half_window);
   core::requireField(min_decoded_pixels >= 8, owner, "min_decoded_pixels", ">= 8", min_decoded_pixels);
-  core::requireField(std::isfinite(ransac_threshold) && ransac_threshold > 0.0, owner,
-               "ransac_threshold", "positive", ransac_threshold);
-  core::requireField(std::isfinite(min_inlier_share) && min_inlier_share > 0.0 && min_inlier_share <= 1.0,
-               owner, "min_inlier_share", "in (0, 1]", min_inlier_share);
-  core::requireField(std::isfinite(min_hull_depth) && min_hull_depth >= 0.0, owner, "min_hull_depth",
-               ">= 0", min_hull_depth);
+  core::requireField(std::isfinite(ransac_threshold) && ransac_threshold > 0.0, owner, "ransac_threshold", "positive",
+                     ransac_threshold);
+  core::requireField(std::isfinite(min_inlier_share) && min_inlier_share > 0.0 && min_inlier_share <= 1.0, owner,
+                     "min_inlier_share", "in (0, 1]", min_inlier_share);
+  core::requireField(std::isfinite(min_hull_depth) && min_hull_depth >= 0.0, owner, "min_hull_depth", ">= 0",
+                     min_hull_depth);
   core::requireField(threads >= 0, owner, "threads", ">= 0", threads);
 }
 
-ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& decoded,
-                                      const BoardDetection& detection,
+ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& decoded, const BoardDetection& detection,
                                       const ProjectorCornerParams& params) {
   params.validate();
   if (decoded.column.empty() || decoded.row.empty()) {
@@ -134,8 +131,7 @@ ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& deco
     result.poor_fit += fit.outcome == CornerOutcome::PoorFit ? 1 : 0;
     result.outside_data += fit.outcome == CornerOutcome::OutsideData ? 1 : 0;
     if (fit.outcome != CornerOutcome::Kept) continue;
-    result.corners.push_back(
-        {detection.ids[i], detection.pixels[i], fit.projector, fit.decoded, fit.inliers});
+    result.corners.push_back({detection.ids[i], detection.pixels[i], fit.projector, fit.decoded, fit.inliers});
   }
   return result;
 }

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "binpick/io/capture.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/io/capture.hpp"
 #include "rig_solver.hpp"
 #include "rig_view_triage.hpp"
 
@@ -23,24 +23,22 @@ double median(std::vector<double> values) {
 struct Attempt {
   std::vector<std::size_t> views;  // indices into the views given
   detail::RigSolution solution;
-  std::vector<bool> outlier;       // per entry of `views`
+  std::vector<bool> outlier;  // per entry of `views`
   double camera_limit_px = 0.0;
   double projector_limit_px = 0.0;
 };
 
-Attempt solve(const std::vector<RigView>& views, const std::vector<std::size_t>& indices,
-              const BoardLayout& layout, const RigCalibrationParams& params) {
+Attempt solve(const std::vector<RigView>& views, const std::vector<std::size_t>& indices, const BoardLayout& layout,
+              const RigCalibrationParams& params) {
   Attempt attempt;
   attempt.views = indices;
   std::vector<detail::ViewPoints> points;
   for (const std::size_t i : indices) points.push_back(detail::viewPoints(views[i], layout));
   const RigView& first = views[indices.front()];
-  attempt.solution =
-      detail::solveRig(points, {first.camera_width, first.camera_height},
-                       {first.projector_width, first.projector_height}, params);
+  attempt.solution = detail::solveRig(points, {first.camera_width, first.camera_height},
+                                      {first.projector_width, first.projector_height}, params);
   const detail::RigSolution& s = attempt.solution;
-  attempt.camera_limit_px =
-      std::max(params.outlier_floor_px, params.outlier_factor * median(s.view_camera_rms_px));
+  attempt.camera_limit_px = std::max(params.outlier_floor_px, params.outlier_factor * median(s.view_camera_rms_px));
   attempt.projector_limit_px =
       std::max(params.outlier_floor_px, params.outlier_factor * median(s.view_projector_rms_px));
   for (std::size_t k = 0; k < indices.size(); ++k) {
@@ -52,8 +50,7 @@ Attempt solve(const std::vector<RigView>& views, const std::vector<std::size_t>&
 
 std::string outlierText(const Attempt& attempt, std::size_t k, const std::string& name) {
   char text[256];
-  std::snprintf(text, sizeof text,
-                ": outlier: RMS camera %.2f px, projector %.2f px (limits %.2f, %.2f px)",
+  std::snprintf(text, sizeof text, ": outlier: RMS camera %.2f px, projector %.2f px (limits %.2f, %.2f px)",
                 attempt.solution.view_camera_rms_px[k], attempt.solution.view_projector_rms_px[k],
                 attempt.camera_limit_px, attempt.projector_limit_px);
   return name + text;
@@ -85,12 +82,11 @@ void RigCalibrationParams::validate() const {
   const std::string owner = "RigCalibrationParams";
   core::requireField(min_views >= 3, owner, "min_views", ">= 3", min_views);
   core::requireField(min_corners >= 6, owner, "min_corners", ">= 6", min_corners);
-  core::requireField(std::isfinite(outlier_floor_px) && outlier_floor_px >= 0.0, owner,
-               "outlier_floor_px", ">= 0", outlier_floor_px);
-  core::requireField(std::isfinite(outlier_factor) && outlier_factor >= 1.0, owner, "outlier_factor",
-               ">= 1", outlier_factor);
-  core::requireField(std::isfinite(warn_rms_px) && warn_rms_px > 0.0, owner, "warn_rms_px", "positive",
-               warn_rms_px);
+  core::requireField(std::isfinite(outlier_floor_px) && outlier_floor_px >= 0.0, owner, "outlier_floor_px", ">= 0",
+                     outlier_floor_px);
+  core::requireField(std::isfinite(outlier_factor) && outlier_factor >= 1.0, owner, "outlier_factor", ">= 1",
+                     outlier_factor);
+  core::requireField(std::isfinite(warn_rms_px) && warn_rms_px > 0.0, owner, "warn_rms_px", "positive", warn_rms_px);
 }
 
 RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const BoardLayout& layout,
@@ -117,8 +113,7 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
     result.quality.views.push_back(std::move(quality));
   }
   if (static_cast<int>(usable.size()) < params.min_views) {
-    throw core::Error(detail::tooFewViewsMessage(views, problems, static_cast<int>(usable.size()),
-                                           params.min_views));
+    throw core::Error(detail::tooFewViewsMessage(views, problems, static_cast<int>(usable.size()), params.min_views));
   }
   detail::requireSameSizes(views, usable);
 
@@ -127,9 +122,8 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
   if (params.drop_outliers && kept.size() < usable.size()) {
     if (static_cast<int>(kept.size()) < params.min_views) {
       throw core::Error("calibrate rig: dropping the " + std::to_string(usable.size() - kept.size()) +
-                  " outlier views would leave " + std::to_string(kept.size()) +
-                  " views, fewer than the " + std::to_string(params.min_views) +
-                  " needed; capture more views");
+                        " outlier views would leave " + std::to_string(kept.size()) + " views, fewer than the " +
+                        std::to_string(params.min_views) + " needed; capture more views");
     }
     recordViews(attempt, false, result.quality);
     for (std::size_t k = 0; k < attempt.views.size(); ++k) {
@@ -145,8 +139,7 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
     if (!attempt.outlier[k]) continue;
     result.warnings.push_back(
         outlierText(attempt, k, views[attempt.views[k]].name) +
-        (params.drop_outliers ? "; kept (outliers are dropped once)"
-                              : "; kept: capture it again, or drop outliers"));
+        (params.drop_outliers ? "; kept (outliers are dropped once)" : "; kept: capture it again, or drop outliers"));
   }
 
   const detail::RigSolution& solution = attempt.solution;

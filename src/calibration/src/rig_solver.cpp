@@ -33,11 +33,9 @@ LensFit calibrateLens(const std::vector<std::vector<cv::Point3f>>& objects,
   const int flags = params.fix_k3 ? cv::CALIB_FIX_K3 : 0;
   try {
     std::vector<cv::Mat> rvecs, tvecs;
-    fit.rms = cv::calibrateCamera(objects, images, size, fit.matrix, fit.distortion, rvecs, tvecs,
-                                  flags);
+    fit.rms = cv::calibrateCamera(objects, images, size, fit.matrix, fit.distortion, rvecs, tvecs, flags);
   } catch (const cv::Exception& e) {
-    throw core::Error(std::string("calibrate rig: OpenCV could not calibrate the ") + device + ": " +
-                e.err);
+    throw core::Error(std::string("calibrate rig: OpenCV could not calibrate the ") + device + ": " + e.err);
   }
   return fit;
 }
@@ -70,8 +68,8 @@ ViewPoints viewPoints(const RigView& view, const BoardLayout& layout) {
   return points;
 }
 
-RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
-                     cv::Size projector_size, const RigCalibrationParams& params) {
+RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size, cv::Size projector_size,
+                     const RigCalibrationParams& params) {
   std::vector<std::vector<cv::Point3f>> camera_object, shared_object;
   std::vector<std::vector<cv::Point2f>> camera_image, shared_camera, shared_projector;
   for (const ViewPoints& view : views) {
@@ -85,8 +83,7 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
   core::Stopwatch stage;
   LensFit camera = calibrateLens(camera_object, camera_image, camera_size, params, "camera");
   solution.timings.camera = stage.lapMs();
-  LensFit projector =
-      calibrateLens(shared_object, shared_projector, projector_size, params, "projector");
+  LensFit projector = calibrateLens(shared_object, shared_projector, projector_size, params, "projector");
   solution.timings.projector = stage.lapMs();
 
   int flags = cv::CALIB_FIX_INTRINSIC;
@@ -96,10 +93,9 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
   cv::Mat r, t, essential, fundamental, per_view;
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-10);
   try {
-    solution.stereo_rms_px = cv::stereoCalibrate(
-        shared_object, shared_camera, shared_projector, camera.matrix, camera.distortion,
-        projector.matrix, projector.distortion, camera_size, r, t, essential, fundamental,
-        per_view, flags, criteria);
+    solution.stereo_rms_px = cv::stereoCalibrate(shared_object, shared_camera, shared_projector, camera.matrix,
+                                                 camera.distortion, projector.matrix, projector.distortion, camera_size,
+                                                 r, t, essential, fundamental, per_view, flags, criteria);
   } catch (const cv::Exception& e) {
     throw core::Error("calibrate rig: OpenCV could not solve the camera-projector pose: " + e.err);
   }
@@ -110,9 +106,8 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
   solution.rig.camera = lensFrom(camera, camera_size);
   solution.rig.projector = lensFrom(projector, projector_size);
   solution.rig.T_projector_camera = detail::isometryFromCv(r, t);
-  if (per_view.rows != static_cast<int>(views.size()) || per_view.cols != 2 ||
-      !std::isfinite(solution.stereo_rms_px) || !std::isfinite(camera.rms) ||
-      !std::isfinite(projector.rms)) {
+  if (per_view.rows != static_cast<int>(views.size()) || per_view.cols != 2 || !std::isfinite(solution.stereo_rms_px) ||
+      !std::isfinite(camera.rms) || !std::isfinite(projector.rms)) {
     throw core::Error("calibrate rig: the solve did not converge (no finite reprojection errors)");
   }
   for (int v = 0; v < per_view.rows; ++v) {

@@ -25,13 +25,13 @@ struct RigSolution {
   double camera_rms_px = 0.0;
   double projector_rms_px = 0.0;
   double stereo_rms_px = 0.0;
-  std::vector<double> view_camera_rms_px;     // per view, under the final rig
+  std::vector<double> view_camera_rms_px;  // per view, under the final rig
   std::vector<double> view_projector_rms_px;
   RigCalibrationTimings timings;
 };
 
 // Throws core::Error when OpenCV fails or gives a non-finite or invalid rig.
-RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
-                     cv::Size projector_size, const RigCalibrationParams& params);
+RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size, cv::Size projector_size,
+                     const RigCalibrationParams& params);
 
 }  // namespace binpick::calibration::detail

@@ -30,9 +30,8 @@ std::string viewProblem(const RigView& view, const RigCalibrationParams& params)
   const int shared = static_cast<int>(view.projector.corners.size());
   if (shared >= params.min_corners) return "";
   std::ostringstream text;
-  text << "only " << shared << " corners with both a camera and a projector pixel (needs "
-       << params.min_corners << "; camera found " << view.board.ids.size() << " of "
-       << view.board.expected;
+  text << "only " << shared << " corners with both a camera and a projector pixel (needs " << params.min_corners
+       << "; camera found " << view.board.ids.size() << " of " << view.board.expected;
   if (view.projector.dropped() > 0) text << ", projector lost " << droppedReasons(view.projector);
   text << ")";
   return text.str();
@@ -50,9 +49,8 @@ std::vector<std::string> viewWarnings(const RigView& view) {
   }
   if (view.projector.dropped() > 0) {
     std::ostringstream text;
-    text << view.name << ": " << view.projector.dropped() << " of " << found
-         << " corners have no projector pixel (" << droppedReasons(view.projector)
-         << "; board partly outside the projector's light?)";
+    text << view.name << ": " << view.projector.dropped() << " of " << found << " corners have no projector pixel ("
+         << droppedReasons(view.projector) << "; board partly outside the projector's light?)";
     warnings.push_back(text.str());
   }
   return warnings;
@@ -63,26 +61,23 @@ void requireSameSizes(const std::vector<RigView>& views, const std::vector<std::
   for (const std::size_t i : usable) {
     const RigView& view = views[i];
     if (view.camera_width == first.camera_width && view.camera_height == first.camera_height &&
-        view.projector_width == first.projector_width &&
-        view.projector_height == first.projector_height) {
+        view.projector_width == first.projector_width && view.projector_height == first.projector_height) {
       continue;
     }
     std::ostringstream text;
-    text << view.name << ": camera " << view.camera_width << "x" << view.camera_height
-         << ", projector " << view.projector_width << "x" << view.projector_height << ", but "
-         << first.name << " has camera " << first.camera_width << "x" << first.camera_height
-         << ", projector " << first.projector_width << "x" << first.projector_height
-         << ": all views must come from the same rig";
+    text << view.name << ": camera " << view.camera_width << "x" << view.camera_height << ", projector "
+         << view.projector_width << "x" << view.projector_height << ", but " << first.name << " has camera "
+         << first.camera_width << "x" << first.camera_height << ", projector " << first.projector_width << "x"
+         << first.projector_height << ": all views must come from the same rig";
     throw core::Error(text.str());
   }
 }
 
-std::string tooFewViewsMessage(const std::vector<RigView>& views,
-                               const std::vector<std::string>& problems, int usable,
+std::string tooFewViewsMessage(const std::vector<RigView>& views, const std::vector<std::string>& problems, int usable,
                                int min_views) {
   std::ostringstream text;
-  text << "calibrate rig: " << usable << " usable view" << (usable == 1 ? "" : "s") << " of "
-       << views.size() << ", at least " << min_views << " needed";
+  text << "calibrate rig: " << usable << " usable view" << (usable == 1 ? "" : "s") << " of " << views.size()
+       << ", at least " << min_views << " needed";
   const char* separator = "; not usable: ";
   for (std::size_t i = 0; i < views.size(); ++i) {
     if (problems[i].empty()) continue;

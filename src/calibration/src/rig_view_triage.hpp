@@ -18,8 +18,7 @@ std::vector<std::string> viewWarnings(const RigView& view);
 void requireSameSizes(const std::vector<RigView>& views, const std::vector<std::size_t>& usable);
 
 // The error for too few usable views: how many, and every unusable view with its problem.
-std::string tooFewViewsMessage(const std::vector<RigView>& views,
-                               const std::vector<std::string>& problems, int usable,
+std::string tooFewViewsMessage(const std::vector<RigView>& views, const std::vector<std::string>& problems, int usable,
                                int min_views);
 
 }  // namespace binpick::calibration::detail

@@ -24,8 +24,8 @@ void requireBothAxes(const io::Capture& capture, const std::string& name) {
   const io::PatternSetSpec& patterns = capture.metadata.pattern_set;
   if (!patterns.row_codes || !patterns.column_codes) {
     throw core::Error(name + ": the capture has no " + (patterns.row_codes ? "column" : "row") +
-                " codes; calibrating the projector needs its columns and rows: capture the"
-                " view again with the full pattern set (row_codes and column_codes)");
+                      " codes; calibrating the projector needs its columns and rows: capture the"
+                      " view again with the full pattern set (row_codes and column_codes)");
   }
 }
 
@@ -76,8 +76,7 @@ RigView measureRigView(const io::Capture& capture, const std::string& name, cons
   return view;
 }
 
-RigView readRigView(const std::string& directory, const BoardLayout& layout,
-                    const RigViewParams& params) {
+RigView readRigView(const std::string& directory, const BoardLayout& layout, const RigViewParams& params) {
   // readCapture names the directory (or its file) in its errors.
   return measureRigView(io::readCapture(directory), directory, layout, params);
 }

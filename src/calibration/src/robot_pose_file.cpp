@@ -63,8 +63,7 @@ core::Orientation orientationLine(const std::string& line, const LineContext& at
   }
 }
 
-RobotPose poseLine(const std::vector<std::string>& fields, core::Orientation orientation,
-                   const LineContext& at) {
+RobotPose poseLine(const std::vector<std::string>& fields, core::Orientation orientation, const LineContext& at) {
   RobotPose pose;
   pose.view = fields[0];
   pose.line = at.line;
@@ -72,15 +71,13 @@ RobotPose poseLine(const std::vector<std::string>& fields, core::Orientation ori
   const int count = core::orientationValueCount(orientation);
   if (static_cast<int>(fields.size()) != 4 + count) {
     at.fail("view " + pose.view + ": expected x y z (mm) and " + std::to_string(count) + " " +
-            core::orientationName(orientation) + " values, got " +
-            std::to_string(fields.size() - 1) + " numbers");
+            core::orientationName(orientation) + " values, got " + std::to_string(fields.size() - 1) + " numbers");
   }
   std::vector<double> values;
   for (std::size_t i = 1; i < fields.size(); ++i) values.push_back(finiteNumber(fields[i], pose.view, at));
   pose.T_base_flange.translation() = Eigen::Vector3d(values[0], values[1], values[2]) / 1000.0;
   try {
-    pose.T_base_flange.linear() =
-        core::rotationFromValues({values.begin() + 3, values.end()}, orientation);
+    pose.T_base_flange.linear() = core::rotationFromValues({values.begin() + 3, values.end()}, orientation);
   } catch (const core::Error& e) {
     at.fail("view " + pose.view + ": " + e.what());
   }
@@ -113,8 +110,7 @@ RobotPoseFile parseRobotPoses(const std::string& text, const std::string& origin
     RobotPose pose = poseLine(fields, file.orientation, at);
     const auto [seen, inserted] = first_line.emplace(pose.view, at.line);
     if (!inserted) {
-      at.fail("view " + pose.view + " is listed twice (first on line " +
-              std::to_string(seen->second) + ")");
+      at.fail("view " + pose.view + " is listed twice (first on line " + std::to_string(seen->second) + ")");
     }
     file.poses.push_back(std::move(pose));
   }
@@ -122,14 +118,13 @@ RobotPoseFile parseRobotPoses(const std::string& text, const std::string& origin
   return file;
 }
 
-RobotPoseFile readRobotPoseFile(const std::string& path) {
-  return parseRobotPoses(core::readFile(path), path);
-}
+RobotPoseFile readRobotPoseFile(const std::string& path) { return parseRobotPoses(core::readFile(path), path); }
 
 std::string formatRobotPoses(const RobotPoseFile& file) {
   std::string text =
       "# Robot poses T_base_flange (flange in the base frame), one per view: VIEW x y z (mm) and"
-      " the rotation\norientation: " + core::orientationName(file.orientation) + "\n";
+      " the rotation\norientation: " +
+      core::orientationName(file.orientation) + "\n";
   for (const RobotPose& pose : file.poses) {
     text += pose.view;
     for (int i = 0; i < 3; ++i) appendFixed(text, 1000.0 * pose.T_base_flange.translation()(i), 4);

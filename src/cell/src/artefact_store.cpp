@@ -25,8 +25,7 @@ void createStoreDirectory(const fs::path& directory) {
   std::error_code error;
   fs::create_directories(directory, error);
   if (error) fail(directory, "cannot create the artefact directory: " + error.message());
-  if (!fs::is_directory(directory, error))
-    fail(directory, "the artefact directory is not a directory");
+  if (!fs::is_directory(directory, error)) fail(directory, "the artefact directory is not a directory");
 }
 
 void removeInterruptedSaves(const fs::path& directory) {
@@ -35,8 +34,7 @@ void removeInterruptedSaves(const fs::path& directory) {
     if (!isPartialCycleName(entry.path().filename().string())) continue;
     std::error_code remove_error;
     fs::remove_all(entry.path(), remove_error);
-    if (remove_error)
-      fail(entry.path(), "cannot remove an interrupted save: " + remove_error.message());
+    if (remove_error) fail(entry.path(), "cannot remove an interrupted save: " + remove_error.message());
     artefactsLogger()->info("removed an interrupted save: {}", entry.path().string());
   }
   if (error) fail(directory, "cannot list the artefact directory: " + error.message());
@@ -48,8 +46,7 @@ fs::path freshCyclePath(const fs::path& directory, uint64_t cycle) {
   for (uint32_t suffix = 0;; ++suffix) {
     const std::string name = cycleDirectoryName(cycle, now, suffix);
     std::error_code ignored;
-    if (!fs::exists(directory / name, ignored) &&
-        !fs::exists(directory / (kPartialPrefix + name), ignored)) {
+    if (!fs::exists(directory / name, ignored) && !fs::exists(directory / (kPartialPrefix + name), ignored)) {
       return directory / name;
     }
   }
@@ -74,8 +71,7 @@ void writeImage(const fs::path& path, const cv::Mat& image) {
 }
 
 // Writes the cycle's items into `directory`, which must not exist yet.
-void writeCycle(const fs::path& directory, const CycleArtefacts& cycle,
-                const ArtefactParams& params) {
+void writeCycle(const fs::path& directory, const CycleArtefacts& cycle, const ArtefactParams& params) {
   std::error_code error;
   if (!fs::create_directory(directory, error))
     fail(directory, "cannot create: " + (error ? error.message() : "it exists"));
@@ -86,14 +82,12 @@ void writeCycle(const fs::path& directory, const CycleArtefacts& cycle,
     io::writePointCloud((directory / "cloud.ply").string(), *cycle.cloud, io::Encoding::Binary);
   if (params.detections && !cycle.detections_json.empty())
     writeText(directory / "detections.json", cycle.detections_json);
-  if (params.overlay && cycle.overlay && !cycle.overlay->empty())
-    writeImage(directory / "overlay.png", *cycle.overlay);
+  if (params.overlay && cycle.overlay && !cycle.overlay->empty()) writeImage(directory / "overlay.png", *cycle.overlay);
 }
 
 // Called inside a catch block: the same failure, as a core::Error naming the cycle directory.
 [[noreturn]] void rethrowNaming(const fs::path& cycle_directory, uint64_t cycle) {
-  const std::string prefix =
-      "cannot save cycle " + std::to_string(cycle) + " to " + cycle_directory.string() + ": ";
+  const std::string prefix = "cannot save cycle " + std::to_string(cycle) + " to " + cycle_directory.string() + ": ";
   try {
     throw;
   } catch (const core::Error& error) {
@@ -115,8 +109,7 @@ ArtefactStore::ArtefactStore(ArtefactParams params) : params_(std::move(params))
 
 std::string ArtefactStore::save(const CycleArtefacts& cycle) {
   const fs::path cycle_directory = freshCyclePath(params_.directory, cycle.cycle);
-  const fs::path partial =
-      cycle_directory.parent_path() / (kPartialPrefix + cycle_directory.filename().string());
+  const fs::path partial = cycle_directory.parent_path() / (kPartialPrefix + cycle_directory.filename().string());
   try {
     writeCycle(partial, cycle, params_);
     // Only complete cycles carry a cycle name: a crash leaves a partial directory, removed on
@@ -128,8 +121,7 @@ std::string ArtefactStore::save(const CycleArtefacts& cycle) {
     rethrowNaming(cycle_directory, cycle.cycle);
   }
   artefactsLogger()->debug("saved cycle {} to {}", cycle.cycle, cycle_directory.string());
-  applyBounds(params_.directory, cycle_directory.filename().string(), params_.max_cycles,
-              params_.max_bytes);
+  applyBounds(params_.directory, cycle_directory.filename().string(), params_.max_cycles, params_.max_bytes);
   return cycle_directory.string();
 }
 
@@ -138,7 +130,6 @@ std::vector<std::string> ArtefactStore::cycles() const {
   for (const KeptCycle& cycle : listCycles(params_.directory)) paths.push_back(cycle.path.string());
   return paths;
 }
-
 
 void ArtefactParams::validate() const {
   const std::string owner = "artefacts";

@@ -2,8 +2,8 @@
 
 #include <filesystem>
 
-#include "binpick/reconstruction/reconstruction_config.hpp"
 #include "binpick/core/pose_yaml.hpp"
+#include "binpick/reconstruction/reconstruction_config.hpp"
 #include "config_sections.hpp"
 
 namespace binpick::cell {
@@ -61,8 +61,10 @@ std::optional<Eigen::Isometry3d> readHandEye(core::YamlSection section, const Pa
     section.fail("file", "and hand_eye.T_base_camera are both given: keep one");
   }
   std::optional<Eigen::Isometry3d> pose;
-  if (in_place) pose = core::readPose(section.child("T_base_camera"));
-  else section.skip("T_base_camera");
+  if (in_place)
+    pose = core::readPose(section.child("T_base_camera"));
+  else
+    section.skip("T_base_camera");
   section.finish();
   if (file.empty()) return pose;
   try {
@@ -80,14 +82,13 @@ void CycleLimits::validate() const {
   core::requireField(processing_timeout_ms > 0, owner, "processing_timeout_ms", "> 0", processing_timeout_ms);
   core::requireField(max_picks >= 1, owner, "max_picks", ">= 1", max_picks);
   core::requireField(min_pick_coverage >= 0 && min_pick_coverage <= 1, owner, "min_pick_coverage", "in [0, 1]",
-               min_pick_coverage);
+                     min_pick_coverage);
   core::requireField(empty_bin_max_points >= 0, owner, "empty_bin_max_points", ">= 0", empty_bin_max_points);
   core::requireField(empty_bin_min_height >= 0, owner, "empty_bin_min_height", ">= 0", empty_bin_min_height);
   core::requireField(avoid_cycles >= 0, owner, "avoid_cycles", ">= 0", avoid_cycles);
 }
 
-CellConfig parseCellConfig(const std::string& yaml_text, const std::string& origin,
-                           const std::string& base_directory) {
+CellConfig parseCellConfig(const std::string& yaml_text, const std::string& origin, const std::string& base_directory) {
   CellConfig config;
   config.origin = origin;
   const PathResolver resolve{base_directory};

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "service_state.hpp"
 #include "service_logger.hpp"
+#include "service_state.hpp"
 
 namespace binpick::cell {
 namespace {
@@ -31,7 +31,7 @@ std::optional<int> parseIndex(const std::string& text) {
 }
 
 constexpr uint64_t kForgetCycles = 200;  // a failed place not failed again for this long is forgotten
-constexpr int kMaxDoublings = 6;          // avoided at most 64 x limits.avoid_cycles
+constexpr int kMaxDoublings = 6;         // avoided at most 64 x limits.avoid_cycles
 
 }  // namespace
 
@@ -80,7 +80,8 @@ CellService::CellService(std::shared_ptr<const CellSetup> setup, std::unique_ptr
   state_->setup = std::move(setup);
   state_->source = std::move(source);
   state_->last.recipe = state_->currentRecipe().name;
-  if (state_->setup->config.artefacts) state_->saver = std::make_unique<ArtefactSaver>(*state_->setup->config.artefacts);
+  if (state_->setup->config.artefacts)
+    state_->saver = std::make_unique<ArtefactSaver>(*state_->setup->config.artefacts);
   state_->cycle_thread = std::thread([this] { runCycles(); });
   state_->deadline_thread = std::thread([this] { runDeadlines(); });
 }
@@ -94,9 +95,7 @@ void CellService::handle(robot::ClientId client, const robot::Request& request) 
     State& s = *state_;
     const std::string argument = request.argument.value_or("");
     switch (request.command) {
-      case Command::Ping:
-        outbox.add(client, reply(Command::Ping, Status::Ok));
-        break;
+      case Command::Ping: outbox.add(client, reply(Command::Ping, Status::Ok)); break;
       case Command::Status:
         outbox.add(client, reply(Command::Status, Status::Ok,
                                  {static_cast<int32_t>(s.cell_state), s.recipe, clampToInt32(s.last.cycles_done)}));
@@ -114,7 +113,7 @@ void CellService::handle(robot::ClientId client, const robot::Request& request) 
           outbox.add(client, reply(Command::Trigger, Status::Busy));
         } else if (!s.setup->reconstructor || !s.setup->config.T_base_camera) {
           logger()->warn("TRIGGER refused: {}", s.setup->reconstructor ? "no hand-eye T_base_camera is configured"
-                                                                         : s.setup->calibration_problem);
+                                                                       : s.setup->calibration_problem);
           outbox.add(client, reply(Command::Trigger, Status::CalibrationMissing));
         } else if (requested < 0) {
           outbox.add(client, reply(Command::Trigger, Status::UnknownModel));
@@ -132,16 +131,20 @@ void CellService::handle(robot::ClientId client, const robot::Request& request) 
         break;
       }
       case Command::NextPick:
-        if (s.latest) outbox.add(client, s.nextPick());
-        else if (s.cell_state != CellState::Idle) s.next_waiters.push_back(client);
-        else outbox.add(client, reply(Command::NextPick, Status::NoCycle, {0}));
+        if (s.latest)
+          outbox.add(client, s.nextPick());
+        else if (s.cell_state != CellState::Idle)
+          s.next_waiters.push_back(client);
+        else
+          outbox.add(client, reply(Command::NextPick, Status::NoCycle, {0}));
         break;
       case Command::PickFailed: {
         if (!s.latest) {
           outbox.add(client, reply(Command::PickFailed, Status::NoCycle));
           break;
         }
-        const std::optional<int> object = request.argument ? parseIndex(argument) : std::optional<int>(s.latest->last_object);
+        const std::optional<int> object =
+            request.argument ? parseIndex(argument) : std::optional<int>(s.latest->last_object);
         if (!object || *object < 0 || *object >= static_cast<int>(s.latest->T_base_objects.size())) {
           outbox.add(client, reply(Command::PickFailed, Status::BadMessage));
           break;
@@ -157,8 +160,7 @@ void CellService::handle(robot::ClientId client, const robot::Request& request) 
         logger()->warn("POSE is not served here: hand-eye views are recorded by 'binpick calibrate hand-eye --listen'");
         outbox.add(client, reply(Command::Pose, Status::UnknownCommand));
         break;
-      default:
-        outbox.add(client, reply(request.command, Status::UnknownCommand));
+      default: outbox.add(client, reply(request.command, Status::UnknownCommand));
     }
   }
   outbox.send(state_->sink);
@@ -172,7 +174,8 @@ void CellService::disconnected(robot::ClientId client) {
   s.next_waiters.erase(std::remove(s.next_waiters.begin(), s.next_waiters.end(), client), s.next_waiters.end());
 }
 
-void CellService::reconfigure(std::shared_ptr<const CellSetup> setup, std::unique_ptr<acquisition::CaptureSource> source) {
+void CellService::reconfigure(std::shared_ptr<const CellSetup> setup,
+                              std::unique_ptr<acquisition::CaptureSource> source) {
   std::lock_guard lock(state_->mutex);
   State& s = *state_;
   const std::string recipe_name = s.currentRecipe().name;

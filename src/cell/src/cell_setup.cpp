@@ -2,11 +2,11 @@
 
 #include "binpick/acquisition/aravis_camera.hpp"
 #include "binpick/core/stopwatch.hpp"
-#include "binpick/picking/grasp_generation.hpp"
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/model_cache.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/rig_calibration.hpp"
+#include "binpick/picking/grasp_generation.hpp"
 #include "service_logger.hpp"
 
 namespace binpick::cell {
@@ -20,19 +20,21 @@ std::vector<picking::Grasp> generatedGrasps(const RecipeConfig& config, const pi
   const picking::GraspGenerationParams params;
   std::vector<picking::Grasp> grasps;
   try {
-    grasps = geometry.hasMesh() ? picking::generateGrasps(geometry.mesh, cell_picking.gripper, config.symmetry, params)
-                                : picking::generateGrasps(geometry.cloud, cell_picking.gripper, config.symmetry, params);
+    grasps = geometry.hasMesh()
+                 ? picking::generateGrasps(geometry.mesh, cell_picking.gripper, config.symmetry, params)
+                 : picking::generateGrasps(geometry.cloud, cell_picking.gripper, config.symmetry, params);
   } catch (const core::Error& e) {
     throw core::Error(config.model_file + ": recipe " + config.name + ": cannot generate grasps: " + e.what());
   }
   if (grasps.empty()) {
-    throw core::Error(config.model_file + ": recipe " + config.name + ": the " + picking::gripperTypeName(cell_picking.gripper.type) +
-                " gripper fits nowhere on the model; write the recipe's grasps by hand");
+    throw core::Error(config.model_file + ": recipe " + config.name + ": the " +
+                      picking::gripperTypeName(cell_picking.gripper.type) +
+                      " gripper fits nowhere on the model; write the recipe's grasps by hand");
   }
   const double ms = stopwatch.elapsedMs();
   logger()->info("recipe {}: {} {} grasps generated from the model in {:.0f} ms (best: {}, quality {:.2f})",
-                 config.name, grasps.size(), picking::gripperTypeName(cell_picking.gripper.type), ms, grasps.front().name,
-                 grasps.front().quality);
+                 config.name, grasps.size(), picking::gripperTypeName(cell_picking.gripper.type), ms,
+                 grasps.front().name, grasps.front().quality);
   return grasps;
 }
 
@@ -42,10 +44,9 @@ Recipe prepareRecipe(const RecipeConfig& config, const picking::PickParams& cell
   Recipe recipe;
   recipe.name = config.name;
   estimation::PreparedModel model =
-      config.model_cache.empty()
-          ? estimation::prepareModel(io::readModelGeometry(config.model_file), settings.model)
-          : estimation::loadOrPrepareModel(config.model_file, settings.model, config.model_cache,
-                                           &recipe.model_from_cache);
+      config.model_cache.empty() ? estimation::prepareModel(io::readModelGeometry(config.model_file), settings.model)
+                                 : estimation::loadOrPrepareModel(config.model_file, settings.model, config.model_cache,
+                                                                  &recipe.model_from_cache);
   recipe.detector = std::make_shared<const estimation::Detector>(std::move(model), settings.detector);
   recipe.picking = cell_picking;
   // Hand-written (or file) grasps take precedence over generated ones.
@@ -91,8 +92,8 @@ std::shared_ptr<const CellSetup> prepareCell(CellConfig config) {
 std::unique_ptr<acquisition::CaptureSource> makeCaptureSource(const SourceConfig& source) {
   if (source.mode == SourceConfig::Mode::Replay) return acquisition::makeReplaySource(source.replay);
   const LiveSourceConfig& live = source.live;
-  auto projector = live.trigger == "gpio" ? acquisition::makeGpioTrigger(live.gpio)
-                                          : acquisition::makeFreeRunningProjector();
+  auto projector =
+      live.trigger == "gpio" ? acquisition::makeGpioTrigger(live.gpio) : acquisition::makeFreeRunningProjector();
   return acquisition::makeLiveSource(acquisition::makeAravisCamera(live.camera), std::move(projector), live.live);
 }
 

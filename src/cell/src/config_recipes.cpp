@@ -11,7 +11,7 @@ namespace {
 // grasps: a list written in place, a string naming a grasps file (`binpick grasps`), or absent:
 // then they are generated from the model when the cell is prepared (cell_setup.cpp).
 std::vector<picking::Grasp> readGrasps(core::YamlSection& recipe, const std::string& path, const std::string& origin,
-                              const PathResolver& resolve) {
+                                       const PathResolver& resolve) {
   recipe.skip("grasps");
   if (!recipe.has("grasps")) return {};
   const YAML::Node grasps = recipe.node()["grasps"];
@@ -68,8 +68,7 @@ RecipeConfig readRecipe(core::YamlSection s, const std::string& path, const std:
 
 }  // namespace
 
-std::vector<RecipeConfig> readRecipes(const YAML::Node& list, const std::string& origin,
-                                      const PathResolver& resolve) {
+std::vector<RecipeConfig> readRecipes(const YAML::Node& list, const std::string& origin, const PathResolver& resolve) {
   if (!list || !list.IsSequence() || list.size() == 0) {
     throw core::Error(origin + ": recipes needs a list of at least one recipe");
   }

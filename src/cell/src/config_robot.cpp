@@ -1,7 +1,7 @@
 // The `picking:`, `robot:`, `limits:` and `artefacts:` sections.
+#include "binpick/core/orientation.hpp"
 #include "binpick/core/pose_yaml.hpp"
 #include "config_sections.hpp"
-#include "binpick/core/orientation.hpp"
 
 namespace binpick::cell {
 namespace {
@@ -54,8 +54,10 @@ picking::PickParams readPicking(core::YamlSection s) {
   bin.read("length", params.bin.length);
   bin.read("width", params.bin.width);
   bin.read("wall_height", params.bin.wall_height);
-  if (bin.has("T_base_bin")) params.bin.T_base_bin = core::readPose(bin.child("T_base_bin"));
-  else bin.skip("T_base_bin");
+  if (bin.has("T_base_bin"))
+    params.bin.T_base_bin = core::readPose(bin.child("T_base_bin"));
+  else
+    bin.skip("T_base_bin");
   bin.finish();
   if (s.has("tool_radius")) s.fail("tool_radius", "moved to picking.gripper.tool_radius");
   params.gripper = readGripper(s.child("gripper"));

@@ -15,8 +15,7 @@ struct PathResolver {
 };
 
 SourceConfig readSource(core::YamlSection section, const PathResolver& resolve);
-std::vector<RecipeConfig> readRecipes(const YAML::Node& list, const std::string& origin,
-                                      const PathResolver& resolve);
+std::vector<RecipeConfig> readRecipes(const YAML::Node& list, const std::string& origin, const PathResolver& resolve);
 picking::PickParams readPicking(core::YamlSection section);
 robot::RobotServerParams readRobot(core::YamlSection section);
 CycleLimits readLimits(core::YamlSection section);

@@ -38,7 +38,11 @@ std::string cycleJson(const SavedCycle& cycle) {
       {"picks", picks},
       {"rejected", rejectedJson(outcome.rejected)},
       {"timing_ms",
-       {{"capture", t.capture}, {"reconstruct", t.reconstruct}, {"detect", t.detect}, {"plan", t.plan}, {"total", t.total}}},
+       {{"capture", t.capture},
+        {"reconstruct", t.reconstruct},
+        {"detect", t.detect},
+        {"plan", t.plan},
+        {"total", t.total}}},
       {"detection", estimation::toJson(outcome.detection)},
   };
   return json.dump(2);

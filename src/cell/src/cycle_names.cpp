@@ -26,8 +26,7 @@ std::string utcCompact(std::chrono::system_clock::time_point when) {
 
 }  // namespace
 
-std::string cycleDirectoryName(uint64_t cycle, std::chrono::system_clock::time_point when,
-                               uint32_t suffix) {
+std::string cycleDirectoryName(uint64_t cycle, std::chrono::system_clock::time_point when, uint32_t suffix) {
   char number[32];
   std::snprintf(number, sizeof number, "%06llu", static_cast<unsigned long long>(cycle));
   std::string name = "cycle-" + std::string(number) + "-" + utcCompact(when);
@@ -47,8 +46,7 @@ std::optional<CycleName> parseCycleDirectoryName(const std::string& name) {
 }
 
 bool isPartialCycleName(const std::string& name) {
-  return name.rfind(kPartialPrefix, 0) == 0 &&
-         parseCycleDirectoryName(name.substr(kPartialPrefix.size())).has_value();
+  return name.rfind(kPartialPrefix, 0) == 0 && parseCycleDirectoryName(name.substr(kPartialPrefix.size())).has_value();
 }
 
 bool savedBefore(const CycleName& a, const CycleName& b) {

@@ -19,8 +19,7 @@ struct CycleName {
 };
 
 // `suffix` 0 gives the plain name.
-std::string cycleDirectoryName(uint64_t cycle, std::chrono::system_clock::time_point when,
-                               uint32_t suffix);
+std::string cycleDirectoryName(uint64_t cycle, std::chrono::system_clock::time_point when, uint32_t suffix);
 // The parts of a cycle directory name; nullopt for any other name.
 std::optional<CycleName> parseCycleDirectoryName(const std::string& name);
 // Whether `name` is ".partial-" followed by a cycle directory name.

@@ -14,8 +14,7 @@ bool removeCycle(const KeptCycle& cycle) {
   std::error_code error;
   fs::remove_all(cycle.path, error);
   if (error) {
-    artefactsLogger()->warn("cannot delete old cycle directory {}: {}", cycle.path.string(),
-                            error.message());
+    artefactsLogger()->warn("cannot delete old cycle directory {}: {}", cycle.path.string(), error.message());
     return false;
   }
   artefactsLogger()->debug("deleted old cycle directory {}", cycle.path.string());
@@ -43,8 +42,7 @@ uint64_t bytesBelow(const fs::path& path) {
   uint64_t bytes = 0;
   std::error_code error;
   const auto options = fs::directory_options::skip_permission_denied;
-  for (fs::recursive_directory_iterator it(path, options, error), end; !error && it != end;
-       it.increment(error)) {
+  for (fs::recursive_directory_iterator it(path, options, error), end; !error && it != end; it.increment(error)) {
     std::error_code status_error;
     if (!fs::is_regular_file(it->symlink_status(status_error))) continue;
     const uintmax_t size = it->file_size(status_error);
@@ -53,8 +51,7 @@ uint64_t bytesBelow(const fs::path& path) {
   return bytes;
 }
 
-void applyBounds(const fs::path& directory, const std::string& keep_name, int max_cycles,
-                 uint64_t max_bytes) {
+void applyBounds(const fs::path& directory, const std::string& keep_name, int max_cycles, uint64_t max_bytes) {
   std::vector<KeptCycle> cycles = listCycles(directory);
   std::vector<uint64_t> sizes;
   uint64_t total = 0;

@@ -24,7 +24,7 @@ uint64_t bytesBelow(const std::filesystem::path& path);
 // Deletes the oldest cycle directories, never `keep_name`, until at most `max_cycles` remain and
 // they hold at most `max_bytes` (or only `keep_name` is left). A directory that cannot be deleted
 // is logged and passed over.
-void applyBounds(const std::filesystem::path& directory, const std::string& keep_name,
-                 int max_cycles, uint64_t max_bytes);
+void applyBounds(const std::filesystem::path& directory, const std::string& keep_name, int max_cycles,
+                 uint64_t max_bytes);
 
 }  // namespace binpick::cell::artefacts_detail

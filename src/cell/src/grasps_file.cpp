@@ -4,9 +4,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "binpick/core/yaml_section.hpp"
 #include "binpick/core/file.hpp"
 #include "binpick/core/pose_yaml.hpp"
+#include "binpick/core/yaml_section.hpp"
 
 namespace binpick::cell {
 namespace {

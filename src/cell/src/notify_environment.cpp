@@ -39,15 +39,13 @@ std::chrono::microseconds watchdogIntervalFromEnvironment() {
   const std::optional<std::int64_t> usec = positiveNumber(usec_text);
   if (!usec) {
     systemd_detail::systemdLogger()->warn(
-        "ignoring WATCHDOG_USEC={}: not a positive number of microseconds; no watchdog",
-        quoted(usec_text));
+        "ignoring WATCHDOG_USEC={}: not a positive number of microseconds; no watchdog", quoted(usec_text));
     return std::chrono::microseconds(0);
   }
   if (pid_text != nullptr) {
     const std::optional<std::int64_t> pid = positiveNumber(pid_text);
     if (!pid || *pid != static_cast<std::int64_t>(::getpid())) {
-      systemd_detail::systemdLogger()->info("WATCHDOG_PID={} is not this process; no watchdog",
-                                            quoted(pid_text));
+      systemd_detail::systemdLogger()->info("WATCHDOG_PID={} is not this process; no watchdog", quoted(pid_text));
       return std::chrono::microseconds(0);
     }
   }

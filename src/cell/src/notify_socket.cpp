@@ -38,8 +38,7 @@ SocketAddress socketAddressOf(const std::string& address) {
   if (abstract) result.address.sun_path[0] = '\0';
   // The kernel takes an abstract name's length from the address length, so it must not include
   // a terminating NUL; a path is NUL-terminated by the zeroed buffer.
-  result.length =
-      static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + address.size() + (abstract ? 0 : 1));
+  result.length = static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + address.size() + (abstract ? 0 : 1));
   return result;
 }
 
@@ -63,9 +62,8 @@ class ScopedDescriptor {
 void checkNotifyAddress(const std::string& address) {
   const bool absolute_or_abstract = !address.empty() && (address[0] == '/' || address[0] == '@');
   if (!absolute_or_abstract || address.size() < 2 || !fitsIntoSocketAddress(address)) {
-    throw core::Error("NOTIFY_SOCKET \"" + address +
-                "\": must be an absolute path or an @abstract name of at most " +
-                std::to_string(kSunPathBytes - 1) + " bytes");
+    throw core::Error("NOTIFY_SOCKET \"" + address + "\": must be an absolute path or an @abstract name of at most " +
+                      std::to_string(kSunPathBytes - 1) + " bytes");
   }
 }
 

@@ -18,15 +18,14 @@ void checkImage(const cv::Mat& image, const io::LensIntrinsics& camera) {
   if (image.empty()) throw core::Error("overlay: the camera image is empty");
   const bool grey = image.channels() == 1 && (image.depth() == CV_8U || image.depth() == CV_16U);
   if (!grey) {
-    throw core::Error("overlay: the camera image must be 8- or 16-bit grey (got " +
-                std::to_string(image.channels()) + " channels of depth " +
-                std::to_string(image.depth()) + ")");
+    throw core::Error("overlay: the camera image must be 8- or 16-bit grey (got " + std::to_string(image.channels()) +
+                      " channels of depth " + std::to_string(image.depth()) + ")");
   }
   camera.validate("overlay camera");
   if (image.cols != camera.width || image.rows != camera.height) {
-    throw core::Error("overlay: the camera image is " + std::to_string(image.cols) + "x" +
-                std::to_string(image.rows) + " but the camera's lens is " +
-                std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    throw core::Error("overlay: the camera image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                      " but the camera's lens is " + std::to_string(camera.width) + "x" +
+                      std::to_string(camera.height));
   }
 }
 
@@ -66,24 +65,20 @@ cv::Scalar overlayRankColour(int pick_rank, int last_rank) {
 }
 
 cv::Mat renderOverlay(const cv::Mat& image, const io::LensIntrinsics& camera,
-                      const std::vector<Eigen::Vector3f>& model_points,
-                      const std::vector<OverlayPart>& parts) {
+                      const std::vector<Eigen::Vector3f>& model_points, const std::vector<OverlayPart>& parts) {
   checkImage(image, camera);
   cv::Mat canvas = colourCanvas(image);
   const int last = lastRank(parts);
   const std::vector<const OverlayPart*> order = drawingOrder(parts);
   // Layers: all points, then grasps, then origin markers, so that no part hides another's label.
   for (const OverlayPart* part : order) {
-    drawModelPoints(canvas, camera, model_points, part->T_camera_model,
-                    overlayRankColour(part->pick_rank, last));
+    drawModelPoints(canvas, camera, model_points, part->T_camera_model, overlayRankColour(part->pick_rank, last));
   }
   for (const OverlayPart* part : order) {
-    if (part->T_camera_grasp)
-      drawGraspTripod(canvas, camera, *part->T_camera_grasp, kOverlayTripodLength);
+    if (part->T_camera_grasp) drawGraspTripod(canvas, camera, *part->T_camera_grasp, kOverlayTripodLength);
   }
   for (const OverlayPart* part : order) {
-    drawOriginMarker(canvas, camera, part->T_camera_model, overlayRankColour(part->pick_rank, last),
-                     part->pick_rank);
+    drawOriginMarker(canvas, camera, part->T_camera_model, overlayRankColour(part->pick_rank, last), part->pick_rank);
   }
   return canvas;
 }

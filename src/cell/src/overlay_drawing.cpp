@@ -11,8 +11,7 @@ namespace {
 constexpr double kMinDepth = 1e-6;  // metres
 
 // Projects a point in front of the camera, keeping pixels outside the image.
-std::optional<Eigen::Vector2d> projectInFront(const io::LensIntrinsics& camera,
-                                              const Eigen::Vector3d& point) {
+std::optional<Eigen::Vector2d> projectInFront(const io::LensIntrinsics& camera, const Eigen::Vector3d& point) {
   if (!(point.z() > kMinDepth)) return std::nullopt;
   const Eigen::Vector2d pixel = camera.project(point);
   if (!pixel.allFinite()) return std::nullopt;
@@ -39,8 +38,8 @@ std::optional<cv::Point> pixelOf(const io::LensIntrinsics& camera, const Eigen::
 }
 
 void drawModelPoints(cv::Mat& canvas, const io::LensIntrinsics& camera,
-                     const std::vector<Eigen::Vector3f>& model_points,
-                     const Eigen::Isometry3d& T_camera_model, const cv::Scalar& colour) {
+                     const std::vector<Eigen::Vector3f>& model_points, const Eigen::Isometry3d& T_camera_model,
+                     const cv::Scalar& colour) {
   const int radius = strokeWidth(canvas) - 1;  // 0: single pixels on small images
   for (const Eigen::Vector3f& point : model_points) {
     const std::optional<cv::Point> at = pixelOf(camera, T_camera_model * point.cast<double>());
@@ -53,8 +52,8 @@ void drawModelPoints(cv::Mat& canvas, const io::LensIntrinsics& camera,
   }
 }
 
-void drawGraspTripod(cv::Mat& canvas, const io::LensIntrinsics& camera,
-                     const Eigen::Isometry3d& T_camera_grasp, double length) {
+void drawGraspTripod(cv::Mat& canvas, const io::LensIntrinsics& camera, const Eigen::Isometry3d& T_camera_grasp,
+                     double length) {
   const cv::Scalar axis_colours[3] = {{0, 0, 255}, {0, 255, 0}, {255, 0, 0}};  // BGR: x, y, z
   const Eigen::Vector3d origin = T_camera_grasp.translation();
   const std::optional<Eigen::Vector2d> from = projectInFront(camera, origin);
@@ -66,14 +65,12 @@ void drawGraspTripod(cv::Mat& canvas, const io::LensIntrinsics& camera,
     const std::optional<Eigen::Vector2d> to = projectInFront(camera, end);
     if (!to || !withinMargin(camera, *to, margin)) continue;
     // Not antialiased: the axes keep their exact colours (the tests look at them).
-    cv::line(canvas, rounded(*from), rounded(*to), axis_colours[axis], strokeWidth(canvas),
-             cv::LINE_8);
+    cv::line(canvas, rounded(*from), rounded(*to), axis_colours[axis], strokeWidth(canvas), cv::LINE_8);
   }
 }
 
-void drawOriginMarker(cv::Mat& canvas, const io::LensIntrinsics& camera,
-                      const Eigen::Isometry3d& T_camera_model, const cv::Scalar& colour,
-                      int pick_rank) {
+void drawOriginMarker(cv::Mat& canvas, const io::LensIntrinsics& camera, const Eigen::Isometry3d& T_camera_model,
+                      const cv::Scalar& colour, int pick_rank) {
   const std::optional<cv::Point> at = pixelOf(camera, T_camera_model.translation());
   if (!at) return;
   const int stroke = strokeWidth(canvas);
@@ -85,10 +82,8 @@ void drawOriginMarker(cv::Mat& canvas, const io::LensIntrinsics& camera,
   const std::string label = std::to_string(pick_rank);
   const cv::Point text_at = *at + cv::Point(radius + 2 * stroke, -radius - 2 * stroke);
   const double scale = 0.5 * stroke;
-  cv::putText(canvas, label, text_at, cv::FONT_HERSHEY_SIMPLEX, scale, {0, 0, 0}, 3 * stroke,
-              cv::LINE_AA);
-  cv::putText(canvas, label, text_at, cv::FONT_HERSHEY_SIMPLEX, scale, {255, 255, 255}, stroke,
-              cv::LINE_AA);
+  cv::putText(canvas, label, text_at, cv::FONT_HERSHEY_SIMPLEX, scale, {0, 0, 0}, 3 * stroke, cv::LINE_AA);
+  cv::putText(canvas, label, text_at, cv::FONT_HERSHEY_SIMPLEX, scale, {255, 255, 255}, stroke, cv::LINE_AA);
 }
 
 }  // namespace binpick::cell::overlay_detail

@@ -18,15 +18,14 @@ int strokeWidth(const cv::Mat& canvas);
 std::optional<cv::Point> pixelOf(const io::LensIntrinsics& camera, const Eigen::Vector3d& point);
 
 void drawModelPoints(cv::Mat& canvas, const io::LensIntrinsics& camera,
-                     const std::vector<Eigen::Vector3f>& model_points,
-                     const Eigen::Isometry3d& T_camera_model, const cv::Scalar& colour);
+                     const std::vector<Eigen::Vector3f>& model_points, const Eigen::Isometry3d& T_camera_model,
+                     const cv::Scalar& colour);
 // x red, y green, z blue; an axis with an end behind the camera or far outside the image is
 // skipped (the lens model is meaningless there), otherwise clipped to the image.
-void drawGraspTripod(cv::Mat& canvas, const io::LensIntrinsics& camera,
-                     const Eigen::Isometry3d& T_camera_grasp, double length);
+void drawGraspTripod(cv::Mat& canvas, const io::LensIntrinsics& camera, const Eigen::Isometry3d& T_camera_grasp,
+                     double length);
 // A disc at the projected model origin, and the rank number beside it for picks (rank >= 0).
-void drawOriginMarker(cv::Mat& canvas, const io::LensIntrinsics& camera,
-                      const Eigen::Isometry3d& T_camera_model, const cv::Scalar& colour,
-                      int pick_rank);
+void drawOriginMarker(cv::Mat& canvas, const io::LensIntrinsics& camera, const Eigen::Isometry3d& T_camera_model,
+                      const cv::Scalar& colour, int pick_rank);
 
 }  // namespace binpick::cell::overlay_detail

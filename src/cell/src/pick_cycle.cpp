@@ -40,8 +40,8 @@ std::string unreachableDetail(std::size_t detected, std::size_t not_sure, const 
   return std::to_string(detected) + " parts detected: " + std::to_string(not_sure) + " not sure enough, " +
          std::to_string(r.tilt) + " too tilted, " + std::to_string(r.bin) + " with the tool hitting the bin, " +
          std::to_string(r.cloud) + " with the tool hitting the measured cloud, " + std::to_string(r.seal) +
-         " with no measured face under the cup, " + std::to_string(r.avoided) +
-         " avoided, " + std::to_string(r.invalid) + " invalid";
+         " with no measured face under the cup, " + std::to_string(r.avoided) + " avoided, " +
+         std::to_string(r.invalid) + " invalid";
 }
 
 }  // namespace
@@ -57,8 +57,8 @@ int countPointsInBin(const io::PointCloud& cloud, const Eigen::Isometry3d& T_bas
   for (const Eigen::Vector3f& point : cloud.points) {
     if (!point.allFinite()) continue;
     const Eigen::Vector3f p = transform * point;
-    const bool inside = std::abs(p.x()) < half_length && std::abs(p.y()) < half_width &&
-                        p.z() > min_height && p.z() < bin.wall_height * 2;
+    const bool inside = std::abs(p.x()) < half_length && std::abs(p.y()) < half_width && p.z() > min_height &&
+                        p.z() < bin.wall_height * 2;
     count += inside ? 1 : 0;
   }
   return count;
@@ -87,7 +87,8 @@ CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const 
   const io::LensIntrinsics& camera = setup.reconstructor->rig().camera;
   std::optional<picking::MeasuredSurface> surface;  // the seal test reads the cloud through the camera's pixels
   if (cloud.width == camera.width && cloud.height == camera.height) surface.emplace(cloud, camera, T_base_camera);
-  picking::PickPlan plan = picking::planPicks(candidates.parts, avoid, recipe.picking, &scene, surface ? &*surface : nullptr);
+  picking::PickPlan plan =
+      picking::planPicks(candidates.parts, avoid, recipe.picking, &scene, surface ? &*surface : nullptr);
   if (plan.picks.size() > static_cast<std::size_t>(setup.config.limits.max_picks)) {
     plan.picks.resize(setup.config.limits.max_picks);
   }

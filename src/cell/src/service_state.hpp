@@ -4,8 +4,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <condition_variable>
+#include <cstdint>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -29,6 +29,7 @@ class Outbox {
     for (const auto& [client, reply] : replies_) sink(client, reply);
     replies_.clear();
   }
+
  private:
   std::vector<std::pair<robot::ClientId, robot::Reply>> replies_;
 };
@@ -65,12 +66,12 @@ struct CellService::State {
   std::optional<robot::ClientId> trigger_client;  // answered when the capture is done
   std::vector<robot::ClientId> next_waiters;      // NEXT requests waiting for the running cycle
   Clock::time_point stage_deadline;
-  bool stage_expired = false;              // the running stage's waiters got "timeout"
+  bool stage_expired = false;  // the running stage's waiters got "timeout"
 
   std::optional<LatestCycle> latest;
   uint64_t cycles_started = 0;
   std::vector<AvoidEntry> avoid;
-  CellSnapshot last;                       // for snapshot()
+  CellSnapshot last;  // for snapshot()
   bool stopping = false;
 
   std::unique_ptr<ArtefactSaver> saver;

@@ -40,25 +40,20 @@ std::string monotonicMicroseconds() {
 
 }  // namespace
 
-SystemdNotifier::SystemdNotifier(std::string socket_path,
-                                 std::chrono::microseconds watchdog_interval)
+SystemdNotifier::SystemdNotifier(std::string socket_path, std::chrono::microseconds watchdog_interval)
     : socket_path_(std::move(socket_path)), watchdog_interval_(watchdog_interval) {
   if (!socket_path_.empty()) systemd_detail::checkNotifyAddress(socket_path_);
-  core::requireField(watchdog_interval.count() >= 0, "systemd notifier", "watchdog_interval",
-               ">= 0 microseconds", watchdog_interval.count());
+  core::requireField(watchdog_interval.count() >= 0, "systemd notifier", "watchdog_interval", ">= 0 microseconds",
+                     watchdog_interval.count());
 }
 
-void SystemdNotifier::ready(const std::string& status) {
-  send("READY=1\nSTATUS=" + statusLine(status));
-}
+void SystemdNotifier::ready(const std::string& status) { send("READY=1\nSTATUS=" + statusLine(status)); }
 
 void SystemdNotifier::reloading(const std::string& status) {
   send("RELOADING=1\nMONOTONIC_USEC=" + monotonicMicroseconds() + "\nSTATUS=" + statusLine(status));
 }
 
-void SystemdNotifier::stopping(const std::string& status) {
-  send("STOPPING=1\nSTATUS=" + statusLine(status));
-}
+void SystemdNotifier::stopping(const std::string& status) { send("STOPPING=1\nSTATUS=" + statusLine(status)); }
 
 void SystemdNotifier::status(const std::string& text) { send("STATUS=" + statusLine(text)); }
 
@@ -75,8 +70,8 @@ void SystemdNotifier::send(const std::string& message) noexcept {
     } else if (!failure_logged_->exchange(true)) {
       // Once per outage: a watchdog ping every few seconds would otherwise flood the journal.
       systemd_detail::systemdLogger()->warn(
-          "cannot notify the service manager at {}: {} (not logged again until a send succeeds)",
-          socket_path_, failure);
+          "cannot notify the service manager at {}: {} (not logged again until a send succeeds)", socket_path_,
+          failure);
     }
   } catch (...) {
     // Logging must not turn a lost notification into a crash of the daemon.

@@ -28,8 +28,7 @@ nlohmann::json readJsonFile(const std::string& path) {
   }
 }
 
-Eigen::Isometry3d poseFromRows(const nlohmann::json& rows, const std::string& path,
-                               const std::string& what) {
+Eigen::Isometry3d poseFromRows(const nlohmann::json& rows, const std::string& path, const std::string& what) {
   if (!isFourByFourNumbers(rows)) {
     throw Error(path + ": '" + what + "' must be 4 rows of 4 numbers");
   }
@@ -38,8 +37,7 @@ Eigen::Isometry3d poseFromRows(const nlohmann::json& rows, const std::string& pa
     for (int c = 0; c < 4; ++c) m(r, c) = rows[r][c].get<double>();
   }
   const Eigen::Matrix3d rotation = m.topLeftCorner<3, 3>();
-  const bool rigid = m.allFinite() &&
-                     (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-5 &&
+  const bool rigid = m.allFinite() && (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).norm() < 1e-5 &&
                      m.row(3) == Eigen::RowVector4d(0, 0, 0, 1);
   if (!rigid) throw Error(path + ": '" + what + "' is not a finite rigid transform");
   Eigen::Isometry3d pose;

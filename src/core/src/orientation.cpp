@@ -94,8 +94,7 @@ void requireValues(bool ok, Orientation orientation, const std::string& problem)
 
 Eigen::Matrix3d rotationFromQuaternion(const std::vector<double>& values) {
   Eigen::Quaterniond q(values[0], values[1], values[2], values[3]);
-  requireValues(q.norm() >= kMinQuaternionNorm, Orientation::Quaternion,
-                "must not be a zero quaternion");
+  requireValues(q.norm() >= kMinQuaternionNorm, Orientation::Quaternion, "must not be a zero quaternion");
   return q.normalized().toRotationMatrix();
 }
 
@@ -111,9 +110,8 @@ double radians(double degrees) { return degrees / kDegreesPerRadian; }
 }  // namespace
 
 Orientation orientationFromName(const std::string& name) {
-  for (Orientation orientation :
-       {Orientation::Quaternion, Orientation::EulerZYX, Orientation::FixedXYZ,
-        Orientation::RotationVector, Orientation::EulerXYZ}) {
+  for (Orientation orientation : {Orientation::Quaternion, Orientation::EulerZYX, Orientation::FixedXYZ,
+                                  Orientation::RotationVector, Orientation::EulerXYZ}) {
     if (orientationName(orientation) == name) return orientation;
   }
   throw Error("orientation '" + name +
@@ -131,9 +129,7 @@ std::string orientationName(Orientation orientation) {
   return "unknown";
 }
 
-int orientationValueCount(Orientation orientation) {
-  return orientation == Orientation::Quaternion ? 4 : 3;
-}
+int orientationValueCount(Orientation orientation) { return orientation == Orientation::Quaternion ? 4 : 3; }
 
 std::vector<double> orientationValues(const Eigen::Matrix3d& R, Orientation orientation) {
   switch (orientation) {
@@ -152,31 +148,25 @@ std::vector<double> orientationValues(const Eigen::Matrix3d& R, Orientation orie
       return {toDegreesInRange(a.first), toDegreesInRange(a.middle), toDegreesInRange(a.last)};
     }
   }
-  throw Error("orientation convention " + std::to_string(static_cast<int>(orientation)) +
-              " is unknown");
+  throw Error("orientation convention " + std::to_string(static_cast<int>(orientation)) + " is unknown");
 }
 
 Eigen::Matrix3d rotationFromValues(const std::vector<double>& values, Orientation orientation) {
   const std::size_t expected = static_cast<std::size_t>(orientationValueCount(orientation));
   requireValues(values.size() == expected, orientation,
-                "must be " + std::to_string(expected) + " numbers (got " +
-                    std::to_string(values.size()) + ")");
+                "must be " + std::to_string(expected) + " numbers (got " + std::to_string(values.size()) + ")");
   for (double value : values) requireValues(std::isfinite(value), orientation, "must be finite");
   switch (orientation) {
     case Orientation::Quaternion: return rotationFromQuaternion(values);
     case Orientation::RotationVector: return rotationFromRotationVector(values);
     case Orientation::EulerZYX:
-      return rotationZ(radians(values[0])) * rotationY(radians(values[1])) *
-             rotationX(radians(values[2]));
+      return rotationZ(radians(values[0])) * rotationY(radians(values[1])) * rotationX(radians(values[2]));
     case Orientation::FixedXYZ:
-      return rotationZ(radians(values[2])) * rotationY(radians(values[1])) *
-             rotationX(radians(values[0]));
+      return rotationZ(radians(values[2])) * rotationY(radians(values[1])) * rotationX(radians(values[0]));
     case Orientation::EulerXYZ:
-      return rotationX(radians(values[0])) * rotationY(radians(values[1])) *
-             rotationZ(radians(values[2]));
+      return rotationX(radians(values[0])) * rotationY(radians(values[1])) * rotationZ(radians(values[2]));
   }
-  throw Error("orientation convention " + std::to_string(static_cast<int>(orientation)) +
-              " is unknown");
+  throw Error("orientation convention " + std::to_string(static_cast<int>(orientation)) + " is unknown");
 }
 
 }  // namespace binpick::core

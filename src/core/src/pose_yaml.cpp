@@ -55,8 +55,8 @@ Eigen::Isometry3d readPose(YamlSection section, PoseFields fields) {
 std::string poseYaml(const Eigen::Isometry3d& pose, const std::string& indent) {
   const Eigen::Vector3d& t = pose.translation();
   return indent + "translation: " + list({t.x(), t.y(), t.z()}) + "  # metres\n" + indent +
-         "rotation: " + list(orientationValues(pose.linear(), Orientation::Quaternion)) + "  # w x y z\n" +
-         indent + "convention: quaternion\n";
+         "rotation: " + list(orientationValues(pose.linear(), Orientation::Quaternion)) + "  # w x y z\n" + indent +
+         "convention: quaternion\n";
 }
 
 }  // namespace binpick::core

@@ -109,11 +109,9 @@ std::string cellSettings(const EmptyingParams& params, const Eigen::Isometry3d& 
        << ", rotation: " << quaternion(T_base_camera.linear()) << ", convention: quaternion}\n"
        << "recipes:\n  - {name: part, model: part.ply, cache: model.cache, settings: detection.yaml}\n"
        << "picking:\n  bin: {length: " << pile.bin_length << ", width: " << pile.bin_width
-       << ", wall_height: " << pile.bin_wall_height << ", T_base_bin: {translation: " << vector3(kBaseToBin)
-       << "}}\n"
+       << ", wall_height: " << pile.bin_wall_height << ", T_base_bin: {translation: " << vector3(kBaseToBin) << "}}\n"
        << "  approach_distance: " << params.approach_distance << "\n"
-       << gripperSettings(params.gripper)
-       << "robot: {bind_address: 127.0.0.1, port: 0, orientation: euler_zyx}\n"
+       << gripperSettings(params.gripper) << "robot: {bind_address: 127.0.0.1, port: 0, orientation: euler_zyx}\n"
        << "artefacts: {directory: ../cycles, max_cycles: " << max_cycles
        << ", capture: false, cloud: false, detections: true, overlay: true}\n";
   return text.str();
@@ -142,12 +140,13 @@ CellUnderTest::CellUnderTest(const simulation::Part& part, const EmptyingParams&
   auto camera = std::make_unique<VirtualCamera>();
   camera_ = camera.get();
   service_ = std::make_unique<cell::CellService>(
-      setup_, std::move(camera), [this](robot::ClientId client, const robot::Reply& reply) { server_->reply(client, reply); });
+      setup_, std::move(camera),
+      [this](robot::ClientId client, const robot::Reply& reply) { server_->reply(client, reply); });
   server_ = std::make_unique<robot::RobotServer>(config.robot, *service_);
   serving_ = std::thread([this] { server_->run(); });
   try {
     robot_ = std::make_unique<robot::RobotConnection>("127.0.0.1", server_->port(), config.robot.codec,
-                                                     std::chrono::milliseconds(5000));
+                                                      std::chrono::milliseconds(5000));
   } catch (...) {
     stop();  // no destructor runs for a half-built object: the serving thread must end here
     throw;

@@ -10,9 +10,9 @@
 #include <thread>
 
 #include "binpick/cell/cell_service.hpp"
+#include "binpick/emptying/emptying.hpp"
 #include "binpick/robot/robot_connection.hpp"
 #include "binpick/robot/robot_server.hpp"
-#include "binpick/emptying/emptying.hpp"
 
 namespace binpick::emptying::detail {
 

@@ -40,7 +40,7 @@ class EmptyingRun {
   }
 
   EmptyingReport run(const CycleObserver& observer) {
-    int idle_cycles = 0;       // cycles in a row without a pick
+    int idle_cycles = 0;  // cycles in a row without a pick
     int last_failed_cycle = -1000;
     for (int cycle = 1; cycle <= params_.cycleLimit(); ++cycle) {
       CycleRecord record = runCycle(cycle);
@@ -84,7 +84,8 @@ class EmptyingRun {
     record.status = robot::statusName(next.status);
     record.detail = snapshot.last_detail;
     record.detections = static_cast<int>(snapshot.last_parts_detected);
-    record.cycle_ms = snapshot.last_timing_ms.reconstruct + snapshot.last_timing_ms.detect + snapshot.last_timing_ms.plan;
+    record.cycle_ms =
+        snapshot.last_timing_ms.reconstruct + snapshot.last_timing_ms.detect + snapshot.last_timing_ms.plan;
     if (next.status == Status::Ok && next.T_base_tool) record.pick = executePick(cycle, next, poses);
     record.parts_after = static_cast<int>(physics_.poses().size());
     return record;
@@ -93,11 +94,12 @@ class EmptyingRun {
   void showPile(const std::vector<Eigen::Isometry3d>& poses, int cycle) {
     simulation::PhotometryParams photometry = params_.photometry;
     photometry.seed = params_.photometry.seed + static_cast<uint64_t>(cycle);  // new sensor noise each time
-    simulation::PileCapture capture = simulation::renderPileCaptureAt(part_.mesh, params_.pile, poses, patterns_, photometry);
+    simulation::PileCapture capture =
+        simulation::renderPileCaptureAt(part_.mesh, params_.pile, poses, patterns_, photometry);
     if (!cell_) cell_ = std::make_unique<detail::CellUnderTest>(part_, params_, capture.scene.T_camera_bin);
     last_scene_ = std::move(capture.scene);
     cell_->show(simulation::recordedCapture(std::move(capture.images), params_.pile, patterns_, photometry,
-                                     "binpick virtual cell, bin-emptying cycle " + std::to_string(cycle)));
+                                            "binpick virtual cell, bin-emptying cycle " + std::to_string(cycle)));
   }
 
   // The simulated robot flies the commanded pick in the true scene: a part held leaves the bin; a

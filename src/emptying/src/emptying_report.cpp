@@ -4,9 +4,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "binpick/core/error.hpp"
 #include "binpick/emptying/emptying.hpp"
 #include "binpick/estimation/result_json.hpp"
-#include "binpick/core/error.hpp"
 
 namespace binpick::emptying {
 namespace {
@@ -24,9 +24,14 @@ nlohmann::json pickJson(const PickRecord& pick) {
 }
 
 nlohmann::json cycleJson(const CycleRecord& cycle) {
-  return {{"cycle", cycle.cycle},         {"status", cycle.status},         {"detail", cycle.detail},
-          {"parts_before", cycle.parts_before}, {"parts_after", cycle.parts_after}, {"detections", cycle.detections},
-          {"cycle_ms", cycle.cycle_ms},   {"render_ms", cycle.render_ms}};
+  return {{"cycle", cycle.cycle},
+          {"status", cycle.status},
+          {"detail", cycle.detail},
+          {"parts_before", cycle.parts_before},
+          {"parts_after", cycle.parts_after},
+          {"detections", cycle.detections},
+          {"cycle_ms", cycle.cycle_ms},
+          {"render_ms", cycle.render_ms}};
 }
 
 std::string seconds(double milliseconds) {
@@ -44,7 +49,7 @@ void EmptyingParams::validate() const {
   gripper.validate();
   truth.validate();
   core::requireField(std::isfinite(approach_distance) && approach_distance >= 0, owner, "approach_distance", ">= 0",
-               approach_distance);
+                     approach_distance);
   core::requireField(max_cycles >= 0, owner, "max_cycles", ">= 0", max_cycles);
   core::requireField(patience >= 1, owner, "patience", ">= 1", patience);
   core::requireField(!out_directory.empty(), owner, "out_directory", "given", "\"\"");
@@ -66,7 +71,8 @@ void writeEmptyingJson(const std::string& path, const EmptyingReport& report) {
     if (cycle.pick) picks.push_back(pickJson(*cycle.pick));
   }
   for (const PartLeft& part : report.left) {
-    left.push_back({{"index", part.index}, {"T_base_part", poseJson(part.T_base_part)},
+    left.push_back({{"index", part.index},
+                    {"T_base_part", poseJson(part.T_base_part)},
                     {"visible_fraction", part.visible_fraction}});
   }
   const nlohmann::json json = {

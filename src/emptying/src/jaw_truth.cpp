@@ -11,21 +11,21 @@ namespace {
 
 // What a jaw meets first as it closes from its open position, `opening` / 2 off the grasp axis.
 struct JawContact {
-  bool hit = false;        // within the opening
-  bool any = false;        // at any distance: even beyond the opening, a surface met from behind
+  bool hit = false;  // within the opening
+  bool any = false;  // at any distance: even beyond the opening, a surface met from behind
   int object = -1;
-  double travel = 0.0;     // metres from the open position
-  Eigen::Vector3d normal;  // grasp frame, outward from the surface met
+  double travel = 0.0;       // metres from the open position
+  Eigen::Vector3d normal;    // grasp frame, outward from the surface met
   bool from_inside = false;  // the jaw's open face already lay inside that solid
 };
 
 // side +1: the jaw at +x closing along -x; -1: the one at -x closing along +x.
-JawContact closeJaw(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                    const picking::GripperParams& gripper, double opening, const PickTruthParams& params, int side) {
+JawContact closeJaw(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp, const picking::GripperParams& gripper,
+                    double opening, const PickTruthParams& params, int side) {
   const double half_width = 0.5 * gripper.finger_width, half_depth = 0.5 * gripper.finger_depth;
   std::vector<Eigen::Vector3d> origins;
-  for (const Eigen::Vector2d& yz : rectangleSamples(-half_width, half_width, -half_depth, half_depth,
-                                                    params.sample_spacing)) {
+  for (const Eigen::Vector2d& yz :
+       rectangleSamples(-half_width, half_width, -half_depth, half_depth, params.sample_spacing)) {
     origins.emplace_back(side * 0.5 * opening, yz.x(), yz.y());
   }
   const Eigen::Vector3d closing(-side, 0.0, 0.0);
@@ -54,8 +54,7 @@ std::vector<Column> fingerColumns(const picking::GripperParams& gripper, double 
   std::vector<Column> columns;
   for (const double side : {1.0, -1.0}) {
     const double x0 = side > 0 ? inner : -outer, x1 = side > 0 ? outer : -inner;
-    for (const Eigen::Vector2d& xy :
-         rectangleSamples(x0, x1, -half_width, half_width, params.collision_spacing)) {
+    for (const Eigen::Vector2d& xy : rectangleSamples(x0, x1, -half_width, half_width, params.collision_spacing)) {
       columns.push_back({xy, -half_depth - approach_distance, half_depth});
     }
   }
@@ -102,9 +101,8 @@ PickJudgement judgeParallel(const TrueScene& scene, const Eigen::Isometry3d& T_b
     judgement.reason = wider;
     return judgement;
   }
-  for (const auto& [solid, columns] :
-       {std::pair{"finger", fingerColumns(gripper, opening, approach_distance, params)},
-        std::pair{"tool", bodyColumns(gripper, approach_distance, params)}}) {
+  for (const auto& [solid, columns] : {std::pair{"finger", fingerColumns(gripper, opening, approach_distance, params)},
+                                       std::pair{"tool", bodyColumns(gripper, approach_distance, params)}}) {
     const SweepHit sweep = sweepHits(scene, T_bin_grasp, columns);
     if (!sweep.hit) continue;
     judgement.obstacle = sweep.object;
@@ -116,8 +114,7 @@ PickJudgement judgeParallel(const TrueScene& scene, const Eigen::Isometry3d& T_b
   judgement.distance = opening - right.travel - left.travel;
   judgement.angle_deg = angleDeg(right.normal, -left.normal);
   if (judgement.angle_deg > params.max_antipodal_angle_deg) {
-    judgement.reason =
-        "jaw faces " + std::to_string(std::lround(judgement.angle_deg)) + " deg from opposite";
+    judgement.reason = "jaw faces " + std::to_string(std::lround(judgement.angle_deg)) + " deg from opposite";
     return judgement;
   }
   judgement.ok = true;

@@ -26,8 +26,7 @@ std::vector<Eigen::Vector2d> discSamples(double radius, double spacing) {
   return points;
 }
 
-std::vector<Eigen::Vector2d> rectangleSamples(double x0, double x1, double y0, double y1,
-                                              double spacing) {
+std::vector<Eigen::Vector2d> rectangleSamples(double x0, double x1, double y0, double y1, double spacing) {
   const int nx = stepsOver(x1 - x0, spacing), ny = stepsOver(y1 - y0, spacing);
   std::vector<Eigen::Vector2d> points;
   for (int i = 0; i <= nx; ++i) {
@@ -38,8 +37,7 @@ std::vector<Eigen::Vector2d> rectangleSamples(double x0, double x1, double y0, d
   return points;
 }
 
-SweepHit sweepHits(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                   const std::vector<Column>& columns) {
+SweepHit sweepHits(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp, const std::vector<Column>& columns) {
   const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
   std::vector<simulation::Ray> rays;
   rays.reserve(columns.size());
@@ -63,8 +61,8 @@ std::string hitReason(const std::string& solid, int object) {
 }
 
 std::vector<simulation::RayHit> castFrom(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                                  const std::vector<Eigen::Vector3d>& points,
-                                  const Eigen::Vector3d& direction, double length) {
+                                         const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& direction,
+                                         double length) {
   std::vector<simulation::Ray> rays(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
     rays[i].origin = T_bin_grasp * points[i];

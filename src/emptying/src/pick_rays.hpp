@@ -14,8 +14,7 @@ namespace binpick::emptying::detail {
 // `radius`, the last ring exactly at it, each ring's points at most about `spacing` apart.
 std::vector<Eigen::Vector2d> discSamples(double radius, double spacing);
 // A grid over [x0, x1] x [y0, y1], edges included, points at most `spacing` apart.
-std::vector<Eigen::Vector2d> rectangleSamples(double x0, double x1, double y0, double y1,
-                                              double spacing);
+std::vector<Eigen::Vector2d> rectangleSamples(double x0, double x1, double y0, double y1, double spacing);
 
 // A column of a solid swept along the approach: at (x, y) of the grasp frame, the solid fills
 // z in [z_from, z_to].
@@ -32,8 +31,7 @@ struct SweepHit {
 
 // Whether any surface of the scene lies inside the columns (rays along +z of the grasp frame from
 // z_from to z_to), and the first column's object that does.
-SweepHit sweepHits(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                   const std::vector<Column>& columns);
+SweepHit sweepHits(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp, const std::vector<Column>& columns);
 
 // "<solid> hits part N" or "<solid> hits the bin".
 std::string hitReason(const std::string& solid, int object);
@@ -41,8 +39,8 @@ std::string hitReason(const std::string& solid, int object);
 // The rays through `points` of the grasp frame along `direction` (grasp frame), traced in the
 // bin frame over [0, length].
 std::vector<simulation::RayHit> castFrom(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                                  const std::vector<Eigen::Vector3d>& points,
-                                  const Eigen::Vector3d& direction, double length);
+                                         const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& direction,
+                                         double length);
 
 double degrees(double radians);
 // Angle between two unit vectors, degrees, accurate near 0 and 180.

@@ -24,8 +24,8 @@ struct DiscSurvey {
 };
 
 DiscSurvey surveyDisc(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                      const picking::GripperParams& gripper, const PickTruthParams& params,
-                      double z_start, int part, const Contact& contact) {
+                      const picking::GripperParams& gripper, const PickTruthParams& params, double z_start, int part,
+                      const Contact& contact) {
   std::vector<Eigen::Vector3d> origins;
   for (const Eigen::Vector2d& xy : discSamples(0.5 * gripper.cup_diameter, params.sample_spacing)) {
     origins.emplace_back(xy.x(), xy.y(), z_start);
@@ -70,8 +70,7 @@ std::vector<Column> toolColumns(const picking::GripperParams& gripper, double ap
   const double cup_back = -(gripper.cup_length + approach_distance);
   const Eigen::Vector3d& n = contact.normal;
   std::vector<Column> columns;
-  for (const Eigen::Vector2d& xy :
-       discSamples(std::max(cup_radius, gripper.tool_radius), params.collision_spacing)) {
+  for (const Eigen::Vector2d& xy : discSamples(std::max(cup_radius, gripper.tool_radius), params.collision_spacing)) {
     const double rho = xy.norm();
     const bool in_cup = rho <= cup_radius * (1.0 + 1e-9);
     const bool in_body = rho <= gripper.tool_radius * (1.0 + 1e-9);
@@ -91,8 +90,8 @@ PickJudgement judgeSuction(const TrueScene& scene, const Eigen::Isometry3d& T_bi
   PickJudgement judgement;
   // Rays start at the back of the cup: whatever lies between there and the disc is in its way.
   const double z_start = -std::max(gripper.cup_length, params.surface_tolerance);
-  const simulation::RayHit centre = castFrom(scene, T_bin_grasp, {Eigen::Vector3d(0.0, 0.0, z_start)},
-                                      Eigen::Vector3d::UnitZ(), kInfinity)[0];
+  const simulation::RayHit centre =
+      castFrom(scene, T_bin_grasp, {Eigen::Vector3d(0.0, 0.0, z_start)}, Eigen::Vector3d::UnitZ(), kInfinity)[0];
   if (centre.hit()) judgement.distance = z_start + centre.t;
   if (centre.hit() && centre.object_id >= 0) judgement.touched = centre.object_id;
   if (!centre.hit() || std::abs(judgement.distance) > params.surface_tolerance) {
@@ -107,15 +106,12 @@ PickJudgement judgeSuction(const TrueScene& scene, const Eigen::Isometry3d& T_bi
                         T_bin_grasp.linear().transpose() * centre.normal};
   judgement.angle_deg = angleDeg(Eigen::Vector3d::UnitZ(), -contact.normal);
   if (judgement.angle_deg > params.max_axis_angle_deg) {
-    judgement.reason =
-        "tilted " + std::to_string(std::lround(judgement.angle_deg)) + " deg from the surface";
+    judgement.reason = "tilted " + std::to_string(std::lround(judgement.angle_deg)) + " deg from the surface";
     return judgement;
   }
-  judgement.reason = sealProblem(
-      surveyDisc(scene, T_bin_grasp, gripper, params, z_start, judgement.touched, contact));
+  judgement.reason = sealProblem(surveyDisc(scene, T_bin_grasp, gripper, params, z_start, judgement.touched, contact));
   if (!judgement.reason.empty()) return judgement;
-  const SweepHit sweep =
-      sweepHits(scene, T_bin_grasp, toolColumns(gripper, approach_distance, params, contact));
+  const SweepHit sweep = sweepHits(scene, T_bin_grasp, toolColumns(gripper, approach_distance, params, contact));
   if (sweep.hit) {
     judgement.obstacle = sweep.object;
     judgement.reason = hitReason("tool", sweep.object);

@@ -10,7 +10,7 @@ namespace binpick::estimation {
 namespace {
 
 struct Accumulating {
-  Eigen::Isometry3f seed;            // the first (highest-voted) member decides membership
+  Eigen::Isometry3f seed;  // the first (highest-voted) member decides membership
   Eigen::Vector3d translation_sum = Eigen::Vector3d::Zero();
   Eigen::Vector4d quaternion_sum = Eigen::Vector4d::Zero();
   uint32_t votes = 0;

@@ -35,9 +35,10 @@ void readCrop(Section s, SceneParams& p) {
   box.half_extents = vector3(s, "half_extents");
   if (s.has("rotation_rpy_deg")) {
     const Eigen::Vector3f rpy = vector3(s, "rotation_rpy_deg") * static_cast<float>(M_PI / 180.0);
-    box.T_camera_box.linear() = (Eigen::AngleAxisf(rpy.z(), Eigen::Vector3f::UnitZ()) *
-                                 Eigen::AngleAxisf(rpy.y(), Eigen::Vector3f::UnitY()) *
-                                 Eigen::AngleAxisf(rpy.x(), Eigen::Vector3f::UnitX())).toRotationMatrix();
+    box.T_camera_box.linear() =
+        (Eigen::AngleAxisf(rpy.z(), Eigen::Vector3f::UnitZ()) * Eigen::AngleAxisf(rpy.y(), Eigen::Vector3f::UnitY()) *
+         Eigen::AngleAxisf(rpy.x(), Eigen::Vector3f::UnitX()))
+            .toRotationMatrix();
   }
   s.finish();
   p.crop = box;

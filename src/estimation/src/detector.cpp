@@ -8,8 +8,8 @@
 namespace binpick::estimation {
 namespace {
 
-bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector3f& centre,
-                     const PreparedModel& model, float min_distance) {
+bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector3f& centre, const PreparedModel& model,
+                     float min_distance) {
   for (const Detection& d : accepted) {
     if ((d.T_camera_model * model.centre - centre).norm() < min_distance) return true;
   }

@@ -6,9 +6,8 @@
 
 namespace binpick::estimation {
 
-PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points,
-                           const std::vector<Eigen::Vector3f>& normals, const PpfQuantizer& quantizer,
-                           uint32_t max_pairs_per_key) {
+PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                           const PpfQuantizer& quantizer, uint32_t max_pairs_per_key) {
   const std::size_t n = points.size();
   std::vector<Eigen::Isometry3f> frames(n);
   for (std::size_t i = 0; i < n; ++i) frames[i] = referenceFrame(points[i], normals[i]);
@@ -44,8 +43,7 @@ PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points,
   }
 }
 
-PpfHashTable::PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries,
-                           uint32_t point_count)
+PpfHashTable::PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries, uint32_t point_count)
     : offsets_(std::move(offsets)), entries_(std::move(entries)) {
   if (offsets_.empty() || offsets_.front() != 0 || offsets_.back() != entries_.size()) {
     throw core::Error("PPF table: offsets do not cover the entries");
@@ -55,8 +53,8 @@ PpfHashTable::PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry>
   }
   for (const PairEntry& e : entries_) {
     if (e.reference >= point_count || !std::isfinite(e.reference_angle)) {
-      throw core::Error("PPF table: an entry refers to model point " + std::to_string(e.reference) +
-                  " of " + std::to_string(point_count) + " or has a non-finite angle");
+      throw core::Error("PPF table: an entry refers to model point " + std::to_string(e.reference) + " of " +
+                        std::to_string(point_count) + " or has a non-finite angle");
     }
   }
 }

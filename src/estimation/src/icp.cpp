@@ -44,8 +44,7 @@ Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, fl
   if (!x.allFinite()) return delta;
   const Eigen::Vector3d omega = x.head<3>();
   if (omega.norm() > 1e-12) {
-    delta.linear() =
-        Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix().cast<float>();
+    delta.linear() = Eigen::AngleAxisd(omega.norm(), omega.normalized()).toRotationMatrix().cast<float>();
   }
   // p' = R (p - centre) + centre + t
   delta.translation() = centre - delta.linear() * centre + x.tail<3>().cast<float>();
@@ -133,8 +132,9 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
       sources.resize(model.size());
       for (uint32_t k = 0; k < model.size(); ++k) sources[k] = k;
     }
-    const float gate = (it < params_.max_iterations / 3 ? params_.initial_max_distance_ratio
-                                                       : params_.final_max_distance_ratio) * step_;
+    const float gate =
+        (it < params_.max_iterations / 3 ? params_.initial_max_distance_ratio : params_.final_max_distance_ratio) *
+        step_;
     pairs.clear();
     for (uint32_t k : sources) {
       const Eigen::Vector3f p = pose * model.points[k];

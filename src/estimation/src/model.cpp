@@ -25,9 +25,9 @@ DenseCloud denseFromMesh(const io::TriangleMesh& mesh, const ModelParams& params
   const float diameter = approximateDiameter(mesh.vertices);
   if (!(area > 0.0) || !(diameter > 0.0f)) throw core::Error("model mesh has no surface area");
   const double step = params.sampling_ratio * diameter;
-  const auto count = static_cast<std::size_t>(
-      std::ceil(area / (step * step) * params.dense_samples_per_step2));
-  if (count > 20'000'000) throw core::Error("model: sampling would need " + std::to_string(count) + " points; raise sampling_ratio");
+  const auto count = static_cast<std::size_t>(std::ceil(area / (step * step) * params.dense_samples_per_step2));
+  if (count > 20'000'000)
+    throw core::Error("model: sampling would need " + std::to_string(count) + " points; raise sampling_ratio");
   SurfaceSamples samples = sampleSurface(mesh, count, params.seed);
   return {std::move(samples.points), std::move(samples.face_normals), false};
 }
@@ -72,11 +72,11 @@ void ModelParams::validate() const {
   };
   require(sampling_ratio > 0.005f && sampling_ratio <= 0.5f, "sampling_ratio", "must be in (0.005, 0.5]");
   require(angle_step_deg >= 1.0f && angle_step_deg <= 90.0f, "angle_step_deg", "must be in [1, 90]");
-  require(dense_samples_per_step2 >= 1.0f && dense_samples_per_step2 <= 1000.0f,
-          "dense_samples_per_step2", "must be in [1, 1000]");
+  require(dense_samples_per_step2 >= 1.0f && dense_samples_per_step2 <= 1000.0f, "dense_samples_per_step2",
+          "must be in [1, 1000]");
   require(normal_radius_ratio > 0.05f && normal_radius_ratio <= 5.0f, "normal_radius_ratio", "must be in (0.05, 5]");
-  require(normal_cluster_angle_deg >= 0.0f && normal_cluster_angle_deg <= 180.0f,
-          "normal_cluster_angle_deg", "must be in [0, 180]");
+  require(normal_cluster_angle_deg >= 0.0f && normal_cluster_angle_deg <= 180.0f, "normal_cluster_angle_deg",
+          "must be in [0, 180]");
 }
 
 PpfQuantizer PreparedModel::quantizer() const {
@@ -85,8 +85,7 @@ PpfQuantizer PreparedModel::quantizer() const {
 
 PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams& params) {
   params.validate();
-  const DenseCloud dense = geometry.hasMesh() ? denseFromMesh(geometry.mesh, params)
-                                              : denseFromCloud(geometry.cloud);
+  const DenseCloud dense = geometry.hasMesh() ? denseFromMesh(geometry.mesh, params) : denseFromCloud(geometry.cloud);
   PreparedModel model;
   model.params = params;
   model.diameter = approximateDiameter(dense.points);
@@ -95,10 +94,9 @@ PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams&
 
   const KdTree tree(dense.points);
   const std::vector<Eigen::Vector3f> dense_normals =
-      dense.has_exact_normals ? dense.orientation
-                              : fitNormals(dense, tree, params.normal_radius_ratio * model.step);
-  const std::vector<uint32_t> kept = voxelSubsample(dense.points, &dense_normals, model.step,
-                                                    params.normal_cluster_angle_deg * kDegToRad);
+      dense.has_exact_normals ? dense.orientation : fitNormals(dense, tree, params.normal_radius_ratio * model.step);
+  const std::vector<uint32_t> kept =
+      voxelSubsample(dense.points, &dense_normals, model.step, params.normal_cluster_angle_deg * kDegToRad);
   for (uint32_t i : kept) {
     model.points.push_back(dense.points[i]);
     model.normals.push_back(dense_normals[i]);
@@ -107,7 +105,7 @@ PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams&
   if (model.points.size() < 4) throw core::Error("model: fewer than 4 points after subsampling");
   if (model.points.size() > 20000) {
     throw core::Error("model: " + std::to_string(model.points.size()) +
-                " points after subsampling is too many for the pair table; raise sampling_ratio");
+                      " points after subsampling is too many for the pair table; raise sampling_ratio");
   }
   model.centre /= static_cast<float>(model.points.size());
   model.table = PpfHashTable(model.points, model.normals, model.quantizer(), params.max_pairs_per_feature);

@@ -115,8 +115,7 @@ ModelParams getParams(Reader& r) {
 
 bool sameParams(const ModelParams& a, const ModelParams& b) {
   return a.sampling_ratio == b.sampling_ratio && a.angle_step_deg == b.angle_step_deg &&
-         a.dense_samples_per_step2 == b.dense_samples_per_step2 &&
-         a.normal_radius_ratio == b.normal_radius_ratio &&
+         a.dense_samples_per_step2 == b.dense_samples_per_step2 && a.normal_radius_ratio == b.normal_radius_ratio &&
          a.normal_cluster_angle_deg == b.normal_cluster_angle_deg &&
          a.max_pairs_per_feature == b.max_pairs_per_feature && a.seed == b.seed;
 }
@@ -168,7 +167,7 @@ CachedModel loadModelCache(const std::string& path) {
   std::memcpy(&version, bytes.data() + sizeof(kMagic), sizeof(version));
   if (version != kModelCacheVersion) {
     throw core::Error(path + ": model cache version " + std::to_string(version) + ", this build reads " +
-                std::to_string(kModelCacheVersion) + "; rebuild it");
+                      std::to_string(kModelCacheVersion) + "; rebuild it");
   }
   const std::size_t payload_end = bytes.size() - sizeof(uint64_t);
   uint64_t stored_checksum = 0;
@@ -196,7 +195,8 @@ CachedModel loadModelCache(const std::string& path) {
   auto offsets = r.getArray<uint32_t>("table offsets");
   auto entries = r.getArray<PairEntry>("table entries");
   if (!r.atEnd()) r.fail("has trailing bytes");
-  if (static_cast<int64_t>(offsets.size()) != m.quantizer().keyCount() + 1) r.fail("table does not match its parameters");
+  if (static_cast<int64_t>(offsets.size()) != m.quantizer().keyCount() + 1)
+    r.fail("table does not match its parameters");
   try {
     m.table = PpfHashTable(std::move(offsets), std::move(entries), static_cast<uint32_t>(m.points.size()));
   } catch (const core::Error& e) {

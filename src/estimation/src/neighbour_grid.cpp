@@ -4,8 +4,8 @@
 
 namespace binpick::estimation {
 
-NeighbourGrid::NeighbourGrid(const std::vector<Eigen::Vector3f>& points,
-                             const std::vector<uint32_t>& members, float cell_size)
+NeighbourGrid::NeighbourGrid(const std::vector<Eigen::Vector3f>& points, const std::vector<uint32_t>& members,
+                             float cell_size)
     : cell_size_(cell_size) {
   if (!members.empty()) {
     origin_ = points[members.front()];

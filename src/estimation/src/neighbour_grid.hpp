@@ -13,8 +13,7 @@ namespace binpick::estimation {
 
 class NeighbourGrid {
  public:
-  NeighbourGrid(const std::vector<Eigen::Vector3f>& points, const std::vector<uint32_t>& members,
-                float cell_size);
+  NeighbourGrid(const std::vector<Eigen::Vector3f>& points, const std::vector<uint32_t>& members, float cell_size);
 
   // Calls visit(index) for every member in the 3x3x3 cells around p: a superset of the members
   // within cell_size of p (callers check the exact distance).

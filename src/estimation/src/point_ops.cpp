@@ -72,8 +72,7 @@ class VoxelIds {
 // Greedy clusters of one voxel's points by normal direction, each as a list of positions in
 // `members`.
 std::vector<std::vector<uint32_t>> clusterByNormal(const std::vector<uint32_t>& members,
-                                                   const std::vector<Eigen::Vector3f>& normals,
-                                                   float cos_limit) {
+                                                   const std::vector<Eigen::Vector3f>& normals, float cos_limit) {
   std::vector<std::vector<uint32_t>> clusters;
   for (uint32_t index : members) {
     auto it = std::find_if(clusters.begin(), clusters.end(), [&](const auto& cluster) {
@@ -88,8 +87,7 @@ std::vector<std::vector<uint32_t>> clusterByNormal(const std::vector<uint32_t>& 
   return clusters;
 }
 
-uint32_t nearestToCentroid(const std::vector<uint32_t>& members,
-                           const std::vector<Eigen::Vector3f>& points) {
+uint32_t nearestToCentroid(const std::vector<uint32_t>& members, const std::vector<Eigen::Vector3f>& points) {
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
   for (uint32_t i : members) centroid += points[i];
   centroid /= static_cast<float>(members.size());
@@ -161,15 +159,15 @@ float approximateDiameter(const std::vector<Eigen::Vector3f>& points) {
 }
 
 std::vector<uint32_t> voxelSubsample(const std::vector<Eigen::Vector3f>& points,
-                                     const std::vector<Eigen::Vector3f>* normals, float step,
-                                     float cluster_angle) {
+                                     const std::vector<Eigen::Vector3f>* normals, float step, float cluster_angle) {
   if (points.empty()) return {};
   Eigen::Vector3f origin = points[0];
   for (const auto& p : points) origin = origin.cwiseMin(p);
 
   VoxelIds voxel_ids(points.size() / 4 + 16);
   std::vector<uint32_t> voxel_of(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) voxel_of[i] = voxel_ids.idOf(packCell(cellOf(points[i], origin, step)));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    voxel_of[i] = voxel_ids.idOf(packCell(cellOf(points[i], origin, step)));
 
   // Counting sort of the points by voxel keeps this O(n) for million-point scenes.
   std::vector<uint32_t> start(voxel_ids.count() + 1, 0);

@@ -26,8 +26,7 @@ float approximateDiameter(const std::vector<Eigen::Vector3f>& points);
 // With normals and cluster_angle > 0, points of one voxel whose normals differ by more than the
 // angle are kept apart (both sides of a thin wall survive). Returns indices into `points`.
 std::vector<uint32_t> voxelSubsample(const std::vector<Eigen::Vector3f>& points,
-                                     const std::vector<Eigen::Vector3f>* normals, float step,
-                                     float cluster_angle);
+                                     const std::vector<Eigen::Vector3f>* normals, float step, float cluster_angle);
 
 // Accumulates neighbours of a point; the normal is the eigenvector of the smallest eigenvalue of
 // their covariance (a plane fit), or nothing when there are too few or they are degenerate.
@@ -42,6 +41,5 @@ class PlaneFit {
   Eigen::Matrix3d sum_outer_ = Eigen::Matrix3d::Zero();
   std::size_t count_ = 0;
 };
-
 
 }  // namespace binpick::estimation

@@ -20,8 +20,8 @@ int binOf(float value, float step, int bins) {
 
 }  // namespace
 
-PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i,
-                                const Eigen::Vector3f& p_j, const Eigen::Vector3f& n_j) {
+PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i, const Eigen::Vector3f& p_j,
+                                const Eigen::Vector3f& n_j) {
   const Eigen::Vector3f d = p_j - p_i;
   PointPairFeature f;
   f.distance = d.norm();
@@ -33,8 +33,8 @@ PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3
 
 PpfQuantizer::PpfQuantizer(float distance_step, float angle_step, float max_distance)
     : distance_step_(distance_step), angle_step_(angle_step), max_distance_(max_distance) {
-  if (!(distance_step > 0.0f) || !(angle_step > 0.0f) || !(max_distance > 0.0f) ||
-      !std::isfinite(distance_step) || !std::isfinite(max_distance)) {
+  if (!(distance_step > 0.0f) || !(angle_step > 0.0f) || !(max_distance > 0.0f) || !std::isfinite(distance_step) ||
+      !std::isfinite(max_distance)) {
     throw core::Error("PpfQuantizer: distance step, angle step and maximum distance must be positive");
   }
   if (max_distance / distance_step > 10000.0f || angle_step < 0.01f) {
@@ -47,7 +47,7 @@ PpfQuantizer::PpfQuantizer(float distance_step, float angle_step, float max_dist
   key_count_ = static_cast<int64_t>(distance_bins_) * angle_bins_ * angle_bins_ * angle_bins_;
   if (key_count_ > (int64_t{1} << 28)) {
     throw core::Error("PpfQuantizer: " + std::to_string(key_count_) +
-                " feature bins is too many; use a coarser distance or angle step");
+                      " feature bins is too many; use a coarser distance or angle step");
   }
 }
 
@@ -79,8 +79,7 @@ Eigen::Isometry3f referenceFrame(const Eigen::Vector3f& p_ref, const Eigen::Vect
   return T;
 }
 
-Eigen::Isometry3f poseFromLocalCoordinate(const Eigen::Isometry3f& T_s, const Eigen::Isometry3f& T_m,
-                                          float alpha) {
+Eigen::Isometry3f poseFromLocalCoordinate(const Eigen::Isometry3f& T_s, const Eigen::Isometry3f& T_m, float alpha) {
   const Eigen::Isometry3f Rx(Eigen::AngleAxisf(alpha, Eigen::Vector3f::UnitX()));
   return T_s.inverse() * Rx * T_m;
 }

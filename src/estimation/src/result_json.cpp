@@ -13,18 +13,17 @@ nlohmann::json toJson(const DetectionResult& result) {
                           {"votes", d.votes}});
   }
   const StageTimings& t = result.timing_ms;
-  return {{"detections", detections},
-          {"timing_ms",
-           {{"prepare_scene", t.prepare_scene},
-            {"voting", t.voting},
-            {"verification", t.verification},
-            {"selection", t.selection},
-            {"icp", t.icp},
-            {"total", t.total}}},
-          {"counts",
-           {{"scene_points", result.scene_points},
-            {"candidates", result.candidates},
-            {"refreshes", result.refreshes}}}};
+  return {
+      {"detections", detections},
+      {"timing_ms",
+       {{"prepare_scene", t.prepare_scene},
+        {"voting", t.voting},
+        {"verification", t.verification},
+        {"selection", t.selection},
+        {"icp", t.icp},
+        {"total", t.total}}},
+      {"counts",
+       {{"scene_points", result.scene_points}, {"candidates", result.candidates}, {"refreshes", result.refreshes}}}};
 }
 
 nlohmann::json poseJson(const Eigen::Isometry3d& pose) {

@@ -26,9 +26,8 @@ std::optional<MultipleSelection::Pick> MultipleSelection::next() {
   if (ranked_.empty()) return std::nullopt;
   // "Rank P based on their old scores": a score only falls when points stop existing, so the
   // last known score is an upper bound of the new one.
-  std::sort(ranked_.begin(), ranked_.end(), [](const auto& a, const auto& b) {
-    return a.first != b.first ? a.first > b.first : a.second < b.second;
-  });
+  std::sort(ranked_.begin(), ranked_.end(),
+            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
   std::size_t best = 0;
   for (std::size_t i = 0; i < ranked_.size(); ++i) {
     ranked_[i].first = existingCount(candidates_[ranked_[i].second].support, exist_);

@@ -33,9 +33,9 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
   return support;
 }
 
-std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates,
-                                      const PreparedModel& model, const PreparedScene& scene,
-                                      const SceneVoxelGrid& grid, const VerificationParams& params) {
+std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
+                                      const PreparedScene& scene, const SceneVoxelGrid& grid,
+                                      const VerificationParams& params) {
   params.validate();
   const float min_cosine = params.max_normal_angle_deg >= 180.0f
                                ? -2.0f

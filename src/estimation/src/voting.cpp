@@ -79,8 +79,7 @@ std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t 
   return all;
 }
 
-std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene,
-                                const VotingParams& params) {
+std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params) {
   params.validate();
   if (scene.size() < 2 || model.size() == 0) return {};
   const PpfQuantizer quantizer = model.quantizer();
@@ -125,8 +124,8 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
       for (const LocalCoordinate& lc : best) {
         if (lc.votes < params.min_relative_votes * static_cast<float>(best.front().votes)) break;
         PoseCandidate& c = slots[r * np + kept++];
-        c.T_camera_model = poseFromLocalCoordinate(T_s, model_frames[lc.model_point],
-                                                   quantizer.alphaBinCentre(lc.alpha_bin));
+        c.T_camera_model =
+            poseFromLocalCoordinate(T_s, model_frames[lc.model_point], quantizer.alphaBinCentre(lc.alpha_bin));
         c.votes = lc.votes;
         c.scene_reference = s_r;
         c.model_reference = lc.model_point;

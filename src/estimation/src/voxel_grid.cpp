@@ -21,7 +21,8 @@ SceneVoxelGrid::SceneVoxelGrid(const std::vector<Eigen::Vector3f>& scene_points,
   // One voxel of margin so that the neighbours of boundary points exist (min x of eq. 3 moves).
   origin_ = lo - Eigen::Vector3f::Constant(voxel_size);
   const Eigen::Vector3f extent = (hi - origin_) / voxel_size;
-  if (!(extent.maxCoeff() < 1e7f)) throw core::Error("voxel grid: the scene spans over 10^7 voxels along an axis; crop it to the bin");
+  if (!(extent.maxCoeff() < 1e7f))
+    throw core::Error("voxel grid: the scene spans over 10^7 voxels along an axis; crop it to the bin");
   for (int a = 0; a < 3; ++a) {
     dims_[a] = static_cast<int64_t>(std::floor(extent[a])) + 2;
     block_dims_[a] = (dims_[a] + 7) / 8;
@@ -30,7 +31,7 @@ SceneVoxelGrid::SceneVoxelGrid(const std::vector<Eigen::Vector3f>& scene_points,
   const int64_t block_count = block_dims_.prod();
   if (block_count > (int64_t{1} << 26)) {
     throw core::Error("voxel grid: the scene spans " + std::to_string(block_count) +
-                " blocks of voxels; crop the scene to the bin");
+                      " blocks of voxels; crop the scene to the bin");
   }
   blocks_.assign(static_cast<std::size_t>(block_count), -1);
   for (std::size_t i = 0; i < scene_points.size(); ++i) {

@@ -37,8 +37,7 @@ std::string readFileBytes(const std::string& path) {
   std::string bytes(static_cast<std::size_t>(size), '\0');
   stream.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   if (static_cast<std::uint64_t>(stream.gcount()) != size) {
-    fail(path, "read error: got " + std::to_string(stream.gcount()) + " of " +
-                   std::to_string(size) + " bytes");
+    fail(path, "read error: got " + std::to_string(stream.gcount()) + " of " + std::to_string(size) + " bytes");
   }
   return bytes;
 }
@@ -61,8 +60,8 @@ void writeFileBytes(const std::string& path, std::string_view bytes) {
 }
 
 void ByteCursor::failTruncated(std::size_t needed, const std::string& what) const {
-  fail(path_, "file is truncated: " + what + " needs " + std::to_string(needed) +
-                  " more bytes but only " + std::to_string(remaining()) + " remain");
+  fail(path_, "file is truncated: " + what + " needs " + std::to_string(needed) + " more bytes but only " +
+                  std::to_string(remaining()) + " remain");
 }
 
 }  // namespace binpick::io::detail

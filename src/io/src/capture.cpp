@@ -9,8 +9,8 @@
 #include <set>
 
 #include "binpick/core/error.hpp"
-#include "binpick/core/thread_count.hpp"
 #include "binpick/core/file.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
 
@@ -20,13 +20,9 @@ using detail::fail;
 
 namespace capture_detail {
 
-std::string metadataPath(const std::string& directory) {
-  return (fs::path(directory) / "capture.json").string();
-}
+std::string metadataPath(const std::string& directory) { return (fs::path(directory) / "capture.json").string(); }
 
-std::string imagesDirectory(const std::string& directory) {
-  return (fs::path(directory) / "images").string();
-}
+std::string imagesDirectory(const std::string& directory) { return (fs::path(directory) / "images").string(); }
 
 std::string imageName(std::size_t index, const std::string& pattern) {
   char prefix[16];
@@ -65,13 +61,11 @@ cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   }
   if (image.empty()) fail(path, "not a readable PNG image");
   if (image.cols != m.image_width || image.rows != m.image_height) {
-    fail(path, "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                   ", capture.json says " + std::to_string(m.image_width) + "x" +
-                   std::to_string(m.image_height));
+    fail(path, "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) + ", capture.json says " +
+                   std::to_string(m.image_width) + "x" + std::to_string(m.image_height));
   }
   if (image.type() != expectedType(m.bit_depth)) {
-    fail(path, "image is not single-channel " + std::to_string(m.bit_depth) +
-                   "-bit as capture.json says");
+    fail(path, "image is not single-channel " + std::to_string(m.bit_depth) + "-bit as capture.json says");
   }
   return image;
 }
@@ -141,8 +135,7 @@ void writeCapture(const std::string& directory, Capture capture, int threads) {
   }
   capture_detail::checkMetadata(m, capture_detail::metadataPath(directory));
   // Never mix two captures, nor overwrite a recording: the caller picks a fresh directory.
-  if (fs::exists(capture_detail::metadataPath(directory)) ||
-      fs::exists(capture_detail::imagesDirectory(directory))) {
+  if (fs::exists(capture_detail::metadataPath(directory)) || fs::exists(capture_detail::imagesDirectory(directory))) {
     fail(directory, "already holds a capture; write each capture to a new directory");
   }
   std::error_code error;
@@ -150,8 +143,7 @@ void writeCapture(const std::string& directory, Capture capture, int threads) {
   if (error) fail(directory, "cannot create the capture directory: " + error.message());
   for (std::size_t i = 0; i < capture.images.size(); ++i) {
     const cv::Mat& image = capture.images[i];
-    if (image.cols != m.image_width || image.rows != m.image_height ||
-        image.type() != expectedType(m.bit_depth)) {
+    if (image.cols != m.image_width || image.rows != m.image_height || image.type() != expectedType(m.bit_depth)) {
       fail((fs::path(directory) / m.images[i]).string(),
            "writeCapture: image " + std::to_string(i) + " does not match the metadata's size and bit depth");
     }
@@ -167,8 +159,7 @@ void writeCapture(const std::string& directory, Capture capture, int threads) {
 std::string utcTimestamp() {
   const auto now = std::chrono::system_clock::now();
   const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const auto millis =
-      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  const auto millis = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
   std::tm utc{};
   gmtime_r(&seconds, &utc);
   char text[32];

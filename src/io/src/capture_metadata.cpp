@@ -2,18 +2,18 @@
 
 #include <cmath>
 
-#include "binpick/io/capture.hpp"
 #include "binpick/core/error.hpp"
-#include "binpick/core/json_fields.hpp"
 #include "binpick/core/file.hpp"
+#include "binpick/core/json_fields.hpp"
+#include "binpick/io/capture.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
 
 namespace binpick::io {
 namespace {
 
-using nlohmann::json;
 using detail::fail;
+using nlohmann::json;
 
 constexpr int kFormatVersion = 1;
 
@@ -45,15 +45,14 @@ json toJson(const PatternSetSpec& spec) {
 }
 
 void checkConsistent(const CaptureMetadata& m, const std::string& path) {
-  if (m.image_width <= 0 || m.image_height <= 0 || m.image_width > 65536 ||
-      m.image_height > 65536) {
+  if (m.image_width <= 0 || m.image_height <= 0 || m.image_width > 65536 || m.image_height > 65536) {
     fail(path, "image_width and image_height must be in [1, 65536]");
   }
   if (m.bit_depth != 8 && m.bit_depth != 16) fail(path, "bit_depth must be 8 or 16");
   if (m.patterns.empty()) fail(path, "'patterns' is empty");
   if (m.patterns.size() != m.images.size()) {
-    fail(path, "'patterns' and 'images' differ in length (" + std::to_string(m.patterns.size()) +
-                   " vs " + std::to_string(m.images.size()) + ")");
+    fail(path, "'patterns' and 'images' differ in length (" + std::to_string(m.patterns.size()) + " vs " +
+                   std::to_string(m.images.size()) + ")");
   }
   if (!m.frame_times_ms.empty() && m.frame_times_ms.size() != m.patterns.size()) {
     fail(path, "'frame_times_ms' has " + std::to_string(m.frame_times_ms.size()) + " entries for " +
@@ -72,15 +71,11 @@ void checkConsistent(const CaptureMetadata& m, const std::string& path) {
 }  // namespace
 
 void PatternSetSpec::validate() const {
-  require(projector_width >= 2 && projector_width <= 65536, "projector_width", "in [2, 65536]",
-          projector_width);
-  require(projector_height >= 2 && projector_height <= 65536, "projector_height",
-          "in [2, 65536]", projector_height);
+  require(projector_width >= 2 && projector_width <= 65536, "projector_width", "in [2, 65536]", projector_width);
+  require(projector_height >= 2 && projector_height <= 65536, "projector_height", "in [2, 65536]", projector_height);
   require(column_codes || row_codes, "column_codes", "true when row_codes is false", 0);
-  require(phase_steps == 0 || (phase_steps >= 3 && phase_steps <= 64), "phase_steps",
-          "0 or in [3, 64]", phase_steps);
-  require(phase_period >= 4 && phase_period <= 65536, "phase_period", "in [4, 65536]",
-          phase_period);
+  require(phase_steps == 0 || (phase_steps >= 3 && phase_steps <= 64), "phase_steps", "0 or in [3, 64]", phase_steps);
+  require(phase_period >= 4 && phase_period <= 65536, "phase_period", "in [4, 65536]", phase_period);
 }
 
 CaptureMetadata readCaptureMetadata(const std::string& directory) {
@@ -90,8 +85,10 @@ CaptureMetadata readCaptureMetadata(const std::string& directory) {
   CaptureMetadata m;
   m.format_version = core::jsonField<int>(document, "format_version", path);
   if (m.format_version != kFormatVersion) {
-    fail(path, "format_version " + std::to_string(m.format_version) + " is not supported (this "
-               "build reads version " + std::to_string(kFormatVersion) + ")");
+    fail(path, "format_version " + std::to_string(m.format_version) +
+                   " is not supported (this "
+                   "build reads version " +
+                   std::to_string(kFormatVersion) + ")");
   }
   m.source = core::jsonField<std::string>(document, "source", path);
   m.timestamp = core::jsonField<std::string>(document, "timestamp", path);
@@ -125,16 +122,16 @@ void writeCaptureMetadata(const std::string& directory, const CaptureMetadata& m
   const std::string path = capture_detail::metadataPath(directory);
   checkMetadata(m, path);
   json document = {{"format_version", m.format_version},
-                         {"source", m.source},
-                         {"timestamp", m.timestamp},
-                         {"image_width", m.image_width},
-                         {"image_height", m.image_height},
-                         {"bit_depth", m.bit_depth},
-                         {"exposure_us", m.exposure_us},
-                         {"gain_db", m.gain_db},
-                         {"pattern_set", toJson(m.pattern_set)},
-                         {"patterns", m.patterns},
-                         {"images", m.images}};
+                   {"source", m.source},
+                   {"timestamp", m.timestamp},
+                   {"image_width", m.image_width},
+                   {"image_height", m.image_height},
+                   {"bit_depth", m.bit_depth},
+                   {"exposure_us", m.exposure_us},
+                   {"gain_db", m.gain_db},
+                   {"pattern_set", toJson(m.pattern_set)},
+                   {"patterns", m.patterns},
+                   {"images", m.images}};
   if (!m.frame_times_ms.empty()) document["frame_times_ms"] = m.frame_times_ms;
   core::writeFileAtomically(path, document.dump(2) + "\n");
 }

@@ -6,7 +6,7 @@
 
 namespace binpick::io::capture_detail {
 
-std::string metadataPath(const std::string& directory);  // DIR/capture.json
+std::string metadataPath(const std::string& directory);     // DIR/capture.json
 std::string imagesDirectory(const std::string& directory);  // DIR/images
 // "images/007_gray_col_03.png" for pattern 7 named "gray_col_03".
 std::string imageName(std::size_t index, const std::string& pattern);

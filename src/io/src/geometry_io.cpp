@@ -22,21 +22,16 @@ FileFormat formatOf(const std::string& path) {
   if (extension == ".pcd") return FileFormat::Pcd;
   if (extension == ".stl") return FileFormat::Stl;
   if (extension == ".obj") return FileFormat::Obj;
-  fail(path, (extension.empty() ? std::string("no file extension")
-                                : "unknown file extension '" + extension + "'") +
+  fail(path, (extension.empty() ? std::string("no file extension") : "unknown file extension '" + extension + "'") +
                  "; expected .ply, .pcd, .stl or .obj");
 }
 
 const char* extensionName(FileFormat format) {
   switch (format) {
-    case FileFormat::Ply:
-      return ".ply";
-    case FileFormat::Pcd:
-      return ".pcd";
-    case FileFormat::Stl:
-      return ".stl";
-    case FileFormat::Obj:
-      return ".obj";
+    case FileFormat::Ply: return ".ply";
+    case FileFormat::Pcd: return ".pcd";
+    case FileFormat::Stl: return ".stl";
+    case FileFormat::Obj: return ".obj";
   }
   return "?";
 }
@@ -51,14 +46,10 @@ using detail::FileFormat;
 
 ModelGeometry load(const std::string& path, FileFormat format) {
   switch (format) {
-    case FileFormat::Ply:
-      return detail::loadPly(path);
-    case FileFormat::Pcd:
-      return detail::loadPcd(path);
-    case FileFormat::Stl:
-      return detail::loadStl(path);
-    case FileFormat::Obj:
-      return detail::loadObj(path);
+    case FileFormat::Ply: return detail::loadPly(path);
+    case FileFormat::Pcd: return detail::loadPcd(path);
+    case FileFormat::Stl: return detail::loadStl(path);
+    case FileFormat::Obj: return detail::loadObj(path);
   }
   fail(path, "unsupported format");
 }
@@ -127,17 +118,10 @@ void writeMesh(const std::string& path, const TriangleMesh& mesh) {
   validateMesh(mesh, path);
   detail::requireSomeArea(mesh, path);
   switch (format) {
-    case FileFormat::Ply:
-      detail::writePlyMesh(path, mesh);
-      break;
-    case FileFormat::Stl:
-      detail::writeStl(path, mesh);
-      break;
-    case FileFormat::Obj:
-      detail::writeObj(path, mesh);
-      break;
-    case FileFormat::Pcd:
-      break;
+    case FileFormat::Ply: detail::writePlyMesh(path, mesh); break;
+    case FileFormat::Stl: detail::writeStl(path, mesh); break;
+    case FileFormat::Obj: detail::writeObj(path, mesh); break;
+    case FileFormat::Pcd: break;
   }
 }
 

@@ -61,8 +61,7 @@ bool LensIntrinsics::hasDistortion() const {
 
 LensIntrinsics LensIntrinsics::scaled(double factor) const {
   if (!std::isfinite(factor) || factor <= 0.0) {
-    throw core::Error("LensIntrinsics::scaled: factor must be positive (got " + std::to_string(factor) +
-                ")");
+    throw core::Error("LensIntrinsics::scaled: factor must be positive (got " + std::to_string(factor) + ")");
   }
   LensIntrinsics lens = *this;
   lens.width = std::max(1, static_cast<int>(std::lround(width * factor)));

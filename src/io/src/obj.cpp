@@ -31,9 +31,7 @@ class ObjParser {
   }
 
  private:
-  static std::string_view withoutComment(std::string_view line) {
-    return line.substr(0, line.find('#'));
-  }
+  static std::string_view withoutComment(std::string_view line) { return line.substr(0, line.find('#')); }
 
   void parseLine(std::string_view line) {
     TextCursor cursor(line);
@@ -62,13 +60,11 @@ class ObjParser {
   // from the last vertex defined so far.
   void parseFace(TextCursor& cursor) {
     polygon_.clear();
-    for (std::string_view corner = cursor.nextToken(); !corner.empty();
-         corner = cursor.nextToken()) {
+    for (std::string_view corner = cursor.nextToken(); !corner.empty(); corner = cursor.nextToken()) {
       polygon_.push_back(vertexIndexOf(corner));
     }
     if (polygon_.size() < 3) {
-      failHere("face has " + std::to_string(polygon_.size()) +
-               " vertices; a face needs at least 3");
+      failHere("face has " + std::to_string(polygon_.size()) + " vertices; a face needs at least 3");
     }
     for (std::size_t k = 1; k + 1 < polygon_.size(); ++k) {
       mesh_.triangles.emplace_back(polygon_[0], polygon_[k], polygon_[k + 1]);
@@ -86,8 +82,8 @@ class ObjParser {
     const auto defined = static_cast<std::int64_t>(mesh_.vertices.size());
     const std::int64_t resolved = index > 0 ? index - 1 : defined + index;
     if (resolved < 0 || resolved > INT32_MAX) {
-      failHere("face refers to vertex " + std::to_string(index) + " but only " +
-               std::to_string(defined) + " vertices are defined before it");
+      failHere("face refers to vertex " + std::to_string(index) + " but only " + std::to_string(defined) +
+               " vertices are defined before it");
     }
     return static_cast<int>(resolved);
   }
@@ -99,8 +95,7 @@ class ObjParser {
         const int index = mesh_.triangles[t][corner];
         if (index >= vertexCount) {
           fail(path_, "line " + std::to_string(lineOfTriangle_[t]) + ": face refers to vertex " +
-                          std::to_string(index + 1) + " but the file has " +
-                          std::to_string(vertexCount) + " vertices");
+                          std::to_string(index + 1) + " but the file has " + std::to_string(vertexCount) + " vertices");
         }
       }
     }

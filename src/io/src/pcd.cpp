@@ -80,9 +80,9 @@ std::string pcdHeaderFor(const PointCloud& cloud, Encoding encoding) {
   const bool organized = cloud.isOrganized();
   const std::size_t width = organized ? static_cast<std::size_t>(cloud.width) : cloud.size();
   const std::size_t height = organized ? static_cast<std::size_t>(cloud.height) : 1;
-  return "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS " + fields + "\nSIZE" + sizes +
-         "\nTYPE" + types + "\nCOUNT" + counts + "\nWIDTH " + std::to_string(width) + "\nHEIGHT " +
-         std::to_string(height) + "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(cloud.size()) + "\nDATA " +
+  return "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS " + fields + "\nSIZE" + sizes + "\nTYPE" +
+         types + "\nCOUNT" + counts + "\nWIDTH " + std::to_string(width) + "\nHEIGHT " + std::to_string(height) +
+         "\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(cloud.size()) + "\nDATA " +
          (encoding == Encoding::Ascii ? "ascii" : "binary") + "\n";
 }
 
@@ -103,8 +103,7 @@ bool hasInvalidPoint(const PointCloud& cloud) {
 
 }  // namespace
 
-std::vector<std::uint8_t> decompressPcdBody(std::string_view bytes, const PcdHeader& header,
-                                            const std::string& path) {
+std::vector<std::uint8_t> decompressPcdBody(std::string_view bytes, const PcdHeader& header, const std::string& path) {
   // checkPcdHeader has read and bounded the two size words after the header.
   const auto* body = reinterpret_cast<const std::uint8_t*>(bytes.data()) + header.bodyOffset;
   const auto compressed = loadScalar<std::uint32_t>(reinterpret_cast<const char*>(body), !kHostIsLittleEndian);

@@ -18,8 +18,7 @@ using PointValues = float[kPointSlots];
 
 // Slot of each value within a line, -1 for values we skip.
 std::vector<int> slotOfValues(const PcdHeader& header) {
-  static constexpr const char* kNames[kPointSlots] = {
-      "x", "y", "z", "normal_x", "normal_y", "normal_z", "intensity"};
+  static constexpr const char* kNames[kPointSlots] = {"x", "y", "z", "normal_x", "normal_y", "normal_z", "intensity"};
   std::vector<int> slots;
   for (const PcdField& field : header.fields) {
     int slot = -1;
@@ -100,8 +99,7 @@ class AsciiBodyParser {
   }
 
   [[noreturn]] void failAt(std::size_t point, const std::string& what) const {
-    fail(path_,
-         "line " + std::to_string(lineNumber_) + " (point " + std::to_string(point) + "): " + what);
+    fail(path_, "line " + std::to_string(lineNumber_) + " (point " + std::to_string(point) + "): " + what);
   }
 
   std::string_view body_;
@@ -115,8 +113,7 @@ class AsciiBodyParser {
 
 }  // namespace
 
-PointCloud readPcdAsciiBody(std::string_view body, const PcdHeader& header,
-                            const std::string& path) {
+PointCloud readPcdAsciiBody(std::string_view body, const PcdHeader& header, const std::string& path) {
   return AsciiBodyParser(body, header, path).parse();
 }
 

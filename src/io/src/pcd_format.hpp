@@ -48,8 +48,7 @@ PcdHeader checkPcdHeader(std::string_view bytes, const std::string& path);
 
 // The points (and normals, intensities) of an ascii body: one point per line with exactly the
 // header's number of values; x/y/z/normals/intensity must be numbers (or nan).
-PointCloud readPcdAsciiBody(std::string_view body, const PcdHeader& header,
-                            const std::string& path);
+PointCloud readPcdAsciiBody(std::string_view body, const PcdHeader& header, const std::string& path);
 
 // The points (and normals, intensities) of `header.points` point-major binary records starting
 // at `records`: the layout of a DATA binary body, and of a binary_compressed body once
@@ -58,7 +57,6 @@ PointCloud readPcdBinaryRecords(const char* records, const PcdHeader& header);
 
 // A binary_compressed body (LZF, stored field by field) decompressed into point-major
 // records; the header check has bounded its sizes. Throws naming `path` when it is corrupt.
-std::vector<std::uint8_t> decompressPcdBody(std::string_view bytes, const PcdHeader& header,
-                                            const std::string& path);
+std::vector<std::uint8_t> decompressPcdBody(std::string_view bytes, const PcdHeader& header, const std::string& path);
 
 }  // namespace binpick::io::detail

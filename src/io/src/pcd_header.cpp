@@ -36,9 +36,8 @@ class PcdHeaderParser {
   std::vector<std::string_view> nextLineWords() {
     const std::size_t end = bytes_.find('\n', position_);
     if (end == std::string_view::npos) {
-      fail(path_, lineNumber_ == 0
-                      ? "not a PCD file: no header lines"
-                      : "malformed PCD header: no DATA line (truncated or not a PCD file)");
+      fail(path_, lineNumber_ == 0 ? "not a PCD file: no header lines"
+                                   : "malformed PCD header: no DATA line (truncated or not a PCD file)");
     }
     TextCursor cursor(bytes_.substr(position_, end - position_));
     position_ = end + 1;
@@ -97,10 +96,9 @@ class PcdHeaderParser {
       parseData(words);
       return true;
     } else {
-      fail(path_, lineNumber_ == 1
-                      ? "not a PCD file: unexpected first line"
-                      : "malformed PCD header, line " + std::to_string(lineNumber_) +
-                            ": unknown keyword '" + std::string(keyword.substr(0, 40)) + "'");
+      fail(path_, lineNumber_ == 1 ? "not a PCD file: unexpected first line"
+                                   : "malformed PCD header, line " + std::to_string(lineNumber_) +
+                                         ": unknown keyword '" + std::string(keyword.substr(0, 40)) + "'");
     }
     return false;
   }
@@ -108,8 +106,8 @@ class PcdHeaderParser {
   template <typename Apply>
   void forEachFieldValue(const std::vector<std::string_view>& words, Apply apply) {
     if (words.size() != header_.fields.size() + 1) {
-      malformed(std::string(words[0]) + " has " + std::to_string(words.size() - 1) +
-                " values for " + std::to_string(header_.fields.size()) + " FIELDS");
+      malformed(std::string(words[0]) + " has " + std::to_string(words.size() - 1) + " values for " +
+                std::to_string(header_.fields.size()) + " FIELDS");
     }
     for (std::size_t i = 0; i < header_.fields.size(); ++i) apply(header_.fields[i], words[i + 1]);
   }
@@ -172,14 +170,12 @@ class PcdHeaderParser {
     if (header_.fields.empty()) fail(path_, "malformed PCD header: no FIELDS");
     for (const PcdField& f : header_.fields) {
       if (f.type == 'F' && f.size != 4 && f.size != 8) {
-        fail(path_, "malformed PCD header: float field '" + f.name + "' has SIZE " +
-                        std::to_string(f.size));
+        fail(path_, "malformed PCD header: float field '" + f.name + "' has SIZE " + std::to_string(f.size));
       }
       header_.pointBytes += f.size * f.count;
     }
     if (header_.pointBytes > std::numeric_limits<std::uint32_t>::max()) {
-      fail(path_,
-           "malformed PCD header: " + std::to_string(header_.pointBytes) + " bytes per point");
+      fail(path_, "malformed PCD header: " + std::to_string(header_.pointBytes) + " bytes per point");
     }
     checkFieldsWeRead();
     checkPointCount();
@@ -191,8 +187,7 @@ class PcdHeaderParser {
         fail(path_, std::string("the PCD file has no '") + axis + "' field");
       }
     }
-    const int normals =
-        hasScalarFloat("normal_x") + hasScalarFloat("normal_y") + hasScalarFloat("normal_z");
+    const int normals = hasScalarFloat("normal_x") + hasScalarFloat("normal_y") + hasScalarFloat("normal_z");
     if (normals != 0 && normals != 3) {
       fail(path_, "the PCD file has only some of normal_x, normal_y, normal_z");
     }
@@ -209,8 +204,7 @@ class PcdHeaderParser {
     if (!sawPoints_) header_.points = gridPoints;
     if (header_.points != gridPoints) {
       fail(path_, "malformed PCD header: WIDTH " + std::to_string(header_.width) + " x HEIGHT " +
-                      std::to_string(header_.height) + " != POINTS " +
-                      std::to_string(header_.points));
+                      std::to_string(header_.height) + " != POINTS " + std::to_string(header_.points));
     }
     if (header_.points > kMaxPoints) {
       fail(path_, "too many points (" + std::to_string(header_.points) + ")");
@@ -227,8 +221,8 @@ class PcdHeaderParser {
 };
 
 std::string claimsMoreThanFile(const PcdHeader& header, std::uint64_t bodyBytes) {
-  return "header claims " + std::to_string(header.points) + " points, more than the " +
-         std::to_string(bodyBytes) + " bytes of data can hold (truncated or corrupt file)";
+  return "header claims " + std::to_string(header.points) + " points, more than the " + std::to_string(bodyBytes) +
+         " bytes of data can hold (truncated or corrupt file)";
 }
 
 void checkBodySize(const PcdHeader& header, std::string_view bytes, const std::string& path) {
@@ -252,16 +246,15 @@ void checkBodySize(const PcdHeader& header, std::string_view bytes, const std::s
   const auto compressed = loadScalar<std::uint32_t>(sizes, !kHostIsLittleEndian);
   const auto uncompressed = loadScalar<std::uint32_t>(sizes + 4, !kHostIsLittleEndian);
   if (compressed > bodyBytes - 8) {
-    fail(path, "file is truncated: " + std::to_string(compressed) +
-                   " bytes of compressed data announced, " + std::to_string(bodyBytes - 8) +
-                   " present");
+    fail(path, "file is truncated: " + std::to_string(compressed) + " bytes of compressed data announced, " +
+                   std::to_string(bodyBytes - 8) + " present");
   }
   // PCL would resize its buffer to whatever `uncompressed` says; only the size the header
   // implies, and only what LZF can actually produce from `compressed`, is accepted.
   if (uncompressed != dataBytes || uncompressed > std::uint64_t{compressed} * kMaxLzfExpansion) {
-    fail(path, "corrupt binary_compressed data: " + std::to_string(compressed) +
-                   " compressed bytes for " + std::to_string(uncompressed) + " uncompressed, but " +
-                   std::to_string(header.points) + " points need " + std::to_string(dataBytes));
+    fail(path, "corrupt binary_compressed data: " + std::to_string(compressed) + " compressed bytes for " +
+                   std::to_string(uncompressed) + " uncompressed, but " + std::to_string(header.points) +
+                   " points need " + std::to_string(dataBytes));
   }
 }
 

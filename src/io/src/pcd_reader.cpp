@@ -42,19 +42,14 @@ float integerAt(const char* bytes, bool isSigned) {
 float valueAt(const char* record, ScalarField field) {
   const char* bytes = record + field.offset;
   if (field.type == 'F') {
-    return field.size == 8 ? floatFrom(loadScalar<double>(bytes, false))
-                           : loadScalar<float>(bytes, false);
+    return field.size == 8 ? floatFrom(loadScalar<double>(bytes, false)) : loadScalar<float>(bytes, false);
   }
   const bool isSigned = field.type == 'I';
   switch (field.size) {
-    case 1:
-      return integerAt<std::int8_t, std::uint8_t>(bytes, isSigned);
-    case 2:
-      return integerAt<std::int16_t, std::uint16_t>(bytes, isSigned);
-    case 4:
-      return integerAt<std::int32_t, std::uint32_t>(bytes, isSigned);
-    default:
-      return integerAt<std::int64_t, std::uint64_t>(bytes, isSigned);
+    case 1: return integerAt<std::int8_t, std::uint8_t>(bytes, isSigned);
+    case 2: return integerAt<std::int16_t, std::uint16_t>(bytes, isSigned);
+    case 4: return integerAt<std::int32_t, std::uint32_t>(bytes, isSigned);
+    default: return integerAt<std::int64_t, std::uint64_t>(bytes, isSigned);
   }
 }
 
@@ -65,15 +60,13 @@ void copyVectors(const char* records, const PcdHeader& header, const char* const
                                  scalarField(header, names[2])};
   const char* record = records;
   for (Eigen::Vector3f& vector : out) {
-    vector = Eigen::Vector3f(valueAt(record, fields[0]), valueAt(record, fields[1]),
-                             valueAt(record, fields[2]));
+    vector = Eigen::Vector3f(valueAt(record, fields[0]), valueAt(record, fields[1]), valueAt(record, fields[2]));
     record += header.pointBytes;
   }
 }
 
 // Copies one field of every record into `out` (already sized).
-void copyScalars(const char* records, const PcdHeader& header, const char* name,
-                 std::vector<float>& out) {
+void copyScalars(const char* records, const PcdHeader& header, const char* name, std::vector<float>& out) {
   const ScalarField field = scalarField(header, name);
   const char* record = records;
   for (float& value : out) {
@@ -106,12 +99,8 @@ ModelGeometry loadPcd(const std::string& path) {
   if (header.points == 0) return geometry;
   const std::string_view body = std::string_view(bytes).substr(header.bodyOffset);
   switch (header.data) {
-    case PcdData::Ascii:
-      geometry.cloud = readPcdAsciiBody(body, header, path);
-      break;
-    case PcdData::Binary:
-      geometry.cloud = readPcdBinaryRecords(body.data(), header);
-      break;
+    case PcdData::Ascii: geometry.cloud = readPcdAsciiBody(body, header, path); break;
+    case PcdData::Binary: geometry.cloud = readPcdBinaryRecords(body.data(), header); break;
     case PcdData::BinaryCompressed: {
       const std::vector<std::uint8_t> records = decompressPcdBody(bytes, header, path);
       geometry.cloud = readPcdBinaryRecords(reinterpret_cast<const char*>(records.data()), header);

@@ -11,17 +11,13 @@ namespace binpick::io::detail {
 std::size_t byteSize(PlyType type) {
   switch (type) {
     case PlyType::Int8:
-    case PlyType::Uint8:
-      return 1;
+    case PlyType::Uint8: return 1;
     case PlyType::Int16:
-    case PlyType::Uint16:
-      return 2;
+    case PlyType::Uint16: return 2;
     case PlyType::Int32:
     case PlyType::Uint32:
-    case PlyType::Float32:
-      return 4;
-    case PlyType::Float64:
-      return 8;
+    case PlyType::Float32: return 4;
+    case PlyType::Float64: return 8;
   }
   return 0;
 }
@@ -148,9 +144,8 @@ class HeaderParser {
     if (words.size() < 2 || words[1] != "organized") return;
     std::int64_t width = 0;
     std::int64_t height = 0;
-    if (words.size() != 4 || !parseInteger(words[2], width) || !parseInteger(words[3], height) ||
-        width <= 0 || height <= 0 || width > std::numeric_limits<int>::max() ||
-        height > std::numeric_limits<int>::max()) {
+    if (words.size() != 4 || !parseInteger(words[2], width) || !parseInteger(words[3], height) || width <= 0 ||
+        height <= 0 || width > std::numeric_limits<int>::max() || height > std::numeric_limits<int>::max()) {
       malformed("expected 'obj_info organized WIDTH HEIGHT' with positive integers");
     }
     header_.organized = PlyGridSize{static_cast<int>(width), static_cast<int>(height)};
@@ -219,9 +214,8 @@ void checkCountsFitBody(const PlyHeader& header, std::uint64_t bodyBytes, const 
       fail(path, "malformed PLY header: element '" + element.name + "' has no properties");
     }
     if (element.count > (budget - used) / recordBytes) {
-      fail(path, "header claims " + std::to_string(element.count) + " '" + element.name +
-                     "' elements, more than the " + std::to_string(bodyBytes) +
-                     " bytes of data can hold (truncated or corrupt file)");
+      fail(path, "header claims " + std::to_string(element.count) + " '" + element.name + "' elements, more than the " +
+                     std::to_string(bodyBytes) + " bytes of data can hold (truncated or corrupt file)");
     }
     used += element.count * recordBytes;
   }

@@ -36,20 +36,16 @@ float narrowToFloat(double value) {
 
 class BinarySource {
  public:
-  BinarySource(std::string_view body, bool swapBytes, const std::string& path,
-               const RecordLocation& location)
+  BinarySource(std::string_view body, bool swapBytes, const std::string& path, const RecordLocation& location)
       : cursor_(body, path), swapBytes_(swapBytes), location_(location) {}
 
   float readFloat(PlyType type) { return floatAt(take(byteSize(type)), type); }
 
   float floatAt(const char* bytes, PlyType type) const {
     switch (type) {
-      case PlyType::Float32:
-        return loadScalar<float>(bytes, swapBytes_);
-      case PlyType::Float64:
-        return narrowToFloat(loadScalar<double>(bytes, swapBytes_));
-      default:
-        return static_cast<float>(integerAt(bytes, type));
+      case PlyType::Float32: return loadScalar<float>(bytes, swapBytes_);
+      case PlyType::Float64: return narrowToFloat(loadScalar<double>(bytes, swapBytes_));
+      default: return static_cast<float>(integerAt(bytes, type));
     }
   }
 
@@ -69,9 +65,8 @@ class BinarySource {
   // `count` records of `recordBytes` each, bounds-checked once. parsePlyHeader bounded
   // count x recordBytes by the file size, so the product cannot overflow.
   const char* takeRecords(std::uint64_t count, std::size_t recordBytes) {
-    return cursor_.take(static_cast<std::size_t>(count * recordBytes), [&] {
-      return "the " + std::to_string(count) + " '" + *location_.element + "' records";
-    });
+    return cursor_.take(static_cast<std::size_t>(count * recordBytes),
+                        [&] { return "the " + std::to_string(count) + " '" + *location_.element + "' records"; });
   }
 
  private:
@@ -81,20 +76,13 @@ class BinarySource {
 
   std::int64_t integerAt(const char* bytes, PlyType type) const {
     switch (type) {
-      case PlyType::Int8:
-        return loadScalar<std::int8_t>(bytes, false);
-      case PlyType::Uint8:
-        return loadScalar<std::uint8_t>(bytes, false);
-      case PlyType::Int16:
-        return loadScalar<std::int16_t>(bytes, swapBytes_);
-      case PlyType::Uint16:
-        return loadScalar<std::uint16_t>(bytes, swapBytes_);
-      case PlyType::Int32:
-        return loadScalar<std::int32_t>(bytes, swapBytes_);
-      case PlyType::Uint32:
-        return loadScalar<std::uint32_t>(bytes, swapBytes_);
-      default:
-        return 0;  // float list counts and face indices are rejected before reading
+      case PlyType::Int8: return loadScalar<std::int8_t>(bytes, false);
+      case PlyType::Uint8: return loadScalar<std::uint8_t>(bytes, false);
+      case PlyType::Int16: return loadScalar<std::int16_t>(bytes, swapBytes_);
+      case PlyType::Uint16: return loadScalar<std::uint16_t>(bytes, swapBytes_);
+      case PlyType::Int32: return loadScalar<std::int32_t>(bytes, swapBytes_);
+      case PlyType::Uint32: return loadScalar<std::uint32_t>(bytes, swapBytes_);
+      default: return 0;  // float list counts and face indices are rejected before reading
     }
   }
 
@@ -105,8 +93,7 @@ class BinarySource {
 
 class AsciiSource {
  public:
-  AsciiSource(std::string_view body, std::size_t firstLine, const std::string& path,
-              const RecordLocation& location)
+  AsciiSource(std::string_view body, std::size_t firstLine, const std::string& path, const RecordLocation& location)
       : cursor_(body, firstLine), path_(path), location_(location) {}
 
   float readFloat(PlyType /*type*/) {
@@ -190,8 +177,7 @@ int scalarVertexProperty(const PlyElement& vertex, const char* name, const std::
 }
 
 VertexLayout vertexLayoutOf(const PlyElement& vertex, const std::string& path) {
-  static constexpr const char* kNames[kVertexSlots] = {"x",  "y",  "z",        "nx",
-                                                       "ny", "nz", "intensity"};
+  static constexpr const char* kNames[kVertexSlots] = {"x", "y", "z", "nx", "ny", "nz", "intensity"};
   VertexLayout layout;
   layout.slotOfProperty.assign(vertex.properties.size(), -1);
   int normalsFound = 0;
@@ -223,8 +209,7 @@ void resizeForVertices(const VertexLayout& layout, std::uint64_t count, PointClo
   if (layout.hasIntensities) cloud.intensities.resize(count);
 }
 
-void storeVertex(const VertexValues& values, const VertexLayout& layout, std::uint64_t i,
-                 PointCloud& cloud) {
+void storeVertex(const VertexValues& values, const VertexLayout& layout, std::uint64_t i, PointCloud& cloud) {
   cloud.points[i] = Eigen::Vector3f(values[0], values[1], values[2]);
   if (layout.hasNormals) cloud.normals[i] = Eigen::Vector3f(values[3], values[4], values[5]);
   if (layout.hasIntensities) cloud.intensities[i] = values[kIntensitySlot];
@@ -274,8 +259,7 @@ class BodyReader {
 
   // Binary records without lists all have one size: one bounds check for the whole element,
   // then values decoded at precomputed offsets. This is the path of every camera-sized cloud.
-  void readFixedSizeVertices(const PlyElement& element, const VertexLayout& layout,
-                             PointCloud& cloud) {
+  void readFixedSizeVertices(const PlyElement& element, const VertexLayout& layout, PointCloud& cloud) {
     struct Field {
       std::size_t offset;
       PlyType type;
@@ -300,8 +284,7 @@ class BodyReader {
     }
   }
 
-  void readFaces(const PlyElement& element, std::uint64_t vertexCount,
-                 std::vector<Eigen::Vector3i>& triangles) {
+  void readFaces(const PlyElement& element, std::uint64_t vertexCount, std::vector<Eigen::Vector3i>& triangles) {
     const int indexProperty = faceIndexProperty(element, path_);
     triangles.reserve(triangles.size() + element.count);
     std::vector<int> polygon;
@@ -335,12 +318,11 @@ class BodyReader {
   std::uint64_t readListLength(const PlyProperty& property) {
     const std::int64_t length = source_.readInteger(property.countType);
     if (length < 0) {
-      fail(path_,
-           location_.describe() + " has a list of negative length " + std::to_string(length));
+      fail(path_, location_.describe() + " has a list of negative length " + std::to_string(length));
     }
     if (static_cast<std::uint64_t>(length) > source_.maxItems(property.type)) {
-      fail(path_, "file is truncated: " + location_.describe() + " has a list of " +
-                      std::to_string(length) + " items but the file ends before them");
+      fail(path_, "file is truncated: " + location_.describe() + " has a list of " + std::to_string(length) +
+                      " items but the file ends before them");
     }
     return static_cast<std::uint64_t>(length);
   }
@@ -349,19 +331,17 @@ class BodyReader {
     source_.skip(property.type, property.isList ? readListLength(property) : 1);
   }
 
-  void readPolygon(const PlyProperty& property, std::uint64_t vertexCount,
-                   std::vector<int>& polygon) {
+  void readPolygon(const PlyProperty& property, std::uint64_t vertexCount, std::vector<int>& polygon) {
     const std::uint64_t corners = readListLength(property);
     if (corners < 3) {
-      fail(path_, location_.describe() + " has " + std::to_string(corners) +
-                      " vertices; a face needs at least 3");
+      fail(path_, location_.describe() + " has " + std::to_string(corners) + " vertices; a face needs at least 3");
     }
     polygon.resize(corners);
     for (int& corner : polygon) {
       const std::int64_t index = source_.readInteger(property.type);
       if (index < 0 || static_cast<std::uint64_t>(index) >= vertexCount) {
-        fail(path_, location_.describe() + " refers to vertex " + std::to_string(index) +
-                        " but the file has " + std::to_string(vertexCount) + " vertices");
+        fail(path_, location_.describe() + " refers to vertex " + std::to_string(index) + " but the file has " +
+                        std::to_string(vertexCount) + " vertices");
       }
       corner = static_cast<int>(index);
     }
@@ -378,8 +358,7 @@ class BodyReader {
   const std::string& path_;
 };
 
-const PlyElement* uniqueElement(const PlyHeader& header, const std::string& name,
-                                const std::string& path) {
+const PlyElement* uniqueElement(const PlyHeader& header, const std::string& name, const std::string& path) {
   const PlyElement* found = nullptr;
   for (const PlyElement& element : header.elements) {
     if (element.name != name) continue;
@@ -401,8 +380,7 @@ void applyGrid(const PlyHeader& header, PointCloud& cloud, const std::string& pa
 }
 
 template <typename Source>
-ModelGeometry readBody(const PlyHeader& header, Source& source, RecordLocation& location,
-                       const std::string& path) {
+ModelGeometry readBody(const PlyHeader& header, Source& source, RecordLocation& location, const std::string& path) {
   const PlyElement* vertices = uniqueElement(header, "vertex", path);
   uniqueElement(header, "face", path);
   if (!vertices) fail(path, "the file has no vertex element");

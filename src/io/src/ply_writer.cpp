@@ -14,11 +14,9 @@ namespace {
 using Points = std::vector<Eigen::Vector3f>;
 using Intensities = std::vector<float>;
 
-std::string vertexHeader(Encoding encoding, std::size_t vertexCount, bool withNormals,
-                         bool withIntensities) {
+std::string vertexHeader(Encoding encoding, std::size_t vertexCount, bool withNormals, bool withIntensities) {
   std::string header = "ply\n";
-  header +=
-      encoding == Encoding::Ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
+  header += encoding == Encoding::Ascii ? "format ascii 1.0\n" : "format binary_little_endian 1.0\n";
   header += "comment written by binpick\n";
   header += "element vertex " + std::to_string(vertexCount) + "\n";
   header += "property float x\nproperty float y\nproperty float z\n";
@@ -36,8 +34,7 @@ char* storeBinaryVector(char* cursor, const Eigen::Vector3f& vector) {
 // `intensities` may be empty.
 void appendBinaryVertices(std::string& out, const Points& points, const Points& normals,
                           const Intensities& intensities) {
-  const std::size_t floatsPerVertex =
-      3 + (normals.empty() ? 0 : 3) + (intensities.empty() ? 0 : 1);
+  const std::size_t floatsPerVertex = 3 + (normals.empty() ? 0 : 3) + (intensities.empty() ? 0 : 1);
   const std::size_t start = out.size();
   out.resize(start + points.size() * floatsPerVertex * sizeof(float));
   char* cursor = out.data() + start;
@@ -82,11 +79,9 @@ void appendBinaryTriangles(std::string& out, const TriangleMesh& mesh) {
 }  // namespace
 
 void writePlyCloud(const std::string& path, const PointCloud& cloud, Encoding encoding) {
-  std::string bytes =
-      vertexHeader(encoding, cloud.size(), cloud.hasNormals(), cloud.hasIntensities());
+  std::string bytes = vertexHeader(encoding, cloud.size(), cloud.hasNormals(), cloud.hasIntensities());
   if (cloud.isOrganized()) {
-    bytes += "obj_info organized " + std::to_string(cloud.width) + " " +
-             std::to_string(cloud.height) + "\n";
+    bytes += "obj_info organized " + std::to_string(cloud.width) + " " + std::to_string(cloud.height) + "\n";
   }
   bytes += "end_header\n";
   if (encoding == Encoding::Ascii) {

@@ -17,9 +17,7 @@
 namespace binpick::io {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw core::Error(path + ": " + what);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw core::Error(path + ": " + what); }
 
 cv::Mat readMatrix(const cv::FileStorage& fs, const std::string& path, const std::string& key) {
   const cv::FileNode node = fs[key];
@@ -40,13 +38,12 @@ cv::Mat readMatrix(const cv::FileStorage& fs, const std::string& path, const std
   return m;
 }
 
-cv::Mat readMatrixOfSize(const cv::FileStorage& fs, const std::string& path,
-                         const std::string& key, int rows, int cols) {
+cv::Mat readMatrixOfSize(const cv::FileStorage& fs, const std::string& path, const std::string& key, int rows,
+                         int cols) {
   const cv::Mat m = readMatrix(fs, path, key);
   if (m.rows != rows || m.cols != cols) {
     std::ostringstream message;
-    message << "'" << key << "' must be " << rows << "x" << cols << " (got " << m.rows << "x"
-            << m.cols << ")";
+    message << "'" << key << "' must be " << rows << "x" << cols << " (got " << m.rows << "x" << m.cols << ")";
     fail(path, message.str());
   }
   return m;
@@ -59,8 +56,7 @@ int readInt(const cv::FileStorage& fs, const std::string& path, const std::strin
   return static_cast<int>(node);
 }
 
-LensIntrinsics readLens(const cv::FileStorage& fs, const std::string& path,
-                        const std::string& device) {
+LensIntrinsics readLens(const cv::FileStorage& fs, const std::string& path, const std::string& device) {
   LensIntrinsics lens;
   lens.width = readInt(fs, path, device + "_width");
   lens.height = readInt(fs, path, device + "_height");
@@ -89,15 +85,12 @@ LensIntrinsics readLens(const cv::FileStorage& fs, const std::string& path,
 
 void writeLens(cv::FileStorage& fs, const std::string& device, const LensIntrinsics& lens) {
   fs << device + "_width" << lens.width << device + "_height" << lens.height;
-  const cv::Mat k = (cv::Mat_<double>(3, 3) << lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy,
-                     0.0, 0.0, 1.0);
+  const cv::Mat k = (cv::Mat_<double>(3, 3) << lens.fx, 0.0, lens.cx, 0.0, lens.fy, lens.cy, 0.0, 0.0, 1.0);
   fs << device + "_matrix" << k;
   fs << device + "_distortion" << cv::Mat(1, 5, CV_64F, const_cast<double*>(lens.distortion.data()));
 }
 
-
-void writeRig(const std::string& path, const RigCalibration& rig,
-              const RigCalibrationQuality* quality) {
+void writeRig(const std::string& path, const RigCalibration& rig, const RigCalibrationQuality* quality) {
   rig.validate();
   core::replaceFileAtomically(path, [&](const std::string& temporary) {
     cv::FileStorage fs(temporary, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
@@ -141,8 +134,7 @@ void RigCalibration::validate() const {
   if (!r.allFinite() || !T_projector_camera.translation().allFinite()) {
     throw core::Error("rig R and T must be finite");
   }
-  if ((r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
-      r.determinant() < 0.0) {
+  if ((r * r.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 || r.determinant() < 0.0) {
     throw core::Error("rig R must be a rotation (orthonormal, determinant +1)");
   }
 }
@@ -172,12 +164,9 @@ RigCalibration readRigCalibration(const std::string& path) {
   return rig;
 }
 
-void writeRigCalibration(const std::string& path, const RigCalibration& rig) {
-  writeRig(path, rig, nullptr);
-}
+void writeRigCalibration(const std::string& path, const RigCalibration& rig) { writeRig(path, rig, nullptr); }
 
-void writeRigCalibration(const std::string& path, const RigCalibration& rig,
-                         const RigCalibrationQuality& quality) {
+void writeRigCalibration(const std::string& path, const RigCalibration& rig, const RigCalibrationQuality& quality) {
   writeRig(path, rig, &quality);
 }
 

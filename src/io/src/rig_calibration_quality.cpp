@@ -11,9 +11,7 @@
 namespace binpick::io {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw core::Error(path + ": " + what);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw core::Error(path + ": " + what); }
 
 // A key of the `quality` map (or of one of its views); `where` names it in errors.
 double qualityReal(const cv::FileNode& map, const std::string& key, const std::string& where) {
@@ -29,8 +27,7 @@ int qualityInt(const cv::FileNode& map, const std::string& key, const std::strin
   return static_cast<int>(node);
 }
 
-std::string qualityString(const cv::FileNode& map, const std::string& key, const std::string& where,
-                          bool required) {
+std::string qualityString(const cv::FileNode& map, const std::string& key, const std::string& where, bool required) {
   const cv::FileNode node = map[key];
   if (node.empty() && !required) return "";
   if (!node.isString()) throw core::Error(where + "." + key + " must be a string");
@@ -77,22 +74,27 @@ RigCalibrationQuality readQuality(const cv::FileNode& node) {
 
 void writeQuality(cv::FileStorage& fs, const RigCalibrationQuality& quality) {
   const int used = quality.viewsUsed();
-  fs << "quality" << "{" << "date" << quality.date << "views_used" << used << "views_dropped"
+  fs << "quality"
+     << "{"
+     << "date" << quality.date << "views_used" << used << "views_dropped"
      << static_cast<int>(quality.views.size()) - used;
   writeFinite(fs, "camera_rms_px", quality.camera_rms_px);
   writeFinite(fs, "projector_rms_px", quality.projector_rms_px);
   writeFinite(fs, "stereo_rms_px", quality.stereo_rms_px);
-  fs << "views" << "[";
+  fs << "views"
+     << "[";
   for (const RigViewQuality& view : quality.views) {
-    fs << "{" << "name" << view.name << "camera_corners" << view.camera_corners
-       << "projector_corners" << view.projector_corners;
+    fs << "{"
+       << "name" << view.name << "camera_corners" << view.camera_corners << "projector_corners"
+       << view.projector_corners;
     writeFinite(fs, "camera_rms_px", view.camera_rms_px);
     writeFinite(fs, "projector_rms_px", view.projector_rms_px);
     fs << "outlier" << static_cast<int>(view.outlier) << "used" << static_cast<int>(view.used);
     if (!view.problem.empty()) fs << "problem" << view.problem;
     fs << "}";
   }
-  fs << "]" << "}";
+  fs << "]"
+     << "}";
 }
 
 }  // namespace detail

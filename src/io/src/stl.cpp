@@ -30,8 +30,7 @@ class VertexMerger {
     const Eigen::Vector3f folded = corner + Eigen::Vector3f::Zero();  // -0 + 0 == +0
     Key key;
     std::memcpy(key.data(), folded.data(), sizeof(key));
-    const auto [entry, inserted] =
-        indexOf_.try_emplace(key, static_cast<int>(mesh_.vertices.size()));
+    const auto [entry, inserted] = indexOf_.try_emplace(key, static_cast<int>(mesh_.vertices.size()));
     if (inserted) mesh_.vertices.push_back(folded);
     return entry->second;
   }
@@ -51,13 +50,12 @@ class VertexMerger {
 };
 
 // NaN corners cannot be merged meaningfully (NaN != NaN), so they are rejected here, by facet.
-void addFacet(const std::array<Eigen::Vector3f, 3>& corners, std::size_t facet,
-              VertexMerger& merger, TriangleMesh& mesh, const std::string& path) {
+void addFacet(const std::array<Eigen::Vector3f, 3>& corners, std::size_t facet, VertexMerger& merger,
+              TriangleMesh& mesh, const std::string& path) {
   Eigen::Vector3i triangle;
   for (int c = 0; c < 3; ++c) {
     if (!corners[c].allFinite()) {
-      fail(path, "facet " + std::to_string(facet) + " has a non-finite vertex " +
-                     describePoint(corners[c]));
+      fail(path, "facet " + std::to_string(facet) + " has a non-finite vertex " + describePoint(corners[c]));
     }
     triangle[c] = merger.indexOf(corners[c]);
   }
@@ -78,9 +76,7 @@ bool hasBinaryStlSize(std::string_view bytes) {
 }
 
 // A text file has no NUL bytes; a binary STL almost always does (in its count or its floats).
-bool looksLikeText(std::string_view bytes) {
-  return bytes.substr(0, 4096).find('\0') == std::string_view::npos;
-}
+bool looksLikeText(std::string_view bytes) { return bytes.substr(0, 4096).find('\0') == std::string_view::npos; }
 
 TriangleMesh readBinaryStl(std::string_view bytes, const std::string& path) {
   const std::size_t count = (bytes.size() - kBinaryHeaderBytes) / kBinaryTriangleBytes;
@@ -157,8 +153,8 @@ class AsciiStlParser {
   std::string_view next(const char* expected) {
     const std::string_view token = cursor_.nextToken();
     if (token.empty()) {
-      fail(path_, "file is truncated: it ends at line " + std::to_string(cursor_.line()) +
-                      " where " + expected + " was expected");
+      fail(path_, "file is truncated: it ends at line " + std::to_string(cursor_.line()) + " where " + expected +
+                      " was expected");
     }
     return token;
   }
@@ -170,8 +166,8 @@ class AsciiStlParser {
   }
 
   [[noreturn]] void unexpected(std::string_view token, const std::string& expected) const {
-    fail(path_, "line " + std::to_string(cursor_.line()) + ": expected " + expected +
-                    " but found '" + std::string(token.substr(0, 40)) + "'");
+    fail(path_, "line " + std::to_string(cursor_.line()) + ": expected " + expected + " but found '" +
+                    std::string(token.substr(0, 40)) + "'");
   }
 
   TextCursor cursor_;
@@ -189,14 +185,12 @@ TriangleMesh parseStl(std::string_view bytes, const std::string& path) {
   const auto count = loadScalar<std::uint32_t>(bytes.data() + 80, !kHostIsLittleEndian);
   fail(path, "binary STL header claims " + std::to_string(count) + " triangles, which need " +
                  std::to_string(kBinaryHeaderBytes + std::uint64_t{count} * kBinaryTriangleBytes) +
-                 " bytes, but the file has " + std::to_string(bytes.size()) +
-                 " (truncated or corrupt file)");
+                 " bytes, but the file has " + std::to_string(bytes.size()) + " (truncated or corrupt file)");
 }
 
 Eigen::Vector3f unitNormalOf(const TriangleMesh& mesh, const Eigen::Vector3i& triangle) {
   const Eigen::Vector3f& a = mesh.vertices[triangle[0]];
-  const Eigen::Vector3f normal =
-      (mesh.vertices[triangle[1]] - a).cross(mesh.vertices[triangle[2]] - a);
+  const Eigen::Vector3f normal = (mesh.vertices[triangle[1]] - a).cross(mesh.vertices[triangle[2]] - a);
   const float length = normal.norm();
   return length > 0.0f ? Eigen::Vector3f(normal / length) : Eigen::Vector3f::Zero();
 }

@@ -13,8 +13,7 @@ namespace binpick::io::detail {
 // Whitespace-separated tokens of a text, with the line number of the last token for messages.
 class TextCursor {
  public:
-  explicit TextCursor(std::string_view text, std::size_t firstLine = 1)
-      : text_(text), line_(firstLine) {}
+  explicit TextCursor(std::string_view text, std::size_t firstLine = 1) : text_(text), line_(firstLine) {}
 
   // The next token, or an empty view at the end of the text.
   std::string_view nextToken();

@@ -22,9 +22,8 @@ bool isInvalidPixel(const Eigen::Vector3f& point) { return point.array().isNaN()
 void checkGrid(const PointCloud& cloud, const std::string& what) {
   if (cloud.width == 0 && cloud.height == 0) return;
   if (!cloud.isOrganized()) {
-    fail(what, "width " + std::to_string(cloud.width) + " x height " +
-                   std::to_string(cloud.height) + " does not match the " +
-                   std::to_string(cloud.size()) + " points");
+    fail(what, "width " + std::to_string(cloud.width) + " x height " + std::to_string(cloud.height) +
+                   " does not match the " + std::to_string(cloud.size()) + " points");
   }
 }
 
@@ -44,15 +43,14 @@ void checkPoints(const PointCloud& cloud, const std::string& what) {
 void checkNormals(const PointCloud& cloud, const std::string& what) {
   if (cloud.normals.empty()) return;
   if (cloud.normals.size() != cloud.points.size()) {
-    fail(what, std::to_string(cloud.normals.size()) + " normals for " +
-                   std::to_string(cloud.points.size()) + " points");
+    fail(what,
+         std::to_string(cloud.normals.size()) + " normals for " + std::to_string(cloud.points.size()) + " points");
   }
   for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
     // Invalid pixels carry whatever normal the sensor pipeline left there.
     if (!cloud.points[i].allFinite()) continue;
     if (!cloud.normals[i].allFinite()) {
-      fail(what, "normal of point " + std::to_string(i) + " is not finite " +
-                     describePoint(cloud.normals[i]));
+      fail(what, "normal of point " + std::to_string(i) + " is not finite " + describePoint(cloud.normals[i]));
     }
   }
 }
@@ -60,8 +58,8 @@ void checkNormals(const PointCloud& cloud, const std::string& what) {
 void checkIntensities(const PointCloud& cloud, const std::string& what) {
   if (cloud.intensities.empty()) return;
   if (cloud.intensities.size() != cloud.points.size()) {
-    fail(what, std::to_string(cloud.intensities.size()) + " intensities for " +
-                   std::to_string(cloud.points.size()) + " points");
+    fail(what, std::to_string(cloud.intensities.size()) + " intensities for " + std::to_string(cloud.points.size()) +
+                   " points");
   }
   for (std::size_t i = 0; i < cloud.intensities.size(); ++i) {
     // Like normals: invalid pixels carry whatever intensity the sensor pipeline left there.
@@ -86,8 +84,7 @@ void validateCloud(const PointCloud& cloud, const std::string& what) {
 void validateMesh(const TriangleMesh& mesh, const std::string& what) {
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
     if (!mesh.vertices[i].allFinite()) {
-      fail(what,
-           "vertex " + std::to_string(i) + " is not finite " + describePoint(mesh.vertices[i]));
+      fail(what, "vertex " + std::to_string(i) + " is not finite " + describePoint(mesh.vertices[i]));
     }
   }
   const auto vertexCount = static_cast<long long>(mesh.vertices.size());
@@ -113,8 +110,7 @@ float directedLength(const PointCloud& cloud, std::size_t i, const std::string& 
   if (std::isinf(length)) length = cloud.normals[i].stableNorm();
   // A zero normal has no direction; keeping it would poison every dot product downstream.
   if (!(length > 0.0f)) {
-    fail(path,
-         "normal of point " + std::to_string(i) + " is zero " + describePoint(cloud.normals[i]));
+    fail(path, "normal of point " + std::to_string(i) + " is zero " + describePoint(cloud.normals[i]));
   }
   return length;
 }

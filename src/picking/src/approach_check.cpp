@@ -34,22 +34,18 @@ bool insideShrunkBox(const Eigen::Vector3d& point, double half_length, double ha
 // radius * sin(theta) below its axis point, so every slice whose axis point lies below
 // wall_height + that reach is checked. Shrinking by the full radius sideways is exact for a
 // vertical corridor and on the safe side for a tilted one (its slices reach less far sideways).
-bool corridorHitsWalls(const Segment& axis, const Eigen::Vector3d& approach, double radius,
-                       const BinBox& bin) {
+bool corridorHitsWalls(const Segment& axis, const Eigen::Vector3d& approach, double radius, const BinBox& bin) {
   const double sin_tilt = std::sqrt(std::max(0.0, 1.0 - approach.z() * approach.z()));
   const std::optional<Segment> low = partBelow(axis, bin.wall_height + radius * sin_tilt);
   if (!low) return false;
   const double half_length = 0.5 * bin.length - radius;
   const double half_width = 0.5 * bin.width - radius;
-  return !insideShrunkBox(low->from, half_length, half_width) ||
-         !insideShrunkBox(low->to, half_length, half_width);
+  return !insideShrunkBox(low->from, half_length, half_width) || !insideShrunkBox(low->to, half_length, half_width);
 }
 
 // The grasp point may sit right above the floor (a flat part lying on it) and the tool face
 // rests on the part there, so only the axis is kept above the floor: no radius, no clearance.
-bool corridorHitsFloor(const Segment& axis) {
-  return std::min(axis.from.z(), axis.to.z()) < 0.0;
-}
+bool corridorHitsFloor(const Segment& axis) { return std::min(axis.from.z(), axis.to.z()) < 0.0; }
 
 }  // namespace
 

@@ -8,7 +8,7 @@
 namespace binpick::picking {
 
 struct GraspCandidate {
-  int grasp = 0;  // index into PickParams::grasps
+  int grasp = 0;                                                    // index into PickParams::grasps
   Eigen::Isometry3d T_model_grasp = Eigen::Isometry3d::Identity();  // symmetry applied
 };
 

@@ -40,7 +40,9 @@ double turnBetween(const Eigen::Vector3d& axis, const Eigen::Vector3d& from, con
 class SymmetryComparison {
  public:
   SymmetryComparison(const PartSymmetry& symmetry, GripperType type, const GraspGenerationParams& params)
-      : symmetry_(symmetry), type_(type), distance_(params.min_separation),
+      : symmetry_(symmetry),
+        type_(type),
+        distance_(params.min_separation),
         angle_cos_(std::cos(params.symmetry_angle_deg * M_PI / 180.0)) {}
 
   // Equal up to a symmetry of the part, within the separation and angle.
@@ -81,7 +83,8 @@ class SymmetryComparison {
 // Best first; a grasp the same as a better one (after symmetry) is dropped; every face's best
 // before any face's second, up to max_grasps; best first again.
 std::vector<Ranked> select(std::vector<Ranked> ranked, const SymmetryComparison& comparison, int max_grasps) {
-  std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) { return a.quality > b.quality; });
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const Ranked& a, const Ranked& b) { return a.quality > b.quality; });
   std::vector<Ranked> distinct;
   for (const Ranked& candidate : ranked) {
     const bool repeated = std::any_of(distinct.begin(), distinct.end(), [&](const Ranked& kept) {
@@ -132,7 +135,8 @@ void validateInputs(const GripperParams& gripper, const PartSymmetry& symmetry, 
   params.validate();
   gripper.validate();
   for (const Eigen::Matrix3d& rotation : symmetry.discrete) {
-    const bool proper = rotation.allFinite() && (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
+    const bool proper = rotation.allFinite() &&
+                        (rotation.transpose() * rotation - Eigen::Matrix3d::Identity()).norm() < 1e-6 &&
                         rotation.determinant() > 0.0;
     if (!proper) throw core::Error("symmetry.discrete: every entry must be a proper rotation");
   }
@@ -147,17 +151,17 @@ void GraspGenerationParams::validate() const {
   core::requireField(isPositive(sample_spacing), kOwner, "sample_spacing", "> 0", sample_spacing);
   core::requireField(max_samples >= 10, kOwner, "max_samples", ">= 10", max_samples);
   core::requireField(max_grasps >= 1, kOwner, "max_grasps", ">= 1", max_grasps);
-  core::requireField(isNonNegative(min_separation), kOwner, "min_separation", ">= 0",
-               min_separation);
-  core::requireField(std::isfinite(symmetry_angle_deg) && symmetry_angle_deg >= 0.0 && symmetry_angle_deg <= 90.0, kOwner,
-               "symmetry_angle_deg", "in [0, 90]", symmetry_angle_deg);
-  core::requireField(std::isfinite(max_antipodal_angle_deg) && max_antipodal_angle_deg >= 0.0 && max_antipodal_angle_deg <= 45.0,
-               kOwner, "max_antipodal_angle_deg", "in [0, 45]", max_antipodal_angle_deg);
+  core::requireField(isNonNegative(min_separation), kOwner, "min_separation", ">= 0", min_separation);
+  core::requireField(std::isfinite(symmetry_angle_deg) && symmetry_angle_deg >= 0.0 && symmetry_angle_deg <= 90.0,
+                     kOwner, "symmetry_angle_deg", "in [0, 90]", symmetry_angle_deg);
+  core::requireField(
+      std::isfinite(max_antipodal_angle_deg) && max_antipodal_angle_deg >= 0.0 && max_antipodal_angle_deg <= 45.0,
+      kOwner, "max_antipodal_angle_deg", "in [0, 45]", max_antipodal_angle_deg);
   core::requireField(isPositive(contact_tolerance), kOwner, "contact_tolerance", "> 0", contact_tolerance);
   core::requireField(approach_directions >= 1 && approach_directions <= 64, kOwner, "approach_directions", "in [1, 64]",
-               approach_directions);
-  core::requireField(std::isfinite(margin_weight) && margin_weight >= 0.0 && margin_weight <= 1.0, kOwner, "margin_weight",
-               "in [0, 1]", margin_weight);
+                     approach_directions);
+  core::requireField(std::isfinite(margin_weight) && margin_weight >= 0.0 && margin_weight <= 1.0, kOwner,
+                     "margin_weight", "in [0, 1]", margin_weight);
 }
 
 Eigen::Vector3d perpendicularTo(const Eigen::Vector3d& direction) {

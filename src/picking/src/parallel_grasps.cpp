@@ -25,10 +25,10 @@ double contactShare(const SurfaceModel& surface, const Eigen::Isometry3d& T_mode
     for (int row = 0; row < kContactRows; ++row) {
       const double across = gripper.finger_width * (column / (kContactColumns - 1.0) - 0.5);
       const double along = gripper.finger_depth * (row / (kContactRows - 1.0) - 0.5);
-      const Eigen::Vector3d on_face =
-          T_model_grasp.translation() + 0.5 * width * x + across * y + along * z;
+      const Eigen::Vector3d on_face = T_model_grasp.translation() + 0.5 * width * x + across * y + along * z;
       const auto hit = surface.castRay(on_face + standoff * x, -x, standoff + params.contact_tolerance);
-      if (hit && std::abs(hit->distance - standoff) <= params.contact_tolerance && hit->normal.dot(x) >= antipodal_cos) {
+      if (hit && std::abs(hit->distance - standoff) <= params.contact_tolerance &&
+          hit->normal.dot(x) >= antipodal_cos) {
         ++touching;
       }
     }

@@ -7,9 +7,7 @@ namespace binpick::picking {
 
 void sortPicks(std::vector<Pick>& picks, const std::vector<DetectedPart>& parts, PickOrder order) {
   const auto height = [](const Pick& pick) { return pick.T_base_grasp.translation().z(); };
-  const auto score = [&parts](const Pick& pick) {
-    return parts[static_cast<std::size_t>(pick.object)].score;
-  };
+  const auto score = [&parts](const Pick& pick) { return parts[static_cast<std::size_t>(pick.object)].score; };
   // Tuples compare key by key; negating height and score makes them descend.
   const auto sortKey = [&](const Pick& pick) {
     switch (order) {
@@ -19,8 +17,7 @@ void sortPicks(std::vector<Pick>& picks, const std::vector<DetectedPart>& parts,
     }
     return std::make_tuple(-pick.rank, -height(pick), pick.object);
   };
-  std::sort(picks.begin(), picks.end(),
-            [&](const Pick& a, const Pick& b) { return sortKey(a) < sortKey(b); });
+  std::sort(picks.begin(), picks.end(), [&](const Pick& a, const Pick& b) { return sortKey(a) < sortKey(b); });
 }
 
 }  // namespace binpick::picking

@@ -26,8 +26,7 @@ bool isValidPart(const DetectedPart& part) {
   return std::isfinite(part.score) && std::isfinite(part.coverage) && isRigidPose(part.T_base_model, kPoseTolerance);
 }
 
-bool isNearAvoided(const Eigen::Vector3d& centre, const std::vector<Eigen::Vector3d>& avoid,
-                   double radius) {
+bool isNearAvoided(const Eigen::Vector3d& centre, const std::vector<Eigen::Vector3d>& avoid, double radius) {
   for (const Eigen::Vector3d& failed : avoid) {
     // A non-finite entry gives a NaN distance, which compares false: it avoids nothing.
     if ((centre - failed).squaredNorm() <= radius * radius) return true;
@@ -176,8 +175,8 @@ bool sealsOnSurface(Pick& pick, const PickParams& params, const MeasuredSurface*
 // terms add at most free + clearance weight, so once a candidate cannot reach the best full rank
 // neither can any after it. The result equals testing every candidate; usually the first
 // collision-free one ends the search.
-std::optional<Pick> bestAgainstCloud(std::vector<Pick> survivors, const PickParams& params,
-                                     const MeasuredScene& scene, const MeasuredSurface* surface, Reached& furthest) {
+std::optional<Pick> bestAgainstCloud(std::vector<Pick> survivors, const PickParams& params, const MeasuredScene& scene,
+                                     const MeasuredSurface* surface, Reached& furthest) {
   std::stable_sort(survivors.begin(), survivors.end(), [](const Pick& a, const Pick& b) { return a.rank > b.rank; });
   const RankWeights& w = params.ranking;
   PartCloudTests tests(scene, params);
@@ -243,14 +242,13 @@ const std::string kOwner = "picking";
 // Configured poses and rotations come from text with a few decimals: looser than double rounding.
 constexpr double kConfigTolerance = 1e-5;
 
-
 void validateGrasps(const std::vector<Grasp>& grasps) {
   core::requireField(!grasps.empty(), kOwner, "grasps", "at least one grasp", grasps.size());
   for (const Grasp& grasp : grasps) {
-    core::requireField(isRigidPose(grasp.T_model_grasp, kConfigTolerance), kOwner, "grasps",
-                 "finite rigid poses", grasp.name);
-    core::requireField(grasp.quality >= 0.0 && grasp.quality <= 1.0, kOwner, "grasps",
-                 "of quality in [0, 1]", grasp.name);
+    core::requireField(isRigidPose(grasp.T_model_grasp, kConfigTolerance), kOwner, "grasps", "finite rigid poses",
+                       grasp.name);
+    core::requireField(grasp.quality >= 0.0 && grasp.quality <= 1.0, kOwner, "grasps", "of quality in [0, 1]",
+                       grasp.name);
     core::requireField(isNonNegative(grasp.width), kOwner, "grasps", "of width >= 0", grasp.name);
   }
 }
@@ -260,21 +258,21 @@ void validateSymmetry(const PartSymmetry& symmetry) {
   core::requireField(!discrete.empty(), kOwner, "symmetry.discrete", "non-empty", "none");
   bool holds_identity = false;
   for (std::size_t i = 0; i < discrete.size(); ++i) {
-    core::requireField(isRotation(discrete[i], kConfigTolerance), kOwner, "symmetry.discrete",
-                 "rotations", "entry " + std::to_string(i));
+    core::requireField(isRotation(discrete[i], kConfigTolerance), kOwner, "symmetry.discrete", "rotations",
+                       "entry " + std::to_string(i));
     holds_identity |= discrete[i].isApprox(Eigen::Matrix3d::Identity(), kConfigTolerance);
   }
   core::requireField(holds_identity, kOwner, "symmetry.discrete", "holding the identity", "none");
   if (symmetry.continuous_axis) {
     const double length = symmetry.continuous_axis->norm();
     core::requireField(std::isfinite(length) && length > 1e-9, kOwner, "symmetry.continuous_axis",
-                 "a finite non-zero vector", length);
+                       "a finite non-zero vector", length);
   }
 }
 
 void validateBin(const BinBox& bin) {
-  core::requireField(isRigidPose(bin.T_base_bin, kConfigTolerance), kOwner, "bin.T_base_bin",
-               "a finite rigid pose", "not one");
+  core::requireField(isRigidPose(bin.T_base_bin, kConfigTolerance), kOwner, "bin.T_base_bin", "a finite rigid pose",
+                     "not one");
   core::requireField(isPositive(bin.length), kOwner, "bin.length", "> 0", bin.length);
   core::requireField(isPositive(bin.width), kOwner, "bin.width", "> 0", bin.width);
   core::requireField(isPositive(bin.wall_height), kOwner, "bin.wall_height", "> 0", bin.wall_height);
@@ -303,15 +301,13 @@ void PickParams::validate() const {
   validateGrasps(grasps);
   validateSymmetry(symmetry);
   validateBin(bin);
-  core::requireField(isNonNegative(approach_distance), kOwner, "approach_distance", ">= 0",
-               approach_distance);
+  core::requireField(isNonNegative(approach_distance), kOwner, "approach_distance", ">= 0", approach_distance);
   gripper.validate();
   core::requireField(isNonNegative(wall_clearance), kOwner, "wall_clearance", ">= 0", wall_clearance);
-  core::requireField(max_tilt_deg >= 0 && max_tilt_deg <= 180, kOwner, "max_tilt_deg", "in [0, 180]",
-               max_tilt_deg);
+  core::requireField(max_tilt_deg >= 0 && max_tilt_deg <= 180, kOwner, "max_tilt_deg", "in [0, 180]", max_tilt_deg);
   // The upper bound keeps a typo from multiplying the candidates (and the plan time) unboundedly.
   core::requireField(continuous_symmetry_steps >= 1 && continuous_symmetry_steps <= 3600, kOwner,
-               "continuous_symmetry_steps", "in [1, 3600]", continuous_symmetry_steps);
+                     "continuous_symmetry_steps", "in [1, 3600]", continuous_symmetry_steps);
   core::requireField(isNonNegative(avoid_radius), kOwner, "avoid_radius", ">= 0", avoid_radius);
   core::requireField(isNonNegative(collision_margin), kOwner, "collision_margin", ">= 0", collision_margin);
   core::requireField(isNonNegative(finger_clearance), kOwner, "finger_clearance", ">= 0", finger_clearance);

@@ -34,8 +34,8 @@ MeasuredSurface::MeasuredSurface(const io::PointCloud& cloud, const io::LensIntr
   if (cloud.width != camera.width || cloud.height != camera.height ||
       cloud.points.size() != static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height)) {
     throw core::Error("seal check: the cloud (" + std::to_string(cloud.width) + " x " + std::to_string(cloud.height) +
-                ") is not organized as the camera's image (" + std::to_string(camera.width) + " x " +
-                std::to_string(camera.height) + ")");
+                      ") is not organized as the camera's image (" + std::to_string(camera.width) + " x " +
+                      std::to_string(camera.height) + ")");
   }
 }
 
@@ -50,8 +50,8 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
   SealCheck result;
   bool flat = true;
   const auto pointAt = [&](long u, long v) -> const Eigen::Vector3f& {
-    return cloud_.points[static_cast<std::size_t>(v) * static_cast<std::size_t>(camera_.width) +
-                         static_cast<std::size_t>(u)];
+    return cloud_
+        .points[static_cast<std::size_t>(v) * static_cast<std::size_t>(camera_.width) + static_cast<std::size_t>(u)];
   };
   const auto offPlaneNear = [&](long u, long v, double limit, const auto& deviation) {
     for (long dv = -kEdgeSearch; dv <= kEdgeSearch; ++dv) {

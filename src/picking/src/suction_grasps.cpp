@@ -8,7 +8,7 @@ namespace {
 
 // The surface under a disc point may turn this far from the disc's plane and still seal.
 const double kSealNormalCos = std::cos(25.0 * M_PI / 180.0);
-constexpr int kRimRays = 32;   // the rim's points are then at most 0.5% of the radius apart inward
+constexpr int kRimRays = 32;  // the rim's points are then at most 0.5% of the radius apart inward
 constexpr int kInnerRays = 16;
 constexpr int kMarginRings = 4;  // rings at 1.25, 1.5, 1.75 and 2 cup radii measure the margin
 
@@ -34,7 +34,7 @@ class SealTest {
 
   bool pointSeals(const DiscFrame& disc, const Eigen::Vector3d& on_plane) const {
     const auto hit = surface_.castRay(on_plane + height_ * disc.normal, -disc.normal, height_ + tolerance_);
-    if (!hit) return false;  // a gap or past an edge
+    if (!hit) return false;                            // a gap or past an edge
     const double deviation = height_ - hit->distance;  // > 0: above the plane
     return std::abs(deviation) <= tolerance_ && hit->normal.dot(disc.normal) >= kSealNormalCos;
   }
@@ -45,7 +45,8 @@ class SealTest {
 };
 
 // Part points inside the cup (above the sealing surface) or the tool body behind it.
-bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp, const GripperParams& gripper) {
+bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp,
+                     const GripperParams& gripper) {
   const Eigen::Isometry3d T_grasp_model = T_model_grasp.inverse();
   const double cup_radius = 0.5 * gripper.cup_diameter;
   const double cup_top = -2.0 * gripper.seal_tolerance;  // the sealed surface itself is not in the way

@@ -129,7 +129,7 @@ SurfaceModel SurfaceModel::fromMesh(const io::TriangleMesh& mesh, const GraspGen
   if (!(area > 0.0)) throw core::Error("grasp generation model: the mesh has no area");
   // A closed mesh: its solid's centroid; an open one (no volume to speak of): its surface's.
   surface.centre_of_mass_ = std::abs(volume) > 1e-6 * area * std::sqrt(area) ? Eigen::Vector3d(volume_moment / volume)
-                                                                              : Eigen::Vector3d(area_moment / area);
+                                                                             : Eigen::Vector3d(area_moment / area);
   const std::vector<int> patch = growPatches(normals, edgeNeighbours(triangles));
   for (std::size_t t = 0; t < surface.primitives_.size(); ++t) surface.primitives_[t].patch = patch[t];
 
@@ -145,9 +145,9 @@ SurfaceModel SurfaceModel::fromMesh(const io::TriangleMesh& mesh, const GraspGen
   points.reserve(draws);
   for (std::size_t i = 0; i < draws; ++i) {
     const double pick = unit(random) * area;
-    const auto t = static_cast<std::size_t>(std::min<std::ptrdiff_t>(
-        std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(),
-        static_cast<std::ptrdiff_t>(areas.size()) - 1));
+    const auto t = static_cast<std::size_t>(
+        std::min<std::ptrdiff_t>(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin(),
+                                 static_cast<std::ptrdiff_t>(areas.size()) - 1));
     const double r1 = std::sqrt(unit(random)), r2 = unit(random);
     const Primitive& tri = surface.primitives_[t];
     points.push_back((1.0 - r1) * tri.a + r1 * (1.0 - r2) * tri.b + r1 * r2 * tri.c);
@@ -197,7 +197,8 @@ SurfaceModel SurfaceModel::fromCloud(const io::PointCloud& cloud, const GraspGen
     double best = 4.0 * surface.cell_size_;
     for (int cell : cells) {
       for (int j : surface.cells_[static_cast<std::size_t>(cell)]) {
-        if (static_cast<std::size_t>(j) != i) best = std::min(best, (points[static_cast<std::size_t>(j)] - points[i]).norm());
+        if (static_cast<std::size_t>(j) != i)
+          best = std::min(best, (points[static_cast<std::size_t>(j)] - points[i]).norm());
       }
     }
     nearest[i] = best;
@@ -280,8 +281,7 @@ int SurfaceModel::cellIndex(const Eigen::Vector3d& point) const {
 
 void SurfaceModel::cellsOf(const Eigen::Vector3d& low, const Eigen::Vector3d& high, std::vector<int>& cells) const {
   cells.clear();
-  const Eigen::Vector3i from =
-      ((low - grid_origin_) / cell_size_).array().floor().cast<int>().max(0);
+  const Eigen::Vector3i from = ((low - grid_origin_) / cell_size_).array().floor().cast<int>().max(0);
   const Eigen::Vector3i to =
       ((high - grid_origin_) / cell_size_).array().floor().cast<int>().min(grid_dims_.array() - 1);
   for (int z = from.z(); z <= to.z(); ++z) {

@@ -43,9 +43,9 @@ class SurfaceModel {
   double radius() const { return radius_; }  // farthest obstacle point from the centre of mass
 
   struct Primitive {
-    Eigen::Vector3d a, b, c;  // triangle corners; a disc: a = centre, b = c unused
-    Eigen::Vector3d normal;   // outward, unit
-    double disc_radius = 0.0; // > 0: a disc (a cloud's point)
+    Eigen::Vector3d a, b, c;   // triangle corners; a disc: a = centre, b = c unused
+    Eigen::Vector3d normal;    // outward, unit
+    double disc_radius = 0.0;  // > 0: a disc (a cloud's point)
     int patch = 0;
   };
 

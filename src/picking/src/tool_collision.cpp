@@ -161,13 +161,14 @@ void baseBounds(const ToolVolume& tool, const Eigen::Isometry3d& T_base_grasp, d
 
 void MeasuredSceneParams::validate() const {
   core::requireField(std::isfinite(thin_step) && thin_step >= 1e-4, "measured_scene", "thin_step", ">= 0.0001 m",
-               thin_step);
+                     thin_step);
 }
 
 MeasuredScene::MeasuredScene(const io::PointCloud& cloud, const Eigen::Isometry3d& T_base_camera,
                              const MeasuredSceneParams& params) {
   params.validate();
-  if (!isRigidPose(T_base_camera, kPoseTolerance)) throw core::Error("measured scene: T_base_camera is not a rigid pose");
+  if (!isRigidPose(T_base_camera, kPoseTolerance))
+    throw core::Error("measured scene: T_base_camera is not a rigid pose");
   const double step = params.thin_step;
   const int stride = pixelStride(cloud, step);
   const Eigen::Isometry3f transform = T_base_camera.cast<float>();
@@ -251,8 +252,8 @@ double MeasuredScene::shareCoveredAbove(const Eigen::Vector3d& point, double rad
     for (int x = cells.x0; x <= cells.x1; ++x) {
       const Eigen::Vector2d centre = origin_ + cell_size_ * Eigen::Vector2d(x + 0.5, y + 0.5);
       if ((centre - point.head<2>()).squaredNorm() > radius * radius) continue;
-      const std::size_t cell = static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) +
-                               static_cast<std::size_t>(x);
+      const std::size_t cell =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) + static_cast<std::size_t>(x);
       if (cell_start_[cell] == cell_start_[cell + 1]) continue;
       ++occupied;
       covered += heights_[cell_start_[cell + 1] - 1] > limit ? 1 : 0;  // the column's top

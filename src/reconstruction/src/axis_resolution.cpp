@@ -5,8 +5,9 @@
 
 namespace binpick::reconstruction::detail {
 
-BINPICK_SIMD_PASS void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain, int longest,
-                              int last_index, float* __restrict centre, uint8_t* __restrict verdict, int width) {
+BINPICK_SIMD_PASS void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain,
+                                         int longest, int last_index, float* __restrict centre,
+                                         uint8_t* __restrict verdict, int width) {
   for (int x = 0; x < width; ++x) {
     const uint32_t u = uncertain[x];
     const uint32_t low = grayDecode16(code[x] & ~u);
@@ -20,9 +21,10 @@ BINPICK_SIMD_PASS void resolveSimpleRuns(const uint16_t* __restrict code, const 
 }
 
 BINPICK_SIMD_PASS void unwrapSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain,
-                             const float* __restrict phase_offset, const float* __restrict phase_amplitude,
-                             const uint8_t* __restrict phase_clipped, const AxisLayout& axis, const DecodeThresholds& t,
-                             float* __restrict position, uint8_t* __restrict verdict, int width) {
+                                        const float* __restrict phase_offset, const float* __restrict phase_amplitude,
+                                        const uint8_t* __restrict phase_clipped, const AxisLayout& axis,
+                                        const DecodeThresholds& t, float* __restrict position,
+                                        uint8_t* __restrict verdict, int width) {
   const float period = static_cast<float>(axis.phase_period);
   const float inverse_period = 1.0f / period;
   const float reach = 0.5f + t.phase_tolerance;
@@ -39,8 +41,9 @@ BINPICK_SIMD_PASS void unwrapSimpleRuns(const uint16_t* __restrict code, const u
     const float unwrapped = offset + period * nearestWhole((centre - offset) * inverse_period);
     const bool inside =
         (unwrapped >= first - reach) & (unwrapped <= last + reach) & (phase_amplitude[x] >= min_amplitude);
-    const uint8_t status = phase_clipped[x] ? static_cast<uint8_t>(PixelStatus::Saturated)
-                                            : static_cast<uint8_t>(inside ? PixelStatus::Valid : PixelStatus::PhaseMismatch);
+    const uint8_t status = phase_clipped[x]
+                               ? static_cast<uint8_t>(PixelStatus::Saturated)
+                               : static_cast<uint8_t>(inside ? PixelStatus::Valid : PixelStatus::PhaseMismatch);
     position[x] = unwrapped;
     verdict[x] = verdict[x] == kNeedsFullResolution ? kNeedsFullResolution : status;
   }

@@ -13,8 +13,8 @@
 namespace binpick::reconstruction::detail {
 
 struct AxisSample {
-  uint32_t code = 0;       // Gray code as read, most significant bit first
-  uint32_t uncertain = 0;  // bits that could not be classified
+  uint32_t code = 0;          // Gray code as read, most significant bit first
+  uint32_t uncertain = 0;     // bits that could not be classified
   float phase_offset = 0.0f;  // projector pixels within one period, from the phase
   float phase_amplitude = 0.0f;
   bool phase_clipped = false;

@@ -10,8 +10,7 @@ namespace binpick::reconstruction::detail {
 namespace {
 
 std::string describe(const io::PatternSetSpec& spec) {
-  std::string text = std::to_string(spec.projector_width) + "x" +
-                     std::to_string(spec.projector_height) + " projector";
+  std::string text = std::to_string(spec.projector_width) + "x" + std::to_string(spec.projector_height) + " projector";
   if (spec.column_codes) text += ", column codes";
   if (spec.row_codes) text += ", row codes";
   return text + ", " + std::to_string(spec.phase_steps) + " phase steps";
@@ -20,13 +19,13 @@ std::string describe(const io::PatternSetSpec& spec) {
 void checkNames(const io::CaptureMetadata& metadata, const std::vector<Pattern>& sequence) {
   const std::string set = "the pattern set (" + describe(metadata.pattern_set) + ")";
   if (metadata.patterns.size() != sequence.size()) {
-    throw core::Error("capture: " + std::to_string(metadata.patterns.size()) + " patterns listed but " +
-                set + " has " + std::to_string(sequence.size()));
+    throw core::Error("capture: " + std::to_string(metadata.patterns.size()) + " patterns listed but " + set + " has " +
+                      std::to_string(sequence.size()));
   }
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     if (metadata.patterns[i] == sequence[i].name()) continue;
-    throw core::Error("capture: image " + std::to_string(i) + " is '" + metadata.patterns[i] + "' but " +
-                set + " expects '" + sequence[i].name() + "' there");
+    throw core::Error("capture: image " + std::to_string(i) + " is '" + metadata.patterns[i] + "' but " + set +
+                      " expects '" + sequence[i].name() + "' there");
   }
 }
 
@@ -34,7 +33,7 @@ void checkImages(const io::Capture& capture) {
   const io::CaptureMetadata& metadata = capture.metadata;
   if (capture.images.size() != metadata.patterns.size()) {
     throw core::Error("capture: " + std::to_string(capture.images.size()) + " images for " +
-                std::to_string(metadata.patterns.size()) + " patterns");
+                      std::to_string(metadata.patterns.size()) + " patterns");
   }
   if (metadata.bit_depth != 8 && metadata.bit_depth != 16) {
     throw core::Error("capture: bit depth must be 8 or 16 (got " + std::to_string(metadata.bit_depth) + ")");
@@ -45,12 +44,11 @@ void checkImages(const io::Capture& capture) {
     const std::string name = "capture: image " + std::to_string(i) + " (" + metadata.patterns[i] + ")";
     if (image.cols != metadata.image_width || image.rows != metadata.image_height) {
       throw core::Error(name + " is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                  ", the metadata says " + std::to_string(metadata.image_width) + "x" +
-                  std::to_string(metadata.image_height));
+                        ", the metadata says " + std::to_string(metadata.image_width) + "x" +
+                        std::to_string(metadata.image_height));
     }
     if (image.type() != type) {
-      throw core::Error(name + " is not a single-channel " + std::to_string(metadata.bit_depth) +
-                  "-bit image");
+      throw core::Error(name + " is not a single-channel " + std::to_string(metadata.bit_depth) + "-bit image");
     }
   }
   if (metadata.image_width <= 0 || metadata.image_height <= 0) {

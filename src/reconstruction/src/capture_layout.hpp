@@ -9,8 +9,8 @@ namespace binpick::reconstruction::detail {
 
 struct AxisLayout {
   bool present = false;
-  int size = 0;                   // projector columns (or rows)
-  std::vector<int> bit_images;    // image index of Gray bit j (most significant first)
+  int size = 0;                 // projector columns (or rows)
+  std::vector<int> bit_images;  // image index of Gray bit j (most significant first)
   std::vector<int> inverse_images;
   std::vector<int> phase_images;  // one per phase step; empty without phase shift
   int phase_period = 0;           // projector pixels
@@ -26,7 +26,7 @@ struct CaptureLayout {
   int black = -1;
   AxisLayout columns;
   AxisLayout rows;
-  int width = 0;   // camera image size
+  int width = 0;  // camera image size
   int height = 0;
   int bit_depth = 8;
 };

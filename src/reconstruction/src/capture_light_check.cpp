@@ -68,20 +68,21 @@ std::vector<PixelSample> checkExposure(const io::Capture& capture, const std::ve
   for (const PixelSample& s : samples) {
     if (s.white - s.black < t.min_contrast) continue;
     ++lit;
-    if (s.white >= t.saturation) ++clipped;
-    else if (s.white - s.black >= 4.0f * t.min_contrast) strong.push_back(s);
+    if (s.white >= t.saturation)
+      ++clipped;
+    else if (s.white - s.black >= 4.0f * t.min_contrast)
+      strong.push_back(s);
   }
   if (lit == 0) {
     throw core::Error("capture: the white image " + imageName(capture, plan.layout.white) +
-                " is nowhere brighter than the black one by min_contrast (" +
-                decimal(params.min_contrast) +
-                " counts): the projector did not light the scene, or the exposure is far too short");
+                      " is nowhere brighter than the black one by min_contrast (" + decimal(params.min_contrast) +
+                      " counts): the projector did not light the scene, or the exposure is far too short");
   }
   const double clipped_fraction = static_cast<double>(clipped) / static_cast<double>(lit);
   if (clipped_fraction > params.max_saturated_fraction) {
     throw core::Error("capture: the white image is saturated on " + percent(clipped_fraction) +
-                " of the lit pixels (max_saturated_fraction " + percent(params.max_saturated_fraction) +
-                "): shorten the exposure or lower the gain");
+                      " of the lit pixels (max_saturated_fraction " + percent(params.max_saturated_fraction) +
+                      "): shorten the exposure or lower the gain");
   }
   return strong;
 }
@@ -99,9 +100,9 @@ void checkPair(const io::Capture& capture, const std::vector<PixelSample>& stron
   deviation /= static_cast<double>(strong.size());
   if (deviation <= params.max_pair_sum_error) return;
   throw core::Error("capture: images " + imageName(capture, pattern) + " and " + imageName(capture, inverse) +
-              " do not add up to white + black (mean deviation " + decimal(deviation) +
-              " of white - black, max_pair_sum_error " + decimal(params.max_pair_sum_error) +
-              "): a frame is missing, black or out of order");
+                    " do not add up to white + black (mean deviation " + decimal(deviation) +
+                    " of white - black, max_pair_sum_error " + decimal(params.max_pair_sum_error) +
+                    "): a frame is missing, black or out of order");
 }
 
 // Over many pixels (many phases), every phase step averages to half of white above black; a
@@ -116,9 +117,9 @@ void checkPhaseStep(const io::Capture& capture, const std::vector<PixelSample>& 
   const double deviation = std::fabs(2.0 * share / static_cast<double>(strong.size()) - 1.0);
   if (deviation <= params.max_pair_sum_error) return;
   throw core::Error("capture: phase image " + imageName(capture, image) +
-              " does not average to half of white above black (deviation " + decimal(deviation) +
-              ", max_pair_sum_error " + decimal(params.max_pair_sum_error) +
-              "): a frame is missing, black or out of order");
+                    " does not average to half of white above black (deviation " + decimal(deviation) +
+                    ", max_pair_sum_error " + decimal(params.max_pair_sum_error) +
+                    "): a frame is missing, black or out of order");
 }
 
 template <typename Pixel>

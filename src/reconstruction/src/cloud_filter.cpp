@@ -21,15 +21,14 @@ bool hasNaN(const Eigen::Vector3d& v) { return v.array().isNaN().any(); }
 
 void checkInputs(const io::PointCloud& cloud, const cv::Mat& status) {
   if (!cloud.isOrganized()) {
-    throw core::Error("filterCloud: the cloud must be organized (got " + std::to_string(cloud.width) +
-                "x" + std::to_string(cloud.height) + " for " + std::to_string(cloud.size()) +
-                " points)");
+    throw core::Error("filterCloud: the cloud must be organized (got " + std::to_string(cloud.width) + "x" +
+                      std::to_string(cloud.height) + " for " + std::to_string(cloud.size()) + " points)");
   }
   if (status.type() != CV_8UC1 || status.cols != cloud.width || status.rows != cloud.height) {
     throw core::Error("filterCloud: the status image must be CV_8UC1 of the cloud's size " +
-                std::to_string(cloud.width) + "x" + std::to_string(cloud.height) + " (got " +
-                std::to_string(status.cols) + "x" + std::to_string(status.rows) + " of type " +
-                std::to_string(status.type()) + ")");
+                      std::to_string(cloud.width) + "x" + std::to_string(cloud.height) + " (got " +
+                      std::to_string(status.cols) + "x" + std::to_string(status.rows) + " of type " +
+                      std::to_string(status.type()) + ")");
   }
 }
 
@@ -57,8 +56,9 @@ void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
 }
 
 void applySpeckle(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
-  const std::vector<uint8_t> speckle = detail::findSpeckles(
-      cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels, core::resolveThreadCount(params.threads));
+  const std::vector<uint8_t> speckle =
+      detail::findSpeckles(cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels,
+                           core::resolveThreadCount(params.threads));
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
@@ -72,13 +72,12 @@ void applySpeckle(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParam
 
 void CloudFilterParams::validate() const {
   require(std::isfinite(min_depth) && min_depth >= 0.0, "min_depth", "finite and >= 0", min_depth);
-  require(!std::isnan(max_depth) && max_depth > min_depth, "max_depth", "above min_depth",
-          max_depth);
+  require(!std::isnan(max_depth) && max_depth > min_depth, "max_depth", "above min_depth", max_depth);
   // A NaN corner would make the box non-empty yet contain nothing: every point would go.
-  core::requireField(!hasNaN(crop.min()) && !hasNaN(crop.max()), "CloudFilterParams", "crop",
-               "free of NaN", "a NaN corner");
-  require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step",
-          "positive and finite", speckle_max_step);
+  core::requireField(!hasNaN(crop.min()) && !hasNaN(crop.max()), "CloudFilterParams", "crop", "free of NaN",
+                     "a NaN corner");
+  require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step", "positive and finite",
+          speckle_max_step);
   require(speckle_min_pixels >= 0, "speckle_min_pixels", ">= 0", speckle_min_pixels);
   require(threads >= 0, "threads", ">= 0", threads);
 }

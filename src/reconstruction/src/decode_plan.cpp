@@ -43,9 +43,9 @@ void checkUnwrappable(const AxisLayout& axis, const DecodeParams& params) {
   const double window = params.max_code_run_with_phase + 2.0 * params.max_phase_gray_disagreement;
   if (window < axis.phase_period) return;
   throw core::Error("decode: phase period " + std::to_string(axis.phase_period) +
-              " px is too short to unwrap with max_code_run_with_phase " +
-              std::to_string(params.max_code_run_with_phase) + " and max_phase_gray_disagreement " +
-              std::to_string(params.max_phase_gray_disagreement));
+                    " px is too short to unwrap with max_code_run_with_phase " +
+                    std::to_string(params.max_code_run_with_phase) + " and max_phase_gray_disagreement " +
+                    std::to_string(params.max_phase_gray_disagreement));
 }
 
 PhaseWeights phaseWeights(const AxisLayout& axis) {

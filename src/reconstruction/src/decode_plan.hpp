@@ -15,10 +15,10 @@ struct DecodeThresholds {
   float min_direct = 0.0f;
   float black_level = 0.0f;  // Moreno & Taubin's b (a ratio, not counts)
   float min_bit_difference = 0.0f;
-  float bit_margin = 0.0f;   // a ratio of L_d
+  float bit_margin = 0.0f;  // a ratio of L_d
   float min_phase_amplitude = 0.0f;
   float phase_tolerance = 0.0f;  // projector pixels
-  float saturation = 0.0f;   // a value at or above it was clipped by the sensor
+  float saturation = 0.0f;       // a value at or above it was clipped by the sensor
   float full_scale = 255.0f;
   int max_run_without_phase = 2;
   int max_run_with_phase = 4;

@@ -12,8 +12,9 @@ inline float fastAtan2(float y, float x) {
   const float ratio = std::min(ax, ay) / (std::max(ax, ay) + 1e-30f);
   const float s = ratio * ratio;
   // Minimax polynomial of atan on [0, 1] (odd, degree 11).
-  float angle = ((((((-0.0117212f * s + 0.05265332f) * s - 0.11643287f) * s + 0.19354346f) * s -
-                   0.33262347f) * s + 0.99997726f)) * ratio;
+  float angle = ((((((-0.0117212f * s + 0.05265332f) * s - 0.11643287f) * s + 0.19354346f) * s - 0.33262347f) * s +
+                  0.99997726f)) *
+                ratio;
   angle = ay > ax ? 1.57079637f - angle : angle;
   angle = x < 0.0f ? 3.14159274f - angle : angle;
   return y < 0.0f ? -angle : angle;

@@ -9,8 +9,7 @@
 namespace binpick::reconstruction {
 namespace {
 
-void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, int size,
-                const io::PatternSetSpec& spec) {
+void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, int size, const io::PatternSetSpec& spec) {
   for (int bit = 0; bit < grayCodeBits(size); ++bit) {
     sequence.push_back({PatternKind::GrayBit, axis, bit});
     sequence.push_back({PatternKind::GrayBitInverse, axis, bit});
@@ -45,8 +44,7 @@ std::string Pattern::name() const {
 
 std::vector<Pattern> patternSequence(const io::PatternSetSpec& spec) {
   spec.validate();
-  std::vector<Pattern> sequence{{PatternKind::White, PatternAxis::None, 0},
-                                {PatternKind::Black, PatternAxis::None, 0}};
+  std::vector<Pattern> sequence{{PatternKind::White, PatternAxis::None, 0}, {PatternKind::Black, PatternAxis::None, 0}};
   if (spec.column_codes) appendAxis(sequence, PatternAxis::Columns, spec.projector_width, spec);
   if (spec.row_codes) appendAxis(sequence, PatternAxis::Rows, spec.projector_height, spec);
   return sequence;
@@ -66,19 +64,16 @@ int grayCodeBits(int size) {
 
 double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int coordinate) {
   switch (pattern.kind) {
-    case PatternKind::White:
-      return 1.0;
-    case PatternKind::Black:
-      return 0.0;
+    case PatternKind::White: return 1.0;
+    case PatternKind::Black: return 0.0;
     case PatternKind::GrayBit:
     case PatternKind::GrayBitInverse: {
       const int bits = grayCodeBits(axisSize(pattern.axis, spec));
       if (pattern.index < 0 || pattern.index >= bits) {
-        throw core::Error("patternBrightness: Gray-code bit " + std::to_string(pattern.index) +
-                    " of " + pattern.name() + " is outside [0, " + std::to_string(bits) + ")");
+        throw core::Error("patternBrightness: Gray-code bit " + std::to_string(pattern.index) + " of " +
+                          pattern.name() + " is outside [0, " + std::to_string(bits) + ")");
       }
-      const unsigned bit =
-          (grayCode(static_cast<unsigned>(coordinate)) >> (bits - 1 - pattern.index)) & 1u;
+      const unsigned bit = (grayCode(static_cast<unsigned>(coordinate)) >> (bits - 1 - pattern.index)) & 1u;
       return (pattern.kind == PatternKind::GrayBit) == (bit == 1u) ? 1.0 : 0.0;
     }
     case PatternKind::PhaseStep: {

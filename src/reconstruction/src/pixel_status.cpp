@@ -10,9 +10,8 @@ namespace {
 
 // Indexed by the enum's value; the static_assert keeps the two in step.
 constexpr const char* kNames[] = {
-    "valid",          "unlit",        "saturated",       "uncertain_code",     "code_out_of_range",
-    "phase_mismatch", "inconsistent", "no_intersection", "out_of_depth_range", "outside_crop",
-    "speckle",
+    "valid",        "unlit",           "saturated",          "uncertain_code", "code_out_of_range", "phase_mismatch",
+    "inconsistent", "no_intersection", "out_of_depth_range", "outside_crop",   "speckle",
 };
 static_assert(sizeof(kNames) / sizeof(kNames[0]) == kPixelStatusCount);
 static_assert(static_cast<std::size_t>(PixelStatus::Speckle) + 1 == kPixelStatusCount);
@@ -28,8 +27,8 @@ const char* statusName(PixelStatus status) {
 
 StatusCounts countStatuses(const cv::Mat& status) {
   if (status.type() != CV_8UC1) {
-    throw core::Error("countStatuses: the status image must be CV_8UC1 (got type " +
-                std::to_string(status.type()) + ")");
+    throw core::Error("countStatuses: the status image must be CV_8UC1 (got type " + std::to_string(status.type()) +
+                      ")");
   }
   // A full byte histogram without a check per pixel, in four interleaved copies so that
   // increments of runs of equal values do not wait on each other; the check comes after.
@@ -51,7 +50,7 @@ StatusCounts countStatuses(const cv::Mat& status) {
     if (count == 0) continue;
     if (value >= kPixelStatusCount) {
       throw core::Error("countStatuses: " + std::to_string(count) + " pixels hold " + std::to_string(value) +
-                  ", which is no PixelStatus");
+                        ", which is no PixelStatus");
     }
     counts[value] = count;
   }

@@ -13,8 +13,8 @@ void requireCameraSize(const io::Capture& capture, const io::RigCalibration& rig
   const io::CaptureMetadata& m = capture.metadata;
   if (m.image_width == rig.camera.width && m.image_height == rig.camera.height) return;
   throw core::Error("capture: images are " + std::to_string(m.image_width) + "x" + std::to_string(m.image_height) +
-              " but the calibration's camera is " + std::to_string(rig.camera.width) + "x" +
-              std::to_string(rig.camera.height));
+                    " but the calibration's camera is " + std::to_string(rig.camera.width) + "x" +
+                    std::to_string(rig.camera.height));
 }
 
 // The white image, scaled, for every pixel: also where there is no point, as a camera image.

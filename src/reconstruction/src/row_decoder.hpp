@@ -28,7 +28,7 @@ struct AxisRow {
   std::vector<float> phase_offset;  // projector pixels, the position within one period
   std::vector<float> phase_amplitude;
   std::vector<uint8_t> phase_clipped;
-  std::vector<float> position;     // resolveSimpleCodes' results
+  std::vector<float> position;  // resolveSimpleCodes' results
   std::vector<uint8_t> verdict;
 };
 

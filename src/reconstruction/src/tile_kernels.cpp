@@ -52,18 +52,21 @@ BINPICK_SIMD_PASS void flagPixels(const Pixel* __restrict white, const Pixel* __
 }
 
 template <typename Pixel, typename Work>
-BINPICK_SIMD_PASS void addToBlack(const Pixel* __restrict black, const float* __restrict counts, Work* __restrict out, int width) {
+BINPICK_SIMD_PASS void addToBlack(const Pixel* __restrict black, const float* __restrict counts, Work* __restrict out,
+                                  int width) {
   for (int x = 0; x < width; ++x) out[x] = level<Work>(static_cast<float>(black[x]) + counts[x]);
 }
 
 template <typename Work>
-BINPICK_SIMD_PASS void bitMargins(const float* __restrict direct, float least, float ratio, Work* __restrict out, int width) {
+BINPICK_SIMD_PASS void bitMargins(const float* __restrict direct, float least, float ratio, Work* __restrict out,
+                                  int width) {
   for (int x = 0; x < width; ++x) out[x] = ceilingLevel<Work>(std::max(least, ratio * direct[x]));
 }
 
 template <typename Work>
 BINPICK_SIMD_PASS bool directLightOnly(const uint8_t* __restrict lit, const uint8_t* __restrict white_clipped,
-                     const Work* __restrict direct_level, const Work* __restrict global_level, int width) {
+                                       const Work* __restrict direct_level, const Work* __restrict global_level,
+                                       int width) {
   int exceptions = 0;
   for (int x = 0; x < width; ++x) {
     exceptions += lit[x] & (white_clipped[x] | static_cast<uint8_t>(direct_level[x] <= global_level[x]));
@@ -73,9 +76,9 @@ BINPICK_SIMD_PASS bool directLightOnly(const uint8_t* __restrict lit, const uint
 
 template <typename Pixel, typename Work>
 BINPICK_SIMD_PASS void classifyBit(const Pixel* __restrict pattern, const Pixel* __restrict inverse,
-                 const Work* __restrict direct_level, const Work* __restrict global_level,
-                 const Work* __restrict margin, Work clip, uint16_t* __restrict code,
-                 uint16_t* __restrict uncertain, int width) {
+                                   const Work* __restrict direct_level, const Work* __restrict global_level,
+                                   const Work* __restrict margin, Work clip, uint16_t* __restrict code,
+                                   uint16_t* __restrict uncertain, int width) {
   for (int x = 0; x < width; ++x) {
     const Work p = static_cast<Work>(pattern[x]);
     const Work q = static_cast<Work>(inverse[x]);
@@ -97,8 +100,8 @@ BINPICK_SIMD_PASS void classifyBit(const Pixel* __restrict pattern, const Pixel*
 
 template <typename Pixel, typename Work>
 BINPICK_SIMD_PASS void classifyDirectBit(const Pixel* __restrict pattern, const Pixel* __restrict inverse,
-                       const Work* __restrict margin, uint16_t* __restrict code, uint16_t* __restrict uncertain,
-                       int width) {
+                                         const Work* __restrict margin, uint16_t* __restrict code,
+                                         uint16_t* __restrict uncertain, int width) {
   for (int x = 0; x < width; ++x) {
     const Work difference = static_cast<Work>(static_cast<Work>(pattern[x]) - static_cast<Work>(inverse[x]));
     const Work spread = difference < 0 ? static_cast<Work>(-difference) : difference;
@@ -119,8 +122,8 @@ BINPICK_SIMD_PASS void accumulatePhase(const Pixel* __restrict values, float sin
   }
 }
 
-BINPICK_SIMD_PASS void phaseFromSums(const float* __restrict brightest, float clip, float to_amplitude,
-                                     float to_pixels, float* __restrict sine_sum, float* __restrict cosine_sum,
+BINPICK_SIMD_PASS void phaseFromSums(const float* __restrict brightest, float clip, float to_amplitude, float to_pixels,
+                                     float* __restrict sine_sum, float* __restrict cosine_sum,
                                      uint8_t* __restrict clipped, int width) {
   for (int x = 0; x < width; ++x) {
     const float sn = sine_sum[x];
@@ -130,7 +133,6 @@ BINPICK_SIMD_PASS void phaseFromSums(const float* __restrict brightest, float cl
     clipped[x] = static_cast<uint8_t>(brightest[x] >= clip);
   }
 }
-
 
 template void widenRange<uint8_t>(const uint8_t*, float*, float*, int);
 template void widenRange<uint16_t>(const uint16_t*, float*, float*, int);
@@ -148,12 +150,12 @@ template bool directLightOnly<int16_t>(const uint8_t*, const uint8_t*, const int
 template bool directLightOnly<float>(const uint8_t*, const uint8_t*, const float*, const float*, int);
 template void classifyBit<uint8_t, int16_t>(const uint8_t*, const uint8_t*, const int16_t*, const int16_t*,
                                             const int16_t*, int16_t, uint16_t*, uint16_t*, int);
-template void classifyBit<uint16_t, float>(const uint16_t*, const uint16_t*, const float*, const float*,
-                                           const float*, float, uint16_t*, uint16_t*, int);
-template void classifyDirectBit<uint8_t, int16_t>(const uint8_t*, const uint8_t*, const int16_t*, uint16_t*,
-                                                  uint16_t*, int);
-template void classifyDirectBit<uint16_t, float>(const uint16_t*, const uint16_t*, const float*, uint16_t*,
-                                                 uint16_t*, int);
+template void classifyBit<uint16_t, float>(const uint16_t*, const uint16_t*, const float*, const float*, const float*,
+                                           float, uint16_t*, uint16_t*, int);
+template void classifyDirectBit<uint8_t, int16_t>(const uint8_t*, const uint8_t*, const int16_t*, uint16_t*, uint16_t*,
+                                                  int);
+template void classifyDirectBit<uint16_t, float>(const uint16_t*, const uint16_t*, const float*, uint16_t*, uint16_t*,
+                                                 int);
 template void accumulatePhase<uint8_t>(const uint8_t*, float, float, float*, float*, float*, int);
 template void accumulatePhase<uint16_t>(const uint16_t*, float, float, float*, float*, float*, int);
 }  // namespace binpick::reconstruction::detail

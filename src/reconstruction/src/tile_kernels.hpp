@@ -39,8 +39,7 @@ inline Work ceilingLevel(float counts) {
 template <typename Pixel>
 void widenRange(const Pixel* __restrict values, float* __restrict high, float* __restrict low, int width);
 template <typename Pixel>
-void separateLight(const Pixel* __restrict black, float b, float* __restrict high, float* __restrict low,
-                   int width);
+void separateLight(const Pixel* __restrict black, float b, float* __restrict high, float* __restrict low, int width);
 // out = black + counts, as a level.
 template <typename Pixel, typename Work>
 void addToBlack(const Pixel* __restrict black, const float* __restrict counts, Work* __restrict out, int width);
@@ -64,16 +63,14 @@ bool directLightOnly(const uint8_t* __restrict lit, const uint8_t* __restrict wh
 // sensor clipped are uncertain. The levels include black, so raw values compare directly. Shifts
 // the bit into `code` and its doubt into `uncertain`.
 template <typename Pixel, typename Work>
-void classifyBit(const Pixel* __restrict pattern, const Pixel* __restrict inverse,
-                 const Work* __restrict direct_level, const Work* __restrict global_level,
-                 const Work* __restrict margin, Work clip, uint16_t* __restrict code,
-                 uint16_t* __restrict uncertain, int width);
+void classifyBit(const Pixel* __restrict pattern, const Pixel* __restrict inverse, const Work* __restrict direct_level,
+                 const Work* __restrict global_level, const Work* __restrict margin, Work clip,
+                 uint16_t* __restrict code, uint16_t* __restrict uncertain, int width);
 // The same for tiles where directLightOnly holds (most tiles of a bin): the brighter of pattern
 // and inverse wins, near-ties are uncertain. A third of the work.
 template <typename Pixel, typename Work>
-void classifyDirectBit(const Pixel* __restrict pattern, const Pixel* __restrict inverse,
-                       const Work* __restrict margin, uint16_t* __restrict code, uint16_t* __restrict uncertain,
-                       int width);
+void classifyDirectBit(const Pixel* __restrict pattern, const Pixel* __restrict inverse, const Work* __restrict margin,
+                       uint16_t* __restrict code, uint16_t* __restrict uncertain, int width);
 
 // Phase. Adds one step I_k to the sums of I_k sin(2 pi k/N) and I_k cos(2 pi k/N) and tracks the
 // brightest step; phaseFromSums turns the sums, in place, into the phase offset (projector pixels
@@ -82,7 +79,6 @@ template <typename Pixel>
 void accumulatePhase(const Pixel* __restrict values, float sine, float cosine, float* __restrict sine_sum,
                      float* __restrict cosine_sum, float* __restrict brightest, int width);
 void phaseFromSums(const float* __restrict brightest, float clip, float to_amplitude, float to_pixels,
-                   float* __restrict sine_sum, float* __restrict cosine_sum, uint8_t* __restrict clipped,
-                   int width);
+                   float* __restrict sine_sum, float* __restrict cosine_sum, uint8_t* __restrict clipped, int width);
 
 }  // namespace binpick::reconstruction::detail

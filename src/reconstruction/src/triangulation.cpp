@@ -22,17 +22,16 @@ namespace {
 void requireImage(const cv::Mat& image, int type, const DecodedCapture& decoded, const char* name) {
   if (image.rows == decoded.height && image.cols == decoded.width && image.type() == type) return;
   throw core::Error(std::string("Triangulator::triangulate: decoded.") + name + " must be " +
-              std::to_string(decoded.width) + "x" + std::to_string(decoded.height) + " of type " +
-              std::to_string(type) + " (got " + std::to_string(image.cols) + "x" +
-              std::to_string(image.rows) + " of type " + std::to_string(image.type()) + ")");
+                    std::to_string(decoded.width) + "x" + std::to_string(decoded.height) + " of type " +
+                    std::to_string(type) + " (got " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                    " of type " + std::to_string(image.type()) + ")");
 }
 
 void checkDecoded(const DecodedCapture& decoded, const io::LensIntrinsics& camera) {
   if (decoded.width != camera.width || decoded.height != camera.height) {
-    throw core::Error("Triangulator::triangulate: the decoded capture is " +
-                std::to_string(decoded.width) + "x" + std::to_string(decoded.height) +
-                " but the camera is " + std::to_string(camera.width) + "x" +
-                std::to_string(camera.height));
+    throw core::Error("Triangulator::triangulate: the decoded capture is " + std::to_string(decoded.width) + "x" +
+                      std::to_string(decoded.height) + " but the camera is " + std::to_string(camera.width) + "x" +
+                      std::to_string(camera.height));
   }
   requireImage(decoded.column, CV_32FC1, decoded, "column");
   requireImage(decoded.status, CV_8UC1, decoded, "status");
@@ -43,7 +42,7 @@ void checkDecoded(const DecodedCapture& decoded, const io::LensIntrinsics& camer
 
 void TriangulationParams::validate() const {
   core::requireField(std::isfinite(max_epipolar_error) && max_epipolar_error > 0.0, "TriangulationParams",
-               "max_epipolar_error", "positive and finite", max_epipolar_error);
+                     "max_epipolar_error", "positive and finite", max_epipolar_error);
   core::requireField(threads >= 0, "TriangulationParams", "threads", ">= 0", threads);
 }
 
@@ -91,8 +90,7 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
       in.column = decoded.column.ptr<float>(y);
       in.row = with_rows ? decoded.row.ptr<float>(y) : nullptr;
       in.status = decoded.status.ptr<uint8_t>(y);
-      const detail::TriangulationRowOutput out{result.cloud.points.data() + offset,
-                                               result.status.ptr<uint8_t>(y)};
+      const detail::TriangulationRowOutput out{result.cloud.points.data() + offset, result.status.ptr<uint8_t>(y)};
       if (with_rows) {
         detail::triangulateRowWithRows(tables.geometry, tables.projector, in, scratch, out);
       } else {

@@ -42,8 +42,7 @@ struct Direction {
 };
 
 inline Direction rayInProjector(const RigGeometry& g, float a, float b) {
-  return {g.r[0] * a + g.r[1] * b + g.r[2], g.r[3] * a + g.r[4] * b + g.r[5],
-          g.r[6] * a + g.r[7] * b + g.r[8]};
+  return {g.r[0] * a + g.r[1] * b + g.r[2], g.r[3] * a + g.r[4] * b + g.r[5], g.r[6] * a + g.r[7] * b + g.r[8]};
 }
 
 struct Solution {
@@ -55,8 +54,7 @@ struct Solution {
 // its epipolar plane. t minimises |(wz X_x - wu X_z, wz X_y - wv X_z)| = |A + t B| (zero for
 // coplanar rays; least squares keeps either component from being ill-conditioned alone). No
 // point where the rays meet behind either device or (nearly parallel) beyond max_depth.
-inline Solution intersectRays(const RigGeometry& g, const Direction& d, float wu, float wv,
-                              float wz) {
+inline Solution intersectRays(const RigGeometry& g, const Direction& d, float wu, float wv, float wz) {
   const float* c = g.c;
   const float ax = wz * c[0] - wu * c[2], ay = wz * c[1] - wv * c[2];
   const float bx = wz * d.x - wu * d.z, by = wz * d.y - wv * d.z;
@@ -73,8 +71,7 @@ inline Solution intersectRays(const RigGeometry& g, const Direction& d, float wu
 // distortion scales lengths by 1 + O(k1 r^2) (a few per cent at the corners of real lenses),
 // which does not matter for a tolerance, while projecting through the distortion would cost
 // more than the rest of the solve.
-inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, float v,
-                            float& depth) {
+inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, float v, float& depth) {
   const Direction d = rayInProjector(g, a, b);
   const float* c = g.c;
   const float nx = c[1] * d.z - c[2] * d.y;
@@ -103,11 +100,10 @@ inline float epipolarLabel(const RigGeometry& g, float a, float b) {
 // Which table cell each decoded point (x, y) falls in. Columns outside [min_column, max_column]
 // are CodeOutOfRange; a point otherwise outside the table gets `outside`.
 template <class View>
-BINPICK_SIMD_PASS void locateCells(const View& grid, int n, const float* __restrict xs,
-                                  const float* __restrict ys, const uint8_t* __restrict status,
-                                  float min_column, float max_column, int32_t outside,
-                                  int32_t* __restrict cell, float* __restrict fx,
-                                  float* __restrict fy, int32_t* __restrict code) {
+BINPICK_SIMD_PASS void locateCells(const View& grid, int n, const float* __restrict xs, const float* __restrict ys,
+                                   const uint8_t* __restrict status, float min_column, float max_column,
+                                   int32_t outside, int32_t* __restrict cell, float* __restrict fx,
+                                   float* __restrict fy, int32_t* __restrict code) {
   for (int x = 0; x < n; ++x) {
     const auto at = grid.locate(xs[x], ys[x]);
     cell[x] = at.cell;
@@ -115,39 +111,35 @@ BINPICK_SIMD_PASS void locateCells(const View& grid, int n, const float* __restr
     fy[x] = at.fy;
     const bool in_image = (xs[x] >= min_column) & (xs[x] <= max_column);
     const int32_t decoded = status[x];  // loaded unconditionally: the selects vectorise
-    code[x] = decoded != kSolved ? kSkipped
-              : !in_image        ? kOutOfRange
-              : at.inside        ? kSolved
-                                 : outside;
+    code[x] = decoded != kSolved ? kSkipped : !in_image ? kOutOfRange : at.inside ? kSolved : outside;
   }
 }
 
 // Rows decoded: the undistorted (u, v) of each decoded projector pixel, interleaved. Unsolved
 // pixels interpolate the first cell: no branch, and their values are never used.
-BINPICK_SIMD_PASS void undistortCells(const LookupGrid<2>::View& grid, int n,
-                                     const int32_t* __restrict cell, const float* __restrict fx,
-                                     const float* __restrict fy, float* __restrict uv) {
+BINPICK_SIMD_PASS void undistortCells(const LookupGrid<2>::View& grid, int n, const int32_t* __restrict cell,
+                                      const float* __restrict fx, const float* __restrict fy, float* __restrict uv) {
   for (int x = 0; x < n; ++x) grid.interpolate(cell[x], fx[x], fy[x], uv + 2 * x);
 }
 
 // Columns only: (u, v, distorted row, unused) where the column's light crosses the ray's
 // epipolar plane, interleaved.
-BINPICK_SIMD_PASS void crossColumnLight(const LookupGrid<4>::View& grid, int n,
-                                       const int32_t* __restrict cell, const float* __restrict fx,
-                                       const float* __restrict fy, float* __restrict light) {
+BINPICK_SIMD_PASS void crossColumnLight(const LookupGrid<4>::View& grid, int n, const int32_t* __restrict cell,
+                                        const float* __restrict fx, const float* __restrict fy,
+                                        float* __restrict light) {
   for (int x = 0; x < n; ++x) grid.interpolate(cell[x], fx[x], fy[x], light + 4 * x);
 }
 
 BINPICK_SIMD_PASS void epipolarLabels(const RigGeometry& rig, int n, const float* __restrict ray_x,
-                                     const float* __restrict ray_y, float* __restrict label) {
+                                      const float* __restrict ray_y, float* __restrict label) {
   for (int x = 0; x < n; ++x) label[x] = epipolarLabel(rig, ray_x[x], ray_y[x]);
 }
 
 // The solves write camera-frame points, NaN unless solved: x, y in px, py, and z (= t) in pz.
 BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
-                                    const float* __restrict ray_y, const float* __restrict uv,
-                                    int32_t* __restrict code, float* __restrict px,
-                                    float* __restrict py, float* __restrict pz) {
+                                     const float* __restrict ray_y, const float* __restrict uv,
+                                     int32_t* __restrict code, float* __restrict px, float* __restrict py,
+                                     float* __restrict pz) {
   for (int x = 0; x < n; ++x) {
     float t = 0.0f;
     const int32_t solved = solveWithRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1], t);
@@ -163,10 +155,9 @@ BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float*
 // Where the column's light crosses the ray's plane outside the image rows, it never reaches
 // the ray.
 BINPICK_SIMD_PASS void solveColumnOnly(const RigGeometry& rig, int n, const float* __restrict ray_x,
-                                      const float* __restrict ray_y, const float* __restrict light,
-                                      float min_row, float max_row, int32_t* __restrict code,
-                                      float* __restrict px, float* __restrict py,
-                                      float* __restrict pz) {
+                                       const float* __restrict ray_y, const float* __restrict light, float min_row,
+                                       float max_row, int32_t* __restrict code, float* __restrict px,
+                                       float* __restrict py, float* __restrict pz) {
   for (int x = 0; x < n; ++x) {
     const float* crossing = light + 4 * x;
     const Solution solution =
@@ -183,7 +174,7 @@ BINPICK_SIMD_PASS void solveColumnOnly(const RigGeometry& rig, int n, const floa
 }
 
 BINPICK_SIMD_PASS void storePoints(int n, const float* __restrict px, const float* __restrict py,
-                                  const float* __restrict pz, Eigen::Vector3f* points) {
+                                   const float* __restrict pz, Eigen::Vector3f* points) {
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "points must be packed floats");
   float* out = points->data();
   int x = 0;
@@ -193,8 +184,8 @@ BINPICK_SIMD_PASS void storePoints(int n, const float* __restrict px, const floa
   for (; x < n; ++x) points[x] = Eigen::Vector3f(px[x], py[x], pz[x]);
 }
 
-BINPICK_SIMD_PASS void storeStatuses(int n, const uint8_t* __restrict decoded,
-                                    const int32_t* __restrict code, uint8_t* __restrict status) {
+BINPICK_SIMD_PASS void storeStatuses(int n, const uint8_t* __restrict decoded, const int32_t* __restrict code,
+                                     uint8_t* __restrict status) {
   for (int x = 0; x < n; ++x) {
     const int32_t before = decoded[x];  // loaded unconditionally: the select vectorises
     status[x] = static_cast<uint8_t>(code[x] == kSkipped ? before : code[x]);
@@ -202,16 +193,14 @@ BINPICK_SIMD_PASS void storeStatuses(int n, const uint8_t* __restrict decoded,
 }
 
 // The solved row into the outputs: the points are in the scratch's px, py, pz.
-void writeRow(const TriangulationRowInput& in, const TriangulationScratch& s,
-              const TriangulationRowOutput& out) {
+void writeRow(const TriangulationRowInput& in, const TriangulationScratch& s, const TriangulationRowOutput& out) {
   storePoints(in.width, s.px.data(), s.py.data(), s.pz.data(), out.points);
   storeStatuses(in.width, in.status, s.code.data(), out.status);
 }
 
 }  // namespace
 
-RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil,
-                            double max_epipolar_error) {
+RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil, double max_epipolar_error) {
   RigGeometry g;
   const Eigen::Matrix3d r = rig.T_projector_camera.linear();
   const Eigen::Vector3d c = rig.T_projector_camera.translation();
@@ -232,43 +221,32 @@ RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil&
 }
 
 TriangulationScratch::TriangulationScratch(int width)
-    : label(width),
-      fx(width),
-      fy(width),
-      px(width),
-      py(width),
-      pz(width),
-      light(4 * width),
-      code(width),
-      cell(width) {}
+    : label(width), fx(width), fy(width), px(width), py(width), pz(width), light(4 * width), code(width), cell(width) {}
 
-void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables,
-                            const TriangulationRowInput& in, TriangulationScratch& s,
-                            const TriangulationRowOutput& out) {
+void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
+                            TriangulationScratch& s, const TriangulationRowOutput& out) {
   const int n = in.width;
   const auto grid = tables.undistort.view();
   // A row outside the table names a projector pixel outside the image too.
-  locateCells(grid, n, in.column, in.row, in.status, tables.min_column, tables.max_column,
-              kOutOfRange, s.cell.data(), s.fx.data(), s.fy.data(), s.code.data());
+  locateCells(grid, n, in.column, in.row, in.status, tables.min_column, tables.max_column, kOutOfRange, s.cell.data(),
+              s.fx.data(), s.fy.data(), s.code.data());
   undistortCells(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), s.code.data(), s.px.data(), s.py.data(),
-                s.pz.data());
+  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), s.code.data(), s.px.data(), s.py.data(), s.pz.data());
   writeRow(in, s, out);
 }
 
-void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables,
-                              const TriangulationRowInput& in, TriangulationScratch& s,
-                              const TriangulationRowOutput& out) {
+void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
+                              TriangulationScratch& s, const TriangulationRowOutput& out) {
   const int n = in.width;
   const auto grid = tables.epipolar.view();
   // Each ray's epipolar plane. Outside the table's labels the plane misses the projector's
   // image: no light reaches the ray.
   epipolarLabels(rig, n, in.ray_x, in.ray_y, s.label.data());
-  locateCells(grid, n, in.column, s.label.data(), in.status, tables.min_column, tables.max_column,
-              kNoIntersection, s.cell.data(), s.fx.data(), s.fy.data(), s.code.data());
+  locateCells(grid, n, in.column, s.label.data(), in.status, tables.min_column, tables.max_column, kNoIntersection,
+              s.cell.data(), s.fx.data(), s.fy.data(), s.code.data());
   crossColumnLight(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveColumnOnly(rig, n, in.ray_x, in.ray_y, s.light.data(), tables.min_row, tables.max_row,
-                  s.code.data(), s.px.data(), s.py.data(), s.pz.data());
+  solveColumnOnly(rig, n, in.ray_x, in.ray_y, s.light.data(), tables.min_row, tables.max_row, s.code.data(),
+                  s.px.data(), s.py.data(), s.pz.data());
   writeRow(in, s, out);
 }
 

@@ -24,8 +24,7 @@ struct RigGeometry {
   float q2[3] = {}, q3[3] = {};
   float max_depth = 0.0f;  // camera z beyond which rays count as parallel, metres
 };
-RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil,
-                            double max_epipolar_error);
+RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil, double max_epipolar_error);
 
 struct TriangulationRowInput {
   int width = 0;
@@ -49,11 +48,9 @@ struct TriangulationScratch {
   std::vector<int32_t> code, cell;
 };
 
-void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables,
-                            const TriangulationRowInput& in, TriangulationScratch& scratch,
-                            const TriangulationRowOutput& out);
-void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables,
-                              const TriangulationRowInput& in, TriangulationScratch& scratch,
-                              const TriangulationRowOutput& out);
+void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
+                            TriangulationScratch& scratch, const TriangulationRowOutput& out);
+void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
+                              TriangulationScratch& scratch, const TriangulationRowOutput& out);
 
 }  // namespace binpick::reconstruction::detail

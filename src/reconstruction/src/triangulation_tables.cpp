@@ -22,13 +22,12 @@ int nodeCount(double span) { return static_cast<int>(std::ceil(span / kStepPixel
 
 LookupGrid<2> buildUndistortGrid(const io::LensIntrinsics& lens, int threads) {
   LookupGrid<2> grid(-kMarginPixels, -kMarginPixels, kStepPixels, kStepPixels,
-                     nodeCount(lens.width - 1 + 2 * kMarginPixels),
-                     nodeCount(lens.height - 1 + 2 * kMarginPixels));
+                     nodeCount(lens.width - 1 + 2 * kMarginPixels), nodeCount(lens.height - 1 + 2 * kMarginPixels));
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int j = 0; j < grid.ny(); ++j) {
     for (int i = 0; i < grid.nx(); ++i) {
-      const Eigen::Vector2d p = lens.undistort(
-          {(grid.nodeX(i) - lens.cx) / lens.fx, (grid.nodeY(j) - lens.cy) / lens.fy});
+      const Eigen::Vector2d p =
+          lens.undistort({(grid.nodeX(i) - lens.cx) / lens.fx, (grid.nodeY(j) - lens.cy) / lens.fy});
       grid.node(i, j)[0] = static_cast<float>(p.x());
       grid.node(i, j)[1] = static_cast<float>(p.y());
     }
@@ -37,8 +36,7 @@ LookupGrid<2> buildUndistortGrid(const io::LensIntrinsics& lens, int threads) {
 }
 
 // The epipolar label of the plane through the projector ray w (see EpipolarPencil).
-double epipolarLabel(const EpipolarPencil& pencil, const Eigen::Vector3d& centre,
-                     const Eigen::Vector3d& w) {
+double epipolarLabel(const EpipolarPencil& pencil, const Eigen::Vector3d& centre, const Eigen::Vector3d& w) {
   const Eigen::Vector3d n = centre.cross(w);
   return n.dot(pencil.e3) / n.dot(pencil.e2);
 }
@@ -51,8 +49,7 @@ struct LabelRange {
 
 // The labels of the planes that cross the margin-extended image, from a grid of samples: the
 // label is monotonic across the image, so the border decides the range and the grid the step.
-LabelRange labelRange(const io::LensIntrinsics& lens, const EpipolarPencil& pencil,
-                      const Eigen::Vector3d& centre) {
+LabelRange labelRange(const io::LensIntrinsics& lens, const EpipolarPencil& pencil, const Eigen::Vector3d& centre) {
   constexpr int kSamples = 64;
   // Planes more than 89.9 degrees from the axis plane, or finer tables than this, mean the
   // epipole is in or near the image: no column's light crosses the planes cleanly.
@@ -107,8 +104,7 @@ Eigen::Vector2d crossColumn(const io::LensIntrinsics& lens, const Eigen::Vector3
     const Eigen::Vector2d p = origin + s * along;
     const double residual = lens.distort(p).x() - target_x;
     if (std::abs(residual) < 1e-15) return p;
-    const double slope =
-        (lens.distort(p + kH * along).x() - lens.distort(p - kH * along).x()) / (2.0 * kH);
+    const double slope = (lens.distort(p + kH * along).x() - lens.distort(p - kH * along).x()) / (2.0 * kH);
     if (!(slope > kMinCrossing)) return nan;
     s -= residual / slope;
   }
@@ -151,8 +147,7 @@ CameraRays buildCameraRays(const io::LensIntrinsics& camera, int threads) {
   for (int row = 0; row < camera.height; ++row) {
     for (int col = 0; col < camera.width; ++col) {
       // NaN where the model has no inverse: such a pixel gets NoIntersection.
-      const Eigen::Vector2d p =
-          camera.undistort({(col - camera.cx) / camera.fx, (row - camera.cy) / camera.fy});
+      const Eigen::Vector2d p = camera.undistort({(col - camera.cx) / camera.fx, (row - camera.cy) / camera.fy});
       const std::size_t i = static_cast<std::size_t>(row) * camera.width + col;
       rays.x[i] = static_cast<float>(p.x());
       rays.y[i] = static_cast<float>(p.y());
@@ -173,8 +168,7 @@ EpipolarPencil makeEpipolarPencil(const Eigen::Vector3d& camera_centre_in_projec
 }
 
 ProjectorTables buildProjectorTables(const io::LensIntrinsics& projector, const EpipolarPencil& pencil,
-                                     const Eigen::Vector3d& camera_centre_in_projector,
-                                     int threads) {
+                                     const Eigen::Vector3d& camera_centre_in_projector, int threads) {
   ProjectorTables tables;
   tables.undistort = buildUndistortGrid(projector, threads);
   tables.epipolar = buildEpipolarGrid(projector, pencil, camera_centre_in_projector, threads);

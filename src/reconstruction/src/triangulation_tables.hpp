@@ -49,7 +49,6 @@ struct ProjectorTables {
 
 CameraRays buildCameraRays(const io::LensIntrinsics& camera, int threads);
 ProjectorTables buildProjectorTables(const io::LensIntrinsics& projector, const EpipolarPencil& pencil,
-                                     const Eigen::Vector3d& camera_centre_in_projector,
-                                     int threads);
+                                     const Eigen::Vector3d& camera_centre_in_projector, int threads);
 
 }  // namespace binpick::reconstruction::detail

@@ -40,7 +40,7 @@ AddressFilter::AddressFilter(const std::vector<std::string>& entries, const std:
     if (slash != std::string::npos) prefix = parsePrefixLength(entry.substr(slash + 1));
     if (!address_ok || !prefix) {
       throw core::Error(field + " entry \"" + entry +
-                  "\" is not an IPv4 address or CIDR block (like 10.0.0.5 or 10.0.0.0/8)");
+                        "\" is not an IPv4 address or CIDR block (like 10.0.0.5 or 10.0.0.0/8)");
     }
     const uint32_t mask = maskOfPrefix(*prefix);
     blocks_.push_back({ntohl(address.s_addr) & mask, mask});

@@ -47,14 +47,12 @@ Decoded decodePoseFields(const std::vector<std::string_view>& fields, core::Orie
     const std::optional<double> value = parseFiniteNumber(fields[i]);
     if (!value) {
       return failure(Status::BadMessage, Command::Pose,
-                     "POSE value " + std::to_string(i) + " '" + std::string(fields[i]) +
-                         "' is no finite number");
+                     "POSE value " + std::to_string(i) + " '" + std::string(fields[i]) + "' is no finite number");
     }
     values.push_back(*value);
   }
   std::string problem;
-  std::optional<Eigen::Isometry3d> T_base_flange =
-      poseFromWireValues(values, orientation, problem);
+  std::optional<Eigen::Isometry3d> T_base_flange = poseFromWireValues(values, orientation, problem);
   if (!T_base_flange) return failure(Status::BadMessage, Command::Pose, "POSE: " + problem);
   Decoded decoded;
   decoded.command = Command::Pose;
@@ -63,8 +61,7 @@ Decoded decodePoseFields(const std::vector<std::string_view>& fields, core::Orie
 }
 
 // The request of a line whose keyword is known and whose bytes are all allowed.
-Decoded decodeFields(Command command, const std::vector<std::string_view>& fields,
-                     const CodecParams& params) {
+Decoded decodeFields(Command command, const std::vector<std::string_view>& fields, const CodecParams& params) {
   if (command == Command::Pose) return decodePoseFields(fields, params.orientation);
   const std::string keyword = commandKeyword(command);
   if (fields.size() > 2) {
@@ -85,8 +82,7 @@ Decoded decodeFields(Command command, const std::vector<std::string_view>& field
 std::vector<std::string_view> splitAtCommas(std::string_view line) {
   std::vector<std::string_view> fields;
   std::size_t start = 0;
-  for (std::size_t comma = line.find(','); comma != std::string_view::npos;
-       comma = line.find(',', start)) {
+  for (std::size_t comma = line.find(','); comma != std::string_view::npos; comma = line.find(',', start)) {
     fields.push_back(line.substr(start, comma - start));
     start = comma + 1;
   }
@@ -101,18 +97,15 @@ std::optional<Decoded> decodeAsciiRequestLine(std::string_view line, const Codec
   for (std::string_view& field : fields) field = trimSpaces(field);
   const std::string_view keyword = fields.front();
   if (holdsForbiddenByte(keyword)) {
-    return failure(Status::BadMessage, Command::Ping,
-                   "a control character or non-ASCII byte in the keyword");
+    return failure(Status::BadMessage, Command::Ping, "a control character or non-ASCII byte in the keyword");
   }
   const std::optional<Command> command = commandFromKeyword(keyword);
   if (!command) {
     if (keyword.empty()) return failure(Status::BadMessage, Command::Ping, "no keyword");
-    return failure(Status::UnknownCommand, kUnknownAsciiCommand,
-                   "unknown command '" + std::string(keyword) + "'");
+    return failure(Status::UnknownCommand, kUnknownAsciiCommand, "unknown command '" + std::string(keyword) + "'");
   }
   if (holdsForbiddenByte(line)) {
-    return failure(Status::BadMessage, *command,
-                   "a control character or non-ASCII byte in the line");
+    return failure(Status::BadMessage, *command, "a control character or non-ASCII byte in the line");
   }
   return decodeFields(*command, fields, params);
 }
@@ -132,15 +125,13 @@ std::string encodeAsciiRequest(const Request& request, const CodecParams& params
   std::string line = commandKeyword(request.command);
   if (request.argument) line += "," + *request.argument;
   if (request.T_base_flange) {
-    const std::optional<std::string> pose =
-        asciiPoseText(*request.T_base_flange, params.orientation, params.position_decimals,
-                      params.orientation_decimals);
+    const std::optional<std::string> pose = asciiPoseText(*request.T_base_flange, params.orientation,
+                                                          params.position_decimals, params.orientation_decimals);
     if (!pose) throw core::Error("Request.T_base_flange is too far out to be written as a POSE line");
     line += *pose;
   }
   return line + "\r\n";
 }
-
 
 namespace {
 
@@ -154,14 +145,12 @@ constexpr std::array<PrecisionDrop, 4> kPrecisionDrops = {{{0, 0}, {0, 1}, {1, 1
 
 std::optional<std::string> poseText(const Eigen::Isometry3d& T_base_tool, const CodecParams& params,
                                     PrecisionDrop drop) {
-  return asciiPoseText(T_base_tool, params.orientation,
-                       std::max(0, params.position_decimals - drop.position),
+  return asciiPoseText(T_base_tool, params.orientation, std::max(0, params.position_decimals - drop.position),
                        std::max(0, params.orientation_decimals - drop.orientation));
 }
 
 std::string badMessageLine(Command command) {
-  return std::string(commandKeyword(command)) + "," +
-         std::to_string(static_cast<int32_t>(Status::BadMessage)) + "\r\n";
+  return std::string(commandKeyword(command)) + "," + std::to_string(static_cast<int32_t>(Status::BadMessage)) + "\r\n";
 }
 
 // --- decoding
@@ -199,8 +188,7 @@ Eigen::Isometry3d parsePose(std::string_view line, const std::vector<std::string
     values.push_back(*value);
   }
   std::string problem;
-  const std::optional<Eigen::Isometry3d> T_base_tool =
-      poseFromWireValues(values, orientation, problem);
+  const std::optional<Eigen::Isometry3d> T_base_tool = poseFromWireValues(values, orientation, problem);
   if (!T_base_tool) malformed(line, problem);
   return *T_base_tool;
 }
@@ -208,8 +196,8 @@ Eigen::Isometry3d parsePose(std::string_view line, const std::vector<std::string
 }  // namespace
 
 std::string encodeAsciiReply(const Reply& reply, const CodecParams& params) {
-  std::string head = std::string(commandKeyword(reply.command)) + "," +
-                     std::to_string(static_cast<int32_t>(reply.status));
+  std::string head =
+      std::string(commandKeyword(reply.command)) + "," + std::to_string(static_cast<int32_t>(reply.status));
   for (int32_t integer : reply.integers) head += "," + std::to_string(integer);
   if (!reply.T_base_tool) {
     const std::string line = head + "\r\n";
@@ -235,8 +223,7 @@ Reply decodeAsciiReplyLine(std::string_view line, const CodecParams& params) {
   if (!status) malformed(line, "the status is no status code");
   reply.status = *status;
   const std::size_t numbers = fields.size() - 2;
-  const std::size_t poseValues =
-      3 + static_cast<std::size_t>(core::orientationValueCount(params.orientation));
+  const std::size_t poseValues = 3 + static_cast<std::size_t>(core::orientationValueCount(params.orientation));
   const bool hasPose = numbers > kMaxReplyIntegers;
   if (hasPose && (numbers < poseValues || numbers - poseValues > kMaxReplyIntegers)) {
     malformed(line, "neither up to 3 integers nor up to 3 integers and a pose");
@@ -249,8 +236,7 @@ Reply decodeAsciiReplyLine(std::string_view line, const CodecParams& params) {
   }
   if (hasPose) {
     reply.T_base_tool =
-        parsePose(line, {fields.begin() + 2 + static_cast<std::ptrdiff_t>(integers), fields.end()},
-                  params.orientation);
+        parsePose(line, {fields.begin() + 2 + static_cast<std::ptrdiff_t>(integers), fields.end()}, params.orientation);
   }
   try {
     checkReply(reply);

@@ -49,9 +49,7 @@ Decoded failure(Status error, Command command, int32_t rawCommand, std::string d
   return decoded;
 }
 
-[[noreturn]] void malformed(const std::string& problem) {
-  throw core::Error("malformed binary reply: " + problem);
-}
+[[noreturn]] void malformed(const std::string& problem) { throw core::Error("malformed binary reply: " + problem); }
 
 }  // namespace
 
@@ -82,7 +80,7 @@ std::string encodeBinaryRequest(const Request& request, const CodecParams& param
     const std::optional<int32_t> number = parseNonNegativeInt32(*request.argument);
     if (!number) {
       throw core::Error("Request.argument '" + *request.argument +
-                  "': the binary framing carries only an integer in [0, 2147483647]");
+                        "': the binary framing carries only an integer in [0, 2147483647]");
     }
     argument = *number;
   }
@@ -96,8 +94,7 @@ std::string encodeBinaryReply(const Reply& reply, const CodecParams& params) {
   std::array<int32_t, kReplyFields> fields{};
   fields[0] = static_cast<int32_t>(reply.command);
   fields[1] = static_cast<int32_t>(reply.status);
-  for (std::size_t i = 0; i < reply.integers.size(); ++i)
-    fields[kFirstInteger + i] = reply.integers[i];
+  for (std::size_t i = 0; i < reply.integers.size(); ++i) fields[kFirstInteger + i] = reply.integers[i];
   if (reply.T_base_tool) {
     const std::optional<BinaryPoseFields> pose = binaryPoseFields(*reply.T_base_tool, params);
     if (pose) {
@@ -115,8 +112,7 @@ std::string encodeBinaryReply(const Reply& reply, const CodecParams& params) {
 
 Reply decodeBinaryReply(const char* bytes, const CodecParams& params) {
   std::array<int32_t, kReplyFields> fields{};
-  for (std::size_t i = 0; i < kReplyFields; ++i)
-    fields[i] = readInt32(bytes + 4 * i, params.byte_order);
+  for (std::size_t i = 0; i < kReplyFields; ++i) fields[i] = readInt32(bytes + 4 * i, params.byte_order);
   Reply reply;
   reply.command = static_cast<Command>(fields[0]);
   const std::optional<Status> status = statusFromCode(fields[1]);
@@ -141,7 +137,6 @@ Reply decodeBinaryReply(const char* bytes, const CodecParams& params) {
   }
   return reply;
 }
-
 
 namespace {
 
@@ -178,8 +173,9 @@ Decoded decodeBinaryPoseRequest(const char* bytes, const CodecParams& params) {
 std::string encodeBinaryPoseRequest(const Request& request, const CodecParams& params) {
   const std::optional<BinaryPoseFields> fields = binaryPoseFields(*request.T_base_flange, params);
   if (!fields) {
-    throw core::Error("Request.T_base_flange: a value does not fit the binary framing's int32 fields "
-                "(position_scale, orientation_scale)");
+    throw core::Error(
+        "Request.T_base_flange: a value does not fit the binary framing's int32 fields "
+        "(position_scale, orientation_scale)");
   }
   std::string message;
   appendInt32(message, static_cast<int32_t>(Command::Pose), params.byte_order);

@@ -28,14 +28,9 @@ bool isTransient(int error_number) {
 
 }  // namespace
 
-ClientConnection::ClientConnection(ClientId id, UniqueFd socket, std::string peer,
-                                   const robot::CodecParams& codec, const ClientLimits& limits)
-    : id_(id),
-      socket_(std::move(socket)),
-      peer_(std::move(peer)),
-      codec_(codec),
-      limits_(limits),
-      decoder_(codec) {}
+ClientConnection::ClientConnection(ClientId id, UniqueFd socket, std::string peer, const robot::CodecParams& codec,
+                                   const ClientLimits& limits)
+    : id_(id), socket_(std::move(socket)), peer_(std::move(peer)), codec_(codec), limits_(limits), decoder_(codec) {}
 
 void ClientConnection::markClosing(const std::string& reason) {
   if (close_reason_.empty()) close_reason_ = reason;
@@ -51,8 +46,7 @@ void ClientConnection::receive() {
   }
   decoder_.feed(chunk, static_cast<std::size_t>(got));
   if (decoder_.buffered() > limits_.max_buffered_input) {
-    markClosing("more than " + std::to_string(limits_.max_buffered_input) +
-                " bytes of an incomplete request");
+    markClosing("more than " + std::to_string(limits_.max_buffered_input) + " bytes of an incomplete request");
   }
 }
 
@@ -72,8 +66,7 @@ std::optional<robot::Request> ClientConnection::takeNextRequest() {
       outstanding_ = message->request->command;
       return std::move(message->request);
     }
-    serverLogger()->info("client {} ({}): {}: {}", id_, peer_, robot::statusName(message->error),
-                         message->detail);
+    serverLogger()->info("client {} ({}): {}: {}", id_, peer_, robot::statusName(message->error), message->detail);
     queueOutput(encodeOrInternalError(errorReply(*message)));
   }
   return std::nullopt;
@@ -83,8 +76,7 @@ bool ClientConnection::answer(const robot::Reply& reply) {
   if (!outstanding_) return false;
   if (reply.command != *outstanding_) {
     // A handler bug; the robot still gets the reply so that it is not left waiting.
-    serverLogger()->warn("client {}: reply for {} answers a {} request", id_,
-                         robot::commandKeyword(reply.command),
+    serverLogger()->warn("client {}: reply for {} answers a {} request", id_, robot::commandKeyword(reply.command),
                          robot::commandKeyword(*outstanding_));
   }
   outstanding_.reset();
@@ -97,8 +89,8 @@ std::string ClientConnection::encodeOrInternalError(const robot::Reply& reply) {
     return robot::encodeReply(reply, codec_);
   } catch (const core::Error& error) {
     // A reply the codec cannot encode (too many integers, ...) must still answer the request.
-    serverLogger()->error("client {}: cannot encode the {} reply: {}", id_,
-                          robot::commandKeyword(reply.command), error.what());
+    serverLogger()->error("client {}: cannot encode the {} reply: {}", id_, robot::commandKeyword(reply.command),
+                          error.what());
     robot::Reply fallback;
     fallback.command = reply.command;
     fallback.status = robot::Status::InternalError;
@@ -124,8 +116,8 @@ void ClientConnection::queueOutput(const std::string& bytes) {
 
 void ClientConnection::flush() {
   while (!closing() && sent_ < output_.size()) {
-    const ssize_t sent = ::send(socket_.get(), output_.data() + sent_, output_.size() - sent_,
-                                MSG_NOSIGNAL | MSG_DONTWAIT);
+    const ssize_t sent =
+        ::send(socket_.get(), output_.data() + sent_, output_.size() - sent_, MSG_NOSIGNAL | MSG_DONTWAIT);
     if (sent < 0) {
       if (errno == EINTR) continue;
       if (errno == EAGAIN || errno == EWOULDBLOCK) break;

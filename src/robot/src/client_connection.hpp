@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "binpick/robot/robot_server.hpp"
 #include "binpick/robot/protocol.hpp"
+#include "binpick/robot/robot_server.hpp"
 #include "socket_util.hpp"
 
 namespace binpick::robot::detail {
@@ -22,8 +22,8 @@ struct ClientLimits {
 
 class ClientConnection {
  public:
-  ClientConnection(ClientId id, UniqueFd socket, std::string peer,
-                   const robot::CodecParams& codec, const ClientLimits& limits);
+  ClientConnection(ClientId id, UniqueFd socket, std::string peer, const robot::CodecParams& codec,
+                   const ClientLimits& limits);
 
   ClientId id() const { return id_; }
   int fd() const { return socket_.get(); }
@@ -63,7 +63,7 @@ class ClientConnection {
   robot::CodecParams codec_;
   ClientLimits limits_;
   robot::RequestDecoder decoder_;
-  std::deque<robot::Decoded> backlog_;        // received, not yet handed over or answered
+  std::deque<robot::Decoded> backlog_;         // received, not yet handed over or answered
   std::optional<robot::Command> outstanding_;  // the request with the handler
   std::string output_;
   std::size_t sent_ = 0;  // bytes of output_ already sent

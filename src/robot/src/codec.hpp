@@ -25,8 +25,7 @@ bool takesArgument(Command command);  // TRIGGER, FAILED, MODEL
 // Why `argument` does not suit `command` (see Request), or "" when it does.
 std::string argumentProblem(Command command, const std::optional<std::string>& argument);
 // FAILED's object id without leading zeros; other arguments unchanged. Call after the check.
-std::optional<std::string> canonicalArgument(Command command,
-                                             const std::optional<std::string>& argument);
+std::optional<std::string> canonicalArgument(Command command, const std::optional<std::string>& argument);
 // A non-negative int32 written as plain decimal digits, or nothing.
 std::optional<int32_t> parseNonNegativeInt32(std::string_view digits);
 bool isVisibleArgumentCharacter(char c);
@@ -37,8 +36,8 @@ void checkReply(const Reply& reply);
 // --- poses in either framing (pose.cpp)
 // x, y, z in millimetres, then the orientation values of `orientation`: the pose, or nothing with
 // `problem` saying why (a wrong count, a zero quaternion). Positions are taken as they are.
-std::optional<Eigen::Isometry3d> poseFromWireValues(const std::vector<double>& values,
-                                                    core::Orientation orientation, std::string& problem);
+std::optional<Eigen::Isometry3d> poseFromWireValues(const std::vector<double>& values, core::Orientation orientation,
+                                                    std::string& problem);
 // A whole field as a finite number (from_chars syntax), or nothing.
 std::optional<double> parseFiniteNumber(std::string_view text);
 // ",x,y,z,o1,o2,o3[,o4]" at the given decimals; nothing when a value is too large to print.
@@ -47,11 +46,9 @@ std::optional<std::string> asciiPoseText(const Eigen::Isometry3d& T, core::Orien
 // The binary pose fields {x, y, z, o1..o4} (unused orientation fields 0), nothing on overflow.
 constexpr std::size_t kBinaryPoseFields = 7;
 using BinaryPoseFields = std::array<int32_t, kBinaryPoseFields>;
-std::optional<BinaryPoseFields> binaryPoseFields(const Eigen::Isometry3d& T,
-                                                 const CodecParams& params);
+std::optional<BinaryPoseFields> binaryPoseFields(const Eigen::Isometry3d& T, const CodecParams& params);
 // The inverse; nothing with `problem` saying why (an unused field not 0, a zero quaternion).
-std::optional<Eigen::Isometry3d> poseFromBinaryFields(const BinaryPoseFields& fields,
-                                                      const CodecParams& params,
+std::optional<Eigen::Isometry3d> poseFromBinaryFields(const BinaryPoseFields& fields, const CodecParams& params,
                                                       std::string& problem);
 
 // --- quaternion rounding (pose.cpp)

@@ -15,8 +15,8 @@ namespace {
 std::optional<std::string> fixedText(double value, int decimals) {
   if (!(std::abs(value) < 1e15)) return std::nullopt;
   std::array<char, 64> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                                    std::chars_format::fixed, decimals);
+  const auto result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed, decimals);
   if (result.ec != std::errc()) return std::nullopt;
   std::string text(buffer.data(), result.ptr);
   // "-0.00" (a tiny negative rounded to zero) would read as a sign the value does not have.
@@ -37,13 +37,12 @@ std::vector<double> gridOrientationValues(const Eigen::Matrix3d& R, core::Orient
 
 }  // namespace
 
-std::optional<Eigen::Isometry3d> poseFromWireValues(const std::vector<double>& values,
-                                                    core::Orientation orientation, std::string& problem) {
+std::optional<Eigen::Isometry3d> poseFromWireValues(const std::vector<double>& values, core::Orientation orientation,
+                                                    std::string& problem) {
   const std::size_t expected = 3 + static_cast<std::size_t>(core::orientationValueCount(orientation));
   if (values.size() != expected) {
-    problem = "a pose is x, y, z and " + std::to_string(expected - 3) + " " +
-              core::orientationName(orientation) + " values (got " + std::to_string(values.size()) +
-              " numbers)";
+    problem = "a pose is x, y, z and " + std::to_string(expected - 3) + " " + core::orientationName(orientation) +
+              " values (got " + std::to_string(values.size()) + " numbers)";
     return std::nullopt;
   }
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -60,8 +59,7 @@ std::optional<Eigen::Isometry3d> poseFromWireValues(const std::vector<double>& v
 std::optional<double> parseFiniteNumber(std::string_view text) {
   double value = 0.0;
   const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size() ||
-      !std::isfinite(value)) {
+  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size() || !std::isfinite(value)) {
     return std::nullopt;
   }
   return value;
@@ -85,8 +83,7 @@ std::optional<std::string> asciiPoseText(const Eigen::Isometry3d& T, core::Orien
   return text;
 }
 
-std::optional<BinaryPoseFields> binaryPoseFields(const Eigen::Isometry3d& T,
-                                                 const CodecParams& params) {
+std::optional<BinaryPoseFields> binaryPoseFields(const Eigen::Isometry3d& T, const CodecParams& params) {
   BinaryPoseFields fields{};  // x, y, z, then up to 4 orientation values, unused 0
   const Eigen::Vector3d millimetres = T.translation() * kMillimetresPerMetre;
   for (int axis = 0; axis < 3; ++axis) {
@@ -94,8 +91,7 @@ std::optional<BinaryPoseFields> binaryPoseFields(const Eigen::Isometry3d& T,
     if (!field) return std::nullopt;
     fields[static_cast<std::size_t>(axis)] = *field;
   }
-  const std::vector<double> values =
-      gridOrientationValues(T.linear(), params.orientation, params.orientation_scale);
+  const std::vector<double> values = gridOrientationValues(T.linear(), params.orientation, params.orientation_scale);
   for (std::size_t i = 0; i < values.size(); ++i) {
     const std::optional<int32_t> field = fixedPoint(values[i], params.orientation_scale);
     if (!field) return std::nullopt;
@@ -104,8 +100,7 @@ std::optional<BinaryPoseFields> binaryPoseFields(const Eigen::Isometry3d& T,
   return fields;
 }
 
-std::optional<Eigen::Isometry3d> poseFromBinaryFields(const BinaryPoseFields& fields,
-                                                      const CodecParams& params,
+std::optional<Eigen::Isometry3d> poseFromBinaryFields(const BinaryPoseFields& fields, const CodecParams& params,
                                                       std::string& problem) {
   const std::size_t count = static_cast<std::size_t>(core::orientationValueCount(params.orientation));
   for (std::size_t i = 3 + count; i < kBinaryPoseFields; ++i) {
@@ -115,13 +110,10 @@ std::optional<Eigen::Isometry3d> poseFromBinaryFields(const BinaryPoseFields& fi
     }
   }
   std::vector<double> values;
-  for (std::size_t axis = 0; axis < 3; ++axis)
-    values.push_back(fields[axis] / params.position_scale);
-  for (std::size_t i = 0; i < count; ++i)
-    values.push_back(fields[3 + i] / params.orientation_scale);
+  for (std::size_t axis = 0; axis < 3; ++axis) values.push_back(fields[axis] / params.position_scale);
+  for (std::size_t i = 0; i < count; ++i) values.push_back(fields[3 + i] / params.orientation_scale);
   return poseFromWireValues(values, params.orientation, problem);
 }
-
 
 namespace {
 

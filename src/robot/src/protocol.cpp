@@ -15,17 +15,16 @@ namespace binpick::robot {
 
 namespace {
 
-constexpr std::array<Command, 7> kCommands = {
-    Command::Ping,       Command::Status,      Command::Trigger, Command::NextPick,
-    Command::PickFailed, Command::SelectModel, Command::Pose};
+constexpr std::array<Command, 7> kCommands = {Command::Ping,     Command::Status,     Command::Trigger,
+                                              Command::NextPick, Command::PickFailed, Command::SelectModel,
+                                              Command::Pose};
 
 constexpr int32_t kLastStatusCode = static_cast<int32_t>(Status::BoardNotFound);
 
 bool equalsIgnoringCase(std::string_view a, std::string_view b) {
   if (a.size() != b.size()) return false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (std::toupper(static_cast<unsigned char>(a[i])) !=
-        std::toupper(static_cast<unsigned char>(b[i]))) {
+    if (std::toupper(static_cast<unsigned char>(a[i])) != std::toupper(static_cast<unsigned char>(b[i]))) {
       return false;
     }
   }
@@ -90,16 +89,15 @@ ByteOrder byteOrderFromName(const std::string& name) {
 void CodecParams::validate() const {
   const std::string owner = "robot_protocol";
   core::requireField(max_line_length >= 16 && max_line_length <= 4096, owner, "max_line_length",
-               "in [16, 4096] characters", max_line_length);
-  core::requireField(position_decimals >= 0 && position_decimals <= 9, owner, "position_decimals",
-               "in [0, 9]", position_decimals);
-  core::requireField(orientation_decimals >= 0 && orientation_decimals <= 9, owner,
-               "orientation_decimals", "in [0, 9]", orientation_decimals);
+                     "in [16, 4096] characters", max_line_length);
+  core::requireField(position_decimals >= 0 && position_decimals <= 9, owner, "position_decimals", "in [0, 9]",
+                     position_decimals);
+  core::requireField(orientation_decimals >= 0 && orientation_decimals <= 9, owner, "orientation_decimals", "in [0, 9]",
+                     orientation_decimals);
   core::requireField(std::isfinite(position_scale) && position_scale > 0.0, owner, "position_scale",
-               "finite and > 0 (int32 units per millimetre)", position_scale);
-  core::requireField(std::isfinite(orientation_scale) && orientation_scale > 0.0, owner,
-               "orientation_scale", "finite and > 0 (int32 units per orientation unit)",
-               orientation_scale);
+                     "finite and > 0 (int32 units per millimetre)", position_scale);
+  core::requireField(std::isfinite(orientation_scale) && orientation_scale > 0.0, owner, "orientation_scale",
+                     "finite and > 0 (int32 units per orientation unit)", orientation_scale);
 }
 
 namespace detail {
@@ -129,8 +127,7 @@ std::string keywordOf(Command command) { return commandKeyword(command); }
 }  // namespace
 
 bool takesArgument(Command command) {
-  return command == Command::Trigger || command == Command::PickFailed ||
-         command == Command::SelectModel;
+  return command == Command::Trigger || command == Command::PickFailed || command == Command::SelectModel;
 }
 
 bool isVisibleArgumentCharacter(char c) { return c > ' ' && c < 0x7f && c != ','; }
@@ -165,23 +162,21 @@ std::string argumentProblem(Command command, const std::optional<std::string>& a
   return "";
 }
 
-std::optional<std::string> canonicalArgument(Command command,
-                                             const std::optional<std::string>& argument) {
+std::optional<std::string> canonicalArgument(Command command, const std::optional<std::string>& argument) {
   if (command != Command::PickFailed || !argument) return argument;
   return std::to_string(*parseNonNegativeInt32(*argument));
 }
 
 void checkRequest(const Request& request) {
   if (!isKnownCommand(request.command)) {
-    throw core::Error("Request.command " + std::to_string(static_cast<int32_t>(request.command)) +
-                " is no command");
+    throw core::Error("Request.command " + std::to_string(static_cast<int32_t>(request.command)) + " is no command");
   }
   const std::string problem = argumentProblem(request.command, request.argument);
   if (!problem.empty()) throw core::Error("Request.argument: " + problem);
   const bool pose = request.command == Command::Pose;
   if (pose != request.T_base_flange.has_value()) {
     throw core::Error(pose ? "Request.T_base_flange is missing: POSE carries the flange pose"
-                     : "Request.T_base_flange must be empty unless POSE");
+                           : "Request.T_base_flange must be empty unless POSE");
   }
   if (request.T_base_flange && !request.T_base_flange->matrix().allFinite()) {
     throw core::Error("Request.T_base_flange must be finite");
@@ -194,19 +189,17 @@ void checkReply(const Reply& reply) {
     throw core::Error("Reply.status " + std::to_string(status) + " is no status");
   }
   // An unknown command is echoed with UnknownCommand, or BadMessage when that reply did not fit.
-  if (!isKnownCommand(reply.command) && reply.status != Status::UnknownCommand &&
-      reply.status != Status::BadMessage) {
+  if (!isKnownCommand(reply.command) && reply.status != Status::UnknownCommand && reply.status != Status::BadMessage) {
     throw core::Error("Reply.command " + std::to_string(static_cast<int32_t>(reply.command)) +
-                " is no command (allowed only with status unknown_command or bad_message)");
+                      " is no command (allowed only with status unknown_command or bad_message)");
   }
   if (reply.integers.size() > kMaxReplyIntegers) {
-    throw core::Error("Reply.integers must be at most 3 numbers (got " +
-                std::to_string(reply.integers.size()) + ")");
+    throw core::Error("Reply.integers must be at most 3 numbers (got " + std::to_string(reply.integers.size()) + ")");
   }
   const bool pick = reply.command == Command::NextPick && reply.status == Status::Ok;
   if (pick != reply.T_base_tool.has_value()) {
     throw core::Error(pick ? "Reply.T_base_tool is missing: NEXT with status ok carries the pick"
-                     : "Reply.T_base_tool must be empty unless NEXT with status ok");
+                           : "Reply.T_base_tool must be empty unless NEXT with status ok");
   }
   if (reply.T_base_tool && !reply.T_base_tool->matrix().allFinite()) {
     throw core::Error("Reply.T_base_tool must be finite");
@@ -245,8 +238,7 @@ void RequestDecoder::feedBinary(const char* data, std::size_t size) {
   // The command id tells how long its request is; until it has arrived, nothing is decided.
   constexpr std::size_t kIdSize = 4;
   while (buffer_.size() - start >= kIdSize) {
-    const std::size_t length =
-        detail::binaryRequestSize(detail::readInt32(buffer_.data() + start, params_.byte_order));
+    const std::size_t length = detail::binaryRequestSize(detail::readInt32(buffer_.data() + start, params_.byte_order));
     if (buffer_.size() - start < length) break;
     ready_.push_back(detail::decodeBinaryRequest(buffer_.data() + start, params_));
     start += length;
@@ -310,7 +302,7 @@ std::string encodeRequest(const Request& request, const CodecParams& params) {
   std::string line = detail::encodeAsciiRequest(request, params);
   if (line.size() > params.max_line_length) {
     throw core::Error("Request: '" + line.substr(0, line.size() - 2) + "' is longer than " +
-                std::to_string(params.max_line_length) + " characters (max_line_length)");
+                      std::to_string(params.max_line_length) + " characters (max_line_length)");
   }
   return line;
 }
@@ -342,7 +334,7 @@ std::optional<Reply> ReplyDecoder::next() {
       discarding_ = newline == std::string::npos;
       buffer_.erase(0, newline == std::string::npos ? buffer_.size() : newline + 1);
       throw core::Error("malformed reply: a line longer than " + std::to_string(params_.max_line_length) +
-                  " characters (max_line_length)");
+                        " characters (max_line_length)");
     }
     if (newline == std::string::npos) return std::nullopt;
     const std::string line = buffer_.substr(0, newline);

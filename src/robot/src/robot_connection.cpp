@@ -43,7 +43,8 @@ RobotConnection::RobotConnection(const std::string& host, int port, const robot:
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<uint16_t>(port));
-  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1) throw core::Error("'" + host + "' is not an IPv4 address");
+  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1)
+    throw core::Error("'" + host + "' is not an IPv4 address");
   const auto deadline = Clock::now() + connect_timeout;
   while ((fd_ = connectOnce(address)) < 0) {
     if (Clock::now() >= deadline) {
@@ -74,8 +75,9 @@ robot::Reply RobotConnection::request(const robot::Request& request, std::chrono
     if (auto reply = decoder_.next()) return *reply;
     pollfd readable{fd_, POLLIN, 0};
     const int ready = poll(&readable, 1, remainingMs(deadline));
-    if (ready == 0) throw core::Error("no reply to " + std::string(robot::commandKeyword(request.command)) + " within " +
-                                std::to_string(timeout.count()) + " ms");
+    if (ready == 0)
+      throw core::Error("no reply to " + std::string(robot::commandKeyword(request.command)) + " within " +
+                        std::to_string(timeout.count()) + " ms");
     if (ready < 0 && errno == EINTR) continue;
     char buffer[4096];
     const ssize_t n = recv(fd_, buffer, sizeof(buffer), 0);

@@ -30,8 +30,7 @@ RobotServer::Impl::Impl(const RobotServerParams& params, RequestHandler& request
       wake_fd(detail::makeEventFd()),
       port(detail::boundPort(listener.get())),
       codec(params.codec),
-      allowed(std::make_shared<const detail::AddressFilter>(params.allowed_clients,
-                                                            kOwner + ".allowed_clients")) {}
+      allowed(std::make_shared<const detail::AddressFilter>(params.allowed_clients, kOwner + ".allowed_clients")) {}
 
 RobotServer::RobotServer(const RobotServerParams& params, RequestHandler& handler) {
   params.validate();
@@ -87,9 +86,9 @@ std::size_t RobotServer::clientCount() const { return impl_->client_count.load()
 void RobotServer::setCodec(const robot::CodecParams& codec) {
   codec.validate();
   core::requireField(codec.max_line_length <= impl_->limits.max_buffered_input &&
-                   codec.max_line_length <= impl_->limits.max_buffered_output,
-               kOwner + ".codec", "max_line_length", "<= max_buffered_input and max_buffered_output",
-               codec.max_line_length);
+                         codec.max_line_length <= impl_->limits.max_buffered_output,
+                     kOwner + ".codec", "max_line_length", "<= max_buffered_input and max_buffered_output",
+                     codec.max_line_length);
   const std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->codec = codec;
 }
@@ -100,28 +99,24 @@ void RobotServer::setAllowedClients(const std::vector<std::string>& allowed) {
   impl_->allowed = std::move(filter);
 }
 
-
 void RobotServerParams::validate() const {
   const std::string owner = "robot_server";
   in_addr address{};
-  core::requireField(inet_pton(AF_INET, bind_address.c_str(), &address) == 1, owner, "bind_address",
-               "an IPv4 address", bind_address);
+  core::requireField(inet_pton(AF_INET, bind_address.c_str(), &address) == 1, owner, "bind_address", "an IPv4 address",
+                     bind_address);
   core::requireField(port >= 0 && port <= 65535, owner, "port", "in [0, 65535]", port);
   // Parsing is the check; the filter itself is built again by the server.
   detail::AddressFilter{allowed_clients, owner + ".allowed_clients"};
   core::requireField(max_clients >= 1, owner, "max_clients", ">= 1", max_clients);
-  core::requireField(max_queued_requests >= 1, owner, "max_queued_requests", ">= 1",
-               max_queued_requests);
+  core::requireField(max_queued_requests >= 1, owner, "max_queued_requests", ">= 1", max_queued_requests);
   // A request the codec accepts must fit, or every long request would cost the connection.
-  core::requireField(max_buffered_input >= codec.max_line_length &&
-                   max_buffered_input >= robot::kMaxBinaryRequestSize,
-               owner, "max_buffered_input", ">= codec.max_line_length and the longest binary request",
-               max_buffered_input);
+  core::requireField(max_buffered_input >= codec.max_line_length && max_buffered_input >= robot::kMaxBinaryRequestSize,
+                     owner, "max_buffered_input", ">= codec.max_line_length and the longest binary request",
+                     max_buffered_input);
   // One reply must fit, or the first reply to a client that is slow to read would cost it.
-  core::requireField(max_buffered_output >= robot::kBinaryReplySize &&
-                   max_buffered_output >= codec.max_line_length,
-               owner, "max_buffered_output", ">= codec.max_line_length and the binary reply size",
-               max_buffered_output);
+  core::requireField(max_buffered_output >= robot::kBinaryReplySize && max_buffered_output >= codec.max_line_length,
+                     owner, "max_buffered_output", ">= codec.max_line_length and the binary reply size",
+                     max_buffered_output);
   codec.validate();
 }
 

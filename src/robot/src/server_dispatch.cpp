@@ -25,8 +25,7 @@ void RobotServer::Impl::serveReadyClients() {
   }
 }
 
-void RobotServer::Impl::handOver(detail::ClientConnection& client,
-                                 const robot::Request& request) {
+void RobotServer::Impl::handOver(detail::ClientConnection& client, const robot::Request& request) {
   std::string failure;
   try {
     handler.handle(client.id(), request);
@@ -86,14 +85,12 @@ void RobotServer::Impl::closeAll(const char* reason) {
 
 void RobotServer::Impl::disconnect(std::unique_ptr<detail::ClientConnection> client) {
   const ClientId id = client->id();
-  detail::serverLogger()->info("client {} ({}) disconnected: {}", id, client->peer(),
-                               client->closeReason());
+  detail::serverLogger()->info("client {} ({}) disconnected: {}", id, client->peer(), client->closeReason());
   client.reset();  // the socket closes before the handler hears of it
   try {
     handler.disconnected(id);
   } catch (const std::exception& error) {
-    detail::serverLogger()->error("client {}: the handler failed on disconnect: {}", id,
-                                  error.what());
+    detail::serverLogger()->error("client {}: the handler failed on disconnect: {}", id, error.what());
   } catch (...) {
     detail::serverLogger()->error("client {}: the handler failed on disconnect", id);
   }

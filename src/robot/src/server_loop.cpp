@@ -22,13 +22,11 @@ constexpr int kAcceptBatch = 16;
 constexpr auto kAcceptPause = std::chrono::milliseconds(100);
 
 bool isFatalAcceptError(int error_number) {
-  return error_number == EBADF || error_number == EINVAL || error_number == ENOTSOCK ||
-         error_number == EFAULT;
+  return error_number == EBADF || error_number == EINVAL || error_number == ENOTSOCK || error_number == EFAULT;
 }
 
 bool isOutOfResources(int error_number) {
-  return error_number == EMFILE || error_number == ENFILE || error_number == ENOBUFS ||
-         error_number == ENOMEM;
+  return error_number == EMFILE || error_number == ENFILE || error_number == ENOBUFS || error_number == ENOMEM;
 }
 
 }  // namespace
@@ -94,8 +92,8 @@ void RobotServer::Impl::acceptClients() {
       throw core::Error("robot server: accept failed: " + detail::errnoText(error_number));
     }
     if (isOutOfResources(error_number)) {
-      detail::serverLogger()->warn("cannot accept a connection: {}; pausing {} ms",
-                                   detail::errnoText(error_number), kAcceptPause.count());
+      detail::serverLogger()->warn("cannot accept a connection: {}; pausing {} ms", detail::errnoText(error_number),
+                                   kAcceptPause.count());
       accept_paused_until = std::chrono::steady_clock::now() + kAcceptPause;
       return;
     }
@@ -104,8 +102,7 @@ void RobotServer::Impl::acceptClients() {
 }
 
 void RobotServer::Impl::admit(detail::UniqueFd socket, const sockaddr_in& peer) {
-  const std::string peer_text =
-      detail::addressText(peer.sin_addr) + ":" + std::to_string(ntohs(peer.sin_port));
+  const std::string peer_text = detail::addressText(peer.sin_addr) + ":" + std::to_string(ntohs(peer.sin_port));
   std::shared_ptr<const detail::AddressFilter> filter;
   robot::CodecParams codec_now;
   {
@@ -124,8 +121,7 @@ void RobotServer::Impl::admit(detail::UniqueFd socket, const sockaddr_in& peer) 
   }
   detail::setNoDelay(socket.get());
   const ClientId id = next_id++;
-  clients.emplace(id, std::make_unique<detail::ClientConnection>(id, std::move(socket), peer_text,
-                                                                 codec_now, limits));
+  clients.emplace(id, std::make_unique<detail::ClientConnection>(id, std::move(socket), peer_text, codec_now, limits));
   client_count.store(clients.size());
   log->info("client {} connected from {}", id, peer_text);
 }

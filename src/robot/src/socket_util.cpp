@@ -49,8 +49,7 @@ UniqueFd listenTcp(const std::string& address, int port) {
   if (!fd.valid()) throw core::Error("cannot listen on " + where + ": socket: " + errnoText(errno));
   const int on = 1;
   ::setsockopt(fd.get(), SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-  if (::bind(fd.get(), reinterpret_cast<const sockaddr*>(&socket_address),
-             sizeof socket_address) != 0) {
+  if (::bind(fd.get(), reinterpret_cast<const sockaddr*>(&socket_address), sizeof socket_address) != 0) {
     throw core::Error("cannot listen on " + where + ": " + errnoText(errno));
   }
   if (::listen(fd.get(), SOMAXCONN) != 0) {
@@ -87,8 +86,7 @@ void drainEventFd(int fd) {
 
 UniqueFd acceptClient(int listen_fd, sockaddr_in& peer) {
   socklen_t length = sizeof peer;
-  return UniqueFd(::accept4(listen_fd, reinterpret_cast<sockaddr*>(&peer), &length,
-                            SOCK_NONBLOCK | SOCK_CLOEXEC));
+  return UniqueFd(::accept4(listen_fd, reinterpret_cast<sockaddr*>(&peer), &length, SOCK_NONBLOCK | SOCK_CLOEXEC));
 }
 
 void setNoDelay(int fd) {

@@ -13,12 +13,11 @@ namespace binpick::simulation {
 namespace {
 
 void requireValidCamera(const PinholeCamera& camera, const char* caller) {
-  const bool ok = camera.width > 0 && camera.height > 0 && std::isfinite(camera.fx) &&
-                  camera.fx > 0.0 && std::isfinite(camera.fy) && camera.fy > 0.0 &&
-                  std::isfinite(camera.cx) && std::isfinite(camera.cy);
+  const bool ok = camera.width > 0 && camera.height > 0 && std::isfinite(camera.fx) && camera.fx > 0.0 &&
+                  std::isfinite(camera.fy) && camera.fy > 0.0 && std::isfinite(camera.cx) && std::isfinite(camera.cy);
   if (!ok) {
     throw core::Error(std::string(caller) +
-                ": invalid PinholeCamera (width, height, fx, fy must be positive, cx, cy finite)");
+                      ": invalid PinholeCamera (width, height, fx, fy must be positive, cx, cy finite)");
   }
 }
 
@@ -63,8 +62,7 @@ io::PointCloud depthToCloud(const PinholeCamera& camera, const DepthImage& image
       }
       const double ray_x = (u - camera.cx) / camera.fx;
       // z is copied, not multiplied, so that point.z() == depth exactly.
-      cloud.points[pixel] =
-          Eigen::Vector3f(static_cast<float>(z * ray_x), static_cast<float>(z * ray_y), z);
+      cloud.points[pixel] = Eigen::Vector3f(static_cast<float>(z * ray_x), static_cast<float>(z * ray_y), z);
     }
   }
   return cloud;

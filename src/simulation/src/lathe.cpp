@@ -18,8 +18,7 @@ detail::Polygon validatedProfile(const std::vector<Eigen::Vector2d>& profile, in
   }
   for (const auto& p : profile) {
     if (p.allFinite() && p.x() < 0.0) {
-      throw core::Error("makeLathe: the profile has a point with r < 0 (r = " + std::to_string(p.x()) +
-                  ")");
+      throw core::Error("makeLathe: the profile has a point with r < 0 (r = " + std::to_string(p.x()) + ")");
     }
   }
   try {
@@ -46,8 +45,7 @@ io::TriangleMesh makeLathe(const std::vector<Eigen::Vector2d>& profile, int segm
     const int count = on_axis[i] ? 1 : segments;
     for (int k = 0; k < count; ++k) {
       const double angle = 2.0 * kPi * k / segments;
-      mesh.vertices.emplace_back(Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), z)
-                                     .cast<float>());
+      mesh.vertices.emplace_back(Eigen::Vector3d(r * std::cos(angle), r * std::sin(angle), z).cast<float>());
     }
   }
   const auto at = [&](int i, int k) { return on_axis[i] ? first[i] : first[i] + k % segments; };

@@ -25,8 +25,7 @@ void appendTriangleSamples(const Corners& t, double step, std::vector<Eigen::Vec
   const std::array<Eigen::Vector3d, 3> corner{t.a, t.b, t.c};
   int longest = 0;  // the edge corner[longest] -> corner[longest + 1]
   for (int k = 1; k < 3; ++k) {
-    if ((corner[(k + 1) % 3] - corner[k]).norm() >
-        (corner[(longest + 1) % 3] - corner[longest]).norm()) {
+    if ((corner[(k + 1) % 3] - corner[k]).norm() > (corner[(longest + 1) % 3] - corner[longest]).norm()) {
       longest = k;
     }
   }
@@ -81,8 +80,7 @@ void appendBox(io::TriangleMesh& mesh, const Eigen::Vector3f& lo, const Eigen::V
   const int base = static_cast<int>(mesh.vertices.size());
   // Corner k has x from bit 0, y from bit 1, z from bit 2 (0 = lo, 1 = hi).
   for (int k = 0; k < 8; ++k) {
-    mesh.vertices.emplace_back((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(),
-                               (k & 4) ? hi.z() : lo.z());
+    mesh.vertices.emplace_back((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(), (k & 4) ? hi.z() : lo.z());
   }
   // Each face as a counter-clockwise quad seen from outside.
   const std::array<std::array<int, 4>, 6> faces{{
@@ -103,8 +101,7 @@ std::vector<Eigen::Vector3f> surfaceSamples(const io::TriangleMesh& mesh, double
   // Rows and samples `step` apart leave every point within sqrt(step^2 + (step/2)^2) of a sample.
   const double step = coverage_radius / std::sqrt(1.25);
   std::vector<Eigen::Vector3f> samples;
-  for (const auto& triangle : mesh.triangles)
-    appendTriangleSamples(corners(mesh, triangle), step, samples);
+  for (const auto& triangle : mesh.triangles) appendTriangleSamples(corners(mesh, triangle), step, samples);
   return samples;
 }
 

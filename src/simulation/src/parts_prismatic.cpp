@@ -9,8 +9,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // Appends `steps` + 1 points (millimetres in, metres out) on a circular arc from angle a0 to a1.
-void appendArc(std::vector<Eigen::Vector2d>& profile, const Eigen::Vector2d& centre, double radius,
-               double a0, double a1, int steps) {
+void appendArc(std::vector<Eigen::Vector2d>& profile, const Eigen::Vector2d& centre, double radius, double a0,
+               double a1, int steps) {
   for (int s = 0; s <= steps; ++s) {
     const double a = a0 + (a1 - a0) * s / steps;
     profile.push_back(1e-3 * (centre + radius * Eigen::Vector2d(std::cos(a), std::sin(a))));
@@ -21,9 +21,7 @@ Eigen::Matrix3d rotationZ(double angle) {
   return Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
-Eigen::Matrix3d halfTurnX() {
-  return Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX()).toRotationMatrix();
-}
+Eigen::Matrix3d halfTurnX() { return Eigen::AngleAxisd(kPi, Eigen::Vector3d::UnitX()).toRotationMatrix(); }
 
 }  // namespace
 
@@ -97,8 +95,7 @@ Part makeGear() {
 // x = 15 and 45 mm, tilted (12 mm high at the left end, 4 mm at the right), extruded 35 mm. The
 // tilt breaks every mirror of the profile: identity only.
 Part makeSwitch() {
-  const auto profile =
-      millimetres({{0, 0}, {60, 0}, {60, 30}, {45, 30}, {45, 34}, {15, 42}, {15, 30}, {0, 30}});
+  const auto profile = millimetres({{0, 0}, {60, 0}, {60, 30}, {45, 30}, {45, 34}, {15, 42}, {15, 30}, {0, 30}});
   return {"switch", "rocker switch housing, 60 x 30 mm body with a tilted rocker, 35 mm deep",
           centredOnVolumeCentroid(makePrism(profile, 0.035)), Symmetry{}};
 }

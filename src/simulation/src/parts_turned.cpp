@@ -11,8 +11,7 @@ Part makeRingMagnet() {
   constexpr int kSegments = 64;
   const auto profile = millimetres({{12, -5}, {25, -5}, {25, 5}, {12, 5}});
   Symmetry symmetry;
-  symmetry.discrete.push_back(
-      Eigen::AngleAxisd(3.14159265358979323846, Eigen::Vector3d::UnitX()).toRotationMatrix());
+  symmetry.discrete.push_back(Eigen::AngleAxisd(3.14159265358979323846, Eigen::Vector3d::UnitX()).toRotationMatrix());
   symmetry.continuous_axis = Eigen::Vector3d::UnitZ();
   return {"ring_magnet", "ring magnet, 50 mm outer and 24 mm inner diameter, 10 mm thick",
           centredOnVolumeCentroid(makeLathe(profile, kSegments)), symmetry};

@@ -39,8 +39,7 @@ SensorGeometryParams geometryParams(const PileParams& params) {
   return geometry;
 }
 
-void recordTruth(PileScene& scene, const SensorGeometry& geometry,
-                 const std::vector<ObjectVisibility>& visibility) {
+void recordTruth(PileScene& scene, const SensorGeometry& geometry, const std::vector<ObjectVisibility>& visibility) {
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     scene.objects[i].visible_pixels = visibility[i].visible_lit_pixels;
     scene.objects[i].unoccluded_pixels = visibility[i].alone_lit_pixels;
@@ -54,8 +53,7 @@ void recordTruth(PileScene& scene, const SensorGeometry& geometry,
 // The pile as the rig sees it: what every camera pixel hits, lit or not.
 SensorGeometry castRays(const io::TriangleMesh& part, const PileScene& scene, const PileParams& params,
                         std::vector<ObjectVisibility>* visibility = nullptr) {
-  const io::TriangleMesh bin_mesh =
-      detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
+  const io::TriangleMesh bin_mesh = detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
   const RayCaster caster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin));
   SensorGeometry geometry = computeSensorGeometry(scene.rig, caster, geometryParams(params));
   if (visibility) {
@@ -85,14 +83,12 @@ PileScene sceneAt(const io::TriangleMesh& part, const PileParams& params,
   geometry = castRays(part, scene, params, &visibility);
   recordTruth(scene, geometry, visibility);
   scene.cloud = detail::measurableCloud(geometry, params.max_view_angle_deg);
-  detail::applySensorNoise(scene.cloud, params.depth_noise, params.dropout, params.seed,
-                           kSensorStream);
+  detail::applySensorNoise(scene.cloud, params.depth_noise, params.dropout, params.seed, kSensorStream);
   return scene;
 }
 
 // generatePile: the physics, then the view of the poses it gives.
-PileScene generatePileWithGeometry(const io::TriangleMesh& part, const PileParams& params,
-                                   SensorGeometry& geometry) {
+PileScene generatePileWithGeometry(const io::TriangleMesh& part, const PileParams& params, SensorGeometry& geometry) {
   params.validate();
   requireValidPart(part, "generatePile");
   const BinInterior bin{params.bin_length, params.bin_width, params.bin_wall_height};
@@ -103,8 +99,7 @@ PileScene generatePileWithGeometry(const io::TriangleMesh& part, const PileParam
 }
 
 PileScene viewPileWithGeometry(const io::TriangleMesh& part, const PileParams& params,
-                               const std::vector<Eigen::Isometry3d>& T_bin_objects,
-                               SensorGeometry& geometry) {
+                               const std::vector<Eigen::Isometry3d>& T_bin_objects, SensorGeometry& geometry) {
   params.validate();
   requireValidPart(part, "viewPile");
   PileScene scene = sceneAt(part, params, T_bin_objects, geometry);
@@ -113,9 +108,8 @@ PileScene viewPileWithGeometry(const io::TriangleMesh& part, const PileParams& p
   return scene;
 }
 
-std::vector<cv::Mat> imagesOf(const SensorGeometry& geometry, const PileScene& scene,
-                              const PileParams& params, const io::PatternSetSpec& patterns,
-                              const PhotometryParams& photometry) {
+std::vector<cv::Mat> imagesOf(const SensorGeometry& geometry, const PileScene& scene, const PileParams& params,
+                              const io::PatternSetSpec& patterns, const PhotometryParams& photometry) {
   const std::vector<PixelLighting> lighting =
       computePixelLighting(geometry, scene.rig, photometry, detail::pileAlbedo(params));
   return renderPatternImages(lighting, geometry.width, geometry.height, patterns, photometry);
@@ -128,16 +122,14 @@ PileScene generatePile(const io::TriangleMesh& part, const PileParams& params) {
   return generatePileWithGeometry(part, params, geometry);
 }
 
-std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileScene& scene,
-                                      const PileParams& params, const io::PatternSetSpec& patterns,
-                                      const PhotometryParams& photometry) {
+std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileScene& scene, const PileParams& params,
+                                      const io::PatternSetSpec& patterns, const PhotometryParams& photometry) {
   params.validate();
   return imagesOf(castRays(part, scene, params), scene, params, patterns, photometry);
 }
 
 PileCapture generatePileCapture(const io::TriangleMesh& part, const PileParams& params,
-                                const io::PatternSetSpec& patterns,
-                                const PhotometryParams& photometry) {
+                                const io::PatternSetSpec& patterns, const PhotometryParams& photometry) {
   SensorGeometry geometry;
   PileCapture capture;
   capture.scene = generatePileWithGeometry(part, params, geometry);
@@ -152,8 +144,7 @@ PileScene viewPile(const io::TriangleMesh& part, const PileParams& params,
 }
 
 PileCapture renderPileCaptureAt(const io::TriangleMesh& part, const PileParams& params,
-                                const std::vector<Eigen::Isometry3d>& T_bin_objects,
-                                const io::PatternSetSpec& patterns,
+                                const std::vector<Eigen::Isometry3d>& T_bin_objects, const io::PatternSetSpec& patterns,
                                 const PhotometryParams& photometry) {
   SensorGeometry geometry;
   PileCapture capture;
@@ -162,9 +153,8 @@ PileCapture renderPileCaptureAt(const io::TriangleMesh& part, const PileParams& 
   return capture;
 }
 
-io::Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
-                        const io::PatternSetSpec& patterns, const PhotometryParams& photometry,
-                        const std::string& source) {
+io::Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params, const io::PatternSetSpec& patterns,
+                            const PhotometryParams& photometry, const std::string& source) {
   io::Capture capture;
   io::CaptureMetadata& m = capture.metadata;
   m.source = source;
@@ -203,15 +193,12 @@ void PileParams::validate() const {
   require(std::isfinite(camera_height) && camera_height > bin_wall_height, "camera_height",
           "finite and above the bin walls", camera_height);
   require(std::isfinite(depth_noise) && depth_noise >= 0.0, "depth_noise", ">= 0", depth_noise);
-  require(std::isfinite(dropout) && dropout >= 0.0 && dropout < 1.0, "dropout", "in [0, 1)",
-          dropout);
-  require(std::isfinite(max_view_angle_deg) && max_view_angle_deg > 0.0 &&
-              max_view_angle_deg <= 90.0,
+  require(std::isfinite(dropout) && dropout >= 0.0 && dropout < 1.0, "dropout", "in [0, 1)", dropout);
+  require(std::isfinite(max_view_angle_deg) && max_view_angle_deg > 0.0 && max_view_angle_deg <= 90.0,
           "max_view_angle_deg", "in (0, 90]", max_view_angle_deg);
-  require(std::isfinite(part_albedo) && part_albedo >= 0.0 && part_albedo <= 1.0, "part_albedo",
-          "in [0, 1]", part_albedo);
-  require(std::isfinite(bin_albedo) && bin_albedo >= 0.0 && bin_albedo <= 1.0, "bin_albedo",
-          "in [0, 1]", bin_albedo);
+  require(std::isfinite(part_albedo) && part_albedo >= 0.0 && part_albedo <= 1.0, "part_albedo", "in [0, 1]",
+          part_albedo);
+  require(std::isfinite(bin_albedo) && bin_albedo >= 0.0 && bin_albedo <= 1.0, "bin_albedo", "in [0, 1]", bin_albedo);
   require(threads >= 0, "threads", ">= 0", threads);
   rig.validate();
   physics.validate("PileParams.physics");

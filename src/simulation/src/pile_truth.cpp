@@ -7,8 +7,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "binpick/core/error.hpp"
-#include "binpick/io/geometry_io.hpp"
 #include "binpick/core/json_fields.hpp"
+#include "binpick/io/geometry_io.hpp"
 
 namespace binpick::simulation {
 namespace {
@@ -26,8 +26,8 @@ json objectsJson(const PileScene& scene, const std::string& part_name) {
                        {"unoccluded_pixels", o.unoccluded_pixels},
                        {"visible_fraction", o.visible_fraction}});
   }
-  return {{"part", part_name}, {"units", "m"}, {"T_camera_bin", core::poseRows(scene.T_camera_bin)},
-          {"objects", objects}};
+  return {
+      {"part", part_name}, {"units", "m"}, {"T_camera_bin", core::poseRows(scene.T_camera_bin)}, {"objects", objects}};
 }
 
 void writeImage(const fs::path& path, const cv::Mat& image) {
@@ -55,8 +55,8 @@ cv::Mat maskImage(const PileScene& scene) {
 
 }  // namespace
 
-void writePileTruth(const std::string& capture_directory, const PileScene& scene,
-                    const std::string& part_name, const io::TriangleMesh& part) {
+void writePileTruth(const std::string& capture_directory, const PileScene& scene, const std::string& part_name,
+                    const io::TriangleMesh& part) {
   const fs::path truth = fs::path(capture_directory) / "truth";
   std::error_code error;
   fs::create_directories(truth, error);
@@ -64,8 +64,7 @@ void writePileTruth(const std::string& capture_directory, const PileScene& scene
   std::ofstream objects(truth / "objects.json");
   objects << objectsJson(scene, part_name).dump(2) << "\n";
   if (!objects) throw core::Error((truth / "objects.json").string() + ": cannot write");
-  cv::Mat depth(scene.cloud.height, scene.cloud.width, CV_32FC1,
-                const_cast<float*>(scene.depth.data()));
+  cv::Mat depth(scene.cloud.height, scene.cloud.width, CV_32FC1, const_cast<float*>(scene.depth.data()));
   writeImage(truth / "depth.tiff", depth);
   writeImage(truth / "mask.png", maskImage(scene));
   io::writePointCloud((truth / "cloud.ply").string(), scene.exact_cloud);

@@ -11,8 +11,7 @@ io::PointCloud emptyOrganized(const SensorGeometry& geometry) {
   io::PointCloud cloud;
   cloud.width = geometry.width;
   cloud.height = geometry.height;
-  cloud.points.assign(static_cast<std::size_t>(geometry.width) * geometry.height,
-                      Eigen::Vector3f(nan, nan, nan));
+  cloud.points.assign(static_cast<std::size_t>(geometry.width) * geometry.height, Eigen::Vector3f(nan, nan, nan));
   return cloud;
 }
 

@@ -9,9 +9,7 @@
 namespace binpick::simulation::detail {
 namespace {
 
-double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return a.x() * b.y() - a.y() * b.x();
-}
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // Orientation of c relative to the directed line a->b: > 0 left, < 0 right, 0 on it.
 double orientation(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
@@ -29,8 +27,8 @@ double polygonScale(const Polygon& polygon) {
 }
 
 bool onSegment(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& p) {
-  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) &&
-         std::min(a.y(), b.y()) <= p.y() && p.y() <= std::max(a.y(), b.y());
+  return std::min(a.x(), b.x()) <= p.x() && p.x() <= std::max(a.x(), b.x()) && std::min(a.y(), b.y()) <= p.y() &&
+         p.y() <= std::max(a.y(), b.y());
 }
 
 // Closed-segment intersection test, touching counts: a profile whose edges touch is not simple.
@@ -38,13 +36,11 @@ bool segmentsIntersect(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const
                        const Eigen::Vector2d& d, double area_tolerance) {
   const double o1 = orientation(a, b, c), o2 = orientation(a, b, d);
   const double o3 = orientation(c, d, a), o4 = orientation(c, d, b);
-  const auto sign = [area_tolerance](double v) {
-    return v > area_tolerance ? 1 : (v < -area_tolerance ? -1 : 0);
-  };
+  const auto sign = [area_tolerance](double v) { return v > area_tolerance ? 1 : (v < -area_tolerance ? -1 : 0); };
   const int s1 = sign(o1), s2 = sign(o2), s3 = sign(o3), s4 = sign(o4);
   if (s1 * s2 < 0 && s3 * s4 < 0) return true;
-  return (s1 == 0 && onSegment(a, b, c)) || (s2 == 0 && onSegment(a, b, d)) ||
-         (s3 == 0 && onSegment(c, d, a)) || (s4 == 0 && onSegment(c, d, b));
+  return (s1 == 0 && onSegment(a, b, c)) || (s2 == 0 && onSegment(a, b, d)) || (s3 == 0 && onSegment(c, d, a)) ||
+         (s4 == 0 && onSegment(c, d, b));
 }
 
 Polygon withoutRepeatedAndCollinearVertices(const Polygon& profile, double length_tolerance) {
@@ -60,9 +56,8 @@ Polygon withoutRepeatedAndCollinearVertices(const Polygon& profile, double lengt
       const auto& next = polygon[(i + 1) % n];
       const bool repeated = (here - prev).norm() <= length_tolerance;
       // Collinear and going forward (a spike that doubles back is a self-intersection instead).
-      const bool straight =
-          std::abs(orientation(prev, here, next)) <= length_tolerance * (next - prev).norm() &&
-          (here - prev).dot(next - here) > 0.0;
+      const bool straight = std::abs(orientation(prev, here, next)) <= length_tolerance * (next - prev).norm() &&
+                            (here - prev).dot(next - here) > 0.0;
       if (repeated || straight) {
         polygon.erase(polygon.begin() + i);
         removed = true;
@@ -88,19 +83,17 @@ void requireNoCrossingEdges(const Polygon& polygon, double area_tolerance) {
         const auto& shared = (j == i + 1) ? b : a;
         const auto& far_of_first = (j == i + 1) ? a : b;
         const auto& far_of_second = (j == i + 1) ? d : c;
-        const bool collinear =
-            std::abs(orientation(far_of_first, shared, far_of_second)) <= area_tolerance;
+        const bool collinear = std::abs(orientation(far_of_first, shared, far_of_second)) <= area_tolerance;
         const bool doubles_back = (far_of_first - shared).dot(far_of_second - shared) > 0.0;
         if (collinear && doubles_back) {
           throw core::Error("makePrism: the profile doubles back on itself at vertex " +
-                      std::to_string((j == i + 1) ? j : i));
+                            std::to_string((j == i + 1) ? j : i));
         }
         continue;
       }
       if (segmentsIntersect(a, b, c, d, area_tolerance)) {
         std::ostringstream message;
-        message << "makePrism: the profile is self-intersecting (edge " << i << " crosses edge "
-                << j << ")";
+        message << "makePrism: the profile is self-intersecting (edge " << i << " crosses edge " << j << ")";
         throw core::Error(message.str());
       }
     }
@@ -136,8 +129,7 @@ double twiceSignedArea(const Polygon& polygon) {
 
 Polygon cleanSimplePolygon(const Polygon& profile) {
   if (profile.size() < 3) {
-    throw core::Error("makePrism: the profile needs at least 3 points, got " +
-                std::to_string(profile.size()));
+    throw core::Error("makePrism: the profile needs at least 3 points, got " + std::to_string(profile.size()));
   }
   for (const auto& p : profile) {
     if (!p.allFinite()) throw core::Error("makePrism: the profile has a non-finite coordinate");

@@ -14,8 +14,7 @@ std::vector<Eigen::Vector3f> extrudedVertices(const detail::Polygon& polygon, do
   std::vector<Eigen::Vector3f> vertices;
   vertices.reserve(2 * polygon.size());
   for (const double z : {-0.5 * thickness, 0.5 * thickness}) {
-    for (const auto& p : polygon)
-      vertices.emplace_back(Eigen::Vector3d(p.x(), p.y(), z).cast<float>());
+    for (const auto& p : polygon) vertices.emplace_back(Eigen::Vector3d(p.x(), p.y(), z).cast<float>());
   }
   return vertices;
 }

@@ -47,8 +47,8 @@ double standardNormal(SplitMix64& rng) {
 Eigen::Matrix3d uniformRotation(Rng& rng) {
   const double u1 = uniform01(rng), u2 = uniform01(rng), u3 = uniform01(rng);
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-  const Eigen::Quaterniond q(b * std::cos(kTwoPi * u3), a * std::sin(kTwoPi * u2),
-                             a * std::cos(kTwoPi * u2), b * std::sin(kTwoPi * u3));
+  const Eigen::Quaterniond q(b * std::cos(kTwoPi * u3), a * std::sin(kTwoPi * u2), a * std::cos(kTwoPi * u2),
+                             b * std::sin(kTwoPi * u3));
   return q.normalized().toRotationMatrix();
 }
 

@@ -14,15 +14,13 @@ struct ProjectedVertex {
   Eigen::Vector2d pixel;   // (u, v); meaningful only when camera.z() > kNearPlane
 };
 
-std::vector<ProjectedVertex> projectVertices(const PinholeCamera& camera,
-                                             const RenderObject& object) {
+std::vector<ProjectedVertex> projectVertices(const PinholeCamera& camera, const RenderObject& object) {
   std::vector<ProjectedVertex> projected;
   projected.reserve(object.mesh->vertices.size());
   for (const auto& v : object.mesh->vertices) {
     const Eigen::Vector3d p = object.T_camera_object * v.cast<double>();
     const double z = std::max(p.z(), kNearPlane);
-    projected.push_back(
-        {p, {camera.fx * p.x() / z + camera.cx, camera.fy * p.y() / z + camera.cy}});
+    projected.push_back({p, {camera.fx * p.x() / z + camera.cx, camera.fy * p.y() / z + camera.cy}});
   }
   return projected;
 }
@@ -50,9 +48,8 @@ void setEdge(ScreenTriangle& triangle, int k, const Eigen::Vector2d& a, const Ei
 }
 
 // Returns false when the triangle cannot be drawn (behind the near plane, edge-on, off-image).
-bool setupTriangle(const PinholeCamera& camera, const ProjectedVertex& v0,
-                   const ProjectedVertex& v1, const ProjectedVertex& v2, int32_t id,
-                   ScreenTriangle& out) {
+bool setupTriangle(const PinholeCamera& camera, const ProjectedVertex& v0, const ProjectedVertex& v1,
+                   const ProjectedVertex& v2, int32_t id, ScreenTriangle& out) {
   const bool reaches_near_plane =
       v0.camera.z() <= kNearPlane || v1.camera.z() <= kNearPlane || v2.camera.z() <= kNearPlane;
   if (reaches_near_plane) return false;
@@ -103,8 +100,8 @@ bool insideTriangle(const ScreenTriangle& t, double u, double v) {
   return true;
 }
 
-void rasterizeTriangle(const PinholeCamera& camera, const ScreenTriangle& t,
-                       const PixelWindow& window, float* depth, int32_t* instance) {
+void rasterizeTriangle(const PinholeCamera& camera, const ScreenTriangle& t, const PixelWindow& window, float* depth,
+                       int32_t* instance) {
   const int v_begin = std::max(t.v_min, window.v0);
   const int v_end = std::min(t.v_max, window.v0 + window.height - 1);
   for (int v = v_begin; v <= v_end; ++v) {
@@ -130,8 +127,7 @@ void rasterizeTriangle(const PinholeCamera& camera, const ScreenTriangle& t,
 
 }  // namespace
 
-std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera,
-                                           const std::vector<RenderObject>& objects) {
+std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera, const std::vector<RenderObject>& objects) {
   std::vector<ScreenTriangle> triangles;
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const RenderObject& object = objects[i];
@@ -142,8 +138,7 @@ std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera,
     const std::vector<ProjectedVertex> projected = projectVertices(camera, object);
     for (const auto& tri : object.mesh->triangles) {
       ScreenTriangle screen;
-      if (setupTriangle(camera, projected[tri[0]], projected[tri[1]], projected[tri[2]], object.id,
-                        screen)) {
+      if (setupTriangle(camera, projected[tri[0]], projected[tri[1]], projected[tri[2]], object.id, screen)) {
         triangles.push_back(screen);
       }
     }
@@ -151,11 +146,11 @@ std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera,
   return triangles;
 }
 
-void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& triangles,
-               const PixelWindow& window, float* depth, int32_t* instance) {
+void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& triangles, const PixelWindow& window,
+               float* depth, int32_t* instance) {
   for (const auto& t : triangles) {
-    const bool overlaps = t.v_max >= window.v0 && t.v_min < window.v0 + window.height &&
-                          t.u_max >= window.u0 && t.u_min < window.u0 + window.width;
+    const bool overlaps = t.v_max >= window.v0 && t.v_min < window.v0 + window.height && t.u_max >= window.u0 &&
+                          t.u_min < window.u0 + window.width;
     if (overlaps) rasterizeTriangle(camera, t, window, depth, instance);
   }
 }

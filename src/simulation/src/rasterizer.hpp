@@ -27,8 +27,7 @@ constexpr double kNearPlane = 1e-3;
 
 // Triangles of all objects in their order, skipping those that touch the near plane, are edge-on
 // or fall outside the image. Throws core::Error on a missing or invalid mesh.
-std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera,
-                                           const std::vector<RenderObject>& objects);
+std::vector<ScreenTriangle> setupTriangles(const PinholeCamera& camera, const std::vector<RenderObject>& objects);
 
 // Rows and columns [u0, u0 + width) x [v0, v0 + height) of the image.
 struct PixelWindow {
@@ -39,7 +38,7 @@ struct PixelWindow {
 // window; +inf / -1 where nothing was drawn before). The nearest surface wins; on an exact tie
 // the earlier triangle keeps the pixel, so the result does not depend on how the image is split
 // into windows.
-void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& triangles,
-               const PixelWindow& window, float* depth, int32_t* instance);
+void rasterize(const PinholeCamera& camera, const std::vector<ScreenTriangle>& triangles, const PixelWindow& window,
+               float* depth, int32_t* instance);
 
 }  // namespace binpick::simulation::detail

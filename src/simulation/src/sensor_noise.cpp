@@ -23,8 +23,7 @@ void applyToPoint(Eigen::Vector3f& point, double sigma, double dropout, SplitMix
 
 }  // namespace
 
-void applySensorNoise(io::PointCloud& cloud, double sigma, double dropout, uint64_t seed,
-                      uint32_t stream) {
+void applySensorNoise(io::PointCloud& cloud, double sigma, double dropout, uint64_t seed, uint32_t stream) {
   if (sigma <= 0.0 && dropout <= 0.0) return;
   const KeyedStreams streams(seed, stream);
   // Keyed by point index, so the loop could be split among threads without changing the result.

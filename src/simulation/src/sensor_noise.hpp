@@ -11,7 +11,6 @@ namespace binpick::simulation::detail {
 // viewing ray by a Gaussian distance of standard deviation `sigma` (metres). The random numbers
 // of point i come from KeyedStreams(seed, stream).forItem(i), so the result is fixed by the seed
 // however the points are shared among threads.
-void applySensorNoise(io::PointCloud& cloud, double sigma, double dropout, uint64_t seed,
-                      uint32_t stream);
+void applySensorNoise(io::PointCloud& cloud, double sigma, double dropout, uint64_t seed, uint32_t stream);
 
 }  // namespace binpick::simulation::detail

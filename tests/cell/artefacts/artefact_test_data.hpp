@@ -24,8 +24,7 @@ inline io::Capture tinyCapture() {
   m.pattern_set.projector_height = 32;
   m.pattern_set.phase_steps = 0;
   m.patterns = {"white", "black"};
-  capture.images = {cv::Mat(6, 8, CV_8UC1, cv::Scalar(200)),
-                    cv::Mat(6, 8, CV_8UC1, cv::Scalar(10))};
+  capture.images = {cv::Mat(6, 8, CV_8UC1, cv::Scalar(200)), cv::Mat(6, 8, CV_8UC1, cv::Scalar(10))};
   return capture;
 }
 
@@ -51,9 +50,7 @@ inline bool anyPartial(const std::string& directory) {
   return false;
 }
 
-inline std::string nameOf(const std::string& path) {
-  return std::filesystem::path(path).filename().string();
-}
+inline std::string nameOf(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 // cycle-<6+ digits>-<UTC>[-n]
 inline bool isCycleName(const std::string& name) {

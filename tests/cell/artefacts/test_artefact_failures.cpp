@@ -34,8 +34,7 @@ TEST_F(artefacts_failures, DirectoryBelowARegularFileIsAnErrorNamingIt) {
   std::ofstream(pathOf("plain-file")) << "not a directory";
   const std::string directory = pathOf("plain-file/cycles");
   EXPECT_TRUE(throwsNaming([&] { ArtefactStore store(paramsIn(directory)); }, directory));
-  EXPECT_TRUE(throwsNaming([&] { ArtefactStore store(paramsIn(pathOf("plain-file"))); },
-                           pathOf("plain-file")));
+  EXPECT_TRUE(throwsNaming([&] { ArtefactStore store(paramsIn(pathOf("plain-file"))); }, pathOf("plain-file")));
 }
 
 TEST_F(artefacts_failures, DirectoryReplacedByAFileFailsTheSaveNamingTheCycle) {
@@ -64,9 +63,7 @@ TEST_F(artefacts_failures, AFailingArtefactLeavesNoPartialDirectory) {
   cycle.detections_json = "{}";
 
   const std::string message = thrownMessage([&] { store.save(cycle); });
-  EXPECT_NE(message.find("cannot save cycle 8 to " + directory + "/cycle-000008-"),
-            std::string::npos)
-      << message;
+  EXPECT_NE(message.find("cannot save cycle 8 to " + directory + "/cycle-000008-"), std::string::npos) << message;
   EXPECT_NE(message.find("cloud.ply"), std::string::npos) << message;  // and what failed
   EXPECT_TRUE(entriesOf(directory).empty());
   EXPECT_TRUE(store.cycles().empty());

@@ -63,8 +63,7 @@ TEST_F(artefacts_store, SavesEveryArtefactOfACycle) {
   EXPECT_TRUE(isCycleName(nameOf(directory))) << directory;
   EXPECT_EQ(cycleNumberOf(directory), "000042");
   EXPECT_EQ(fs::path(directory).parent_path(), fs::path(pathOf("cycles")));
-  EXPECT_EQ(entriesOf(directory),
-            (std::set<std::string>{"capture", "cloud.ply", "detections.json", "overlay.png"}));
+  EXPECT_EQ(entriesOf(directory), (std::set<std::string>{"capture", "cloud.ply", "detections.json", "overlay.png"}));
   EXPECT_EQ(io::readCapture(directory + "/capture").images.size(), 2u);
   EXPECT_EQ(io::readPointCloud(directory + "/cloud.ply").size(), 3u);
   EXPECT_EQ(fileText(directory + "/detections.json"), cycle.detections_json);

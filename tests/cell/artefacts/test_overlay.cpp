@@ -51,9 +51,9 @@ TEST(artefacts_overlay, DrawsTheModelOriginWhereTheCameraSeesItInItsRankColour) 
 }
 
 TEST(artefacts_overlay, ColoursPicksGreenToYellowAndTheRestRed) {
-  const cv::Mat overlay = renderOverlay(
-      kGrey, pinhole(), kModel,
-      {partAt({0.0, 0.0, 0.5}, 2), partAt({-0.2, 0.0, 0.5}, 0), partAt({0.0, -0.2, 0.5}, -1)});
+  const cv::Mat overlay =
+      renderOverlay(kGrey, pinhole(), kModel,
+                    {partAt({0.0, 0.0, 0.5}, 2), partAt({-0.2, 0.0, 0.5}, 0), partAt({0.0, -0.2, 0.5}, -1)});
   EXPECT_EQ(at(overlay, 320, 240), kYellow);  // the last pick
   EXPECT_EQ(at(overlay, 120, 240), kGreen);   // the first
   EXPECT_EQ(at(overlay, 320, 40), kRed);      // not picked
@@ -97,12 +97,9 @@ TEST(artefacts_overlay, ScalesSixteenBitImagesToEightBit) {
 TEST(artefacts_overlay, RefusesImagesItCannotDrawOn) {
   const io::LensIntrinsics lens = pinhole();
   EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(), lens, kModel, {}); }, "empty"));
-  EXPECT_TRUE(
-      throwsNaming([&] { renderOverlay(cv::Mat(480, 640, CV_8UC3), lens, kModel, {}); }, "grey"));
-  EXPECT_TRUE(
-      throwsNaming([&] { renderOverlay(cv::Mat(480, 640, CV_32FC1), lens, kModel, {}); }, "grey"));
-  EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(240, 320, CV_8UC1), lens, kModel, {}); },
-                           "320x240"));
+  EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(480, 640, CV_8UC3), lens, kModel, {}); }, "grey"));
+  EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(480, 640, CV_32FC1), lens, kModel, {}); }, "grey"));
+  EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(240, 320, CV_8UC1), lens, kModel, {}); }, "320x240"));
 }
 
 }  // namespace

@@ -25,14 +25,16 @@ Eigen::Isometry3d baseFromBin() {
   return T_base_bin;
 }
 
-simulation::PileScene writePile(simulation::PileParams params, int objects, const io::TriangleMesh& part, const std::string& directory) {
+simulation::PileScene writePile(simulation::PileParams params, int objects, const io::TriangleMesh& part,
+                                const std::string& directory) {
   params.objects = objects;
   io::PatternSetSpec patterns;
   patterns.projector_width = params.rig.projector.width;
   patterns.projector_height = params.rig.projector.height;
   const simulation::PhotometryParams photometry;
   simulation::PileCapture pile = simulation::generatePileCapture(part, params, patterns, photometry);
-  io::writeCapture(directory, simulation::recordedCapture(std::move(pile.images), params, patterns, photometry, "test bin"));
+  io::writeCapture(directory,
+                   simulation::recordedCapture(std::move(pile.images), params, patterns, photometry, "test bin"));
   io::writeRigCalibration(directory + "/calib.yaml", params.rig);
   return std::move(pile.scene);
 }
@@ -104,8 +106,8 @@ std::string poseYaml(const Eigen::Isometry3d& pose) {
   const Eigen::Vector3d t = pose.translation();
   std::ostringstream text;
   text.precision(12);
-  text << "{translation: [" << t.x() << ", " << t.y() << ", " << t.z() << "], rotation: [" << q.w() << ", "
-       << q.x() << ", " << q.y() << ", " << q.z() << "]}";
+  text << "{translation: [" << t.x() << ", " << t.y() << ", " << t.z() << "], rotation: [" << q.w() << ", " << q.x()
+       << ", " << q.y() << ", " << q.z() << "]}";
   return text.str();
 }
 
@@ -128,8 +130,10 @@ std::string cellConfigYaml(const CellScene& scene, const std::string& extra, con
        << "    cache: " << scene.directory << "/part.cache\n"
        << "    settings: " << BINPICK_CONFIG_DIR << "/virtual-cell.yaml\n"
        << "    grasps:\n"
-       << "      - {name: long leg outside, translation: [0.0124, -0.0126, 0], rotation: [-90, 0, 0], convention: euler_xyz}\n"
-       << "      - {name: long leg inside, translation: [0.0164, -0.0046, 0], rotation: [90, 0, 0], convention: euler_xyz}\n"
+       << "      - {name: long leg outside, translation: [0.0124, -0.0126, 0], rotation: [-90, 0, 0], convention: "
+          "euler_xyz}\n"
+       << "      - {name: long leg inside, translation: [0.0164, -0.0046, 0], rotation: [90, 0, 0], convention: "
+          "euler_xyz}\n"
        << "  - {name: second, model: " << scene.model << ", grasps: [{translation: [0, 0, 0]}]}\n"
        << "picking: {bin: {T_base_bin: {translation: [0.6, 0, 0]}}, max_tilt_deg: 80, order: highest_first}\n"
        << "robot: {bind_address: 127.0.0.1, port: 0}\n"

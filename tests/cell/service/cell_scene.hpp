@@ -9,11 +9,11 @@
 namespace binpick::cell::testing {
 
 struct CellScene {
-  std::string directory;       // holds capture/ (with calib.yaml), part.ply, empty/ (an empty bin)
-  std::string capture;         // capture/
-  std::string empty_capture;   // empty/: the same bin with no parts
-  std::string calibration;     // capture/calib.yaml
-  std::string model;           // part.ply
+  std::string directory;                          // holds capture/ (with calib.yaml), part.ply, empty/ (an empty bin)
+  std::string capture;                            // capture/
+  std::string empty_capture;                      // empty/: the same bin with no parts
+  std::string calibration;                        // capture/calib.yaml
+  std::string model;                              // part.ply
   std::vector<Eigen::Isometry3d> T_base_objects;  // truth, robot base frame
   Eigen::Isometry3d T_base_camera = Eigen::Isometry3d::Identity();
 };
@@ -23,7 +23,6 @@ const CellScene& cellScene();
 
 // binpickd settings for the scene: replay of `replay_path` (default: the capture), port 0, the
 // l_bracket's grasps; `extra` is appended (YAML top-level keys, e.g. "limits: {...}\n").
-std::string cellConfigYaml(const CellScene& scene, const std::string& extra = "",
-                           const std::string& replay_path = "");
+std::string cellConfigYaml(const CellScene& scene, const std::string& extra = "", const std::string& replay_path = "");
 
 }  // namespace binpick::cell::testing

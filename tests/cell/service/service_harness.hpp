@@ -22,7 +22,8 @@ class ReplyCollector {
     };
   }
   // The next reply to `client`; nullopt after `timeout`.
-  std::optional<robot::Reply> next(robot::ClientId client, std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
+  std::optional<robot::Reply> next(robot::ClientId client,
+                                   std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
     std::unique_lock lock(mutex_);
     std::optional<robot::Reply> found;
     arrived_.wait_for(lock, timeout, [&] {

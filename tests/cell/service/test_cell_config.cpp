@@ -11,9 +11,9 @@
 namespace binpick::cell {
 namespace {
 
+using test::throwsNaming;
 using testing::cellConfigYaml;
 using testing::cellScene;
-using test::throwsNaming;
 
 CellConfig parse(const std::string& yaml) { return parseCellConfig(yaml, "cell.yaml", "/base"); }
 
@@ -59,12 +59,13 @@ TEST(CellConfig, PickingReadsEveryGripperKeyAndTheRankingWeights) {
   const picking::RankWeights& w = p.ranking;
   EXPECT_EQ(std::vector<double>({w.free, w.height, w.coverage, w.upright, w.clearance, w.quality}),
             std::vector<double>({3, 0.5, 2, 0.25, 0, 4}));
-  EXPECT_EQ(std::vector<double>({p.collision_margin, p.finger_clearance, p.clearance_cap, p.cover_radius,
-                                 p.cover_height}),
-            std::vector<double>({0.003, 0.004, 0.03, 0.05, 0.006}));
+  EXPECT_EQ(
+      std::vector<double>({p.collision_margin, p.finger_clearance, p.clearance_cap, p.cover_radius, p.cover_height}),
+      std::vector<double>({0.003, 0.004, 0.03, 0.05, 0.006}));
   EXPECT_EQ(p.order, picking::PickOrder::HighestFirst);
   EXPECT_EQ(parse(kMinimal).picking.order, picking::PickOrder::BestRank);  // absent: the ranking decides
-  EXPECT_EQ(loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml").picking.order, picking::PickOrder::BestRank);
+  EXPECT_EQ(loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml").picking.order,
+            picking::PickOrder::BestRank);
 }
 
 TEST(CellConfig, RelativePathsAreRelativeToTheFile) {
@@ -90,7 +91,8 @@ TEST(CellConfig, SymmetryOrderGivesTheRotations) {
   const CellConfig config = parse(
       "source: {replay: {path: c}}\n"
       "recipes: [{name: p, model: m.ply, symmetry: {order: 4, axis: [0, 0, 2]}, grasps: [{translation: [0, 0, 0]}]},\n"
-      "          {name: q, model: m.ply, symmetry: {continuous: true, axis: [1, 0, 0]}, grasps: [{translation: [0, 0, 0]}]}]\n");
+      "          {name: q, model: m.ply, symmetry: {continuous: true, axis: [1, 0, 0]}, grasps: [{translation: [0, 0, "
+      "0]}]}]\n");
   ASSERT_EQ(config.recipes[0].symmetry.discrete.size(), 4u);
   const Eigen::Vector3d turned = config.recipes[0].symmetry.discrete[1] * Eigen::Vector3d::UnitX();
   EXPECT_NEAR((turned - Eigen::Vector3d::UnitY()).norm(), 0.0, 1e-12);
@@ -106,30 +108,32 @@ TEST(CellConfig, MistakesNameTheKey) {
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {framing: json}\n"); }, "robot.framing"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "limits: {capture_timeout_ms: 0}\n"); }, "capture_timeout_ms"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {order: random}\n"); }, "picking.order"));
-  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {gripper: {tool_radius: -1}}\n"); },
-                           "picking.gripper.tool_radius"));
-  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {tool_radius: 0.02}\n"); },
-                           "moved to picking.gripper.tool_radius"));
   EXPECT_TRUE(
-      throwsNaming([] { parse(kMinimal + "picking: {gripper: {type: magnet}}\n"); }, "picking.gripper.type"));
+      throwsNaming([] { parse(kMinimal + "picking: {gripper: {tool_radius: -1}}\n"); }, "picking.gripper.tool_radius"));
+  EXPECT_TRUE(
+      throwsNaming([] { parse(kMinimal + "picking: {tool_radius: 0.02}\n"); }, "moved to picking.gripper.tool_radius"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {gripper: {type: magnet}}\n"); }, "picking.gripper.type"));
   EXPECT_TRUE(
       throwsNaming([] { parse(kMinimal + "picking: {gripper: {cup_size: 1}}\n"); }, "picking.gripper.cup_size"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {ranking: {free: -1}}\n"); }, "picking.ranking.free"));
-  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "reconstruction: {decode: {min_contrast: -1}}\n"); },
-                           "min_contrast"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "reconstruction: {decode: {min_contrast: -1}}\n"); }, "min_contrast"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "hand_eye: {T_base_camera: {rotation: [0, 0, 0, 0]}}\n"); },
                            "hand_eye.T_base_camera.rotation"));
   EXPECT_TRUE(throwsNaming([] { parse("source: {mode: camera}\nrecipes: []\n"); }, "source.mode"));
   EXPECT_TRUE(throwsNaming([] { parse("source: {replay: {path: c}}\n"); }, "recipes"));
-  EXPECT_TRUE(throwsNaming([] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: []}]\n"); },
-                           "recipes[0].grasps"));
+  EXPECT_TRUE(
+      throwsNaming([] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: []}]\n"); },
+                   "recipes[0].grasps"));
   EXPECT_TRUE(throwsNaming(
-      [] { parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: [{translaton: [0, 0, 0]}]}]\n"); },
+      [] {
+        parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: [{translaton: [0, 0, 0]}]}]\n");
+      },
       "recipes[0].grasps[0].translaton"));
   EXPECT_TRUE(throwsNaming(
       [] {
-        parse("source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: [{}]}, "
-              "{name: p, model: n.ply, grasps: [{}]}]\n");
+        parse(
+            "source: {replay: {path: c}}\nrecipes: [{name: p, model: m.ply, grasps: [{}]}, "
+            "{name: p, model: n.ply, grasps: [{}]}]\n");
       },
       "used twice"));
   EXPECT_TRUE(throwsNaming([] { parse("source: {mode: replay}\nrecipes: []\n"); }, "replay.path"));

@@ -29,8 +29,8 @@ std::shared_ptr<const CellSetup> setupFor(const std::string& yaml) {
 }
 
 struct Cell {
-  explicit Cell(const std::string& yaml) : setup(setupFor(yaml)),
-        service(setup, makeCaptureSource(setup->config.source), collector.sink()) {}
+  explicit Cell(const std::string& yaml)
+      : setup(setupFor(yaml)), service(setup, makeCaptureSource(setup->config.source), collector.sink()) {}
   Cell(const std::string& yaml, std::unique_ptr<acquisition::CaptureSource> source)
       : setup(setupFor(yaml)), service(setup, std::move(source), collector.sink()) {}
 
@@ -42,7 +42,8 @@ struct Cell {
   }
   std::vector<robot::Reply> allPicks() {
     std::vector<robot::Reply> picks;
-    for (robot::Reply r = ask(request(Command::NextPick)); r.status == Status::Ok; r = ask(request(Command::NextPick))) {
+    for (robot::Reply r = ask(request(Command::NextPick)); r.status == Status::Ok;
+         r = ask(request(Command::NextPick))) {
       picks.push_back(r);
     }
     return picks;
@@ -141,8 +142,8 @@ TEST(CellService, APartFailingAgainIsAvoidedTwiceAsLong) {
   ASSERT_EQ(first.status, Status::Ok);
   const Eigen::Vector3d where = first.T_base_tool->translation();
   ASSERT_EQ(cell.ask(request(Command::PickFailed)).status, Status::Ok);  // avoided in cycle 2
-  EXPECT_FALSE(offeredAgain(where));                                      // cycle 2
-  EXPECT_TRUE(offeredAgain(where));                                       // cycle 3: its first pick
+  EXPECT_FALSE(offeredAgain(where));                                     // cycle 2
+  EXPECT_TRUE(offeredAgain(where));                                      // cycle 3: its first pick
   ASSERT_EQ(cell.ask(request(Command::PickFailed, std::to_string(first.integers.at(1)))).status, Status::Ok);
   EXPECT_FALSE(offeredAgain(where));  // cycle 4
   EXPECT_FALSE(offeredAgain(where));  // cycle 5: a second failure doubles the time
@@ -193,6 +194,7 @@ class SlowSource : public acquisition::CaptureSource {
     return io::readCapture(cellScene().capture);
   }
   std::string description() const override { return "slow"; }
+
  private:
   std::chrono::milliseconds delay_;
 };
@@ -205,7 +207,7 @@ TEST(CellService, ACaptureThatMissesItsDeadlineIsATimeout) {
   const auto triggered = cell.collector.next(kRobot, std::chrono::milliseconds(1200));
   ASSERT_TRUE(triggered.has_value()) << "answered at the deadline, not when the capture came";
   EXPECT_EQ(triggered->status, Status::Timeout);
-  EXPECT_EQ(cell.collector.next(kRobot)->status, Status::Timeout);  // the waiting NEXT too
+  EXPECT_EQ(cell.collector.next(kRobot)->status, Status::Timeout);      // the waiting NEXT too
   EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::Busy);  // the late capture still runs
 }
 

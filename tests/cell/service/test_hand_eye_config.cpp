@@ -24,8 +24,7 @@ class HandEyeConfig : public test::TempDirectoryTest {
   calibration::HandEyeFile result(calibration::HandEyeSetup setup) const {
     calibration::HandEyeFile file;
     file.setup = setup;
-    file.T_mount_camera.linear() =
-        Eigen::AngleAxisd(3.0, Eigen::Vector3d(0.1, 1.0, 0.05).normalized()).matrix();
+    file.T_mount_camera.linear() = Eigen::AngleAxisd(3.0, Eigen::Vector3d(0.1, 1.0, 0.05).normalized()).matrix();
     file.T_mount_camera.translation() = Eigen::Vector3d(0.61, -0.02, 0.93);
     file.method = "shah";
     file.date = "2026-01-31T12:00:00.000Z";

@@ -58,7 +58,8 @@ TEST_F(RecipeGrasps, QualityIsReadInPlaceAndChecked) {
 TEST_F(RecipeGrasps, AMissingOrBrokenGraspsFileNamesTheRecipeAndTheFile) {
   EXPECT_TRUE(throwsNaming([&] { parse("{name: p, model: m.ply, grasps: none.yaml}"); }, "recipes[0].grasps"));
   std::ofstream(pathOf("bad.yaml")) << "grasps:\n  - {name: a, translation: [0, 0]}\n";
-  EXPECT_TRUE(throwsNaming([&] { parse("{name: p, model: m.ply, grasps: bad.yaml}"); }, "bad.yaml: grasps[0].translation"));
+  EXPECT_TRUE(
+      throwsNaming([&] { parse("{name: p, model: m.ply, grasps: bad.yaml}"); }, "bad.yaml: grasps[0].translation"));
   std::ofstream(pathOf("typo.yaml")) << "grasp:\n  - {name: a}\n";
   EXPECT_TRUE(throwsNaming([&] { parse("{name: p, model: m.ply, grasps: typo.yaml}"); }, "grasp"));
 }
@@ -66,8 +67,8 @@ TEST_F(RecipeGrasps, AMissingOrBrokenGraspsFileNamesTheRecipeAndTheFile) {
 TEST_F(RecipeGrasps, ARecipeWithoutGraspsGetsThemGeneratedFromItsModel) {
   io::writeMesh(pathOf("part.ply"), simulation::makePart("l_bracket").mesh);
   writeGraspsFile(pathOf("taught.yaml"), someGrasps());
-  const CellConfig config = parse(
-      "{name: generated, model: part.ply}, {name: taught, model: part.ply, grasps: taught.yaml}");
+  const CellConfig config =
+      parse("{name: generated, model: part.ply}, {name: taught, model: part.ply, grasps: taught.yaml}");
   EXPECT_TRUE(config.recipes[0].grasps.empty());
   const auto setup = prepareCell(config);
   const std::vector<picking::Grasp>& generated = setup->recipes[0].picking.grasps;

@@ -25,8 +25,7 @@ class NotifyReceiver {
     std::memcpy(sun.sun_path, address.data(), address.size());
     const bool abstract = address[0] == '@';
     if (abstract) sun.sun_path[0] = '\0';
-    const auto length = static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + address.size() +
-                                               (abstract ? 0 : 1));
+    const auto length = static_cast<socklen_t>(offsetof(sockaddr_un, sun_path) + address.size() + (abstract ? 0 : 1));
     EXPECT_EQ(::bind(descriptor_, reinterpret_cast<const sockaddr*>(&sun), length), 0)
         << address << ": " << std::strerror(errno);
     // Only so that a test whose datagram never comes fails instead of hanging.

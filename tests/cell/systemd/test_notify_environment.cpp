@@ -36,8 +36,8 @@ class ScopedVariable {
 
 // The three variables the service manager passes, set together.
 struct ServiceEnvironment {
-  ServiceEnvironment(const std::optional<std::string>& socket,
-                     const std::optional<std::string>& usec, const std::optional<std::string>& pid)
+  ServiceEnvironment(const std::optional<std::string>& socket, const std::optional<std::string>& usec,
+                     const std::optional<std::string>& pid)
       : socket_("NOTIFY_SOCKET", socket), usec_("WATCHDOG_USEC", usec), pid_("WATCHDOG_PID", pid) {}
   ScopedVariable socket_, usec_, pid_;
 };
@@ -47,8 +47,7 @@ std::string ourPid() { return std::to_string(::getpid()); }
 using systemd_environment = NotifySocketTest;
 
 TEST_F(systemd_environment, WithoutNotifySocketEverythingIsDisabled) {
-  for (const std::optional<std::string>& socket :
-       {std::optional<std::string>(), std::optional<std::string>("")}) {
+  for (const std::optional<std::string>& socket : {std::optional<std::string>(), std::optional<std::string>("")}) {
     const ServiceEnvironment environment(socket, "10000000", ourPid());
     const SystemdNotifier notifier = SystemdNotifier::fromEnvironment();
     EXPECT_FALSE(notifier.enabled());
@@ -74,8 +73,7 @@ TEST_F(systemd_environment, WatchdogWithoutPidAppliesToThisProcess) {
 
 TEST_F(systemd_environment, WatchdogOfAnotherProcessIsNotOurs) {
   const std::string other = std::to_string(::getpid() + 1);
-  for (const std::string& pid :
-       {other, std::string("1"), std::string("garbage"), std::string("")}) {
+  for (const std::string& pid : {other, std::string("1"), std::string("garbage"), std::string("")}) {
     const ServiceEnvironment environment(socketPath(), "10000000", pid);
     const SystemdNotifier notifier = SystemdNotifier::fromEnvironment();
     EXPECT_TRUE(notifier.enabled()) << pid;
@@ -95,8 +93,7 @@ TEST_F(systemd_environment, GarbageWatchdogUsecMeansNoWatchdog) {
 
 TEST_F(systemd_environment, ARelativeNotifySocketIsAnErrorNamingIt) {
   const ServiceEnvironment environment("run/systemd/notify", std::nullopt, std::nullopt);
-  EXPECT_TRUE(throwsNaming([] { SystemdNotifier::fromEnvironment(); },
-                           "NOTIFY_SOCKET \"run/systemd/notify\""));
+  EXPECT_TRUE(throwsNaming([] { SystemdNotifier::fromEnvironment(); }, "NOTIFY_SOCKET \"run/systemd/notify\""));
 }
 
 }  // namespace

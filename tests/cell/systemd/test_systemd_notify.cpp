@@ -94,8 +94,7 @@ TEST_F(systemd_notify, LongStatusIsCutWithoutSplittingACharacter) {
 
 TEST_F(systemd_notify, DisabledNotifierSendsNothing) {
   NotifyReceiver receiver(socketPath());
-  for (const SystemdNotifier& disabled :
-       {SystemdNotifier(), SystemdNotifier("", microseconds(0))}) {
+  for (const SystemdNotifier& disabled : {SystemdNotifier(), SystemdNotifier("", microseconds(0))}) {
     SystemdNotifier notifier = disabled;
     EXPECT_FALSE(notifier.enabled());
     EXPECT_EQ(notifier.watchdogInterval(), microseconds(0));
@@ -112,10 +111,8 @@ TEST_F(systemd_notify, RejectsAddressesThatAreNoSocketAddress) {
   const microseconds none(0);
   EXPECT_TRUE(throwsNaming([&] { SystemdNotifier("run/notify", none); }, "NOTIFY_SOCKET"));
   EXPECT_TRUE(throwsNaming([&] { SystemdNotifier("@", none); }, "NOTIFY_SOCKET"));
-  EXPECT_TRUE(
-      throwsNaming([&] { SystemdNotifier("/" + std::string(120, 'x'), none); }, "NOTIFY_SOCKET"));
-  EXPECT_TRUE(
-      throwsNaming([&] { SystemdNotifier(socketPath(), microseconds(-1)); }, "watchdog_interval"));
+  EXPECT_TRUE(throwsNaming([&] { SystemdNotifier("/" + std::string(120, 'x'), none); }, "NOTIFY_SOCKET"));
+  EXPECT_TRUE(throwsNaming([&] { SystemdNotifier(socketPath(), microseconds(-1)); }, "watchdog_interval"));
   EXPECT_EQ(thrownMessage([&] { SystemdNotifier(socketPath(), microseconds(5000000)); }), "");
 }
 
@@ -131,8 +128,7 @@ class CapturedSystemdLog {
   int count(const std::string& phrase) const {
     const std::string all = text_.str();
     int found = 0;
-    for (auto at = all.find(phrase); at != std::string::npos; at = all.find(phrase, at + 1))
-      ++found;
+    for (auto at = all.find(phrase); at != std::string::npos; at = all.find(phrase, at + 1)) ++found;
     return found;
   }
 
@@ -168,8 +164,7 @@ TEST_F(systemd_notify, ThreadsSendingAtOnceDeliverEveryDatagramWhole) {
     });
   }
   std::set<std::string> received;
-  for (int i = 0; i < kThreads * kMessages; ++i)
-    received.insert(receiver.next().value_or("(none)"));
+  for (int i = 0; i < kThreads * kMessages; ++i) received.insert(receiver.next().value_or("(none)"));
   for (std::thread& sender : senders) sender.join();
   std::set<std::string> expected;
   for (int t = 0; t < kThreads; ++t) {

@@ -8,9 +8,9 @@
 
 namespace binpick::test {
 
-constexpr core::Orientation kAllOrientations[] = {
-    core::Orientation::Quaternion, core::Orientation::EulerZYX, core::Orientation::FixedXYZ,
-    core::Orientation::RotationVector, core::Orientation::EulerXYZ};
+constexpr core::Orientation kAllOrientations[] = {core::Orientation::Quaternion, core::Orientation::EulerZYX,
+                                                  core::Orientation::FixedXYZ, core::Orientation::RotationVector,
+                                                  core::Orientation::EulerXYZ};
 
 constexpr double kPi = 3.14159265358979323846;
 inline double degrees(double radians) { return radians * 180.0 / kPi; }

@@ -12,8 +12,8 @@ namespace binpick::robot {
 namespace {
 
 constexpr core::Orientation kAll[] = {core::Orientation::Quaternion, core::Orientation::EulerZYX,
-                                core::Orientation::FixedXYZ, core::Orientation::RotationVector,
-                                core::Orientation::EulerXYZ};
+                                      core::Orientation::FixedXYZ, core::Orientation::RotationVector,
+                                      core::Orientation::EulerXYZ};
 
 Eigen::Isometry3d pose(double x, double y, double z, const Eigen::Matrix3d& R) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
@@ -43,13 +43,10 @@ CodecParams withOrientation(core::Orientation orientation) {
 TEST(ProtocolAsciiReply, KnownRepliesAreTheseExactLines) {
   const CodecParams params;
   EXPECT_EQ(encodeReply(Reply{Command::Ping, Status::Ok, {}, std::nullopt}, params), "PING,0\r\n");
-  EXPECT_EQ(encodeReply(Reply{Command::Status, Status::Ok, {0, 1, 42}, std::nullopt}, params),
-            "STATUS,0,0,1,42\r\n");
-  EXPECT_EQ(encodeReply(Reply{Command::NextPick, Status::NoMorePicks, {}, std::nullopt}, params),
-            "NEXT,10\r\n");
+  EXPECT_EQ(encodeReply(Reply{Command::Status, Status::Ok, {0, 1, 42}, std::nullopt}, params), "STATUS,0,0,1,42\r\n");
+  EXPECT_EQ(encodeReply(Reply{Command::NextPick, Status::NoMorePicks, {}, std::nullopt}, params), "NEXT,10\r\n");
   const Eigen::Isometry3d T = pose(0.1, -0.2, 0.3005, Eigen::Matrix3d::Identity());
-  EXPECT_EQ(encodeReply(pick(T), params),
-            "NEXT,0,2,17,1,100.00,-200.00,300.50,1.00000,0.00000,0.00000,0.00000\r\n");
+  EXPECT_EQ(encodeReply(pick(T), params), "NEXT,0,2,17,1,100.00,-200.00,300.50,1.00000,0.00000,0.00000,0.00000\r\n");
   const Eigen::Isometry3d turned = pose(0, 0, -0.000001, test::rotationZ(90));  // -0.001 mm
   EXPECT_EQ(encodeReply(pick(turned, {0, 3, 0}), withOrientation(core::Orientation::EulerZYX)),
             "NEXT,0,0,3,0,0.00,0.00,0.00,90.00000,0.00000,0.00000\r\n");  // no "-0.00"
@@ -65,8 +62,7 @@ TEST(ProtocolAsciiReply, RepliesComeBackFromTheirText) {
     const CodecParams params = withOrientation(orientation);
     for (int i = 0; i < 2000; ++i) {
       const Eigen::Isometry3d T = test::randomPose(random, 9.99);
-      const std::vector<int32_t> integers = {static_cast<int32_t>(random() % 100),
-                                             static_cast<int32_t>(random() % 100),
+      const std::vector<int32_t> integers = {static_cast<int32_t>(random() % 100), static_cast<int32_t>(random() % 100),
                                              static_cast<int32_t>(random() % 100)};
       const std::string line = encodeReply(pick(T, integers), params);
       ASSERT_LE(line.size(), 80u);
@@ -128,8 +124,7 @@ TEST(ProtocolAsciiReply, RepliesThatCannotFitBecomeBadMessagesNeverLongLines) {
   EXPECT_GT(fallbacks, 100);  // the test did reach the fallback
   const Eigen::Isometry3d far = pose(-1e6, -1e6, -1e6, Eigen::Matrix3d::Identity());
   EXPECT_EQ(encodeReply(pick(far, {INT32_MIN, INT32_MIN, INT32_MIN}), CodecParams{}), "NEXT,8\r\n");
-  EXPECT_EQ(encodeReply(Reply{Command::Status, Status::Ok, {INT32_MIN, INT32_MIN, INT32_MIN}},
-                        CodecParams{}),
+  EXPECT_EQ(encodeReply(Reply{Command::Status, Status::Ok, {INT32_MIN, INT32_MIN, INT32_MIN}}, CodecParams{}),
             "STATUS,0,-2147483648,-2147483648,-2147483648\r\n");
   CodecParams narrow;
   narrow.max_line_length = 16;
@@ -144,13 +139,11 @@ TEST(ProtocolAsciiReply, MalformedRepliesThrowNamingTheProblem) {
   EXPECT_TRUE(test::throwsNaming(decode("PING,15\r\n"), "no status code"));
   EXPECT_TRUE(test::throwsNaming(decode("PING,0,1,2,3,4\r\n"), "neither up to 3 integers"));
   EXPECT_TRUE(test::throwsNaming(decode("STATUS,0,1.5\r\n"), "no int32"));
-  EXPECT_TRUE(
-      test::throwsNaming(decode("TRIGGER,0,1,0,0,0,1,0,0,0\r\n"), "T_base_tool must be empty"));
+  EXPECT_TRUE(test::throwsNaming(decode("TRIGGER,0,1,0,0,0,1,0,0,0\r\n"), "T_base_tool must be empty"));
   EXPECT_TRUE(test::throwsNaming(decode("NEXT,0\r\n"), "T_base_tool is missing"));
   EXPECT_TRUE(test::throwsNaming(decode("NEXT,0,1,2,x,1,0,0,0\r\n"), "no finite number"));
   EXPECT_TRUE(test::throwsNaming(decode("NEXT,0,1,2,3,0,0,0,0\r\n"), "zero quaternion"));
-  EXPECT_TRUE(
-      test::throwsNaming(decode("PING,0" + std::string(80, ' ') + "\r\n"), "longer than 80"));
+  EXPECT_TRUE(test::throwsNaming(decode("PING,0" + std::string(80, ' ') + "\r\n"), "longer than 80"));
   // A malformed line is consumed: the next one still decodes.
   ReplyDecoder decoder(params);
   const std::string bytes = "PONG,0\r\nPING,0\r\n";

@@ -93,8 +93,7 @@ TEST(ProtocolAsciiRequest, BadArgumentsAreBadMessagesOfThatCommand) {
   expectRefused("PING,1\r\n", Status::BadMessage, Command::Ping);
   expectRefused("NEXT,1\r\n", Status::BadMessage, Command::NextPick);
   expectRefused("MODEL,two words\r\n", Status::BadMessage, Command::SelectModel);
-  expectRequest("MODEL," + std::string(32, 'm') + "\r\n", Command::SelectModel,
-                std::string(32, 'm'));
+  expectRequest("MODEL," + std::string(32, 'm') + "\r\n", Command::SelectModel, std::string(32, 'm'));
   expectRefused("MODEL," + std::string(33, 'm') + "\r\n", Status::BadMessage, Command::SelectModel);
   expectRefused(",PING\r\n", Status::BadMessage, Command::Ping);
 }

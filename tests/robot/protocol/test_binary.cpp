@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "binpick/robot/protocol.hpp"
 #include "binary_test_support.hpp"
+#include "binpick/robot/protocol.hpp"
 #include "protocol_test_support.hpp"
 #include "thrown_message.hpp"
 
@@ -13,8 +13,8 @@ namespace binpick::robot {
 namespace {
 
 constexpr core::Orientation kAll[] = {core::Orientation::Quaternion, core::Orientation::EulerZYX,
-                                core::Orientation::FixedXYZ, core::Orientation::RotationVector,
-                                core::Orientation::EulerXYZ};
+                                      core::Orientation::FixedXYZ, core::Orientation::RotationVector,
+                                      core::Orientation::EulerXYZ};
 
 Decoded decodeOne(const std::string& message, const CodecParams& params) {
   RequestDecoder decoder(params);
@@ -38,8 +38,7 @@ TEST(ProtocolBinary, RequestsAreTwoInt32InTheChosenByteOrder) {
   ASSERT_TRUE(little.request);
   EXPECT_EQ(little.request->command, Command::Trigger);
   EXPECT_EQ(little.request->argument, "5");
-  const Decoded big =
-      decodeOne(bytes({0, 0, 0, 5, 0x7f, 0xff, 0xff, 0xff}), binary(ByteOrder::Big));
+  const Decoded big = decodeOne(bytes({0, 0, 0, 5, 0x7f, 0xff, 0xff, 0xff}), binary(ByteOrder::Big));
   EXPECT_EQ(big.request->command, Command::PickFailed);
   EXPECT_EQ(big.request->argument, "2147483647");
   EXPECT_EQ(encodeRequest(Request{Command::SelectModel, "258"}, binary(ByteOrder::Big)),
@@ -87,9 +86,8 @@ TEST(ProtocolBinary, ABigEndianPickIsTheseBytes) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation() = Eigen::Vector3d(0.1, -0.2, 0.3005);
   const std::string expected =
-      bytes({0, 0, 0,    4,    0, 0, 0,    0,    0,    0,    0,    2,    0, 0, 0,    17,
-             0, 0, 0,    1,    0, 0, 0x27, 0x10, 0xff, 0xff, 0xb1, 0xe0, 0, 0, 0x75, 0x62,
-             0, 0, 0x27, 0x10, 0, 0, 0,    0,    0,    0,    0,    0,    0, 0, 0,    0});
+      bytes({0,    0,    0,    4,    0, 0, 0,    0,    0, 0, 0,    2,    0, 0, 0, 17, 0, 0, 0, 1, 0, 0, 0x27, 0x10,
+             0xff, 0xff, 0xb1, 0xe0, 0, 0, 0x75, 0x62, 0, 0, 0x27, 0x10, 0, 0, 0, 0,  0, 0, 0, 0, 0, 0, 0,    0});
   const Reply reply{Command::NextPick, Status::Ok, {2, 17, 1}, T};
   EXPECT_EQ(encodeReply(reply, binary(ByteOrder::Big)), expected);
   const Reply back = decodeReply(expected, binary(ByteOrder::Big));
@@ -105,8 +103,7 @@ TEST(ProtocolBinary, RepliesRoundTripInBothByteOrdersAndEveryConvention) {
       for (int i = 0; i < 1000; ++i) {
         const Eigen::Isometry3d T = test::randomPose(random, 20.0);
         const std::vector<int32_t> integers = {static_cast<int32_t>(random()), -7, 0};
-        const std::string message =
-            encodeReply(Reply{Command::NextPick, Status::Ok, integers, T}, params);
+        const std::string message = encodeReply(Reply{Command::NextPick, Status::Ok, integers, T}, params);
         ASSERT_EQ(message.size(), kBinaryReplySize);
         const Reply back = decodeReply(message, params);
         ASSERT_EQ(back.status, Status::Ok);
@@ -114,8 +111,8 @@ TEST(ProtocolBinary, RepliesRoundTripInBothByteOrdersAndEveryConvention) {
         EXPECT_LE((back.T_base_tool->translation() - T.translation()).norm() * 1000.0, 0.01);
         EXPECT_LE(test::angleBetweenDegrees(back.T_base_tool->linear(), T.linear()), 0.01);
       }
-      const Reply status = decodeReply(
-          encodeReply(Reply{Command::Status, Status::Busy, {1}, std::nullopt}, params), params);
+      const Reply status =
+          decodeReply(encodeReply(Reply{Command::Status, Status::Busy, {1}, std::nullopt}, params), params);
       EXPECT_EQ(status.status, Status::Busy);
       EXPECT_EQ(status.integers, (std::vector<int32_t>{1, 0, 0}));  // the framing has three slots
     }
@@ -127,13 +124,10 @@ TEST(ProtocolBinary, OverflowingValuesBecomeABadMessage) {
   const CodecParams params = binary(ByteOrder::Little);
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation().z() = 30000.0;
-  const std::string message =
-      encodeReply(Reply{Command::NextPick, Status::Ok, {1, 2, 3}, T}, params);
+  const std::string message = encodeReply(Reply{Command::NextPick, Status::Ok, {1, 2, 3}, T}, params);
   EXPECT_EQ(message, bytes({4, 0, 0, 0, 8, 0, 0, 0}) + std::string(40, '\0'));
   T.translation().z() = 21474.83;  // 2147483000 fits
-  EXPECT_EQ(
-      decodeReply(encodeReply(Reply{Command::NextPick, Status::Ok, {}, T}, params), params).status,
-      Status::Ok);
+  EXPECT_EQ(decodeReply(encodeReply(Reply{Command::NextPick, Status::Ok, {}, T}, params), params).status, Status::Ok);
 }
 
 TEST(ProtocolBinary, MalformedRepliesThrowNamingTheProblem) {
@@ -141,8 +135,7 @@ TEST(ProtocolBinary, MalformedRepliesThrowNamingTheProblem) {
   std::string ping = encodeReply(Reply{Command::Ping, Status::Ok, {}, std::nullopt}, params);
   std::string badStatus = ping;
   badStatus[7] = 15;
-  EXPECT_TRUE(
-      test::throwsNaming([&] { decodeReply(badStatus, params); }, "status 15 is no status code"));
+  EXPECT_TRUE(test::throwsNaming([&] { decodeReply(badStatus, params); }, "status 15 is no status code"));
   std::string stray = ping;
   stray[kBinaryReplySize - 1] = 1;
   EXPECT_TRUE(test::throwsNaming([&] { decodeReply(stray, params); }, "pose fields are set"));
@@ -161,8 +154,7 @@ TEST(ProtocolBinary, ParamsAreCheckedNamingTheField) {
   CodecParams params;
   EXPECT_NO_THROW(params.validate());
   params.max_line_length = 15;
-  EXPECT_TRUE(test::throwsNaming([&] { params.validate(); },
-                                 "robot_protocol.max_line_length must be in [16, 4096]"));
+  EXPECT_TRUE(test::throwsNaming([&] { params.validate(); }, "robot_protocol.max_line_length must be in [16, 4096]"));
   params = CodecParams{};
   params.position_decimals = 10;
   EXPECT_TRUE(test::throwsNaming([&] { RequestDecoder decoder(params); }, "position_decimals"));

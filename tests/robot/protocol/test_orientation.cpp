@@ -16,8 +16,8 @@ using test::rotationY;
 using test::rotationZ;
 
 constexpr core::Orientation kAll[] = {core::Orientation::Quaternion, core::Orientation::EulerZYX,
-                                core::Orientation::FixedXYZ, core::Orientation::RotationVector,
-                                core::Orientation::EulerXYZ};
+                                      core::Orientation::FixedXYZ, core::Orientation::RotationVector,
+                                      core::Orientation::EulerXYZ};
 constexpr int kSamples = 10000;
 
 // The rotation the values stand for, written straight from the brands' definitions.
@@ -76,8 +76,7 @@ TEST(ProtocolOrientation, ValuesInRangeComeBackUnchanged) {
     const std::vector<double> euler = {outer(random), middle(random), outer(random)};
     for (core::Orientation orientation :
          {core::Orientation::EulerZYX, core::Orientation::FixedXYZ, core::Orientation::EulerXYZ}) {
-      const std::vector<double> back =
-          core::orientationValues(reference(euler, orientation), orientation);
+      const std::vector<double> back = core::orientationValues(reference(euler, orientation), orientation);
       for (int k = 0; k < 3; ++k) ASSERT_NEAR(back[k], euler[k], 1e-9);
     }
     const Eigen::Matrix3d R = test::randomRotation(random);
@@ -87,8 +86,8 @@ TEST(ProtocolOrientation, ValuesInRangeComeBackUnchanged) {
         core::orientationValues(reference(rv, core::Orientation::RotationVector), core::Orientation::RotationVector);
     for (int k = 0; k < 3; ++k) ASSERT_NEAR(rvBack[k], rv[k], 1e-9);
     const std::vector<double> q = core::orientationValues(R, core::Orientation::Quaternion);
-    const std::vector<double> qBack =
-        core::orientationValues(core::rotationFromValues(q, core::Orientation::Quaternion), core::Orientation::Quaternion);
+    const std::vector<double> qBack = core::orientationValues(
+        core::rotationFromValues(q, core::Orientation::Quaternion), core::Orientation::Quaternion);
     for (int k = 0; k < 4; ++k) ASSERT_NEAR(qBack[k], q[k], 1e-9);
   }
 }

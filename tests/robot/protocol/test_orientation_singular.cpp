@@ -16,35 +16,28 @@ using test::rotationX;
 using test::rotationY;
 using test::rotationZ;
 
-void expectValues(const std::vector<double>& actual, const std::vector<double>& expected,
-                  double tolerance) {
+void expectValues(const std::vector<double>& actual, const std::vector<double>& expected, double tolerance) {
   ASSERT_EQ(actual.size(), expected.size());
-  for (std::size_t k = 0; k < actual.size(); ++k)
-    EXPECT_NEAR(actual[k], expected[k], tolerance) << k;
+  for (std::size_t k = 0; k < actual.size(); ++k) EXPECT_NEAR(actual[k], expected[k], tolerance) << k;
 }
 
 // Rz(a) Ry(+-90) Rx(c) = Rz(a -+ c) Ry(+-90): A takes the whole turn about the common axis.
 TEST(ProtocolOrientationSingular, KukaGimbalLockPutsTheTurnIntoA) {
-  expectValues(
-      core::orientationValues(rotationZ(30) * rotationY(90) * rotationX(10), core::Orientation::EulerZYX),
-      {20, 90, 0}, 1e-9);
-  expectValues(
-      core::orientationValues(rotationZ(30) * rotationY(-90) * rotationX(10), core::Orientation::EulerZYX),
-      {40, -90, 0}, 1e-9);
+  expectValues(core::orientationValues(rotationZ(30) * rotationY(90) * rotationX(10), core::Orientation::EulerZYX),
+               {20, 90, 0}, 1e-9);
+  expectValues(core::orientationValues(rotationZ(30) * rotationY(-90) * rotationX(10), core::Orientation::EulerZYX),
+               {40, -90, 0}, 1e-9);
   // FANUC lists the same angles the other way round: W is 0 and R takes the turn.
-  expectValues(
-      core::orientationValues(rotationZ(30) * rotationY(90) * rotationX(10), core::Orientation::FixedXYZ),
-      {0, 90, 20}, 1e-9);
+  expectValues(core::orientationValues(rotationZ(30) * rotationY(90) * rotationX(10), core::Orientation::FixedXYZ),
+               {0, 90, 20}, 1e-9);
 }
 
 // Rx(a) Ry(+-90) Rz(c) = Rx(a +- c) Ry(+-90).
 TEST(ProtocolOrientationSingular, StaubliGimbalLockPutsTheTurnIntoRx) {
-  expectValues(
-      core::orientationValues(rotationX(30) * rotationY(90) * rotationZ(10), core::Orientation::EulerXYZ),
-      {40, 90, 0}, 1e-9);
-  expectValues(
-      core::orientationValues(rotationX(30) * rotationY(-90) * rotationZ(10), core::Orientation::EulerXYZ),
-      {20, -90, 0}, 1e-9);
+  expectValues(core::orientationValues(rotationX(30) * rotationY(90) * rotationZ(10), core::Orientation::EulerXYZ),
+               {40, 90, 0}, 1e-9);
+  expectValues(core::orientationValues(rotationX(30) * rotationY(-90) * rotationZ(10), core::Orientation::EulerXYZ),
+               {20, -90, 0}, 1e-9);
 }
 
 // At +-90 exactly and within 1e-9 degrees of it: the rule applies and R is reproduced. A little
@@ -62,8 +55,7 @@ TEST(ProtocolOrientationSingular, NearGimbalLockTheRotationComesBackExactly) {
         const std::vector<double> abc = core::orientationValues(zyx, core::Orientation::EulerZYX);
         const std::vector<double> staubli = core::orientationValues(xyz, core::Orientation::EulerXYZ);
         ASSERT_TRUE(core::rotationFromValues(abc, core::Orientation::EulerZYX).isApprox(zyx, 1e-9)) << offset;
-        ASSERT_TRUE(core::rotationFromValues(staubli, core::Orientation::EulerXYZ).isApprox(xyz, 1e-9))
-            << offset;
+        ASSERT_TRUE(core::rotationFromValues(staubli, core::Orientation::EulerXYZ).isApprox(xyz, 1e-9)) << offset;
         EXPECT_NEAR(abc[1], middle, 1e-7);
         EXPECT_NEAR(staubli[1], middle, 1e-7);
         if (std::abs(offset) <= 1e-9) {
@@ -77,8 +69,7 @@ TEST(ProtocolOrientationSingular, NearGimbalLockTheRotationComesBackExactly) {
 
 TEST(ProtocolOrientationSingular, HalfTurnRotationVectorsHaveLengthPi) {
   std::mt19937 random(22);
-  std::vector<Eigen::Vector3d> axes = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
-                                       Eigen::Vector3d::UnitZ(),
+  std::vector<Eigen::Vector3d> axes = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
                                        Eigen::Vector3d(1, 1, 1).normalized()};
   for (int i = 0; i < 1000; ++i) axes.push_back(test::randomRotation(random).col(0));
   for (const Eigen::Vector3d& axis : axes) {
@@ -100,19 +91,18 @@ TEST(ProtocolOrientationSingular, TinyRotationVectorsKeepTheirRelativePrecision)
     const std::vector<double> values = core::orientationValues(R, core::Orientation::RotationVector);
     const Eigen::Vector3d expected = angle * axis;
     // R itself only holds angle to ~1e-16 absolute: compare relative above that.
-    EXPECT_LE((Eigen::Vector3d(values[0], values[1], values[2]) - expected).norm(),
-              1e-9 * angle + 2e-16);
+    EXPECT_LE((Eigen::Vector3d(values[0], values[1], values[2]) - expected).norm(), 1e-9 * angle + 2e-16);
   }
 }
 
 TEST(ProtocolOrientationSingular, QuaternionsAreNormalisedAndSignedWithWNonNegative) {
   expectValues(core::orientationValues(core::rotationFromValues({2, 0, 0, 0}, core::Orientation::Quaternion),
-                                 core::Orientation::Quaternion),
+                                       core::Orientation::Quaternion),
                {1, 0, 0, 0}, 1e-15);
   // -q is the same rotation as q: it comes back as q.
   const double h = std::sqrt(0.5);
   expectValues(core::orientationValues(core::rotationFromValues({-h, 0, 0, -h}, core::Orientation::Quaternion),
-                                 core::Orientation::Quaternion),
+                                       core::Orientation::Quaternion),
                {h, 0, 0, h}, 1e-12);
 }
 

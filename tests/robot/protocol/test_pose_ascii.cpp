@@ -49,8 +49,7 @@ Request poseRequest(const Eigen::Isometry3d& T_base_flange) {
 }
 
 TEST(ProtocolPoseAscii, ThePendantsNumbersBecomeTheFlangePose) {
-  const Decoded kuka =
-      decodeOne("POSE,600,0,400,180,0,0\r\n", withOrientation(core::Orientation::EulerZYX));
+  const Decoded kuka = decodeOne("POSE,600,0,400,180,0,0\r\n", withOrientation(core::Orientation::EulerZYX));
   ASSERT_TRUE(kuka.request) << kuka.detail;
   EXPECT_EQ(kuka.command, Command::Pose);
   EXPECT_FALSE(kuka.request->argument);
@@ -61,10 +60,8 @@ TEST(ProtocolPoseAscii, ThePendantsNumbersBecomeTheFlangePose) {
   // Keyword case, spaces and a quaternion's four values.
   const Decoded abb = decodeOne(" pose , -12.5 ,7, 1e3 ,0.70711,0.70711,0,0\n", CodecParams{});
   ASSERT_TRUE(abb.request) << abb.detail;
-  EXPECT_TRUE(abb.request->T_base_flange->translation().isApprox(
-      Eigen::Vector3d(-0.0125, 0.007, 1.0), 1e-12));
-  EXPECT_LT(test::angleBetweenDegrees(abb.request->T_base_flange->linear(), test::rotationX(90)),
-            1e-3);
+  EXPECT_TRUE(abb.request->T_base_flange->translation().isApprox(Eigen::Vector3d(-0.0125, 0.007, 1.0), 1e-12));
+  EXPECT_LT(test::angleBetweenDegrees(abb.request->T_base_flange->linear(), test::rotationX(90)), 1e-3);
 }
 
 TEST(ProtocolPoseAscii, EncodedPosesAreTheseLines) {
@@ -89,8 +86,7 @@ TEST(ProtocolPoseAscii, EveryConventionRoundTripsWithinTheLineLimit) {
       const Eigen::Isometry3d T = test::randomPose(random, i % 2 == 0 ? 9.99999 : 1.0);
       const std::string line = encodeRequest(poseRequest(T), params);
       ASSERT_LE(line.size(), params.max_line_length) << line;
-      const std::size_t commas =
-          static_cast<std::size_t>(std::count(line.begin(), line.end(), ','));
+      const std::size_t commas = static_cast<std::size_t>(std::count(line.begin(), line.end(), ','));
       ASSERT_EQ(commas, 3u + static_cast<std::size_t>(core::orientationValueCount(orientation))) << line;
       const Decoded back = decodeOne(line, params);
       ASSERT_TRUE(back.request) << line << ": " << back.detail;
@@ -108,8 +104,7 @@ TEST(ProtocolPoseAscii, WrongValueCountsAreBadMessages) {
     std::string line = "POSE";
     for (int i = 0; i <= count + 1; ++i) {
       const Decoded decoded = decodeOne(line + "\r\n", params);
-      EXPECT_EQ(decoded.request.has_value(), i == count)
-          << core::orientationName(orientation) << " " << line;
+      EXPECT_EQ(decoded.request.has_value(), i == count) << core::orientationName(orientation) << " " << line;
       if (i != count) expectBadPose(line + "\r\n", params);
       line += i % 2 == 0 ? ",0.5" : ",1";
     }
@@ -145,8 +140,7 @@ TEST(ProtocolPoseAscii, ALineBeyondTheLimitIsOneBadMessageThenTheNextLineCounts)
 
 TEST(ProtocolPoseAscii, EncoderRefusesPosesThatDoNotBelong) {
   const CodecParams params;
-  EXPECT_TRUE(test::throwsNaming([&] { encodeRequest(Request{Command::Pose}, params); },
-                                 "T_base_flange is missing"));
+  EXPECT_TRUE(test::throwsNaming([&] { encodeRequest(Request{Command::Pose}, params); }, "T_base_flange is missing"));
   EXPECT_TRUE(test::throwsNaming(
       [&] {
         encodeRequest(Request{Command::Ping, std::nullopt, Eigen::Isometry3d::Identity()}, params);
@@ -156,8 +150,7 @@ TEST(ProtocolPoseAscii, EncoderRefusesPosesThatDoNotBelong) {
   T.translation().x() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(test::throwsNaming([&] { encodeRequest(poseRequest(T), params); }, "finite"));
   T.translation() = Eigen::Vector3d::Constant(1e9);  // 1e12 mm: 89 characters
-  EXPECT_TRUE(
-      test::throwsNaming([&] { encodeRequest(poseRequest(T), params); }, "max_line_length"));
+  EXPECT_TRUE(test::throwsNaming([&] { encodeRequest(poseRequest(T), params); }, "max_line_length"));
   T.translation() = Eigen::Vector3d(1e13, 0.0, 0.0);  // beyond what any line could hold
   EXPECT_TRUE(test::throwsNaming([&] { encodeRequest(poseRequest(T), params); }, "too far out"));
 }
@@ -165,8 +158,7 @@ TEST(ProtocolPoseAscii, EncoderRefusesPosesThatDoNotBelong) {
 TEST(ProtocolPoseAscii, RepliesCarryTheViewCountsAndBoardNotFound) {
   const CodecParams params;
   EXPECT_EQ(encodeReply(Reply{Command::Pose, Status::Ok, {3, 12}}, params), "POSE,0,3,12\r\n");
-  const std::string missed =
-      encodeReply(Reply{Command::Pose, Status::BoardNotFound, {3, 12}}, params);
+  const std::string missed = encodeReply(Reply{Command::Pose, Status::BoardNotFound, {3, 12}}, params);
   EXPECT_EQ(missed, "POSE,14,3,12\r\n");
   EXPECT_EQ(std::string(statusName(Status::BoardNotFound)), "board_not_found");
   ReplyDecoder decoder(params);

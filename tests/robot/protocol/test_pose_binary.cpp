@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "binpick/robot/protocol.hpp"
 #include "binary_test_support.hpp"
+#include "binpick/robot/protocol.hpp"
 #include "protocol_test_support.hpp"
 #include "thrown_message.hpp"
 
@@ -26,9 +26,8 @@ Request poseRequest(const Eigen::Isometry3d& T_base_flange) {
 }
 
 // Written by hand: POSE, x y z = 100, -200, 300.5 mm at 0.01 mm, the identity quaternion.
-const std::string kPoseBytes =
-    bytes({0, 0, 0, 7, 0, 0, 0x27, 0x10, 0xff, 0xff, 0xb1, 0xe0, 0, 0, 0x75, 0x62,
-           0, 0, 0x27, 0x10, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0});
+const std::string kPoseBytes = bytes({0, 0, 0,    7,    0, 0, 0x27, 0x10, 0xff, 0xff, 0xb1, 0xe0, 0, 0, 0x75, 0x62,
+                                      0, 0, 0x27, 0x10, 0, 0, 0,    0,    0,    0,    0,    0,    0, 0, 0,    0});
 
 TEST(ProtocolPoseBinary, APoseIsTheseBytesAndThePingAfterItStillDecodes) {
   ASSERT_EQ(kPoseBytes.size(), kBinaryPoseRequestSize);
@@ -97,24 +96,20 @@ TEST(ProtocolPoseBinary, MalformedPosesAreBadMessagesAndTheStreamGoesOn) {
   EXPECT_EQ(zeroQuaternion[0].error, Status::BadMessage);
   EXPECT_NE(zeroQuaternion[0].detail.find("zero quaternion"), std::string::npos);
   // Its reply is the usual 48 bytes: POSE, bad_message.
-  const std::string reply =
-      encodeReply(Reply{zeroQuaternion[0].command, zeroQuaternion[0].error}, euler);
+  const std::string reply = encodeReply(Reply{zeroQuaternion[0].command, zeroQuaternion[0].error}, euler);
   EXPECT_EQ(reply.substr(0, 8), bytes({0, 0, 0, 7, 0, 0, 0, 8}));
 }
 
 TEST(ProtocolPoseBinary, PosesBeyondInt32AreRefusedByTheEncoder) {
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.translation().z() = 30000.0;  // 3e9 units of 0.01 mm
-  EXPECT_TRUE(test::throwsNaming([&] { encodeRequest(poseRequest(T), binary(ByteOrder::Little)); },
-                                 "does not fit"));
+  EXPECT_TRUE(test::throwsNaming([&] { encodeRequest(poseRequest(T), binary(ByteOrder::Little)); }, "does not fit"));
 }
 
 TEST(ProtocolPoseBinary, RepliesCarryTheViewCounts) {
   const CodecParams params = binary(ByteOrder::Little);
-  const std::string message =
-      encodeReply(Reply{Command::Pose, Status::BoardNotFound, {4, 12}}, params);
-  EXPECT_EQ(message.substr(0, 20),
-            bytes({7, 0, 0, 0, 14, 0, 0, 0, 4, 0, 0, 0, 12, 0, 0, 0, 0, 0, 0, 0}));
+  const std::string message = encodeReply(Reply{Command::Pose, Status::BoardNotFound, {4, 12}}, params);
+  EXPECT_EQ(message.substr(0, 20), bytes({7, 0, 0, 0, 14, 0, 0, 0, 4, 0, 0, 0, 12, 0, 0, 0, 0, 0, 0, 0}));
   ReplyDecoder decoder(params);
   decoder.feed(message.data(), message.size());
   const std::optional<Reply> reply = decoder.next();

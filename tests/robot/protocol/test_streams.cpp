@@ -20,9 +20,8 @@ struct Summary {
   std::optional<std::string> argument;
   std::optional<Eigen::Vector3d> position;  // POSE's
   bool operator==(const Summary& other) const {
-    return ok == other.ok && error == other.error && command == other.command &&
-           requested == other.requested && argument == other.argument &&
-           position == other.position;
+    return ok == other.ok && error == other.error && command == other.command && requested == other.requested &&
+           argument == other.argument && position == other.position;
   }
 };
 
@@ -31,9 +30,12 @@ Summary summarise(const Decoded& decoded) {
   if (decoded.request && decoded.request->T_base_flange) {
     position = decoded.request->T_base_flange->translation();
   }
-  return {decoded.request.has_value(), decoded.error, decoded.command,
+  return {decoded.request.has_value(),
+          decoded.error,
+          decoded.command,
           decoded.request ? decoded.request->command : Command::Ping,
-          decoded.request ? decoded.request->argument : std::nullopt, position};
+          decoded.request ? decoded.request->argument : std::nullopt,
+          position};
 }
 
 // Feeds `bytes` in pieces of the given sizes (the rest in one), collecting every message.
@@ -49,8 +51,8 @@ std::vector<Summary> decodeInPieces(const std::string& bytes, const CodecParams&
     piece = std::min(piece, bytes.size() - start);
     decoder.feed(bytes.data() + start, piece);
     start += piece;
-    EXPECT_LE(decoder.buffered(), params.framing == Framing::Ascii ? params.max_line_length
-                                                                   : kMaxBinaryRequestSize - 1);
+    EXPECT_LE(decoder.buffered(),
+              params.framing == Framing::Ascii ? params.max_line_length : kMaxBinaryRequestSize - 1);
     drain();
   }
   decoder.feed(bytes.data() + start, bytes.size() - start);
@@ -63,9 +65,8 @@ std::vector<Summary> decodeByteByByte(const std::string& bytes, const CodecParam
 }
 
 TEST(ProtocolStreams, AsciiSplitByteByByteDecodesAsInOnePiece) {
-  const std::string stream = "PING\r\nstatus\n\r\nTRIGGER,bolt\r\nFOO\r\nMODEL\r\n" +
-                             std::string(300, 'x') + "\r\nNEXT\r\nFAILED,0012\r\nPI" +
-                             std::string(1, '\0') + "NG\r\n" + std::string(80, ' ') +
+  const std::string stream = "PING\r\nstatus\n\r\nTRIGGER,bolt\r\nFOO\r\nMODEL\r\n" + std::string(300, 'x') +
+                             "\r\nNEXT\r\nFAILED,0012\r\nPI" + std::string(1, '\0') + "NG\r\n" + std::string(80, ' ') +
                              "\nPOSE,1,2,3,1,0,0,0\r\n" + "POSE,1,2\r\nNEXT";
   const CodecParams params;
   const std::vector<Summary> whole = decodeInPieces(stream, params, {});

@@ -22,8 +22,7 @@ robot::RobotServerParams loopbackParams() {
   return params;
 }
 
-RunningServer::RunningServer(const robot::RobotServerParams& params, Answer answer)
-    : handler_(answer) {
+RunningServer::RunningServer(const robot::RobotServerParams& params, Answer answer) : handler_(answer) {
   // Connection notices of thousands of test connections would bury the failures.
   spdlog::set_level(spdlog::level::warn);
   server_ = std::make_unique<robot::RobotServer>(params, handler_);

@@ -17,8 +17,7 @@ robot::RobotServerParams loopbackParams();
 
 class RunningServer {
  public:
-  explicit RunningServer(const robot::RobotServerParams& params,
-                         Answer answer = Answer::Immediately);
+  explicit RunningServer(const robot::RobotServerParams& params, Answer answer = Answer::Immediately);
   ~RunningServer();
   robot::RobotServer& server() { return *server_; }
   TestHandler& handler() { return handler_; }

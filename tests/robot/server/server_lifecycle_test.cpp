@@ -23,9 +23,14 @@ TEST(server_lifecycle, AllowListDecidesWhoIsServed) {
 
   // Entries that take or refuse 127.0.0.1, set while the server runs.
   const std::vector<std::pair<std::vector<std::string>, bool>> cases = {
-      {{"127.0.0.1"}, true},          {{"127.0.0.0/8"}, true},    {{"0.0.0.0/0"}, true},
-      {{"127.0.0.0/31"}, true},       {{"127.0.0.2/31"}, false},  {{"127.0.0.2"}, false},
-      {{"10.0.0.0/8", "127.0.0.1"}, true}, {{}, true},
+      {{"127.0.0.1"}, true},
+      {{"127.0.0.0/8"}, true},
+      {{"0.0.0.0/0"}, true},
+      {{"127.0.0.0/31"}, true},
+      {{"127.0.0.2/31"}, false},
+      {{"127.0.0.2"}, false},
+      {{"10.0.0.0/8", "127.0.0.1"}, true},
+      {{}, true},
   };
   for (const auto& [allowed, served] : cases) {
     running.server().setAllowedClients(allowed);

@@ -21,8 +21,8 @@ TEST(server_limits, GarbageGetsErrorRepliesInOrderAndTheConnectionSurvives) {
   TestClient client(running.port());
   client.sendBytes("HELLO\r\n");
   client.sendBytes(std::string(300, 'X') + "\r\n");  // oversized line
-  client.sendBytes(std::string("PI\0NG\r\n", 7));     // a control character
-  client.sendBytes("MODEL,1,2\r\n");                  // one argument too many
+  client.sendBytes(std::string("PI\0NG\r\n", 7));    // a control character
+  client.sendBytes("MODEL,1,2\r\n");                 // one argument too many
   client.sendBytes("PING\r\n");
   EXPECT_EQ(client.receiveReply().status, Status::UnknownCommand);
   EXPECT_EQ(client.receiveReply().status, Status::BadMessage);

@@ -29,12 +29,9 @@ TEST(server_params, ValidateNamesTheField) {
   EXPECT_TRUE(refusedNaming([](P& p) { p.port = 70000; }, "robot_server.port"));
   EXPECT_TRUE(refusedNaming([](P& p) { p.port = -1; }, "robot_server.port"));
   EXPECT_TRUE(refusedNaming([](P& p) { p.max_clients = 0; }, "robot_server.max_clients"));
-  EXPECT_TRUE(
-      refusedNaming([](P& p) { p.max_queued_requests = 0; }, "robot_server.max_queued_requests"));
-  EXPECT_TRUE(
-      refusedNaming([](P& p) { p.max_buffered_input = 40; }, "robot_server.max_buffered_input"));
-  EXPECT_TRUE(
-      refusedNaming([](P& p) { p.max_buffered_output = 40; }, "robot_server.max_buffered_output"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.max_queued_requests = 0; }, "robot_server.max_queued_requests"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.max_buffered_input = 40; }, "robot_server.max_buffered_input"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.max_buffered_output = 40; }, "robot_server.max_buffered_output"));
   EXPECT_TRUE(refusedNaming([](P& p) { p.codec.position_decimals = -1; }, "position_decimals"));
 }
 
@@ -58,8 +55,7 @@ TEST(server_params, ConstructorValidatesFirst) {
 
 TEST(server_params, RuntimeChangesAreCheckedAndRefusalsKeepTheOldSettings) {
   RunningServer running(loopbackParams());
-  EXPECT_TRUE(throwsNaming([&] { running.server().setAllowedClients({"10.0.0.0/8", "nope"}); },
-                           "\"nope\""));
+  EXPECT_TRUE(throwsNaming([&] { running.server().setAllowedClients({"10.0.0.0/8", "nope"}); }, "\"nope\""));
   robot::CodecParams long_lines;
   long_lines.max_line_length = 10000;
   EXPECT_TRUE(throwsNaming([&] { running.server().setCodec(long_lines); }, "max_line_length"));
@@ -72,10 +68,8 @@ TEST(server_params, BindingAnAddressInUseNamesAddressAndPort) {
   robot::RobotServer first(loopbackParams(), handler);
   robot::RobotServerParams params = loopbackParams();
   params.port = first.port();
-  const std::string message =
-      thrownMessage([&] { robot::RobotServer second(params, handler); });
-  EXPECT_NE(message.find("127.0.0.1:" + std::to_string(first.port())), std::string::npos)
-      << message;
+  const std::string message = thrownMessage([&] { robot::RobotServer second(params, handler); });
+  EXPECT_NE(message.find("127.0.0.1:" + std::to_string(first.port())), std::string::npos) << message;
   EXPECT_NE(message.find("in use"), std::string::npos) << message;
 }
 

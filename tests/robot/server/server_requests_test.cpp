@@ -85,8 +85,7 @@ void runParallelClients(Answer answer) {
         TestClient client(running.port());
         for (int i = 0; i < kRequests; ++i) {
           const int tag = c * 1000 + i;
-          const robot::Reply reply =
-              client.roundTrip(request(Command::SelectModel, std::to_string(tag)));
+          const robot::Reply reply = client.roundTrip(request(Command::SelectModel, std::to_string(tag)));
           if (reply.integers == std::vector<int32_t>{tag}) ++correct;
         }
       } catch (const std::exception&) {
@@ -99,13 +98,9 @@ void runParallelClients(Answer answer) {
   EXPECT_FALSE(running.handler().overlapped());
 }
 
-TEST(server_requests, EightParallelClientsAnsweredAtOnce) {
-  runParallelClients(Answer::Immediately);
-}
+TEST(server_requests, EightParallelClientsAnsweredAtOnce) { runParallelClients(Answer::Immediately); }
 
-TEST(server_requests, EightParallelClientsAnsweredFromAnotherThread) {
-  runParallelClients(Answer::FromAnotherThread);
-}
+TEST(server_requests, EightParallelClientsAnsweredFromAnotherThread) { runParallelClients(Answer::FromAnotherThread); }
 
 TEST(server_requests, PipelinedRequestsReachTheHandlerOneAtATime) {
   RunningServer running(loopbackParams(), Answer::FromAnotherThread);
@@ -126,8 +121,7 @@ TEST(server_requests, NewCodecSettingsApplyToNewConnectionsOnly) {
   running.server().setCodec(binaryCodec());
   TestClient binary_client(running.port(), binaryCodec());
   EXPECT_EQ(binary_client.roundTrip(request(Command::SelectModel, "5")).integers[0], 5);
-  EXPECT_EQ(ascii_client.roundTrip(request(Command::SelectModel, "6")).integers,
-            std::vector<int32_t>{6});
+  EXPECT_EQ(ascii_client.roundTrip(request(Command::SelectModel, "6")).integers, std::vector<int32_t>{6});
 }
 
 TEST(server_requests, HandlerThatThrowsIsAnsweredWithInternalError) {

@@ -46,8 +46,7 @@ std::size_t openDescriptorCount() {
   return count;
 }
 
-TestClient::TestClient(int port, const robot::CodecParams& codec, int receive_buffer)
-    : codec_(codec), decoder_(codec) {
+TestClient::TestClient(int port, const robot::CodecParams& codec, int receive_buffer) : codec_(codec), decoder_(codec) {
   fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throw std::runtime_error("socket failed");
   if (receive_buffer > 0) {
@@ -87,9 +86,7 @@ void TestClient::sendBytes(const std::string& bytes) {
   if (!trySendBytes(bytes)) throw std::runtime_error("send failed");
 }
 
-void TestClient::send(const robot::Request& request) {
-  sendBytes(robot::encodeRequest(request, codec_));
-}
+void TestClient::send(const robot::Request& request) { sendBytes(robot::encodeRequest(request, codec_)); }
 
 robot::Reply TestClient::receiveReply() {
   while (true) {

@@ -21,10 +21,10 @@ class TestClient {
   TestClient(const TestClient&) = delete;
   TestClient& operator=(const TestClient&) = delete;
 
-  void sendBytes(const std::string& bytes);      // throws std::runtime_error when it cannot
-  bool trySendBytes(const std::string& bytes);   // false once the server has dropped us
+  void sendBytes(const std::string& bytes);     // throws std::runtime_error when it cannot
+  bool trySendBytes(const std::string& bytes);  // false once the server has dropped us
   void send(const robot::Request& request);
-  robot::Reply receiveReply();                   // throws on timeout, close or a bad reply
+  robot::Reply receiveReply();  // throws on timeout, close or a bad reply
   robot::Reply roundTrip(const robot::Request& request);
   // Reads and discards until the server closes (true) or nothing arrives for the timeout.
   bool waitForClose();

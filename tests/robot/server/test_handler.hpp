@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "binpick/robot/robot_server.hpp"
 #include "binpick/robot/protocol.hpp"
+#include "binpick/robot/robot_server.hpp"
 
 namespace binpick::test {
 

@@ -20,18 +20,16 @@ Eigen::Matrix2d pixelFootprint(const io::LensIntrinsics& camera, const Eigen::Is
   const Eigen::Vector3d p(xy.x(), xy.y(), 0.0);
   const Eigen::Vector2d pixel = camera.project(T * p);
   Eigen::Matrix2d jacobian;  // camera pixels per board metre
-  jacobian.col(0) =
-      (camera.project(T * (p + Eigen::Vector3d(kJacobianStep, 0, 0))) - pixel) / kJacobianStep;
-  jacobian.col(1) =
-      (camera.project(T * (p + Eigen::Vector3d(0, kJacobianStep, 0))) - pixel) / kJacobianStep;
+  jacobian.col(0) = (camera.project(T * (p + Eigen::Vector3d(kJacobianStep, 0, 0))) - pixel) / kJacobianStep;
+  jacobian.col(1) = (camera.project(T * (p + Eigen::Vector3d(0, kJacobianStep, 0))) - pixel) / kJacobianStep;
   return jacobian.inverse();
 }
 
 }  // namespace
 
 AlbedoFunction boardPixelAlbedo(const CalibrationBoard& board, const io::LensIntrinsics& camera,
-                                const Eigen::Isometry3d& T_camera_board, int32_t board_id,
-                                int samples, float other_albedo) {
+                                const Eigen::Isometry3d& T_camera_board, int32_t board_id, int samples,
+                                float other_albedo) {
   const auto white = static_cast<float>(board.spec().white_albedo);
   return [&board, &camera, T_camera_board, board_id, samples, other_albedo, white](
              int32_t object_id, const Eigen::Vector3f& object_point) {

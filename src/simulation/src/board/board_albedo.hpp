@@ -17,7 +17,7 @@ namespace binpick::simulation::detail {
 // `samples` x `samples` points. The board's sides and back are plain white. The function keeps
 // references to `board` and `camera`, which must outlive it; it is thread-safe.
 AlbedoFunction boardPixelAlbedo(const CalibrationBoard& board, const io::LensIntrinsics& camera,
-                                const Eigen::Isometry3d& T_camera_board, int32_t board_id,
-                                int samples, float other_albedo);
+                                const Eigen::Isometry3d& T_camera_board, int32_t board_id, int samples,
+                                float other_albedo);
 
 }  // namespace binpick::simulation::detail

@@ -23,8 +23,7 @@ bool finite(double v) { return std::isfinite(v); }
 // One draw. The board starts facing the camera (its frame aligned with the camera's: the print,
 // seen from -z, faces the camera), is turned about its normal, tilted about an axis in the image
 // plane, and its centre put at `distance` along a direction off the camera axis.
-Eigen::Isometry3d drawPose(const CalibrationBoard& board, const BoardPoseParams& p,
-                           detail::Rng& rng) {
+Eigen::Isometry3d drawPose(const CalibrationBoard& board, const BoardPoseParams& p, detail::Rng& rng) {
   const double distance = detail::uniform(rng, p.min_distance, p.max_distance);
   const double offset_x = detail::uniform(rng, -p.max_offset, p.max_offset);
   const double offset_y = detail::uniform(rng, -p.max_offset, p.max_offset);
@@ -35,8 +34,8 @@ Eigen::Isometry3d drawPose(const CalibrationBoard& board, const BoardPoseParams&
   const double spin = detail::uniform(rng, -p.max_in_plane_rotation, p.max_in_plane_rotation);
 
   const Eigen::Vector3d axis(std::cos(tilt_axis), std::sin(tilt_axis), 0.0);
-  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(tilt, axis).matrix() *
-                                   Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()).matrix();
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(tilt, axis).matrix() * Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()).matrix();
   const Eigen::Vector2d centre_2d = board.printedFace().center();
   const Eigen::Vector3d centre_board(centre_2d.x(), centre_2d.y(), 0.0);
   const Eigen::Vector3d centre_camera = distance * Eigen::Vector3d(offset_x, offset_y, 1.0);
@@ -51,21 +50,18 @@ Eigen::Isometry3d drawPose(const CalibrationBoard& board, const BoardPoseParams&
 void BoardPoseParams::validate() const {
   require(count >= 0, "count", ">= 0", count);
   require(finite(min_distance) && min_distance > 0.0, "min_distance", "positive", min_distance);
-  require(finite(max_distance) && max_distance >= min_distance, "max_distance", ">= min_distance",
-          max_distance);
+  require(finite(max_distance) && max_distance >= min_distance, "max_distance", ">= min_distance", max_distance);
   require(finite(max_offset) && max_offset >= 0.0, "max_offset", ">= 0", max_offset);
-  require(finite(max_tilt) && max_tilt >= 0.0 && max_tilt < kHalfPi, "max_tilt",
-          "in [0, pi/2) radians", max_tilt);
-  require(finite(max_in_plane_rotation) && max_in_plane_rotation >= 0.0, "max_in_plane_rotation",
-          ">= 0", max_in_plane_rotation);
+  require(finite(max_tilt) && max_tilt >= 0.0 && max_tilt < kHalfPi, "max_tilt", "in [0, pi/2) radians", max_tilt);
+  require(finite(max_in_plane_rotation) && max_in_plane_rotation >= 0.0, "max_in_plane_rotation", ">= 0",
+          max_in_plane_rotation);
   require(finite(image_margin) && image_margin >= 0.0, "image_margin", ">= 0", image_margin);
-  require(finite(min_facing_cosine) && min_facing_cosine >= 0.0 && min_facing_cosine < 1.0,
-          "min_facing_cosine", "in [0, 1)", min_facing_cosine);
+  require(finite(min_facing_cosine) && min_facing_cosine >= 0.0 && min_facing_cosine < 1.0, "min_facing_cosine",
+          "in [0, 1)", min_facing_cosine);
   require(max_attempts >= 1, "max_attempts", ">= 1", max_attempts);
 }
 
-std::vector<Eigen::Isometry3d> randomBoardPoses(const CalibrationBoard& board,
-                                                const io::RigCalibration& rig,
+std::vector<Eigen::Isometry3d> randomBoardPoses(const CalibrationBoard& board, const io::RigCalibration& rig,
                                                 const BoardPoseParams& params) {
   params.validate();
   rig.validate();

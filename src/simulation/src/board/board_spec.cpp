@@ -24,10 +24,10 @@ void BoardSpec::validate() const {
   layout().validate();
   require(std::isfinite(margin) && margin >= 0.0, "margin", ">= 0", margin);
   require(positive(thickness), "thickness", "positive", thickness);
-  require(std::isfinite(white_albedo) && white_albedo > 0.0 && white_albedo <= 1.0, "white_albedo",
-          "in (0, 1]", white_albedo);
-  require(std::isfinite(black_albedo) && black_albedo >= 0.0 && black_albedo < white_albedo,
-          "black_albedo", "in [0, white_albedo)", black_albedo);
+  require(std::isfinite(white_albedo) && white_albedo > 0.0 && white_albedo <= 1.0, "white_albedo", "in (0, 1]",
+          white_albedo);
+  require(std::isfinite(black_albedo) && black_albedo >= 0.0 && black_albedo < white_albedo, "black_albedo",
+          "in [0, white_albedo)", black_albedo);
 }
 
 }  // namespace binpick::simulation

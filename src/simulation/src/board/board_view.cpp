@@ -47,8 +47,8 @@ struct Device {
       return false;
     }
     *pixel = lens.project(p);
-    return pixel->x() >= margin - 0.5 && pixel->y() >= margin - 0.5 &&
-           pixel->x() <= lens.width - 0.5 - margin && pixel->y() <= lens.height - 0.5 - margin;
+    return pixel->x() >= margin - 0.5 && pixel->y() >= margin - 0.5 && pixel->x() <= lens.width - 0.5 - margin &&
+           pixel->y() <= lens.height - 0.5 - margin;
   }
 };
 
@@ -61,8 +61,7 @@ double facingCosine(const Eigen::Isometry3d& T_camera_board, const Eigen::Vector
 
 }  // namespace
 
-std::vector<CornerObservation> observeCorners(const CalibrationBoard& board,
-                                              const io::RigCalibration& rig,
+std::vector<CornerObservation> observeCorners(const CalibrationBoard& board, const io::RigCalibration& rig,
                                               const Eigen::Isometry3d& T_camera_board) {
   const Device camera(rig.camera, Eigen::Isometry3d::Identity());
   const Device projector(rig.projector, rig.T_projector_camera);
@@ -72,17 +71,16 @@ std::vector<CornerObservation> observeCorners(const CalibrationBoard& board,
     CornerObservation o;
     o.id = corner.id;
     if (facingCosine(T_camera_board, p, camera.centreInCamera()) > 0.0 &&
-        facingCosine(T_camera_board, p, projector.centreInCamera()) > 0.0 &&
-        camera.sees(p, 0.0, &o.camera_pixel) && projector.sees(p, 0.0, &o.projector_pixel)) {
+        facingCosine(T_camera_board, p, projector.centreInCamera()) > 0.0 && camera.sees(p, 0.0, &o.camera_pixel) &&
+        projector.sees(p, 0.0, &o.projector_pixel)) {
       seen.push_back(o);
     }
   }
   return seen;
 }
 
-bool boardInView(const CalibrationBoard& board, const io::RigCalibration& rig,
-                 const Eigen::Isometry3d& T_camera_board, double image_margin,
-                 double min_facing_cosine) {
+bool boardInView(const CalibrationBoard& board, const io::RigCalibration& rig, const Eigen::Isometry3d& T_camera_board,
+                 double image_margin, double min_facing_cosine) {
   const Device camera(rig.camera, Eigen::Isometry3d::Identity());
   const Device projector(rig.projector, rig.T_projector_camera);
   Eigen::Vector2d pixel;

@@ -30,8 +30,7 @@ CalibrationBoard::CalibrationBoard(const BoardSpec& spec, double texel_size) : s
     throw core::Error(message.str());
   }
   squares_origin_ = detail::squaresOrigin(spec_);
-  const Eigen::Vector2d squares(spec_.squares_x * spec_.square_size,
-                                spec_.squares_y * spec_.square_size);
+  const Eigen::Vector2d squares(spec_.squares_x * spec_.square_size, spec_.squares_y * spec_.square_size);
   const Eigen::Vector2d margin = Eigen::Vector2d::Constant(spec_.margin);
   face_ = Eigen::AlignedBox2d(squares_origin_ - margin, squares_origin_ + squares + margin);
   mesh_ = boardBox(face_, spec_.thickness);
@@ -71,8 +70,7 @@ float CalibrationBoard::albedo(const Eigen::Vector2d& xy) const {
   return static_cast<float>(black + (spec_.white_albedo - black) * value / 255.0);
 }
 
-float CalibrationBoard::meanAlbedo(const Eigen::Vector2d& centre, const Eigen::Matrix2d& footprint,
-                                   int samples) const {
+float CalibrationBoard::meanAlbedo(const Eigen::Vector2d& centre, const Eigen::Matrix2d& footprint, int samples) const {
   if (samples <= 1) return albedo(centre);
   double sum = 0.0;
   for (int j = 0; j < samples; ++j) {

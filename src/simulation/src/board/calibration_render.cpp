@@ -18,16 +18,14 @@ constexpr int32_t kBackgroundId = 1;
 io::TriangleMesh wallMesh(double distance) {
   const auto half = static_cast<float>(2.0 * distance);
   io::TriangleMesh mesh;
-  mesh.vertices = {
-      {-half, -half, 0.0f}, {half, -half, 0.0f}, {half, half, 0.0f}, {-half, half, 0.0f}};
+  mesh.vertices = {{-half, -half, 0.0f}, {half, -half, 0.0f}, {half, half, 0.0f}, {-half, half, 0.0f}};
   mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
   return mesh;
 }
 
 // The share of the nominal exposure that keeps the board's brightest pixel of the white image
 // (full projector light, indirect light and ambient) at or below `max_counts`.
-double exposureShare(const std::vector<PixelLighting>& lighting, const SensorGeometry& geometry,
-                     double max_counts) {
+double exposureShare(const std::vector<PixelLighting>& lighting, const SensorGeometry& geometry, double max_counts) {
   if (max_counts <= 0.0) return 1.0;
   double peak = 0.0;
   for (std::size_t i = 0; i < lighting.size(); ++i) {
@@ -69,11 +67,9 @@ LitBoard lightBoard(const CalibrationBoard& board, const Eigen::Isometry3d& T_ca
   const RayCaster scene(objects);
   const io::RigCalibration& rig = params.rig;
   const SensorGeometry geometry = computeSensorGeometry(rig, scene, params.geometry);
-  const AlbedoFunction albedo =
-      detail::boardPixelAlbedo(board, rig.camera, T_camera_board, kBoardId, params.pixel_samples,
-                               static_cast<float>(params.background_albedo));
-  LitBoard lit{geometry.width, geometry.height,
-               computePixelLighting(geometry, rig, params.photometry, albedo), 1.0};
+  const AlbedoFunction albedo = detail::boardPixelAlbedo(
+      board, rig.camera, T_camera_board, kBoardId, params.pixel_samples, static_cast<float>(params.background_albedo));
+  LitBoard lit{geometry.width, geometry.height, computePixelLighting(geometry, rig, params.photometry, albedo), 1.0};
   lit.exposure_share = exposureShare(lit.lighting, geometry, params.max_white_counts);
   scaleExposure(lit.lighting, lit.exposure_share);
   return lit;
@@ -86,14 +82,12 @@ PhotometryParams seeded(PhotometryParams photometry, uint64_t noise_seed) {
 
 }  // namespace
 
-io::Capture renderCalibrationCapture(const CalibrationBoard& board,
-                                 const Eigen::Isometry3d& T_camera_board,
-                                 const CalibrationSequenceParams& params, uint64_t noise_seed) {
+io::Capture renderCalibrationCapture(const CalibrationBoard& board, const Eigen::Isometry3d& T_camera_board,
+                                     const CalibrationSequenceParams& params, uint64_t noise_seed) {
   const LitBoard lit = lightBoard(board, T_camera_board, params);
   const PhotometryParams photometry = seeded(params.photometry, noise_seed);
   io::Capture capture;
-  capture.images =
-      renderPatternImages(lit.lighting, lit.width, lit.height, params.pattern_set, photometry);
+  capture.images = renderPatternImages(lit.lighting, lit.width, lit.height, params.pattern_set, photometry);
   io::CaptureMetadata& m = capture.metadata;
   m.source = params.source;
   m.timestamp = io::utcTimestamp();
@@ -106,8 +100,7 @@ io::Capture renderCalibrationCapture(const CalibrationBoard& board,
   return capture;
 }
 
-cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board,
-                                    const Eigen::Isometry3d& T_camera_board,
+cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board, const Eigen::Isometry3d& T_camera_board,
                                     const CalibrationSequenceParams& params, uint64_t noise_seed) {
   const LitBoard lit = lightBoard(board, T_camera_board, params);
   return renderWhiteImage(lit.lighting, lit.width, lit.height, params.pattern_set,

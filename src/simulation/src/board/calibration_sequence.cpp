@@ -28,8 +28,8 @@ void requireFreshDirectory(const std::string& directory) {
   std::error_code error;
   if (fs::exists(directory, error) && !fs::is_empty(directory, error)) {
     throw core::Error(directory +
-                ": already exists and is not empty; write each calibration sequence"
-                " to a new directory");
+                      ": already exists and is not empty; write each calibration sequence"
+                      " to a new directory");
   }
 }
 
@@ -49,7 +49,7 @@ std::vector<Eigen::Isometry3d> writeCalibrationSequence(const std::string& direc
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const std::string name = poseDirectoryName(static_cast<int>(i));
     io::writeCapture((fs::path(directory) / name).string(),
-                 renderCalibrationCapture(board, poses[i], params, noise_seeds()));
+                     renderCalibrationCapture(board, poses[i], params, noise_seeds()));
     truth.poses.push_back({name, poses[i], observeCorners(board, params.rig, poses[i])});
   }
 
@@ -108,15 +108,13 @@ void CalibrationSequenceParams::validate() const {
           "the rig projector's height", pattern_set.projector_height);
   require(finite(texel_size) && texel_size > 0.0, "texel_size", "positive", texel_size);
   require(pixel_samples >= 1 && pixel_samples <= 16, "pixel_samples", "in [1, 16]", pixel_samples);
-  require(finite(background_distance) &&
-              (background_distance == 0.0 || background_distance > farthestBoardPoint(*this)),
-          "background_distance", "0 (no wall) or beyond the farthest board point",
-          background_distance);
-  require(finite(background_albedo) && background_albedo >= 0.0 && background_albedo <= 1.0,
-          "background_albedo", "in [0, 1]", background_albedo);
+  require(
+      finite(background_distance) && (background_distance == 0.0 || background_distance > farthestBoardPoint(*this)),
+      "background_distance", "0 (no wall) or beyond the farthest board point", background_distance);
+  require(finite(background_albedo) && background_albedo >= 0.0 && background_albedo <= 1.0, "background_albedo",
+          "in [0, 1]", background_albedo);
   require(finite(exposure_us) && exposure_us > 0.0, "exposure_us", "positive", exposure_us);
-  require(finite(max_white_counts) && max_white_counts >= 0.0, "max_white_counts", ">= 0 (0: off)",
-          max_white_counts);
+  require(finite(max_white_counts) && max_white_counts >= 0.0, "max_white_counts", ">= 0 (0: off)", max_white_counts);
 }
 
 }  // namespace binpick::simulation

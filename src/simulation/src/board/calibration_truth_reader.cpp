@@ -11,9 +11,7 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw core::Error(path + ": " + what);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw core::Error(path + ": " + what); }
 
 json arrayField(const json& object, const char* key, const std::string& path) {
   json value = core::jsonField<json>(object, key, path);
@@ -22,11 +20,9 @@ json arrayField(const json& object, const char* key, const std::string& path) {
 }
 
 template <int N>
-Eigen::Matrix<double, N, 1> vectorField(const json& object, const char* key,
-                                        const std::string& path) {
+Eigen::Matrix<double, N, 1> vectorField(const json& object, const char* key, const std::string& path) {
   const auto values = core::jsonField<std::vector<double>>(object, key, path);
-  if (values.size() != N)
-    fail(path, std::string("key '") + key + "' must hold " + std::to_string(N) + " numbers");
+  if (values.size() != N) fail(path, std::string("key '") + key + "' must hold " + std::to_string(N) + " numbers");
   return Eigen::Map<const Eigen::Matrix<double, N, 1>>(values.data());
 }
 
@@ -57,11 +53,10 @@ BoardSpec specFrom(const json& o, const std::string& path) {
 CalibrationTruthPose poseFrom(const json& o, const std::string& path) {
   CalibrationTruthPose pose;
   pose.capture = core::jsonField<std::string>(o, "capture", path);
-  pose.T_camera_board =
-      core::poseFromRows(core::jsonField<json>(o, "T_camera_board", path), path, "T_camera_board");
+  pose.T_camera_board = core::poseFromRows(core::jsonField<json>(o, "T_camera_board", path), path, "T_camera_board");
   for (const json& c : arrayField(o, "corners", path)) {
-    pose.corners.push_back({core::jsonField<int>(c, "id", path), vectorField<2>(c, "camera", path),
-                            vectorField<2>(c, "projector", path)});
+    pose.corners.push_back(
+        {core::jsonField<int>(c, "id", path), vectorField<2>(c, "camera", path), vectorField<2>(c, "projector", path)});
   }
   return pose;
 }

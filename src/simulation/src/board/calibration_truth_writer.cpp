@@ -5,8 +5,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "binpick/core/file.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/core/file.hpp"
 #include "binpick/core/json_fields.hpp"
 #include "calibration_truth.hpp"
 
@@ -35,9 +35,7 @@ json poseJson(const CalibrationTruthPose& pose) {
                        {"camera", {c.camera_pixel.x(), c.camera_pixel.y()}},
                        {"projector", {c.projector_pixel.x(), c.projector_pixel.y()}}});
   }
-  return {{"capture", pose.capture},
-          {"T_camera_board", core::poseRows(pose.T_camera_board)},
-          {"corners", corners}};
+  return {{"capture", pose.capture}, {"T_camera_board", core::poseRows(pose.T_camera_board)}, {"corners", corners}};
 }
 
 }  // namespace

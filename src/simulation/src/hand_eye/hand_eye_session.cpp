@@ -32,15 +32,13 @@ Eigen::Vector3d gaussianVector(detail::Rng& rng) {
 }
 
 // The position error in the base frame, the orientation error about the flange's own axes.
-Eigen::Isometry3d reported(const Eigen::Isometry3d& truth, const HandEyeSessionParams& params,
-                           detail::Rng& rng) {
+Eigen::Isometry3d reported(const Eigen::Isometry3d& truth, const HandEyeSessionParams& params, detail::Rng& rng) {
   const Eigen::Vector3d position_error = gaussianVector(rng) * (params.robot_noise_mm / 1000.0);
   const Eigen::Vector3d rotation_error = gaussianVector(rng) * (params.robot_noise_deg * kDegree);
   Eigen::Isometry3d pose = truth;
   pose.translation() += position_error;
   if (rotation_error.norm() > 0.0) {
-    pose.linear() = truth.linear() *
-                    Eigen::AngleAxisd(rotation_error.norm(), rotation_error.normalized()).matrix();
+    pose.linear() = truth.linear() * Eigen::AngleAxisd(rotation_error.norm(), rotation_error.normalized()).matrix();
   }
   return pose;
 }

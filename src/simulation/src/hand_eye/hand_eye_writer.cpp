@@ -4,8 +4,8 @@
 
 #include "binpick/calibration/hand_eye_file.hpp"
 #include "binpick/calibration/robot_pose_file.hpp"
-#include "binpick/io/capture.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/io/capture.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 #include "random.hpp"
 
@@ -21,8 +21,9 @@ constexpr uint32_t kImageNoiseStream = 21;
 void createFreshDirectory(const std::string& directory) {
   std::error_code error;
   if (fs::exists(directory, error) && !fs::is_empty(directory, error)) {
-    throw core::Error(directory + ": already exists and is not empty; write each hand-eye session to a"
-                            " new directory");
+    throw core::Error(directory +
+                      ": already exists and is not empty; write each hand-eye session to a"
+                      " new directory");
   }
   fs::create_directories(directory, error);
   if (error) throw core::Error(directory + ": cannot create the directory: " + error.message());
@@ -41,8 +42,7 @@ calibration::HandEyeFile truthFile(const HandEyeSession& session) {
 
 }  // namespace
 
-HandEyeSession writeHandEyeSession(const std::string& directory,
-                                   const HandEyeSessionParams& params) {
+HandEyeSession writeHandEyeSession(const std::string& directory, const HandEyeSessionParams& params) {
   const HandEyeSession session = simulateHandEyeSession(params);
   createFreshDirectory(directory);
   const CalibrationBoard board(params.board);
@@ -58,8 +58,7 @@ HandEyeSession writeHandEyeSession(const std::string& directory,
   }
   calibration::writeRobotPoseFile((fs::path(directory) / "poses.txt").string(), poses);
   io::writeRigCalibration((fs::path(directory) / "calib.yaml").string(), params.rig);
-  calibration::writeHandEyeFile((fs::path(directory) / "truth" / "hand_eye.yaml").string(),
-                                truthFile(session));
+  calibration::writeHandEyeFile((fs::path(directory) / "truth" / "hand_eye.yaml").string(), truthFile(session));
   return session;
 }
 

@@ -6,8 +6,8 @@ namespace binpick::simulation::detail {
 namespace {
 
 // Sutherland-Hodgman against one plane, both sides at once. Points on the plane go to both.
-void clipPolygon(const SurfacePolygon& polygon, int axis, double position,
-                 std::vector<SurfacePolygon>& below, std::vector<SurfacePolygon>& above) {
+void clipPolygon(const SurfacePolygon& polygon, int axis, double position, std::vector<SurfacePolygon>& below,
+                 std::vector<SurfacePolygon>& above) {
   SurfacePolygon low, high;
   for (std::size_t k = 0; k < polygon.size(); ++k) {
     const Eigen::Vector3d& a = polygon[k];
@@ -61,14 +61,14 @@ std::vector<SurfacePolygon> meshPolygons(const io::TriangleMesh& mesh) {
   std::vector<SurfacePolygon> polygons;
   polygons.reserve(mesh.triangles.size());
   for (const auto& t : mesh.triangles) {
-    polygons.push_back({mesh.vertices[t[0]].cast<double>(), mesh.vertices[t[1]].cast<double>(),
-                        mesh.vertices[t[2]].cast<double>()});
+    polygons.push_back(
+        {mesh.vertices[t[0]].cast<double>(), mesh.vertices[t[1]].cast<double>(), mesh.vertices[t[2]].cast<double>()});
   }
   return polygons;
 }
 
-BoxPiece makeBoxPiece(const CellBox& box, std::vector<SurfacePolygon> polygons,
-                      const CellGrid& grid, const MeshColumns& columns) {
+BoxPiece makeBoxPiece(const CellBox& box, std::vector<SurfacePolygon> polygons, const CellGrid& grid,
+                      const MeshColumns& columns) {
   BoxPiece piece;
   piece.box = box;
   for (const auto& polygon : polygons) {
@@ -87,8 +87,7 @@ BoxPiece makeBoxPiece(const CellBox& box, std::vector<SurfacePolygon> polygons,
   return piece;
 }
 
-BoxSplit splitBoxPiece(const BoxPiece& piece, int axis, int index, const CellGrid& grid,
-                       const MeshColumns& columns) {
+BoxSplit splitBoxPiece(const BoxPiece& piece, int axis, int index, const CellGrid& grid, const MeshColumns& columns) {
   const double position = grid.border(axis, index);
   std::vector<SurfacePolygon> below, above;
   for (const auto& polygon : piece.polygons) clipPolygon(polygon, axis, position, below, above);
@@ -96,9 +95,8 @@ BoxSplit splitBoxPiece(const BoxPiece& piece, int axis, int index, const CellGri
           makeBoxPiece(sideBox(piece.box, axis, index, false), std::move(above), grid, columns)};
 }
 
-SplitVolumes estimateSplitVolumes(const BoxPiece& piece, int axis, int index,
-                                  const CellGrid& grid, const MeshColumns& columns,
-                                  std::size_t max_points) {
+SplitVolumes estimateSplitVolumes(const BoxPiece& piece, int axis, int index, const CellGrid& grid,
+                                  const MeshColumns& columns, std::size_t max_points) {
   const double position = grid.border(axis, index);
   SidePoints below, above;
   for (const Eigen::Vector3d& p : piece.corners) {

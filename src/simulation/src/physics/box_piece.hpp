@@ -26,15 +26,14 @@ struct BoxPiece {
 std::vector<SurfacePolygon> meshPolygons(const io::TriangleMesh& mesh);
 
 // Builds the piece of `polygons` (already within `box`) and its hull.
-BoxPiece makeBoxPiece(const CellBox& box, std::vector<SurfacePolygon> polygons,
-                      const CellGrid& grid, const MeshColumns& columns);
+BoxPiece makeBoxPiece(const CellBox& box, std::vector<SurfacePolygon> polygons, const CellGrid& grid,
+                      const MeshColumns& columns);
 
 // The two pieces on either side of the cell border below cell `index` along `axis`.
 struct BoxSplit {
   BoxPiece below, above;
 };
-BoxSplit splitBoxPiece(const BoxPiece& piece, int axis, int index, const CellGrid& grid,
-                       const MeshColumns& columns);
+BoxSplit splitBoxPiece(const BoxPiece& piece, int axis, int index, const CellGrid& grid, const MeshColumns& columns);
 
 // The hull volumes the two sides of that split would have, for comparing cuts cheaply: on a mesh
 // with many vertices only about `max_points` of each side's surface points are used (every
@@ -42,8 +41,7 @@ BoxSplit splitBoxPiece(const BoxPiece& piece, int axis, int index, const CellGri
 struct SplitVolumes {
   double below = 0.0, above = 0.0;
 };
-SplitVolumes estimateSplitVolumes(const BoxPiece& piece, int axis, int index,
-                                  const CellGrid& grid, const MeshColumns& columns,
-                                  std::size_t max_points);
+SplitVolumes estimateSplitVolumes(const BoxPiece& piece, int axis, int index, const CellGrid& grid,
+                                  const MeshColumns& columns, std::size_t max_points);
 
 }  // namespace binpick::simulation::detail

@@ -19,8 +19,7 @@ constexpr double kWorldScale = 100.0;  // Bullet length units per metre
 
 inline btVector3 toWorld(const Eigen::Vector3d& metres) {
   const Eigen::Vector3d v = kWorldScale * metres;
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()),
-                   static_cast<btScalar>(v.z()));
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
 }
 
 inline Eigen::Vector3d toMetres(const btVector3& world) {

@@ -11,7 +11,7 @@ namespace {
 constexpr double kGravity = 9.81;  // m/s^2
 // Floor slab below z = 0, reaching this far beyond the walls: a part that falls out of the bin
 // lands on it and comes to rest, so that it can be found and dropped again.
-constexpr double kApron = 0.5;             // metres
+constexpr double kApron = 0.5;            // metres
 constexpr double kFloorThickness = 0.05;  // metres: thick, so that nothing falls through
 // Twice Bullet's default: piles a dozen parts deep jitter and creep with fewer, and then take much
 // longer (in simulated time) to come to rest than the extra iterations cost.
@@ -25,8 +25,8 @@ BulletWorld::BulletWorld(const BinInterior& bin, const PhysicsParams& params)
       dispatcher_(std::make_unique<btCollisionDispatcher>(configuration_.get())),
       broadphase_(std::make_unique<btDbvtBroadphase>()),
       solver_(std::make_unique<btSequentialImpulseConstraintSolver>()),
-      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
-                                                       solver_.get(), configuration_.get())) {
+      world_(std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                       configuration_.get())) {
   btContactSolverInfo& solver = world_->getSolverInfo();
   solver.m_numIterations = kSolverIterations;
   // Friction along two directions at every contact: with one, resting parts creep down slopes.
@@ -65,18 +65,16 @@ void BulletWorld::addStaticBox(const Eigen::Vector3d& min, const Eigen::Vector3d
 // gets rolling_resistance.
 btScalar BulletWorld::rollingFriction() const {
   if (params_.friction <= 0.0) return 0.0;
-  return static_cast<btScalar>(kWorldScale * params_.rolling_resistance /
-                               (2.0 * std::sqrt(params_.friction)));
+  return static_cast<btScalar>(kWorldScale * params_.rolling_resistance / (2.0 * std::sqrt(params_.friction)));
 }
 
 btRigidBody* BulletWorld::addPart(const PartShape& part, const Eigen::Isometry3d& T_bin_model) {
-  btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(part.mass()), nullptr,
-                                                part.shape(), part.inertia());
+  btRigidBody::btRigidBodyConstructionInfo info(static_cast<btScalar>(part.mass()), nullptr, part.shape(),
+                                                part.inertia());
   info.m_startWorldTransform = toWorld(T_bin_model * part.T_model_body());
   info.m_friction = static_cast<btScalar>(std::sqrt(params_.friction));
   info.m_restitution = static_cast<btScalar>(std::sqrt(params_.restitution));
-  info.m_linearSleepingThreshold =
-      static_cast<btScalar>(kWorldScale * params_.settle_linear_velocity);
+  info.m_linearSleepingThreshold = static_cast<btScalar>(kWorldScale * params_.settle_linear_velocity);
   info.m_angularSleepingThreshold = static_cast<btScalar>(params_.settle_angular_velocity);
   info.m_rollingFriction = info.m_spinningFriction = rollingFriction();
   bodies_.push_back(std::make_unique<btRigidBody>(info));

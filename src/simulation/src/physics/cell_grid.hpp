@@ -28,9 +28,7 @@ struct CellGrid {
     return static_cast<int>(std::floor((position - origin[axis]) / cell_size - 0.5));
   }
   long cellCount() const { return static_cast<long>(size.x()) * size.y() * size.z(); }
-  long index(int i, int j, int k) const {
-    return (static_cast<long>(k) * size.y() + j) * size.x() + i;
-  }
+  long index(int i, int j, int k) const { return (static_cast<long>(k) * size.y() + j) * size.x() + i; }
 };
 
 // The cells [lo, hi) (half-open along each axis).

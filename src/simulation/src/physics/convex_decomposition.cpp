@@ -31,8 +31,7 @@ struct OpenPiece {
 
 }  // namespace
 
-ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tolerance,
-                                        int max_pieces) {
+ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tolerance, int max_pieces) {
   ConvexDecomposition result;
   result.cell_size = cellSizeFor(mesh, tolerance);
   result.far_distance = std::max(tolerance, 2.0 * result.cell_size);
@@ -56,9 +55,8 @@ ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tol
   // Worst piece first, so that a budget running out leaves the error spread evenly.
   const int budget = kCutBudgetFactor * max_pieces;
   while (!open.empty() && static_cast<int>(done.size() + open.size()) < budget) {
-    const auto worst = std::max_element(open.begin(), open.end(), [](const auto& p, const auto& q) {
-      return p.excess < q.excess;
-    });
+    const auto worst =
+        std::max_element(open.begin(), open.end(), [](const auto& p, const auto& q) { return p.excess < q.excess; });
     OpenPiece piece = std::move(*worst);
     open.erase(worst);
     std::optional<BoxSplit> split = bestSplit(piece.piece, solid, columns);
@@ -71,8 +69,8 @@ ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tol
   }
   for (auto& piece : open) done.push_back(std::move(piece.piece.hull));
   result.pieces = mergePieces(std::move(done), solid, max_pieces);
-  result.fits = std::all_of(result.pieces.begin(), result.pieces.end(),
-                            [&](const ConvexHull& p) { return hullFits(solid, p); });
+  result.fits =
+      std::all_of(result.pieces.begin(), result.pieces.end(), [&](const ConvexHull& p) { return hullFits(solid, p); });
   return result;
 }
 

@@ -14,10 +14,9 @@ struct ConvexDecomposition {
   std::vector<ConvexHull> pieces;  // model frame of the mesh
   double cell_size = 0.0;          // of the grid the fit was measured on
   double far_distance = 0.0;       // the tolerance actually checked (>= the one asked for)
-  bool fits = false;  // every piece met the tolerance (false when max_pieces was too few)
+  bool fits = false;               // every piece met the tolerance (false when max_pieces was too few)
 };
 
-ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tolerance,
-                                        int max_pieces);
+ConvexDecomposition convexDecomposition(const io::TriangleMesh& mesh, double tolerance, int max_pieces);
 
 }  // namespace binpick::simulation::detail

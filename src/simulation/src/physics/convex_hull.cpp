@@ -11,8 +11,7 @@ namespace {
 // Newell's normal of a planar polygon: robust for the many-sided faces of a hull.
 Eigen::Vector3d polygonNormal(const std::vector<Eigen::Vector3d>& corners) {
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-  for (std::size_t k = 0; k < corners.size(); ++k)
-    normal += corners[k].cross(corners[(k + 1) % corners.size()]);
+  for (std::size_t k = 0; k < corners.size(); ++k) normal += corners[k].cross(corners[(k + 1) % corners.size()]);
   return normal;
 }
 
@@ -27,8 +26,8 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points) {
   ConvexHull hull;
   if (points.empty()) return hull;
   btConvexHullComputer computer;
-  computer.compute(points.front().data(), static_cast<int>(sizeof(Eigen::Vector3d)),
-                   static_cast<int>(points.size()), 0.0, 0.0);
+  computer.compute(points.front().data(), static_cast<int>(sizeof(Eigen::Vector3d)), static_cast<int>(points.size()),
+                   0.0, 0.0);
   std::vector<Eigen::Vector3d> rounded;
   double rounding = 0.0;
   for (int v = 0; v < computer.vertices.size(); ++v) {
@@ -51,8 +50,7 @@ ConvexHull convexHull(const std::vector<Eigen::Vector3d>& points) {
       corners.push_back(rounded[edge->getSourceVertex()] - reference);
       edge = edge->getNextEdgeOfFace();
     } while (edge != first);
-    for (std::size_t k = 1; k + 1 < corners.size(); ++k)
-      six_volume += corners[0].dot(corners[k].cross(corners[k + 1]));
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k) six_volume += corners[0].dot(corners[k].cross(corners[k + 1]));
     const Eigen::Vector3d normal = polygonNormal(corners);
     if (normal.norm() == 0.0) continue;
     const Eigen::Vector3d unit = normal.normalized();

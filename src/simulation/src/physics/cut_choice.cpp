@@ -38,21 +38,18 @@ OccupiedExtent occupiedExtent(const SolidGrid& solid, const CellBox& box) {
 class CutSearch {
  public:
   CutSearch(const BoxPiece& piece, const SolidGrid& solid, const MeshColumns& columns)
-      : piece_(piece), solid_(solid), columns_(columns),
-        cell_volume_(std::pow(solid.grid().cell_size, 3)) {}
+      : piece_(piece), solid_(solid), columns_(columns), cell_volume_(std::pow(solid.grid().cell_size, 3)) {}
 
   // Scores the cut at the border below cell `index` along `axis`; keeps the best so far.
   void tryCut(int axis, int index, const OccupiedExtent& extent) {
     if (index <= extent.first[axis] || index > extent.last[axis]) return;
-    const SplitVolumes hulls =
-        estimateSplitVolumes(piece_, axis, index, solid_.grid(), columns_, kScoringPoints);
+    const SplitVolumes hulls = estimateSplitVolumes(piece_, axis, index, solid_.grid(), columns_, kScoringPoints);
     const double score = hulls.below + hulls.above - solidVolume(piece_.box);
     // Middle cuts win ties: balanced pieces make fewer, larger pieces in the end.
     const double middle = 0.5 * (extent.first[axis] + extent.last[axis] + 1);
     const double off_centre = std::abs(index - middle) / (extent.last[axis] - extent.first[axis] + 1);
     const double tie = 1e-3 * cell_volume_;
-    if (!found_ || score < best_score_ - tie ||
-        (score <= best_score_ + tie && off_centre < best_off_centre_)) {
+    if (!found_ || score < best_score_ - tie || (score <= best_score_ + tie && off_centre < best_off_centre_)) {
       found_ = true;
       best_score_ = score;
       best_off_centre_ = off_centre;
@@ -81,8 +78,7 @@ class CutSearch {
 
 }  // namespace
 
-std::optional<BoxSplit> bestSplit(const BoxPiece& piece, const SolidGrid& solid,
-                                  const MeshColumns& columns) {
+std::optional<BoxSplit> bestSplit(const BoxPiece& piece, const SolidGrid& solid, const MeshColumns& columns) {
   const OccupiedExtent extent = occupiedExtent(solid, piece.box);
   CutSearch search(piece, solid, columns);
   Eigen::Vector3i coarse_step = Eigen::Vector3i::Ones();
@@ -90,8 +86,7 @@ std::optional<BoxSplit> bestSplit(const BoxPiece& piece, const SolidGrid& solid,
     const int span = extent.last[axis] - extent.first[axis];  // possible cuts along this axis
     if (span < 1) continue;
     coarse_step[axis] = std::max(1, (span + kCoarseCutsPerAxis) / (kCoarseCutsPerAxis + 1));
-    for (int index = extent.first[axis] + coarse_step[axis]; index <= extent.last[axis];
-         index += coarse_step[axis])
+    for (int index = extent.first[axis] + coarse_step[axis]; index <= extent.last[axis]; index += coarse_step[axis])
       search.tryCut(axis, index, extent);
   }
   if (!search.found()) return std::nullopt;

@@ -11,7 +11,6 @@ namespace binpick::simulation::detail {
 
 // The best split found by a coarse scan of every axis refined around the best candidate, or none
 // when no border has solid on both sides (the piece is a single cell thick along every axis).
-std::optional<BoxSplit> bestSplit(const BoxPiece& piece, const SolidGrid& solid,
-                                  const MeshColumns& columns);
+std::optional<BoxSplit> bestSplit(const BoxPiece& piece, const SolidGrid& solid, const MeshColumns& columns);
 
 }  // namespace binpick::simulation::detail

@@ -9,8 +9,7 @@ namespace {
 
 // The first and last cell (along z) of column (x, y) whose centre lies inside the hull; first >
 // last when none does.
-std::pair<int, int> cellsInColumn(const CellGrid& grid, const ConvexHull& hull, double x,
-                                  double y) {
+std::pair<int, int> cellsInColumn(const CellGrid& grid, const ConvexHull& hull, double x, double y) {
   double low = -std::numeric_limits<double>::infinity();
   double high = std::numeric_limits<double>::infinity();
   for (const HullPlane& plane : hull.planes) {

@@ -13,7 +13,6 @@ namespace binpick::simulation::detail {
 // A hull with more than `max_vertices` vertices comes back as a subset of them whose hull leaves
 // no vertex more than `tolerance` outside it, found greedily: the farthest vertex outside joins
 // next. Smaller hulls come back unchanged.
-std::vector<Eigen::Vector3d> simplifiedHullVertices(const ConvexHull& hull, double tolerance,
-                                                    std::size_t max_vertices);
+std::vector<Eigen::Vector3d> simplifiedHullVertices(const ConvexHull& hull, double tolerance, std::size_t max_vertices);
 
 }  // namespace binpick::simulation::detail

@@ -12,7 +12,7 @@ MassProperties massProperties(const io::TriangleMesh& mesh) {
   const Eigen::Vector3d reference =
       mesh.vertices.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(mesh.vertices[0].cast<double>());
   double six_volume = 0.0;
-  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();  // times 24
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();   // times 24
   Eigen::Matrix3d second_moment = Eigen::Matrix3d::Zero();  // times 120
   for (const auto& t : mesh.triangles) {
     const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>() - reference;
@@ -22,8 +22,7 @@ MassProperties massProperties(const io::TriangleMesh& mesh) {
     const double v6 = a.dot(b.cross(c));
     six_volume += v6;
     first_moment += v6 * s;
-    second_moment += v6 * (a * a.transpose() + b * b.transpose() + c * c.transpose() +
-                           s * s.transpose());
+    second_moment += v6 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
   }
   MassProperties mass;
   mass.volume = six_volume / 6.0;
@@ -32,8 +31,7 @@ MassProperties massProperties(const io::TriangleMesh& mesh) {
   mass.centroid = reference + centroid_offset;
   // Second moment about the centroid, then the inertia tensor trace(C) I - C.
   const Eigen::Matrix3d about_reference = second_moment / 120.0;
-  const Eigen::Matrix3d about_centroid =
-      about_reference - mass.volume * centroid_offset * centroid_offset.transpose();
+  const Eigen::Matrix3d about_centroid = about_reference - mass.volume * centroid_offset * centroid_offset.transpose();
   mass.inertia = about_centroid.trace() * Eigen::Matrix3d::Identity() - about_centroid;
   return mass;
 }

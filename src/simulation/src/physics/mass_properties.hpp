@@ -10,16 +10,16 @@
 namespace binpick::simulation::detail {
 
 struct MassProperties {
-  double volume = 0.0;                                      // m^3, positive for outward normals
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();       // model frame
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();        // about the centroid, per unit density
+  double volume = 0.0;                                 // m^3, positive for outward normals
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // model frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();   // about the centroid, per unit density
 };
 
 MassProperties massProperties(const io::TriangleMesh& mesh);
 
 struct PrincipalFrame {
   Eigen::Isometry3d T_model_body = Eigen::Isometry3d::Identity();  // proper rotation, at centroid
-  Eigen::Vector3d moments = Eigen::Vector3d::Zero();  // principal moments per unit density, m^5
+  Eigen::Vector3d moments = Eigen::Vector3d::Zero();               // principal moments per unit density, m^5
   double volume = 0.0;
 };
 

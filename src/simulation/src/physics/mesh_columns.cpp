@@ -47,8 +47,7 @@ int clampedCell(const CellGrid& grid, int axis, double position) {
 
 }  // namespace
 
-MeshColumns::MeshColumns(const io::TriangleMesh& mesh, const CellGrid& grid)
-    : mesh_(mesh), grid_(grid) {
+MeshColumns::MeshColumns(const io::TriangleMesh& mesh, const CellGrid& grid) : mesh_(mesh), grid_(grid) {
   const int buckets = grid.size.x() * grid.size.y();
   std::vector<Eigen::Vector4i> footprint;  // per triangle: x0, x1, y0, y1 (inclusive)
   footprint.reserve(mesh.triangles.size());
@@ -62,8 +61,8 @@ MeshColumns::MeshColumns(const io::TriangleMesh& mesh, const CellGrid& grid)
       continue;
     }
     const Point2 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
-    const Eigen::Vector4i f(clampedCell(grid, 0, lo.x()), clampedCell(grid, 0, hi.x()),
-                            clampedCell(grid, 1, lo.y()), clampedCell(grid, 1, hi.y()));
+    const Eigen::Vector4i f(clampedCell(grid, 0, lo.x()), clampedCell(grid, 0, hi.x()), clampedCell(grid, 1, lo.y()),
+                            clampedCell(grid, 1, hi.y()));
     footprint.push_back(f);
     for (int j = f[2]; j <= f[3]; ++j)
       for (int i = f[0]; i <= f[1]; ++i) ++count[j * grid.size.x() + i + 1];
@@ -88,9 +87,8 @@ std::vector<double> MeshColumns::crossings(double x, double y) const {
   const int bucket = bucketOf(x, y);
   for (int n = bucket_start_[bucket]; n < bucket_start_[bucket + 1]; ++n) {
     const Eigen::Vector3i& t = mesh_.triangles[triangles_[n]];
-    const std::array<Eigen::Vector3d, 3> corner{mesh_.vertices[t[0]].cast<double>(),
-                                                mesh_.vertices[t[1]].cast<double>(),
-                                                mesh_.vertices[t[2]].cast<double>()};
+    const std::array<Eigen::Vector3d, 3> corner{
+        mesh_.vertices[t[0]].cast<double>(), mesh_.vertices[t[1]].cast<double>(), mesh_.vertices[t[2]].cast<double>()};
     if (const auto z = verticalHit(corner, q)) heights.push_back(*z);
   }
   std::sort(heights.begin(), heights.end());

@@ -20,8 +20,7 @@ constexpr std::size_t kMaxVertices = 48;
 // The decomposition cuts along the axes of its frame: the model's own axes when the part is drawn
 // along them (a prism extruded along z), else its principal axes, whichever box is tighter. A part
 // drawn at a slant would otherwise be cut into needlessly many pieces.
-Eigen::Isometry3d decompositionFrame(const io::TriangleMesh& mesh,
-                                     const Eigen::Isometry3d& T_model_body) {
+Eigen::Isometry3d decompositionFrame(const io::TriangleMesh& mesh, const Eigen::Isometry3d& T_model_body) {
   const auto boxVolume = [&](const Eigen::Isometry3d& T_frame_model) {
     Eigen::AlignedBox3d box;
     for (const auto& v : mesh.vertices) box.extend(T_frame_model * v.cast<double>());
@@ -48,9 +47,8 @@ PartShape::PartShape(const io::TriangleMesh& mesh, const PhysicsParams& params) 
                        static_cast<btScalar>(inertia.z()));
 
   const Eigen::Isometry3d T_model_cut = decompositionFrame(mesh, T_model_body_);
-  const ConvexDecomposition decomposition =
-      convexDecomposition(transformed(mesh, T_model_cut.inverse()),
-                          params.decomposition_tolerance, params.max_convex_pieces);
+  const ConvexDecomposition decomposition = convexDecomposition(
+      transformed(mesh, T_model_cut.inverse()), params.decomposition_tolerance, params.max_convex_pieces);
   const Eigen::Isometry3d T_body_cut = T_model_body_.inverse() * T_model_cut;
   compound_ = std::make_unique<btCompoundShape>(true, static_cast<int>(decomposition.pieces.size()));
   std::vector<Eigen::Vector3d> corners;

@@ -23,8 +23,8 @@ class PartShape {
   PartShape& operator=(const PartShape&) = delete;
 
   btCollisionShape* shape() const { return compound_.get(); }
-  double mass() const { return mass_; }                         // kilograms
-  const btVector3& inertia() const { return inertia_; }         // principal, world units
+  double mass() const { return mass_; }                  // kilograms
+  const btVector3& inertia() const { return inertia_; }  // principal, world units
   const Eigen::Isometry3d& T_model_body() const { return T_model_body_; }
   // Model-frame points whose extent along any direction is the mesh's (the pieces' corners).
   const std::vector<Eigen::Vector3d>& extremePoints() const { return extreme_points_; }

@@ -35,8 +35,7 @@ void requireObjects(int objects) {
   }
 }
 
-void requireValidInputs(const io::TriangleMesh& part, const BinInterior& bin,
-                        const PhysicsParams& params) {
+void requireValidInputs(const io::TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params) {
   params.validate();
   requirePositive(bin.length, "bin.length");
   requirePositive(bin.width, "bin.width");
@@ -48,8 +47,7 @@ void requireValidInputs(const io::TriangleMesh& part, const BinInterior& bin,
 // Released in any orientation, the part must fit between the walls: its extent in any direction is
 // at most the diameter of the sphere around its centroid that holds it. Returns the clearance
 // kept from the walls at release.
-double requireFitsInBin(const io::TriangleMesh& part, const BinInterior& bin,
-                        const PhysicsParams& params) {
+double requireFitsInBin(const io::TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params) {
   const detail::MassProperties mass = detail::massProperties(part);
   if (!(mass.volume > 0.0)) {
     throw core::Error("simulatePile: the part mesh encloses no volume (it must be closed, normals out)");
@@ -61,9 +59,8 @@ double requireFitsInBin(const io::TriangleMesh& part, const BinInterior& bin,
   const double diameter = 2.0 * radius + 2.0 * clearance;
   if (diameter > std::min(bin.length, bin.width)) {
     std::ostringstream message;
-    message << "simulatePile: the part (" << diameter
-            << " m across in its worst orientation) does not fit in a bin of " << bin.length
-            << " x " << bin.width << " m";
+    message << "simulatePile: the part (" << diameter << " m across in its worst orientation) does not fit in a bin of "
+            << bin.length << " x " << bin.width << " m";
     throw core::Error(message.str());
   }
   return clearance;
@@ -71,8 +68,7 @@ double requireFitsInBin(const io::TriangleMesh& part, const BinInterior& bin,
 
 // Validates everything about the inputs before any work is done; returns the clearance kept from
 // the walls at release.
-double validatedClearance(const io::TriangleMesh& part, const BinInterior& bin,
-                          const PhysicsParams& params) {
+double validatedClearance(const io::TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params) {
   requireValidInputs(part, bin, params);
   return requireFitsInBin(part, bin, params);
 }
@@ -85,8 +81,7 @@ int framesIn(double seconds, const PhysicsParams& params) {
 }  // namespace
 
 struct PhysicsBin::Impl {
-  Impl(const io::TriangleMesh& part, const BinInterior& bin_interior, const PhysicsParams& physics,
-       uint64_t seed)
+  Impl(const io::TriangleMesh& part, const BinInterior& bin_interior, const PhysicsParams& physics, uint64_t seed)
       : interior(bin_interior),
         params(physics),
         clearance(validatedClearance(part, interior, params)),
@@ -102,8 +97,7 @@ struct PhysicsBin::Impl {
   detail::Rng rng;
 };
 
-PhysicsBin::PhysicsBin(const io::TriangleMesh& part, const BinInterior& bin,
-                       const PhysicsParams& params, uint64_t seed)
+PhysicsBin::PhysicsBin(const io::TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params, uint64_t seed)
     : impl_(std::make_unique<Impl>(part, bin, params, seed)) {}
 
 PhysicsBin::~PhysicsBin() = default;
@@ -124,8 +118,8 @@ PhysicsPile PhysicsBin::drop(int objects) {
   int waiting = objects;
   bool settled = true;
   while (waiting > 0) {
-    const auto layer = detail::releaseLayer(waiting, simulation.pileTop(), bin.shape.extremePoints(),
-                                            bin.interior, bin.params, bin.clearance, bin.rng);
+    const auto layer = detail::releaseLayer(waiting, simulation.pileTop(), bin.shape.extremePoints(), bin.interior,
+                                            bin.params, bin.clearance, bin.rng);
     simulation.release(layer);
     waiting -= static_cast<int>(layer.size());
     ++result.layers;
@@ -155,15 +149,14 @@ SettleResult PhysicsBin::remove(int index) {
   detail::PileSimulation& simulation = impl_->simulation;
   if (index < 0 || index >= simulation.size()) {
     throw core::Error("PhysicsBin::remove: index " + std::to_string(index) + " is not in [0, " +
-                std::to_string(simulation.size()) + ")");
+                      std::to_string(simulation.size()) + ")");
   }
   const std::vector<int> serials_before = simulation.serials();
   const int first_frame = simulation.frames();
   simulation.removeAt(index);
 
   SettleResult result;
-  result.settled =
-      simulation.settle(first_frame + framesIn(impl_->params.max_resettle_time, impl_->params));
+  result.settled = simulation.settle(first_frame + framesIn(impl_->params.max_resettle_time, impl_->params));
   for (const int serial : simulation.removeEscaped()) {
     const auto at = std::find(serials_before.begin(), serials_before.end(), serial);
     result.escaped.push_back(static_cast<int>(at - serials_before.begin()));
@@ -175,8 +168,8 @@ SettleResult PhysicsBin::remove(int index) {
   return result;
 }
 
-PhysicsPile simulatePile(const io::TriangleMesh& part, int objects, const BinInterior& bin,
-                         const PhysicsParams& params, uint64_t seed) {
+PhysicsPile simulatePile(const io::TriangleMesh& part, int objects, const BinInterior& bin, const PhysicsParams& params,
+                         uint64_t seed) {
   requireObjects(objects);
   return PhysicsBin(part, bin, params, seed).drop(objects);
 }
@@ -199,54 +192,48 @@ class Checker {
   const std::string& name_;
 };
 
-bool finiteIn(double value, double low, double high) {
-  return std::isfinite(value) && value >= low && value <= high;
-}
+bool finiteIn(double value, double low, double high) { return std::isfinite(value) && value >= low && value <= high; }
 
-bool positiveUpTo(double value, double high) {
-  return std::isfinite(value) && value > 0.0 && value <= high;
-}
+bool positiveUpTo(double value, double high) { return std::isfinite(value) && value > 0.0 && value <= high; }
 
 // Upper limits keep a typo (a length in millimetres, a time in milliseconds) from turning into a
 // run that never ends or a grid that exhausts memory.
-constexpr double kMaxDropHeight = 10.0;   // metres
-constexpr double kMaxFriction = 10.0;     // Bullet clamps combined friction there
-constexpr double kMaxTimeStep = 0.1;      // seconds
+constexpr double kMaxDropHeight = 10.0;  // metres
+constexpr double kMaxFriction = 10.0;    // Bullet clamps combined friction there
+constexpr double kMaxTimeStep = 0.1;     // seconds
 constexpr int kMaxSubsteps = 1000;
 constexpr double kMaxSimulatedTime = 3600.0;  // seconds
-constexpr double kMaxSmallLength = 0.1;   // metres: tolerances, margins, lever arms
+constexpr double kMaxSmallLength = 0.1;       // metres: tolerances, margins, lever arms
 constexpr int kMaxPieces = 1024;
 
 }  // namespace
 
 void PhysicsParams::validate(const std::string& name) const {
   const Checker check(name);
-  check.require(finiteIn(drop_height_min, 0.0, kMaxDropHeight), "drop_height_min", "in [0, 10]",
-                drop_height_min);
+  check.require(finiteIn(drop_height_min, 0.0, kMaxDropHeight), "drop_height_min", "in [0, 10]", drop_height_min);
   check.require(finiteIn(drop_height_max, drop_height_min, kMaxDropHeight), "drop_height_max",
                 "in [drop_height_min, 10]", drop_height_max);
   check.require(finiteIn(friction, 0.0, kMaxFriction), "friction", "in [0, 10]", friction);
   check.require(finiteIn(restitution, 0.0, 1.0), "restitution", "in [0, 1]", restitution);
-  check.require(finiteIn(rolling_resistance, 0.0, kMaxSmallLength), "rolling_resistance",
-                "in [0, 0.1]", rolling_resistance);
+  check.require(finiteIn(rolling_resistance, 0.0, kMaxSmallLength), "rolling_resistance", "in [0, 0.1]",
+                rolling_resistance);
   check.require(positiveUpTo(time_step, kMaxTimeStep), "time_step", "in (0, 0.1]", time_step);
   check.require(substeps >= 1 && substeps <= kMaxSubsteps, "substeps", "in [1, 1000]", substeps);
-  check.require(positiveUpTo(max_simulated_time, kMaxSimulatedTime), "max_simulated_time",
-                "in (0, 3600]", max_simulated_time);
-  check.require(positiveUpTo(max_resettle_time, kMaxSimulatedTime), "max_resettle_time",
-                "in (0, 3600]", max_resettle_time);
-  check.require(std::isfinite(settle_linear_velocity) && settle_linear_velocity > 0.0,
-                "settle_linear_velocity", "positive", settle_linear_velocity);
-  check.require(std::isfinite(settle_angular_velocity) && settle_angular_velocity > 0.0,
-                "settle_angular_velocity", "positive", settle_angular_velocity);
-  check.require(finiteIn(settle_time, 0.0, max_simulated_time), "settle_time",
-                "in [0, max_simulated_time]", settle_time);
-  check.require(positiveUpTo(decomposition_tolerance, kMaxSmallLength), "decomposition_tolerance",
-                "in (0, 0.1]", decomposition_tolerance);
-  check.require(max_convex_pieces >= 1 && max_convex_pieces <= kMaxPieces, "max_convex_pieces",
-                "in [1, 1024]", max_convex_pieces);
-  check.require(positiveUpTo(collision_margin, kMaxSmallLength), "collision_margin", "in (0, 0.1]",
-                collision_margin);
+  check.require(positiveUpTo(max_simulated_time, kMaxSimulatedTime), "max_simulated_time", "in (0, 3600]",
+                max_simulated_time);
+  check.require(positiveUpTo(max_resettle_time, kMaxSimulatedTime), "max_resettle_time", "in (0, 3600]",
+                max_resettle_time);
+  check.require(std::isfinite(settle_linear_velocity) && settle_linear_velocity > 0.0, "settle_linear_velocity",
+                "positive", settle_linear_velocity);
+  check.require(std::isfinite(settle_angular_velocity) && settle_angular_velocity > 0.0, "settle_angular_velocity",
+                "positive", settle_angular_velocity);
+  check.require(finiteIn(settle_time, 0.0, max_simulated_time), "settle_time", "in [0, max_simulated_time]",
+                settle_time);
+  check.require(positiveUpTo(decomposition_tolerance, kMaxSmallLength), "decomposition_tolerance", "in (0, 0.1]",
+                decomposition_tolerance);
+  check.require(max_convex_pieces >= 1 && max_convex_pieces <= kMaxPieces, "max_convex_pieces", "in [1, 1024]",
+                max_convex_pieces);
+  check.require(positiveUpTo(collision_margin, kMaxSmallLength), "collision_margin", "in (0, 0.1]", collision_margin);
 }
 
 }  // namespace binpick::simulation

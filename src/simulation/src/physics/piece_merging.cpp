@@ -23,8 +23,7 @@ class Merger {
   }
 
   int count() const {
-    return static_cast<int>(std::count_if(slots_.begin(), slots_.end(),
-                                          [](const auto& s) { return s.has_value(); }));
+    return static_cast<int>(std::count_if(slots_.begin(), slots_.end(), [](const auto& s) { return s.has_value(); }));
   }
 
   // Joins the cheapest pair whose joint hull fits; false when none does.
@@ -89,11 +88,10 @@ class Merger {
     const int a = candidate.a, b = candidate.b;
     slots_[a].reset();
     slots_[b].reset();
-    candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(),
-                                     [&](const JoinCandidate& c) {
-                                       return c.a == a || c.a == b || c.b == a || c.b == b;
-                                     }),
-                      candidates_.end());
+    candidates_.erase(
+        std::remove_if(candidates_.begin(), candidates_.end(),
+                       [&](const JoinCandidate& c) { return c.a == a || c.a == b || c.b == a || c.b == b; }),
+        candidates_.end());
     slots_.emplace_back(std::move(candidate.joint));
     addCandidates(static_cast<int>(slots_.size()) - 1, true);
   }
@@ -105,8 +103,7 @@ class Merger {
 
 }  // namespace
 
-std::vector<ConvexHull> mergePieces(std::vector<ConvexHull> pieces, const SolidGrid& solid,
-                                    int max_pieces) {
+std::vector<ConvexHull> mergePieces(std::vector<ConvexHull> pieces, const SolidGrid& solid, int max_pieces) {
   Merger merger(std::move(pieces), solid);
   while (merger.joinCheapestFitting()) {
   }

@@ -10,7 +10,6 @@
 
 namespace binpick::simulation::detail {
 
-std::vector<ConvexHull> mergePieces(std::vector<ConvexHull> pieces, const SolidGrid& solid,
-                                    int max_pieces);
+std::vector<ConvexHull> mergePieces(std::vector<ConvexHull> pieces, const SolidGrid& solid, int max_pieces);
 
 }  // namespace binpick::simulation::detail

@@ -16,8 +16,7 @@ constexpr double kFallenDepth = 0.2;  // metres
 
 }  // namespace
 
-PileSimulation::PileSimulation(const PartShape& part, const BinInterior& bin,
-                               const PhysicsParams& params)
+PileSimulation::PileSimulation(const PartShape& part, const BinInterior& bin, const PhysicsParams& params)
     : part_(part), bin_(bin), params_(params), world_(bin, params) {}
 
 Eigen::Isometry3d PileSimulation::T_bin_model(const btRigidBody* body) const {
@@ -40,21 +39,18 @@ void PileSimulation::release(const std::vector<Eigen::Isometry3d>& T_bin_model) 
   }
 }
 
-bool PileSimulation::atRest(const btRigidBody* body, const btTransform& window_start,
-                            double window) const {
+bool PileSimulation::atRest(const btRigidBody* body, const btTransform& window_start, double window) const {
   const btTransform& now = body->getWorldTransform();
   const double moved = (now.getOrigin() - window_start.getOrigin()).length() / kWorldScale;
   const double turned = now.getRotation().angleShortestPath(window_start.getRotation());
-  return moved < params_.settle_linear_velocity * window &&
-         turned < params_.settle_angular_velocity * window;
+  return moved < params_.settle_linear_velocity * window && turned < params_.settle_angular_velocity * window;
 }
 
 // Compares each part's pose at the end of a window of settle_time with its start: the mean speeds
 // over the window, unlike the instantaneous ones, are not kept up by the solver's jitter. The limit
 // is counted in whole steps, so that no rounding of a running sum decides when to stop.
 bool PileSimulation::settle(int frame_limit) {
-  const int window_frames =
-      std::max(1, static_cast<int>(std::ceil(params_.settle_time / params_.time_step - 1e-9)));
+  const int window_frames = std::max(1, static_cast<int>(std::ceil(params_.settle_time / params_.time_step - 1e-9)));
   const double window = window_frames * params_.time_step;
   const double step = params_.time_step / params_.substeps;
   std::vector<btTransform> window_start;
@@ -73,8 +69,7 @@ bool PileSimulation::settle(int frame_limit) {
     if (++frames_in_window < window_frames) continue;
     frames_in_window = 0;
     bool quiet = true;
-    for (std::size_t i = 0; i < bodies_.size() && quiet; ++i)
-      quiet = atRest(bodies_[i], window_start[i], window);
+    for (std::size_t i = 0; i < bodies_.size() && quiet; ++i) quiet = atRest(bodies_[i], window_start[i], window);
     if (quiet) return true;
   }
   return false;
@@ -101,12 +96,10 @@ bool PileSimulation::isInsideBin(const btRigidBody* body) const {
   const Eigen::Isometry3d pose = T_bin_model(body);
   const double x_limit = 0.5 * bin_.length + kInsideTolerance;
   const double y_limit = 0.5 * bin_.width + kInsideTolerance;
-  return std::all_of(part_.extremePoints().begin(), part_.extremePoints().end(),
-                     [&](const Eigen::Vector3d& p) {
-                       const Eigen::Vector3d q = pose * p;
-                       return std::abs(q.x()) <= x_limit && std::abs(q.y()) <= y_limit &&
-                              q.z() >= -kInsideTolerance;
-                     });
+  return std::all_of(part_.extremePoints().begin(), part_.extremePoints().end(), [&](const Eigen::Vector3d& p) {
+    const Eigen::Vector3d q = pose * p;
+    return std::abs(q.x()) <= x_limit && std::abs(q.y()) <= y_limit && q.z() >= -kInsideTolerance;
+  });
 }
 
 std::vector<int> PileSimulation::removeEscaped() {

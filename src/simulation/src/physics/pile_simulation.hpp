@@ -34,7 +34,7 @@ class PileSimulation {
   std::vector<Eigen::Isometry3d> poses() const;  // T_bin_model of the parts, in release order
   std::vector<int> serials() const;              // of the parts, in release order
   int size() const { return static_cast<int>(bodies_.size()); }
-  int frames() const { return frames_; }         // time steps simulated
+  int frames() const { return frames_; }  // time steps simulated
   long steps() const { return static_cast<long>(frames_) * params_.substeps; }
   double simulatedTime() const { return frames_ * params_.time_step; }
 
@@ -52,7 +52,7 @@ class PileSimulation {
   std::vector<btRigidBody*> bodies_;  // in release order; each one's user index is its serial
   int frames_ = 0;                    // time steps simulated
   int next_serial_ = 0;
-  std::vector<int> fallen_;           // serials taken out while falling off the world
+  std::vector<int> fallen_;  // serials taken out while falling off the world
 };
 
 }  // namespace binpick::simulation::detail

@@ -14,9 +14,8 @@ struct Release {
   Eigen::AlignedBox3d box;  // of the part at that pose, bin frame
 };
 
-Release randomRelease(double pile_top, const std::vector<Eigen::Vector3d>& points,
-                      const BinInterior& bin, const PhysicsParams& params, double clearance,
-                      Rng& rng) {
+Release randomRelease(double pile_top, const std::vector<Eigen::Vector3d>& points, const BinInterior& bin,
+                      const PhysicsParams& params, double clearance, Rng& rng) {
   Release release;
   release.T_bin_model.linear() = uniformRotation(rng);
   Eigen::AlignedBox3d turned;  // extent of the rotated part around its model origin
@@ -37,18 +36,15 @@ Release randomRelease(double pile_top, const std::vector<Eigen::Vector3d>& point
 }  // namespace
 
 std::vector<Eigen::Isometry3d> releaseLayer(int wanted, double pile_top,
-                                            const std::vector<Eigen::Vector3d>& extreme_points,
-                                            const BinInterior& bin, const PhysicsParams& params,
-                                            double wall_clearance, Rng& rng) {
+                                            const std::vector<Eigen::Vector3d>& extreme_points, const BinInterior& bin,
+                                            const PhysicsParams& params, double wall_clearance, Rng& rng) {
   std::vector<Release> layer;
   while (static_cast<int>(layer.size()) < wanted) {
     bool placed = false;
     for (int attempt = 0; attempt < kTriesPerPart && !placed; ++attempt) {
-      Release candidate =
-          randomRelease(pile_top, extreme_points, bin, params, wall_clearance, rng);
-      placed = std::none_of(layer.begin(), layer.end(), [&](const Release& other) {
-        return other.box.intersects(candidate.box);
-      });
+      Release candidate = randomRelease(pile_top, extreme_points, bin, params, wall_clearance, rng);
+      placed = std::none_of(layer.begin(), layer.end(),
+                            [&](const Release& other) { return other.box.intersects(candidate.box); });
       if (placed) layer.push_back(std::move(candidate));
     }
     if (!placed) break;

@@ -15,8 +15,7 @@ namespace binpick::simulation::detail {
 // `extreme_points` (model frame) give the part's extent. The layer ends early when a few random
 // tries find no free place for the next part.
 std::vector<Eigen::Isometry3d> releaseLayer(int wanted, double pile_top,
-                                            const std::vector<Eigen::Vector3d>& extreme_points,
-                                            const BinInterior& bin, const PhysicsParams& params,
-                                            double wall_clearance, Rng& rng);
+                                            const std::vector<Eigen::Vector3d>& extreme_points, const BinInterior& bin,
+                                            const PhysicsParams& params, double wall_clearance, Rng& rng);
 
 }  // namespace binpick::simulation::detail

@@ -28,8 +28,7 @@ CellGrid gridAroundMesh(const io::TriangleMesh& mesh, double cell_size, double f
   grid.cell_size = cell_size;
   grid.origin = lo - Eigen::Vector3d::Constant(margin + kGridShift * cell_size);
   for (int axis = 0; axis < 3; ++axis) {
-    grid.size[axis] =
-        static_cast<int>(std::ceil((hi[axis] + margin - grid.origin[axis]) / cell_size));
+    grid.size[axis] = static_cast<int>(std::ceil((hi[axis] + margin - grid.origin[axis]) / cell_size));
   }
   return grid;
 }
@@ -92,8 +91,7 @@ void SolidGrid::markNearSurface(const io::TriangleMesh& mesh, double far_distanc
   }
 }
 
-void SolidGrid::SummedVolume::build(const CellGrid& grid, const std::vector<uint8_t>& flags,
-                                    uint8_t flag) {
+void SolidGrid::SummedVolume::build(const CellGrid& grid, const std::vector<uint8_t>& flags, uint8_t flag) {
   size_ = grid.size;
   const long nx = size_.x() + 1, ny = size_.y() + 1;
   table_.assign(static_cast<std::size_t>(nx * ny * (size_.z() + 1)), 0);
@@ -118,9 +116,8 @@ long SolidGrid::SummedVolume::sum(const CellBox& box) const {
   if (box.empty()) return 0;
   const Eigen::Vector3i& a = box.lo;
   const Eigen::Vector3i& b = box.hi;
-  return at(b.x(), b.y(), b.z()) - at(a.x(), b.y(), b.z()) - at(b.x(), a.y(), b.z()) -
-         at(b.x(), b.y(), a.z()) + at(a.x(), a.y(), b.z()) + at(a.x(), b.y(), a.z()) +
-         at(b.x(), a.y(), a.z()) - at(a.x(), a.y(), a.z());
+  return at(b.x(), b.y(), b.z()) - at(a.x(), b.y(), b.z()) - at(b.x(), a.y(), b.z()) - at(b.x(), b.y(), a.z()) +
+         at(a.x(), a.y(), b.z()) + at(a.x(), b.y(), a.z()) + at(b.x(), a.y(), a.z()) - at(a.x(), a.y(), a.z());
 }
 
 }  // namespace binpick::simulation::detail

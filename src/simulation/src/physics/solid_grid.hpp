@@ -20,8 +20,7 @@ CellGrid gridAroundMesh(const io::TriangleMesh& mesh, double cell_size, double f
 
 class SolidGrid {
  public:
-  SolidGrid(const io::TriangleMesh& mesh, const MeshColumns& columns, const CellGrid& grid,
-            double far_distance);
+  SolidGrid(const io::TriangleMesh& mesh, const MeshColumns& columns, const CellGrid& grid, double far_distance);
 
   const CellGrid& grid() const { return grid_; }
   bool occupied(int i, int j, int k) const { return flags_[grid_.index(i, j, k)] & kOccupied; }

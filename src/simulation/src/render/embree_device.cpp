@@ -8,20 +8,13 @@ namespace {
 
 const char* errorName(RTCError code) {
   switch (code) {
-    case RTC_ERROR_NONE:
-      return "no error";
-    case RTC_ERROR_INVALID_ARGUMENT:
-      return "invalid argument";
-    case RTC_ERROR_INVALID_OPERATION:
-      return "invalid operation";
-    case RTC_ERROR_OUT_OF_MEMORY:
-      return "out of memory";
-    case RTC_ERROR_UNSUPPORTED_CPU:
-      return "unsupported CPU";
-    case RTC_ERROR_CANCELLED:
-      return "cancelled";
-    case RTC_ERROR_UNKNOWN:
-      break;
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    case RTC_ERROR_UNKNOWN: break;
   }
   return "unknown error";
 }
@@ -34,7 +27,7 @@ EmbreeDevice::EmbreeDevice() {
   device_ = rtcNewDevice(nullptr);
   if (device_ == nullptr) {
     throw core::Error(std::string("RayCaster: Embree could not create a device (") +
-                errorName(rtcGetDeviceError(nullptr)) + ")");
+                      errorName(rtcGetDeviceError(nullptr)) + ")");
   }
   rtcSetDeviceErrorFunction(device_, &EmbreeDevice::recordError, this);
 }

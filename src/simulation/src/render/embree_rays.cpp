@@ -10,8 +10,7 @@
 namespace binpick::simulation::detail {
 namespace {
 
-RTCRay embreeRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, float t_min,
-                 float t_max) {
+RTCRay embreeRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, float t_min, float t_max) {
   RTCRay out;
   out.org_x = static_cast<float>(origin.x());
   out.org_y = static_cast<float>(origin.y());
@@ -61,8 +60,8 @@ RayHit resolveHit(const CasterScene& scene, const RTCRayHit& query, int alone_in
   if (query.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
   const int index = alone_index >= 0 ? alone_index : static_cast<int>(query.hit.geomID);
   const PlacedObject& object = scene.objects[index];
-  return refineHit(object, scene.meshes[object.mesh], index, static_cast<int>(query.hit.primID),
-                   ray.origin, unit_direction, query.ray.tfar);
+  return refineHit(object, scene.meshes[object.mesh], index, static_cast<int>(query.hit.primID), ray.origin,
+                   unit_direction, query.ray.tfar);
 }
 
 }  // namespace binpick::simulation::detail

@@ -16,9 +16,8 @@ constexpr double kMaxRelativeCorrection = 1e-3;
 
 }  // namespace
 
-RayHit refineHit(const PlacedObject& object, const io::TriangleMesh& mesh, int object_index,
-                 int triangle, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                 double t_embree) {
+RayHit refineHit(const PlacedObject& object, const io::TriangleMesh& mesh, int object_index, int triangle,
+                 const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_embree) {
   const Eigen::Vector3i& corners = mesh.triangles[triangle];
   const Eigen::Vector3d a = mesh.vertices[corners[0]].cast<double>();
   const Eigen::Vector3d b = mesh.vertices[corners[1]].cast<double>();

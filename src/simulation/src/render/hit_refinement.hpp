@@ -12,8 +12,7 @@ namespace binpick::simulation::detail {
 // in double on the mesh's own vertices at the object's pose: Embree traces a float copy in the
 // camera frame, whose distance `t_embree` is only good to ~1e-7 relative. Falls back to
 // `t_embree` when the ray grazes the triangle's plane too closely for the recomputation.
-RayHit refineHit(const PlacedObject& object, const io::TriangleMesh& mesh, int object_index,
-                 int triangle, const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                 double t_embree);
+RayHit refineHit(const PlacedObject& object, const io::TriangleMesh& mesh, int object_index, int triangle,
+                 const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_embree);
 
 }  // namespace binpick::simulation::detail

@@ -24,17 +24,12 @@ Eigen::Vector2d fromPixel(const io::LensIntrinsics& lens, const Eigen::Vector2d&
 }
 
 // Point `s` in [0, 1) of the way round the rectangle's border.
-Eigen::Vector2d alongBorder(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int side,
-                            double s) {
+Eigen::Vector2d alongBorder(const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, int side, double s) {
   switch (side) {
-    case 0:
-      return {lo.x() + s * (hi.x() - lo.x()), lo.y()};
-    case 1:
-      return {hi.x(), lo.y() + s * (hi.y() - lo.y())};
-    case 2:
-      return {hi.x() - s * (hi.x() - lo.x()), hi.y()};
-    default:
-      return {lo.x(), hi.y() - s * (hi.y() - lo.y())};
+    case 0: return {lo.x() + s * (hi.x() - lo.x()), lo.y()};
+    case 1: return {hi.x(), lo.y() + s * (hi.y() - lo.y())};
+    case 2: return {hi.x() - s * (hi.x() - lo.x()), hi.y()};
+    default: return {lo.x(), hi.y() - s * (hi.y() - lo.y())};
   }
 }
 

@@ -15,9 +15,8 @@ constexpr double kFieldMargin = 0.05;
 
 void requireMatchingGeometry(const io::RigCalibration& rig, const SensorGeometry& geometry) {
   const std::size_t n = static_cast<std::size_t>(rig.camera.width) * rig.camera.height;
-  if (geometry.width != rig.camera.width || geometry.height != rig.camera.height ||
-      geometry.object_index.size() != n || geometry.lit.size() != n ||
-      geometry.in_projector_image.size() != n || geometry.projector_cosine.size() != n) {
+  if (geometry.width != rig.camera.width || geometry.height != rig.camera.height || geometry.object_index.size() != n ||
+      geometry.lit.size() != n || geometry.in_projector_image.size() != n || geometry.projector_cosine.size() != n) {
     throw core::Error("computeObjectVisibility: the sensor geometry does not match the camera size");
   }
 }
@@ -45,9 +44,8 @@ AloneAnswer answerFromGeometry(const SensorGeometry& geometry, std::size_t i, in
 }
 
 // Pixels of row v within `pixels` that would see `object`, lit, were it alone.
-int countAloneLitInRow(const io::RigCalibration& rig, const RayCaster& scene,
-                       const detail::ProjectorView& projector, const SensorGeometry& geometry,
-                       const detail::PixelRange& pixels, int v, int object,
+int countAloneLitInRow(const io::RigCalibration& rig, const RayCaster& scene, const detail::ProjectorView& projector,
+                       const SensorGeometry& geometry, const detail::PixelRange& pixels, int v, int object,
                        double shadow_ray_offset) {
   int count = 0;
   std::vector<Ray> rays;
@@ -81,8 +79,7 @@ std::vector<RowTask> rowTasks(const io::RigCalibration& rig, const RayCaster& sc
   for (int object : object_indices) {
     if (listed[object]) continue;  // an object asked for twice is counted once
     listed[object] = true;
-    const detail::PixelRange pixels =
-        detail::pixelsSeeing(rig.camera, field, scene.objectBounds(object));
+    const detail::PixelRange pixels = detail::pixelsSeeing(rig.camera, field, scene.objectBounds(object));
     if (pixels.empty()) continue;
     for (int v = pixels.v_begin; v < pixels.v_end; ++v) tasks.push_back({object, v, pixels});
   }
@@ -90,10 +87,8 @@ std::vector<RowTask> rowTasks(const io::RigCalibration& rig, const RayCaster& sc
 }
 
 // Per object of `object_indices`, the pixels that would see it, lit, were it alone.
-std::vector<int> countAloneLit(const io::RigCalibration& rig, const RayCaster& scene,
-                               const SensorGeometry& geometry,
-                               const std::vector<int>& object_indices,
-                               const SensorGeometryParams& params) {
+std::vector<int> countAloneLit(const io::RigCalibration& rig, const RayCaster& scene, const SensorGeometry& geometry,
+                               const std::vector<int>& object_indices, const SensorGeometryParams& params) {
   const detail::ProjectorView projector(rig);
   const std::vector<RowTask> tasks = rowTasks(rig, scene, object_indices);
   std::vector<int> row_counts(tasks.size(), 0);
@@ -103,8 +98,8 @@ std::vector<int> countAloneLit(const io::RigCalibration& rig, const RayCaster& s
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (std::size_t k = 0; k < tasks.size(); ++k) {
     const RowTask& task = tasks[k];
-    row_counts[k] = countAloneLitInRow(rig, scene, projector, geometry, task.pixels, task.v,
-                                       task.object, params.shadow_ray_offset);
+    row_counts[k] =
+        countAloneLitInRow(rig, scene, projector, geometry, task.pixels, task.v, task.object, params.shadow_ray_offset);
   }
   std::vector<int> per_object(scene.objectCount(), 0);
   for (std::size_t k = 0; k < tasks.size(); ++k) per_object[tasks[k].object] += row_counts[k];
@@ -113,8 +108,7 @@ std::vector<int> countAloneLit(const io::RigCalibration& rig, const RayCaster& s
 
 }  // namespace
 
-std::vector<ObjectVisibility> computeObjectVisibilityOf(const io::RigCalibration& rig,
-                                                        const RayCaster& scene,
+std::vector<ObjectVisibility> computeObjectVisibilityOf(const io::RigCalibration& rig, const RayCaster& scene,
                                                         const SensorGeometry& geometry,
                                                         const std::vector<int>& object_indices,
                                                         const SensorGeometryParams& params) {
@@ -138,8 +132,7 @@ std::vector<ObjectVisibility> computeObjectVisibilityOf(const io::RigCalibration
   return result;
 }
 
-std::vector<ObjectVisibility> computeObjectVisibility(const io::RigCalibration& rig,
-                                                      const RayCaster& scene,
+std::vector<ObjectVisibility> computeObjectVisibility(const io::RigCalibration& rig, const RayCaster& scene,
                                                       const SensorGeometry& geometry,
                                                       const SensorGeometryParams& params) {
   std::vector<int> all(scene.objectCount());

@@ -24,12 +24,11 @@ bool ProjectorView::inImage(const Eigen::Vector3d& point_projector, Eigen::Vecto
   if (!(point_projector.z() > 0.0)) return false;
   *pixel = lens_.project(point_projector);
   const Eigen::Vector2d direction = point_projector.head<2>() / point_projector.z();
-  return field_bounds_.contains(direction) && pixel->x() >= -0.5 &&
-         pixel->x() < lens_.width - 0.5 && pixel->y() >= -0.5 && pixel->y() < lens_.height - 0.5;
+  return field_bounds_.contains(direction) && pixel->x() >= -0.5 && pixel->x() < lens_.width - 0.5 &&
+         pixel->y() >= -0.5 && pixel->y() < lens_.height - 0.5;
 }
 
-ProjectorSample ProjectorView::locate(const Eigen::Vector3d& point,
-                                      const Eigen::Vector3d& normal) const {
+ProjectorSample ProjectorView::locate(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) const {
   ProjectorSample out;
   out.in_image = inImage(T_projector_camera_ * point, &out.pixel);
   const Eigen::Vector3d to_projector = centre_camera_ - point;
@@ -38,8 +37,7 @@ ProjectorSample ProjectorView::locate(const Eigen::Vector3d& point,
   return out;
 }
 
-Ray ProjectorView::shadowRay(const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
-                             double offset) const {
+Ray ProjectorView::shadowRay(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double offset) const {
   Ray ray;
   ray.origin = point + offset * normal;
   ray.direction = centre_camera_ - ray.origin;
@@ -47,9 +45,8 @@ Ray ProjectorView::shadowRay(const Eigen::Vector3d& point, const Eigen::Vector3d
   return ray;
 }
 
-std::vector<ProjectorSample> lightHits(const ProjectorView& projector,
-                                       const std::vector<RayHit>& hits, const RayCaster& scene,
-                                       int alone_object, double shadow_ray_offset) {
+std::vector<ProjectorSample> lightHits(const ProjectorView& projector, const std::vector<RayHit>& hits,
+                                       const RayCaster& scene, int alone_object, double shadow_ray_offset) {
   std::vector<ProjectorSample> samples(hits.size());
   std::vector<std::size_t> exposed;
   std::vector<Ray> shadow_rays;
@@ -62,9 +59,8 @@ std::vector<ProjectorSample> lightHits(const ProjectorView& projector,
     exposed.push_back(i);
     shadow_rays.push_back(projector.shadowRay(hits[i].point, hits[i].normal, shadow_ray_offset));
   }
-  const std::vector<uint8_t> shadowed = alone_object >= 0
-                                            ? scene.occludedEachAlone(alone_object, shadow_rays)
-                                            : scene.occludedEach(shadow_rays);
+  const std::vector<uint8_t> shadowed =
+      alone_object >= 0 ? scene.occludedEachAlone(alone_object, shadow_rays) : scene.occludedEach(shadow_rays);
   for (std::size_t k = 0; k < exposed.size(); ++k) samples[exposed[k]].lit = !shadowed[k];
   return samples;
 }

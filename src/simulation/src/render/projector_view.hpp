@@ -46,8 +46,7 @@ class ProjectorView {
 // The projector samples of `hits` (a miss gives the default sample), lit included: shadows are
 // cast by the whole scene, or by object `alone_object` only when it is >= 0. The shadow rays of
 // the exposed points go to the caster as one batch.
-std::vector<ProjectorSample> lightHits(const ProjectorView& projector,
-                                       const std::vector<RayHit>& hits, const RayCaster& scene,
-                                       int alone_object, double shadow_ray_offset);
+std::vector<ProjectorSample> lightHits(const ProjectorView& projector, const std::vector<RayHit>& hits,
+                                       const RayCaster& scene, int alone_object, double shadow_ray_offset);
 
 }  // namespace binpick::simulation::detail

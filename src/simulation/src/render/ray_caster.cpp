@@ -35,8 +35,8 @@ bool anyHit(RTCScene scene, const Ray& ray) {
 void RayCaster::Impl::requireIndex(int object_index, const char* caller) const {
   const std::size_t size = data.objects.size();
   if (object_index < 0 || object_index >= static_cast<int>(size)) {
-    throw core::Error(std::string("RayCaster::") + caller + ": object index " +
-                std::to_string(object_index) + " is outside [0, " + std::to_string(size) + ")");
+    throw core::Error(std::string("RayCaster::") + caller + ": object index " + std::to_string(object_index) +
+                      " is outside [0, " + std::to_string(size) + ")");
   }
 }
 
@@ -47,9 +47,7 @@ RayCaster::~RayCaster() = default;
 RayCaster::RayCaster(RayCaster&& other) noexcept = default;
 RayCaster& RayCaster::operator=(RayCaster&& other) noexcept = default;
 
-int RayCaster::objectCount() const {
-  return impl_ ? static_cast<int>(impl_->data.objects.size()) : 0;
-}
+int RayCaster::objectCount() const { return impl_ ? static_cast<int>(impl_->data.objects.size()) : 0; }
 
 int32_t RayCaster::objectId(int object_index) const {
   if (!impl_) throw core::Error("RayCaster::objectId: the caster was moved from");
@@ -74,9 +72,7 @@ RayHit RayCaster::closestHit(const Ray& ray) const {
   return intersect(impl_->data, impl_->data.scene.get(), -1, ray);
 }
 
-bool RayCaster::occluded(const Ray& ray) const {
-  return impl_ && anyHit(impl_->data.scene.get(), ray);
-}
+bool RayCaster::occluded(const Ray& ray) const { return impl_ && anyHit(impl_->data.scene.get(), ray); }
 
 RayHit RayCaster::closestHitAlone(int object_index, const Ray& ray) const {
   if (!impl_) throw core::Error("RayCaster::closestHitAlone: the caster was moved from");

@@ -36,12 +36,10 @@ std::vector<RayHit> intersectAll(const detail::CasterScene& data, RTCScene scene
       valid[k] = prepared.valid;
     }
     RTCIntersectContext context = coherentContext();
-    rtcIntersect1M(scene, &context, queries.data(), static_cast<unsigned>(count),
-                   sizeof(RTCRayHit));
+    rtcIntersect1M(scene, &context, queries.data(), static_cast<unsigned>(count), sizeof(RTCRayHit));
     for (std::size_t k = 0; k < count; ++k) {
       if (!valid[k]) continue;
-      hits[begin + k] =
-          detail::resolveHit(data, queries[k], alone_index, rays[begin + k], directions[k]);
+      hits[begin + k] = detail::resolveHit(data, queries[k], alone_index, rays[begin + k], directions[k]);
     }
   }
   return hits;
@@ -75,16 +73,13 @@ std::vector<uint8_t> RayCaster::occludedEach(const std::vector<Ray>& rays) const
   return occludedAll(impl_->data.scene.get(), rays);
 }
 
-std::vector<RayHit> RayCaster::closestHitsAlone(int object_index,
-                                                const std::vector<Ray>& rays) const {
+std::vector<RayHit> RayCaster::closestHitsAlone(int object_index, const std::vector<Ray>& rays) const {
   if (!impl_) throw core::Error("RayCaster::closestHitsAlone: the caster was moved from");
   impl_->requireIndex(object_index, "closestHitsAlone");
-  return intersectAll(impl_->data, impl_->data.alone_scenes[object_index].get(), object_index,
-                      rays);
+  return intersectAll(impl_->data, impl_->data.alone_scenes[object_index].get(), object_index, rays);
 }
 
-std::vector<uint8_t> RayCaster::occludedEachAlone(int object_index,
-                                                  const std::vector<Ray>& rays) const {
+std::vector<uint8_t> RayCaster::occludedEachAlone(int object_index, const std::vector<Ray>& rays) const {
   if (!impl_) throw core::Error("RayCaster::occludedEachAlone: the caster was moved from");
   impl_->requireIndex(object_index, "occludedEachAlone");
   return occludedAll(impl_->data.alone_scenes[object_index].get(), rays);

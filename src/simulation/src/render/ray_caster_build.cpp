@@ -28,12 +28,10 @@ GeometryHandle bakeGeometry(const EmbreeDevice& device, const io::TriangleMesh& 
                             const Eigen::Isometry3d& T_camera_object, const std::string& what) {
   GeometryHandle geometry(rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE));
   device.throwIfFailed(what);
-  auto* vertices = static_cast<float*>(
-      rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                              3 * sizeof(float), mesh.vertices.size()));
-  auto* indices = static_cast<unsigned*>(
-      rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                              3 * sizeof(unsigned), mesh.triangles.size()));
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
   device.throwIfFailed(what);
   if (vertices == nullptr || indices == nullptr) throw core::Error(what + ": Embree returned no buffer");
   for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {

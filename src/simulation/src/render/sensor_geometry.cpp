@@ -40,8 +40,7 @@ SensorGeometry emptyGeometry(int width, int height, int threads) {
   return g;
 }
 
-void storeHit(const RayHit& hit, const Eigen::Vector3d& ray_direction, std::size_t i,
-              SensorGeometry& g) {
+void storeHit(const RayHit& hit, const Eigen::Vector3d& ray_direction, std::size_t i, SensorGeometry& g) {
   g.depth[i] = static_cast<float>(hit.point.z());
   g.point[i] = hit.point.cast<float>();
   g.normal[i] = hit.normal.cast<float>();
@@ -61,15 +60,14 @@ void storeProjectorSample(const detail::ProjectorSample& s, std::size_t i, Senso
 
 // One image row: its rays, and then the shadow rays of its lit-able points, each as one batch
 // (neighbouring rays are alike, which Embree's packets exploit).
-void renderRow(const io::LensIntrinsics& camera, const detail::ProjectorView& projector,
-               const RayCaster& scene, double shadow_ray_offset, int v, SensorGeometry& g) {
+void renderRow(const io::LensIntrinsics& camera, const detail::ProjectorView& projector, const RayCaster& scene,
+               double shadow_ray_offset, int v, SensorGeometry& g) {
   std::vector<Ray> rays(camera.width);
   for (int u = 0; u < camera.width; ++u) {
     rays[u].direction = camera.rayThroughPixel(Eigen::Vector2d(u, v));
   }
   const std::vector<RayHit> hits = scene.closestHits(rays);
-  const std::vector<detail::ProjectorSample> samples =
-      detail::lightHits(projector, hits, scene, -1, shadow_ray_offset);
+  const std::vector<detail::ProjectorSample> samples = detail::lightHits(projector, hits, scene, -1, shadow_ray_offset);
   for (int u = 0; u < camera.width; ++u) {
     if (!hits[u].hit()) continue;
     const std::size_t i = g.index(u, v);
@@ -114,8 +112,7 @@ constexpr double kMaxShadowRayOffset = 0.01;
 
 void SensorGeometryParams::validate() const {
   require(threads >= 0 && threads <= kMaxThreads, "threads", "in [0, 1024]", threads);
-  require(std::isfinite(shadow_ray_offset) && shadow_ray_offset >= 0.0 &&
-              shadow_ray_offset <= kMaxShadowRayOffset,
+  require(std::isfinite(shadow_ray_offset) && shadow_ray_offset >= 0.0 && shadow_ray_offset <= kMaxShadowRayOffset,
           "shadow_ray_offset", "in [0, 0.01] metres", shadow_ray_offset);
 }
 

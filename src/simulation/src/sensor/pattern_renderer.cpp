@@ -32,7 +32,7 @@ std::vector<EmittedPattern> emittedPatterns(const io::PatternSetSpec& spec, doub
     e.axis = pattern.axis;
     const int size = e.axis == rc::PatternAxis::Columns ? spec.projector_width
                      : e.axis == rc::PatternAxis::Rows  ? spec.projector_height
-                                                         : 1;
+                                                        : 1;
     double sum = 0.0;
     for (int i = 0; i < size; ++i) {
       const double b = rc::patternBrightness(pattern, spec, i);
@@ -55,12 +55,9 @@ float blurred(const std::vector<float>& brightness, const detail::BlurTaps& taps
 float incidentBrightness(const EmittedPattern& pattern, const detail::BlurTaps& column_taps,
                          const detail::BlurTaps& row_taps) {
   switch (pattern.axis) {
-    case rc::PatternAxis::Columns:
-      return blurred(pattern.brightness, column_taps);
-    case rc::PatternAxis::Rows:
-      return blurred(pattern.brightness, row_taps);
-    case rc::PatternAxis::None:
-      break;
+    case rc::PatternAxis::Columns: return blurred(pattern.brightness, column_taps);
+    case rc::PatternAxis::Rows: return blurred(pattern.brightness, row_taps);
+    case rc::PatternAxis::None: break;
   }
   return pattern.brightness.front();
 }
@@ -69,16 +66,15 @@ float incidentBrightness(const EmittedPattern& pattern, const detail::BlurTaps& 
 template <typename Pixel>
 Pixel sensorValue(double signal, const PhotometryParams& params, double scale, double full_scale,
                   detail::SplitMix64& rng) {
-  const double sigma =
-      std::sqrt(params.read_noise * params.read_noise + params.shot_noise_gain * signal);
+  const double sigma = std::sqrt(params.read_noise * params.read_noise + params.shot_noise_gain * signal);
   const double noisy = (signal + sigma * detail::tabulatedStandardNormal(rng())) * scale;
   return static_cast<Pixel>(std::clamp(std::round(noisy), 0.0, full_scale));
 }
 
 template <typename Pixel>
-void renderRows(const std::vector<PixelLighting>& pixels, int width, int height,
-                const io::PatternSetSpec& spec, const PhotometryParams& params,
-                const std::vector<EmittedPattern>& patterns, std::vector<cv::Mat>& images) {
+void renderRows(const std::vector<PixelLighting>& pixels, int width, int height, const io::PatternSetSpec& spec,
+                const PhotometryParams& params, const std::vector<EmittedPattern>& patterns,
+                std::vector<cv::Mat>& images) {
   const double scale = params.bit_depth == 16 ? 257.0 : 1.0;
   const double full_scale = params.bit_depth == 16 ? 65535.0 : 255.0;
   const detail::KeyedStreams noise(params.seed, kImageNoiseStream);
@@ -88,10 +84,8 @@ void renderRows(const std::vector<PixelLighting>& pixels, int width, int height,
     for (int col = 0; col < width; ++col) {
       const std::size_t index = static_cast<std::size_t>(row) * width + col;
       const PixelLighting& light = pixels[index];
-      const detail::BlurTaps column_taps =
-          detail::blurTaps(light.projector_x, light.blur_sigma, spec.projector_width);
-      const detail::BlurTaps row_taps =
-          detail::blurTaps(light.projector_y, light.blur_sigma, spec.projector_height);
+      const detail::BlurTaps column_taps = detail::blurTaps(light.projector_x, light.blur_sigma, spec.projector_width);
+      const detail::BlurTaps row_taps = detail::blurTaps(light.projector_y, light.blur_sigma, spec.projector_height);
       for (std::size_t p = 0; p < patterns.size(); ++p) {
         const double signal = light.ambient + light.global * patterns[p].mean +
                               light.direct * incidentBrightness(patterns[p], column_taps, row_taps);
@@ -108,15 +102,15 @@ namespace {
 
 // The first `count` images of the pattern sequence (all of them when count exceeds it). Noise is
 // keyed by pattern index, so a prefix renders exactly as it does within the whole set.
-std::vector<cv::Mat> renderFirstPatterns(const std::vector<PixelLighting>& pixels, int width,
-                                         int height, const io::PatternSetSpec& spec,
-                                         const PhotometryParams& params, std::size_t count) {
+std::vector<cv::Mat> renderFirstPatterns(const std::vector<PixelLighting>& pixels, int width, int height,
+                                         const io::PatternSetSpec& spec, const PhotometryParams& params,
+                                         std::size_t count) {
   params.validate();
   spec.validate();
   if (width <= 0 || height <= 0 ||
       pixels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
     throw core::Error("renderPatternImages: " + std::to_string(pixels.size()) + " pixels for a " +
-                std::to_string(width) + "x" + std::to_string(height) + " image");
+                      std::to_string(width) + "x" + std::to_string(height) + " image");
   }
   std::vector<EmittedPattern> patterns = emittedPatterns(spec, params.projector_black_level);
   if (patterns.size() > count) patterns.resize(count);
@@ -133,9 +127,8 @@ std::vector<cv::Mat> renderFirstPatterns(const std::vector<PixelLighting>& pixel
 
 }  // namespace
 
-std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width,
-                                         int height, const io::PatternSetSpec& spec,
-                                         const PhotometryParams& params) {
+std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width, int height,
+                                         const io::PatternSetSpec& spec, const PhotometryParams& params) {
   return renderFirstPatterns(pixels, width, height, spec, params, SIZE_MAX);
 }
 
@@ -163,11 +156,10 @@ bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 void PhotometryParams::validate() const {
   require(nonNegative(projector_white), "projector_white", ">= 0", projector_white);
   require(positive(reference_distance), "reference_distance", "positive", reference_distance);
-  require(nonNegative(projector_black_level) && projector_black_level < 1.0,
-          "projector_black_level", "in [0, 1)", projector_black_level);
+  require(nonNegative(projector_black_level) && projector_black_level < 1.0, "projector_black_level", "in [0, 1)",
+          projector_black_level);
   require(nonNegative(ambient), "ambient", ">= 0", ambient);
-  require(nonNegative(global_light) && global_light <= 1.0, "global_light", "in [0, 1]",
-          global_light);
+  require(nonNegative(global_light) && global_light <= 1.0, "global_light", "in [0, 1]", global_light);
   require(nonNegative(specular), "specular", ">= 0", specular);
   require(positive(shininess), "shininess", "positive", shininess);
   require(positive(focus_distance), "focus_distance", "positive", focus_distance);

@@ -31,8 +31,8 @@ float blurSigma(float distance, const PhotometryParams& p) {
   return static_cast<float>(std::hypot(p.min_blur_sigma, defocus));
 }
 
-PixelLighting lightPixel(const SensorGeometry& g, std::size_t i, float albedo,
-                         const Eigen::Vector3f& projector_centre, const PhotometryParams& p) {
+PixelLighting lightPixel(const SensorGeometry& g, std::size_t i, float albedo, const Eigen::Vector3f& projector_centre,
+                         const PhotometryParams& p) {
   PixelLighting light;
   light.projector_x = g.projector_pixel[i].x();
   light.projector_y = g.projector_pixel[i].y();
@@ -43,10 +43,8 @@ PixelLighting lightPixel(const SensorGeometry& g, std::size_t i, float albedo,
   // Irradiance of a full-white pixel falls with the incidence cosine and the squared distance.
   const float distance = g.projector_distance[i];
   const double falloff = p.reference_distance / distance;
-  const float irradiance =
-      static_cast<float>(p.projector_white * falloff * falloff) * g.projector_cosine[i];
-  const float specular =
-      static_cast<float>(p.specular) * highlight(surface, projector_centre, p.shininess);
+  const float irradiance = static_cast<float>(p.projector_white * falloff * falloff) * g.projector_cosine[i];
+  const float specular = static_cast<float>(p.specular) * highlight(surface, projector_centre, p.shininess);
   light.direct = irradiance * (albedo + specular);
   light.blur_sigma = blurSigma(distance, p);
   return light;
@@ -54,18 +52,15 @@ PixelLighting lightPixel(const SensorGeometry& g, std::size_t i, float albedo,
 
 }  // namespace
 
-std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry,
-                                                const io::RigCalibration& rig,
-                                                const PhotometryParams& params,
-                                                const AlbedoFunction& albedo) {
+std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry, const io::RigCalibration& rig,
+                                                const PhotometryParams& params, const AlbedoFunction& albedo) {
   params.validate();
   if (!albedo) throw core::Error("computePixelLighting: no albedo function");
   const std::size_t count = static_cast<std::size_t>(geometry.width) * geometry.height;
   if (geometry.object_id.size() != count || geometry.lit.size() != count) {
     throw core::Error("computePixelLighting: the sensor geometry's buffers do not match its size");
   }
-  const Eigen::Vector3f projector_centre =
-      rig.T_projector_camera.inverse().translation().cast<float>();
+  const Eigen::Vector3f projector_centre = rig.T_projector_camera.inverse().translation().cast<float>();
   std::vector<PixelLighting> lighting(count);
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(core::resolveThreadCount(params.threads))
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {

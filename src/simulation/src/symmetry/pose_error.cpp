@@ -24,8 +24,7 @@ double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 
 }  // namespace
 
-PoseError poseError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth,
-                    const Symmetry& symmetry) {
+PoseError poseError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth, const Symmetry& symmetry) {
   PoseError error;
   // Every symmetry rotation is about the model origin, so the origin itself never moves: the
   // translation error needs no minimisation (this also holds along a continuous axis).

@@ -23,12 +23,12 @@ struct CameraParams {
   std::string pixel_format = "Mono8";  // Mono8, or Mono10/Mono12/Mono16 (delivered as 16-bit, high bits)
   double exposure_us = 8000.0;
   double gain_db = 0.0;
-  cv::Rect roi;                        // sensor region; empty = the whole sensor
-  int packet_size = 0;                 // GigE Vision packet size, bytes; 0 = negotiate
+  cv::Rect roi;         // sensor region; empty = the whole sensor
+  int packet_size = 0;  // GigE Vision packet size, bytes; 0 = negotiate
   TriggerSource trigger = TriggerSource::Software;
   std::string hardware_trigger_line = "Line1";  // for TriggerSource::Hardware
-  int buffers = 8;                     // stream buffers, allocated once and reused
-  void validate() const;               // throws core::Error naming the field
+  int buffers = 8;                              // stream buffers, allocated once and reused
+  void validate() const;                        // throws core::Error naming the field
 };
 
 enum class FrameStatus {
@@ -53,7 +53,7 @@ struct Frame {
 struct StreamStatistics {
   uint64_t completed_frames = 0;
   uint64_t failed_frames = 0;
-  uint64_t underruns = 0;        // frames lost for want of a free buffer
+  uint64_t underruns = 0;  // frames lost for want of a free buffer
   uint64_t missing_packets = 0;
   uint64_t resent_packets = 0;
 };

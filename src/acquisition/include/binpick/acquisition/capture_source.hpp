@@ -45,7 +45,6 @@ struct LiveParams {
 // The live path: opens the camera on the first next(); after a fault it reopens the camera (with
 // backoff) before the following capture.
 std::unique_ptr<CaptureSource> makeLiveSource(std::unique_ptr<Camera> camera,
-                                              std::unique_ptr<ProjectorTrigger> projector,
-                                              const LiveParams& params);
+                                              std::unique_ptr<ProjectorTrigger> projector, const LiveParams& params);
 
 }  // namespace binpick::acquisition

@@ -23,8 +23,8 @@ struct GpioTriggerParams {
   std::string chip = "gpiochip0";  // name (gpiochip0) or path (/dev/gpiochip0)
   unsigned line = 0;               // line offset on the chip
   bool active_high = true;
-  int pulse_us = 100;              // pulse width, microseconds
-  void validate() const;           // throws core::Error naming the field
+  int pulse_us = 100;     // pulse width, microseconds
+  void validate() const;  // throws core::Error naming the field
 };
 
 // A pulse on a GPIO line (libgpiod) per pattern. Throws core::Error naming the chip and line

@@ -10,8 +10,8 @@
 
 #include "binpick/acquisition/camera.hpp"
 #include "binpick/acquisition/projector.hpp"
-#include "binpick/io/capture.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/io/capture.hpp"
 
 namespace binpick::acquisition {
 
@@ -21,17 +21,17 @@ enum class TriggerOrder {
 };
 
 struct SequencerParams {
-  int settle_us = 2000;          // after a new pattern, before the camera exposes
-  int frame_timeout_ms = 1000;   // per frame
-  int max_retries = 2;           // extra triggers for one pattern's lost frame
+  int settle_us = 2000;         // after a new pattern, before the camera exposes
+  int frame_timeout_ms = 1000;  // per frame
+  int max_retries = 2;          // extra triggers for one pattern's lost frame
   TriggerOrder order = TriggerOrder::ProjectorThenCamera;
-  void validate() const;         // throws core::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct SequencerReport {
-  int retries = 0;                       // extra triggers over the whole capture
+  int retries = 0;                         // extra triggers over the whole capture
   std::vector<std::string> retry_reasons;  // "pattern 12 (gray_col_05): timeout", ...
-  double milliseconds = 0.0;             // whole capture
+  double milliseconds = 0.0;               // whole capture
 };
 
 // Thrown when a capture cannot be completed: names the pattern and what the camera said.

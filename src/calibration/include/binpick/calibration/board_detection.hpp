@@ -34,10 +34,10 @@ struct BoardDetectionParams {
 };
 
 struct BoardDetection {
-  std::vector<int> ids;                   // corner ids (BoardLayout::cornerPoint), ascending
-  std::vector<Eigen::Vector2d> pixels;    // camera pixel of each corner
-  int expected = 0;                       // the layout's corner count
-  std::string problem;                    // why the board was not found; empty when found
+  std::vector<int> ids;                 // corner ids (BoardLayout::cornerPoint), ascending
+  std::vector<Eigen::Vector2d> pixels;  // camera pixel of each corner
+  int expected = 0;                     // the layout's corner count
+  std::string problem;                  // why the board was not found; empty when found
   bool found() const { return problem.empty(); }
   bool complete() const { return found() && static_cast<int>(ids.size()) == expected; }
 };
@@ -45,8 +45,7 @@ struct BoardDetection {
 // `image`: 8-bit or 16-bit, one channel (16-bit is scaled to 8 bits for the detectors, the
 // refinement runs on it too). Never throws for a board that is not there: the detection says
 // why. Throws core::Error for an empty or multi-channel image or bad params/layout.
-BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout,
-                           const BoardDetectionParams& params = {});
+BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout, const BoardDetectionParams& params = {});
 
 // The board pose from its corners (cv::solvePnP, iterative, from the homography start) and
 // the RMS reprojection error in pixels. Empty when the detection was not found or has fewer
@@ -55,7 +54,7 @@ struct BoardPose {
   Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();
   double rms_px = 0.0;
 };
-std::optional<BoardPose> estimateBoardPose(const BoardDetection& detection,
-                                           const BoardLayout& layout, const io::LensIntrinsics& camera);
+std::optional<BoardPose> estimateBoardPose(const BoardDetection& detection, const BoardLayout& layout,
+                                           const io::LensIntrinsics& camera);
 
 }  // namespace binpick::calibration

@@ -29,10 +29,10 @@ std::string arucoDictionaryNames();  // comma-separated, for error messages
 // Defaults: the board of the virtual cell (9 x 7 squares of 30 mm, 22 mm markers).
 struct BoardLayout {
   BoardType type = BoardType::Charuco;
-  int squares_x = 9;           // squares along the board's x (>= 3)
-  int squares_y = 7;           // squares along its y (>= 3)
-  double square_size = 0.030;  // metres
-  double marker_size = 0.022;  // ChArUco: marker side, metres (< square_size)
+  int squares_x = 9;                        // squares along the board's x (>= 3)
+  int squares_y = 7;                        // squares along its y (>= 3)
+  double square_size = 0.030;               // metres
+  double marker_size = 0.022;               // ChArUco: marker side, metres (< square_size)
   std::string dictionary = "DICT_5X5_100";  // ChArUco only
 
   // Throws core::Error "BoardLayout.FIELD must be ..."; a ChArUco board needs a dictionary

@@ -38,7 +38,7 @@ HandEyeMethod handEyeMethodFromName(const std::string& name);  // throws listing
 std::vector<HandEyeMethod> allHandEyeMethods();
 
 struct HandEyeView {
-  std::string name;  // for messages
+  std::string name;                                                  // for messages
   Eigen::Isometry3d T_base_flange = Eigen::Isometry3d::Identity();   // metres
   Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();  // metres
 };
@@ -46,7 +46,7 @@ struct HandEyeView {
 struct HandEyeParams {
   HandEyeSetup setup = HandEyeSetup::EyeToHand;
   HandEyeMethod method = HandEyeMethod::Shah;  // measured in docs/hand-eye.md
-  int min_views = 6;  // OpenCV needs 3; 6 leaves room to see a bad view
+  int min_views = 6;                           // OpenCV needs 3; 6 leaves room to see a bad view
   // Motion the views must hold, or the rotation (and the translation along a lone rotation
   // axis) is unobservable: the largest rotation between two views, and the spread of the
   // rotation axes (RMS rotation about the second principal axis of all pairwise rotations).
@@ -87,7 +87,7 @@ struct HandEyeResult {
   HandEyeMethod method = HandEyeMethod::Shah;
   Eigen::Isometry3d T_mount_camera = Eigen::Isometry3d::Identity();  // cameraTransformName
   Eigen::Isometry3d T_mount_board = Eigen::Isometry3d::Identity();   // boardTransformName
-  std::vector<HandEyeResidual> residuals;  // one per view, input order
+  std::vector<HandEyeResidual> residuals;                            // one per view, input order
   double rms_mm = 0.0;
   double rms_deg = 0.0;
   std::vector<std::string> warnings;  // outliers by name
@@ -103,8 +103,7 @@ struct HandEyeResult {
 HandEyeResult solveHandEye(const std::vector<HandEyeView>& views, const HandEyeParams& params);
 
 // The residuals of given transforms (no solving): for a solution, or the truth.
-std::vector<HandEyeResidual> handEyeResiduals(const std::vector<HandEyeView>& views,
-                                              HandEyeSetup setup,
+std::vector<HandEyeResidual> handEyeResiduals(const std::vector<HandEyeView>& views, HandEyeSetup setup,
                                               const Eigen::Isometry3d& T_mount_camera,
                                               const Eigen::Isometry3d& T_mount_board);
 

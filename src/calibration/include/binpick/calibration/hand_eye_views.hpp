@@ -40,23 +40,22 @@ struct BoardViewParams {
 struct MeasuredView {
   std::string name;
   Eigen::Isometry3d T_base_flange = Eigen::Isometry3d::Identity();
-  int corners = 0;   // corners found
-  int expected = 0;  // corners on the board
-  double rms_px = 0.0;                             // the board pose's reprojection RMS
+  int corners = 0;                                  // corners found
+  int expected = 0;                                 // corners on the board
+  double rms_px = 0.0;                              // the board pose's reprojection RMS
   std::optional<Eigen::Isometry3d> T_camera_board;  // empty: the view is not usable
-  std::string problem;  // why it is not usable
-  std::string note;     // a caveat of a usable view (a partial board)
+  std::string problem;                              // why it is not usable
+  std::string note;                                 // a caveat of a usable view (a partial board)
   bool usable() const { return T_camera_board.has_value(); }
 };
 
 // Reads and measures one view's image. Throws core::Error naming the view for an unreadable
 // image, one that is not 8- or 16-bit grey, or one whose size is not the camera's.
-MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
-                         const io::LensIntrinsics& camera, const BoardViewParams& params = {});
+MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout, const io::LensIntrinsics& camera,
+                         const BoardViewParams& params = {});
 
 // The usable views solved. Throws core::Error listing every unusable view with its reason
 // when fewer than params.min_views are usable, and whatever solveHandEye throws.
-HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views,
-                                 const HandEyeParams& params);
+HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views, const HandEyeParams& params);
 
 }  // namespace binpick::calibration

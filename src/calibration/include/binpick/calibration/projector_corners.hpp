@@ -31,32 +31,31 @@ struct ProjectorCornerParams {
   // homography extrapolated beyond its data, e.g. where the board leaves the projector's light,
   // is not trusted.
   double min_hull_depth = 2.0;
-  int threads = 0;  // corners fitted in parallel; 0: all cores
+  int threads = 0;        // corners fitted in parallel; 0: all cores
   void validate() const;  // throws core::Error naming the field
 };
 
 struct ProjectorCorner {
-  int id = 0;                          // the board corner (BoardLayout::cornerPoint)
-  Eigen::Vector2d camera;              // its camera pixel (from the detection)
-  Eigen::Vector2d projector;           // its projector pixel
-  int decoded = 0;                     // decoded pixels in the window
-  int inliers = 0;                     // of those, inliers of the homography
+  int id = 0;                 // the board corner (BoardLayout::cornerPoint)
+  Eigen::Vector2d camera;     // its camera pixel (from the detection)
+  Eigen::Vector2d projector;  // its projector pixel
+  int decoded = 0;            // decoded pixels in the window
+  int inliers = 0;            // of those, inliers of the homography
 };
 
 struct ProjectorCorners {
   std::vector<ProjectorCorner> corners;  // the corners kept, in the detection's order
   // Corners dropped, by reason.
-  int too_few_decoded = 0;   // fewer than min_decoded_pixels in the window
-  int poor_fit = 0;          // no homography, or too few inliers
-  int outside_data = 0;      // the corner lies outside (or at the edge of) the fitted pixels
+  int too_few_decoded = 0;  // fewer than min_decoded_pixels in the window
+  int poor_fit = 0;         // no homography, or too few inliers
+  int outside_data = 0;     // the corner lies outside (or at the edge of) the fitted pixels
   int dropped() const { return too_few_decoded + poor_fit + outside_data; }
 };
 
 // One projector pixel per corner of `detection` that passes the checks above (`detection` and
 // `decoded` come from the same capture). Throws core::Error when `decoded` lacks columns or
 // rows (a capture without column or row codes) or the params are bad.
-ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& decoded,
-                                      const BoardDetection& detection,
+ProjectorCorners findProjectorCorners(const reconstruction::DecodedCapture& decoded, const BoardDetection& detection,
                                       const ProjectorCornerParams& params = {});
 
 }  // namespace binpick::calibration

@@ -24,8 +24,8 @@
 namespace binpick::calibration {
 
 struct RigCalibrationParams {
-  int min_views = 8;            // usable views needed (after dropping outliers)
-  int min_corners = 10;         // corners with both a camera and a projector pixel, per view
+  int min_views = 8;              // usable views needed (after dropping outliers)
+  int min_corners = 10;           // corners with both a camera and a projector pixel, per view
   double outlier_floor_px = 0.5;  // RMS below this never makes a view an outlier
   double outlier_factor = 3.0;    // ... nor below this multiple of the median view's RMS
   bool drop_outliers = false;
@@ -48,7 +48,7 @@ struct RigCalibrationTimings {  // milliseconds
 
 struct RigCalibrationResult {
   io::RigCalibration rig;
-  io::RigCalibrationQuality quality;      // per view, in the order given; ready for calib.yaml
+  io::RigCalibrationQuality quality;  // per view, in the order given; ready for calib.yaml
   std::vector<std::string> warnings;  // one line each, naming the view
   RigCalibrationTimings timings;      // of the final solve
 };

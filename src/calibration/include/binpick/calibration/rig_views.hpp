@@ -31,8 +31,8 @@ struct RigView {
   std::string name;  // the capture directory (or another label), used in every message
   int camera_width = 0, camera_height = 0;
   int projector_width = 0, projector_height = 0;  // the capture's pattern set
-  BoardDetection board;        // the corners in the camera image; board.problem if not found
-  ProjectorCorners projector;  // those of them the projector's pixels were found for
+  BoardDetection board;                           // the corners in the camera image; board.problem if not found
+  ProjectorCorners projector;                     // those of them the projector's pixels were found for
   RigViewTimings timings;
 };
 
@@ -42,7 +42,6 @@ RigView measureRigView(const io::Capture& capture, const std::string& name, cons
                        const RigViewParams& params = {});
 // readCapture(directory) then measureRigView, named by the directory. Throws core::Error
 // naming the directory on an unreadable or incomplete capture too.
-RigView readRigView(const std::string& directory, const BoardLayout& layout,
-                    const RigViewParams& params = {});
+RigView readRigView(const std::string& directory, const BoardLayout& layout, const RigViewParams& params = {});
 
 }  // namespace binpick::calibration

@@ -45,8 +45,8 @@ struct CycleArtefacts {
   uint64_t cycle = 0;
   const io::Capture* capture = nullptr;   // capture/
   const io::PointCloud* cloud = nullptr;  // cloud.ply
-  std::string detections_json;        // detections.json, written as given
-  const cv::Mat* overlay = nullptr;   // overlay.png (8- or 16-bit; 1, 3 or 4 channels)
+  std::string detections_json;            // detections.json, written as given
+  const cv::Mat* overlay = nullptr;       // overlay.png (8- or 16-bit; 1, 3 or 4 channels)
 };
 
 class ArtefactStore {

@@ -13,8 +13,8 @@
 #include "binpick/acquisition/projector.hpp"
 #include "binpick/cell/artefact_store.hpp"
 #include "binpick/picking/picking.hpp"
-#include "binpick/robot/robot_server.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
+#include "binpick/robot/robot_server.hpp"
 
 namespace binpick::cell {
 
@@ -33,10 +33,10 @@ struct SourceConfig {
 
 struct RecipeConfig {
   std::string name;
-  std::string model_file;          // mesh or cloud of the part (metres)
-  std::string model_cache;         // prepared-model cache ("" = none): fast restarts
-  std::string settings_file;       // estimation settings (model:, detection:); "" = defaults
-  std::vector<picking::Grasp> grasps;       // model frame; empty: generated from the model at startup
+  std::string model_file;              // mesh or cloud of the part (metres)
+  std::string model_cache;             // prepared-model cache ("" = none): fast restarts
+  std::string settings_file;           // estimation settings (model:, detection:); "" = defaults
+  std::vector<picking::Grasp> grasps;  // model frame; empty: generated from the model at startup
   picking::PartSymmetry symmetry;
 };
 
@@ -51,26 +51,25 @@ struct CycleLimits {
   // rather than "no objects detected".
   int empty_bin_max_points = 300;
   double empty_bin_min_height = 0.005;  // metres above the floor a point must be to count
-  int avoid_cycles = 3;               // a failed pick's object is avoided for that many cycles
-  void validate() const;              // throws core::Error naming the field
+  int avoid_cycles = 3;                 // a failed pick's object is avoided for that many cycles
+  void validate() const;                // throws core::Error naming the field
 };
 
 struct CellConfig {
-  std::string origin;                            // the settings file, for messages
+  std::string origin;  // the settings file, for messages
   SourceConfig source;
-  std::string calibration;                       // rig calib.yaml; "" = the capture's own
+  std::string calibration;                         // rig calib.yaml; "" = the capture's own
   std::optional<Eigen::Isometry3d> T_base_camera;  // hand-eye; absent: picks cannot be sent
-  std::vector<RecipeConfig> recipes;             // at least one; the first is selected at start
-  picking::PickParams picking;                            // grasps and symmetry come from the recipe
+  std::vector<RecipeConfig> recipes;               // at least one; the first is selected at start
+  picking::PickParams picking;                     // grasps and symmetry come from the recipe
   robot::RobotServerParams robot;
   CycleLimits limits;
-  std::optional<ArtefactParams> artefacts;       // absent: nothing saved
+  std::optional<ArtefactParams> artefacts;  // absent: nothing saved
   reconstruction::ReconstructionParams reconstruction;
 };
 
 CellConfig loadCellConfig(const std::string& path);
 // The same from YAML text; relative paths are resolved against `base_directory`.
-CellConfig parseCellConfig(const std::string& yaml_text, const std::string& origin,
-                           const std::string& base_directory);
+CellConfig parseCellConfig(const std::string& yaml_text, const std::string& origin, const std::string& base_directory);
 
 }  // namespace binpick::cell

@@ -17,7 +17,7 @@ namespace binpick::cell {
 struct Recipe {
   std::string name;
   std::shared_ptr<const estimation::Detector> detector;
-  picking::PickParams picking;           // the cell's picking settings with this recipe's grasps and symmetry
+  picking::PickParams picking;  // the cell's picking settings with this recipe's grasps and symmetry
   bool model_from_cache = false;
 };
 

@@ -22,6 +22,7 @@ std::vector<picking::Grasp> readGraspsFile(const std::string& path);
 // The file's text; `comment` (may hold several lines) is written first as YAML comments.
 std::string graspsYaml(const std::vector<picking::Grasp>& grasps, const std::string& comment = "");
 // Throws core::Error naming the file when it cannot be written.
-void writeGraspsFile(const std::string& path, const std::vector<picking::Grasp>& grasps, const std::string& comment = "");
+void writeGraspsFile(const std::string& path, const std::vector<picking::Grasp>& grasps,
+                     const std::string& comment = "");
 
 }  // namespace binpick::cell

@@ -31,7 +31,6 @@ cv::Scalar overlayRankColour(int pick_rank, int last_rank);
 // image are skipped. Throws core::Error on an empty image, one that is not single-channel
 // 8- or 16-bit, one whose size differs from the camera's, or an invalid camera.
 cv::Mat renderOverlay(const cv::Mat& image, const io::LensIntrinsics& camera,
-                      const std::vector<Eigen::Vector3f>& model_points,
-                      const std::vector<OverlayPart>& parts);
+                      const std::vector<Eigen::Vector3f>& model_points, const std::vector<OverlayPart>& parts);
 
 }  // namespace binpick::cell

@@ -19,13 +19,13 @@ struct CycleTimings {  // milliseconds
 
 struct CycleOutcome {
   robot::Status status = robot::Status::Ok;
-  std::string detail;  // why, when status is not ok
-  std::vector<picking::Pick> picks;                           // ordered, at most limits.max_picks
-  picking::PickRejections rejected;                           // the confident detections not picked, by reason
-  std::vector<Eigen::Isometry3d> T_base_objects;     // every detection, base frame
+  std::string detail;                             // why, when status is not ok
+  std::vector<picking::Pick> picks;               // ordered, at most limits.max_picks
+  picking::PickRejections rejected;               // the confident detections not picked, by reason
+  std::vector<Eigen::Isometry3d> T_base_objects;  // every detection, base frame
   estimation::DetectionResult detection;
   reconstruction::Reconstruction reconstruction;
-  int bin_points = 0;                                // cloud points found inside the bin
+  int bin_points = 0;  // cloud points found inside the bin
   CycleTimings timing_ms;
 };
 

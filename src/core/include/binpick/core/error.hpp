@@ -16,8 +16,7 @@ class Error : public std::runtime_error {
 // The check of every params struct's validate(): throws "OWNER.FIELD must be RULE (got VALUE)"
 // unless `ok`.
 template <typename T>
-void requireField(bool ok, const std::string& owner, const char* field, const char* rule,
-                  const T& value) {
+void requireField(bool ok, const std::string& owner, const char* field, const char* rule, const T& value) {
   if (ok) return;
   std::ostringstream message;
   message << owner << "." << field << " must be " << rule << " (got " << value << ")";

@@ -23,8 +23,7 @@ template <typename T>
 bool holdsExactly(const nlohmann::json& value) {
   if constexpr (std::is_same_v<T, int>) {
     if (value.is_number_unsigned()) {
-      return value.get<std::uint64_t>() <=
-             static_cast<std::uint64_t>(std::numeric_limits<int>::max());
+      return value.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max());
     }
     if (!value.is_number_integer()) return false;
     const std::int64_t v = value.get<std::int64_t>();
@@ -66,7 +65,6 @@ nlohmann::json poseRows(const Eigen::Transform<Scalar, 3, Eigen::Isometry>& pose
 
 // The inverse of poseRows. Throws "PATH: 'WHAT' must be 4 rows of 4 numbers" or "PATH: 'WHAT' is
 // not a finite rigid transform" (rotation orthonormal to 1e-5).
-Eigen::Isometry3d poseFromRows(const nlohmann::json& rows, const std::string& path,
-                               const std::string& what);
+Eigen::Isometry3d poseFromRows(const nlohmann::json& rows, const std::string& path, const std::string& what);
 
 }  // namespace binpick::core

@@ -18,20 +18,20 @@
 #include <string>
 #include <vector>
 
-#include "binpick/picking/gripper.hpp"
 #include "binpick/emptying/pick_truth.hpp"
+#include "binpick/picking/gripper.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 
 namespace binpick::emptying {
 
 struct EmptyingParams {
-  simulation::PileParams pile;               // objects, seed, bin, rig, physics, threads
-  simulation::PhotometryParams photometry;   // its seed is varied per cycle: each capture has new noise
+  simulation::PileParams pile;              // objects, seed, bin, rig, physics, threads
+  simulation::PhotometryParams photometry;  // its seed is varied per cycle: each capture has new noise
   picking::GripperParams gripper;
-  double approach_distance = 0.10;    // metres: the straight approach the cell plans and the robot flies
+  double approach_distance = 0.10;  // metres: the straight approach the cell plans and the robot flies
   PickTruthParams truth;
-  int max_cycles = 0;                 // 0: 2 * objects + 10
+  int max_cycles = 0;  // 0: 2 * objects + 10
   // Cycles in a row that offer no pick, while no failed part is avoided, before the run ends as
   // "unreachable" (a second look at the same pile with new sensor noise may find a part).
   int patience = 2;
@@ -45,8 +45,8 @@ struct EmptyingParams {
 struct PickRecord {
   int cycle = 0;
   bool ok = false;
-  std::string reason;                 // the judge's verdict ("ok", "cup across an edge", ...)
-  int grasp = -1;                     // index into the recipe's grasps
+  std::string reason;  // the judge's verdict ("ok", "cup across an edge", ...)
+  int grasp = -1;      // index into the recipe's grasps
   std::string grasp_name;
   Eigen::Isometry3d T_base_grasp = Eigen::Isometry3d::Identity();  // as commanded, metres
   std::optional<Eigen::Isometry3d> T_base_part_true;               // the part held; on a miss the one touched, if any
@@ -54,13 +54,13 @@ struct PickRecord {
 
 struct CycleRecord {
   int cycle = 0;
-  std::string status;           // binpickd's answer to NEXT ("ok", "bin_empty", "unreachable", ...)
-  std::string detail;           // why, when not ok
-  int parts_before = 0;         // true parts in the bin when the capture was taken
-  int parts_after = 0;          // after the pick and the re-settling
-  int detections = 0;           // parts the cell detected
-  double cycle_ms = 0.0;        // reconstruct + detect + plan, as the cell timed them
-  double render_ms = 0.0;       // the virtual camera (not part of the cell's time)
+  std::string status;      // binpickd's answer to NEXT ("ok", "bin_empty", "unreachable", ...)
+  std::string detail;      // why, when not ok
+  int parts_before = 0;    // true parts in the bin when the capture was taken
+  int parts_after = 0;     // after the pick and the re-settling
+  int detections = 0;      // parts the cell detected
+  double cycle_ms = 0.0;   // reconstruct + detect + plan, as the cell timed them
+  double render_ms = 0.0;  // the virtual camera (not part of the cell's time)
   std::optional<PickRecord> pick;
 };
 
@@ -75,16 +75,16 @@ struct PartLeft {
 
 struct EmptyingReport {
   std::string part;
-  std::string gripper;             // "suction" | "parallel"
-  int objects = 0;                 // parts in the bin after the drop
+  std::string gripper;  // "suction" | "parallel"
+  int objects = 0;      // parts in the bin after the drop
   int picked = 0;
   int failed_picks = 0;
-  int escaped = 0;                 // parts the re-settling pile threw out of the bin (not picked)
+  int escaped = 0;  // parts the re-settling pile threw out of the bin (not picked)
   EmptyingEnd end = EmptyingEnd::MaxCycles;
   std::vector<CycleRecord> cycles;
-  std::vector<PartLeft> left;      // parts still in the bin at the end
-  int grasps = 0;                  // grasps the cell had for the part
-  double median_cycle_ms = 0.0;    // over the cycles the cell processed
+  std::vector<PartLeft> left;    // parts still in the bin at the end
+  int grasps = 0;                // grasps the cell had for the part
+  double median_cycle_ms = 0.0;  // over the cycles the cell processed
   double max_cycle_ms = 0.0;
   double clearedShare() const { return objects > 0 ? static_cast<double>(picked) / objects : 1.0; }
 };

@@ -24,20 +24,20 @@
 #include <string>
 #include <vector>
 
-#include "binpick/picking/gripper.hpp"
 #include "binpick/io/point_cloud.hpp"
+#include "binpick/picking/gripper.hpp"
 #include "binpick/simulation/physics_pile.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 
 namespace binpick::emptying {
 
 struct PickTruthParams {
-  double surface_tolerance = 0.002;  // metres: the cup centre's distance to the surface, along the axis
-  double max_axis_angle_deg = 10.0;  // approach against the surface's inward normal under the cup
+  double surface_tolerance = 0.002;       // metres: the cup centre's distance to the surface, along the axis
+  double max_axis_angle_deg = 10.0;       // approach against the surface's inward normal under the cup
   double max_antipodal_angle_deg = 20.0;  // parallel: the two contact normals from opposite
-  double sample_spacing = 0.001;     // metres between rays over the cup disc and the finger faces
-  double collision_spacing = 0.002;  // metres between rays through the tool's cross-section
-  void validate() const;             // throws core::Error naming the field
+  double sample_spacing = 0.001;          // metres between rays over the cup disc and the finger faces
+  double collision_spacing = 0.002;       // metres between rays through the tool's cross-section
+  void validate() const;                  // throws core::Error naming the field
 };
 
 // The judge's verdict. `reason` is empty when ok, otherwise one of these short phrases (N a
@@ -53,8 +53,8 @@ struct PickJudgement {
 
   bool ok = false;
   std::string reason;
-  int object = -1;   // the part held (index into the T_bin_objects list), or -1
-  int touched = -1;  // the part under the cup or first met by a jaw, held or not; -1 for none
+  int object = -1;    // the part held (index into the T_bin_objects list), or -1
+  int touched = -1;   // the part under the cup or first met by a jaw, held or not; -1 for none
   int obstacle = -1;  // what the tool or a finger hits: a part's index, kBin, or -1
   // Suction: from the cup's centre to the surface along the approach, metres (positive: the
   // surface lies ahead of the cup). Parallel: the width between the two contacts, metres.
@@ -89,7 +89,7 @@ class TrueScene {
 // core::Error only on bad input: invalid params or gripper, a negative or non-finite
 // approach_distance, a grasp pose that is not a finite rigid transform.
 PickJudgement judgePick(const TrueScene& scene, const Eigen::Isometry3d& T_bin_grasp,
-                        const picking::GripperParams& gripper, double approach_distance,
-                        const PickTruthParams& params, double opening = 0.0);
+                        const picking::GripperParams& gripper, double approach_distance, const PickTruthParams& params,
+                        double opening = 0.0);
 
 }  // namespace binpick::emptying

@@ -59,9 +59,9 @@ struct StageTimings {  // milliseconds
 struct DetectionResult {
   std::vector<Detection> detections;  // in selection order
   StageTimings timing_ms;
-  std::size_t scene_points = 0;       // after subsampling
+  std::size_t scene_points = 0;  // after subsampling
   std::size_t candidates = 0;
-  std::size_t refreshes = 0;          // eq. 4 evaluations during Algorithm 1
+  std::size_t refreshes = 0;  // eq. 4 evaluations during Algorithm 1
 };
 
 class Detector {

@@ -14,23 +14,23 @@ namespace binpick::estimation {
 
 struct IcpParams {
   int max_iterations = 30;
-  float initial_max_distance_ratio = 2.0f;  // correspondence gate in steps, first iterations
-  float final_max_distance_ratio = 0.75f;   // gate in steps once the pose has settled
-  float huber_ratio = 0.25f;                // Huber threshold on the plane residual, in steps
+  float initial_max_distance_ratio = 2.0f;      // correspondence gate in steps, first iterations
+  float final_max_distance_ratio = 0.75f;       // gate in steps once the pose has settled
+  float huber_ratio = 0.25f;                    // Huber threshold on the plane residual, in steps
   float convergence_translation_ratio = 1e-3f;  // stop when a step moves less (in steps) ...
   float convergence_rotation_deg = 0.01f;       // ... and turns less than this
-  float fit_distance_ratio = 0.75f;         // final coverage: a visible model point fits when a
-                                            // scene point lies this close (in steps)
-  bool visible_points_only = true;          // false: use all model points (for comparison)
-  void validate() const;                    // throws core::Error naming the field
+  float fit_distance_ratio = 0.75f;             // final coverage: a visible model point fits when a
+                                                // scene point lies this close (in steps)
+  bool visible_points_only = true;              // false: use all model points (for comparison)
+  void validate() const;                        // throws core::Error naming the field
 };
 
 struct IcpResult {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
   int iterations = 0;
   bool converged = false;
-  float rmse = 0.0f;         // of the plane residuals of the final correspondences
-  float coverage = 0.0f;     // fitted visible model points / visible model points, in [0, 1]
+  float rmse = 0.0f;      // of the plane residuals of the final correspondences
+  float coverage = 0.0f;  // fitted visible model points / visible model points, in [0, 1]
   int visible_points = 0;
 };
 
@@ -47,8 +47,7 @@ class PoseRefiner {
 
   IcpResult refine(const PreparedModel& model, const Eigen::Isometry3f& initial) const;
   // Scene points within `radius` of any model point at `pose` (each once, ascending).
-  std::vector<uint32_t> scenePointsNear(const PreparedModel& model, const Eigen::Isometry3f& pose,
-                                        float radius) const;
+  std::vector<uint32_t> scenePointsNear(const PreparedModel& model, const Eigen::Isometry3f& pose, float radius) const;
 
  private:
   struct Index;

@@ -26,10 +26,10 @@ struct ModelParams {
 };
 
 struct PreparedModel {
-  std::vector<Eigen::Vector3f> points;   // subsampled model cloud, model frame
-  std::vector<Eigen::Vector3f> normals;  // unit, pointing out of the part
-  float diameter = 0.0f;                 // diam(M), model units
-  float step = 0.0f;                     // d_dist = tau_d * diam(M)
+  std::vector<Eigen::Vector3f> points;               // subsampled model cloud, model frame
+  std::vector<Eigen::Vector3f> normals;              // unit, pointing out of the part
+  float diameter = 0.0f;                             // diam(M), model units
+  float step = 0.0f;                                 // d_dist = tau_d * diam(M)
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // centroid of `points`
   ModelParams params;
   PpfHashTable table;

@@ -15,8 +15,8 @@ struct PointPairFeature {
   float angle_ni_nj = 0.0f;  // radians in [0, pi]
 };
 
-PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i,
-                                const Eigen::Vector3f& p_j, const Eigen::Vector3f& n_j);
+PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i, const Eigen::Vector3f& p_j,
+                                const Eigen::Vector3f& n_j);
 
 // Discretisation of features into hash keys and of the in-plane angle alpha into bins.
 class PpfQuantizer {
@@ -70,7 +70,6 @@ inline float planarAngle(const Eigen::Vector3f& p_in_reference_frame) {
 }
 
 // Pose from a local coordinate (eq. 2): T_scene_model = T_s^-1 * Rx(alpha) * T_m.
-Eigen::Isometry3f poseFromLocalCoordinate(const Eigen::Isometry3f& T_s, const Eigen::Isometry3f& T_m,
-                                          float alpha);
+Eigen::Isometry3f poseFromLocalCoordinate(const Eigen::Isometry3f& T_s, const Eigen::Isometry3f& T_m, float alpha);
 
 }  // namespace binpick::estimation

@@ -22,11 +22,11 @@ struct CropBox {
 };
 
 struct SceneParams {
-  std::optional<CropBox> crop;     // none: keep every finite point
-  int min_normal_neighbours = 5;   // fewer full-resolution neighbours: the point is dropped
-  int max_window_half_size = 12;   // organized clouds: largest pixel window radius for normals
-  int threads = 0;                 // 0: all hardware threads
-  void validate() const;           // throws core::Error naming the field
+  std::optional<CropBox> crop;    // none: keep every finite point
+  int min_normal_neighbours = 5;  // fewer full-resolution neighbours: the point is dropped
+  int max_window_half_size = 12;  // organized clouds: largest pixel window radius for normals
+  int threads = 0;                // 0: all hardware threads
+  void validate() const;          // throws core::Error naming the field
 };
 
 struct PreparedScene {

@@ -13,8 +13,8 @@
 namespace binpick::estimation {
 
 struct VerificationParams {
-  float voxel_size_ratio = 0.5f;  // L_voxel in subsampling steps (a model point fits when a scene
-                                  // point lies within 1-2 voxels)
+  float voxel_size_ratio = 0.5f;        // L_voxel in subsampling steps (a model point fits when a scene
+                                        // point lies within 1-2 voxels)
   float max_normal_angle_deg = 180.0f;  // a fit also needs the scene normal within this angle of
                                         // the moved model normal (180: off, as in the paper)
   int threads = 0;                      // 0: all hardware threads
@@ -24,8 +24,8 @@ struct VerificationParams {
 struct VerifiedCandidate {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
   uint32_t votes = 0;
-  uint32_t score = 0;              // Score(P_k), eq. 4, with every scene point existing
-  std::vector<uint32_t> support;   // SS(P_k): the scene point of every fitted model point
+  uint32_t score = 0;             // Score(P_k), eq. 4, with every scene point existing
+  std::vector<uint32_t> support;  // SS(P_k): the scene point of every fitted model point
 };
 
 // SS(P) of one pose: the scene index of every fitted model point (duplicates kept: eq. 4 counts
@@ -35,9 +35,9 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
                                                const std::vector<Eigen::Vector3f>& scene_normals,
                                                float min_normal_cosine);
 
-std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates,
-                                      const PreparedModel& model, const PreparedScene& scene,
-                                      const SceneVoxelGrid& grid, const VerificationParams& params);
+std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
+                                      const PreparedScene& scene, const SceneVoxelGrid& grid,
+                                      const VerificationParams& params);
 
 // Eq. 4: how many entries of SS(P) still exist.
 uint32_t existingCount(const std::vector<uint32_t>& support, const std::vector<uint8_t>& exist);

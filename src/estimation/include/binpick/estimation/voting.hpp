@@ -31,8 +31,7 @@ struct PoseCandidate {
 };
 
 // Candidates ordered by reference point, then by votes (descending): the same for any thread count.
-std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene,
-                                const VotingParams& params);
+std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params);
 
 // The indices a fraction selects: a seeded shuffle's prefix, sorted (exposed for tests).
 std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t seed);

@@ -15,15 +15,15 @@ estimation::CropBox binInterior(const simulation::PileScene& scene, const simula
                                 double floor_margin = 0.003, double wall_margin = 0.003);
 
 struct Thresholds {
-  double translation = 0.0;   // the paper: diam(M) / 10
+  double translation = 0.0;    // the paper: diam(M) / 10
   double rotation_deg = 10.0;  // the paper: 10 degrees
 };
 
 struct Score {
-  int findable = 0;            // objects at least `min_visible` visible
-  int found = 0;               // findable objects matched by a detection
-  int correct = 0;             // detections matching an object not matched before
-  int wrong = 0;               // detections matching nothing, or an object matched before
+  int findable = 0;  // objects at least `min_visible` visible
+  int found = 0;     // findable objects matched by a detection
+  int correct = 0;   // detections matching an object not matched before
+  int wrong = 0;     // detections matching nothing, or an object matched before
   int wrong_in_first_10 = 0;
   std::vector<int> matched_object;  // per detection: object index or -1
 };

@@ -14,22 +14,22 @@ namespace binpick::io {
 
 // What the projector shows, as plain data; reconstruction turns it into patterns and decodes them.
 struct PatternSetSpec {
-  int projector_width = 1280;   // pixels
-  int projector_height = 800;   // pixels
-  bool column_codes = true;     // Gray code of the projector column, each bit with its inverse
-  bool row_codes = true;        // Gray code of the projector row, each bit with its inverse
-  int phase_steps = 4;          // phase-shift images per coded axis (0: none, else >= 3)
-  int phase_period = 16;        // projector pixels per sine period (>= 4)
-  void validate() const;        // throws core::Error naming the field
+  int projector_width = 1280;  // pixels
+  int projector_height = 800;  // pixels
+  bool column_codes = true;    // Gray code of the projector column, each bit with its inverse
+  bool row_codes = true;       // Gray code of the projector row, each bit with its inverse
+  int phase_steps = 4;         // phase-shift images per coded axis (0: none, else >= 3)
+  int phase_period = 16;       // projector pixels per sine period (>= 4)
+  void validate() const;       // throws core::Error naming the field
 };
 
 struct CaptureMetadata {
   int format_version = 1;
-  std::string source;      // e.g. "virtual cell" or the camera's vendor, model and serial
-  std::string timestamp;   // ISO 8601, UTC
-  int image_width = 0;     // pixels
+  std::string source;     // e.g. "virtual cell" or the camera's vendor, model and serial
+  std::string timestamp;  // ISO 8601, UTC
+  int image_width = 0;    // pixels
   int image_height = 0;
-  int bit_depth = 8;       // 8 or 16 (16-bit images hold the sensor's value in the high bits)
+  int bit_depth = 8;  // 8 or 16 (16-bit images hold the sensor's value in the high bits)
   double exposure_us = 0.0;
   double gain_db = 0.0;
   PatternSetSpec pattern_set;

@@ -65,8 +65,7 @@ enum class Encoding { Ascii, Binary };
 // the readers would reject (empty, NaN in an unorganized cloud, zero normal, non-finite intensity
 // of a valid point, width x height != size, normal or intensity count != size), so every written
 // file reads back.
-void writePointCloud(const std::string& path, const PointCloud& cloud,
-                     Encoding encoding = Encoding::Binary);
+void writePointCloud(const std::string& path, const PointCloud& cloud, Encoding encoding = Encoding::Binary);
 // Writes .ply (binary) or .stl (binary) or .obj by extension. Refuses empty meshes, bad indices,
 // non-finite vertices and meshes whose faces all have zero area.
 void writeMesh(const std::string& path, const TriangleMesh& mesh);

@@ -9,10 +9,10 @@
 namespace binpick::io {
 
 struct LensIntrinsics {
-  int width = 0;   // pixels
-  int height = 0;  // pixels
-  double fx = 0.0, fy = 0.0;  // focal lengths, pixels
-  double cx = 0.0, cy = 0.0;  // principal point, pixels
+  int width = 0;                       // pixels
+  int height = 0;                      // pixels
+  double fx = 0.0, fy = 0.0;           // focal lengths, pixels
+  double cx = 0.0, cy = 0.0;           // principal point, pixels
   std::array<double, 5> distortion{};  // k1, k2, p1, p2, k3 (OpenCV's order)
 
   // Throws core::Error naming `what` (e.g. "camera") and the bad field.

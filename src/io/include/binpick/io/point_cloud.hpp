@@ -16,8 +16,8 @@ struct PointCloud {
   // Empty, or one brightness per point (structured light: the white image, 0 = black, 1 = the
   // sensor's full scale).
   std::vector<float> intensities;
-  int width = 0;                         // organized: image columns; unorganized: 0
-  int height = 0;                        // organized: image rows; unorganized: 0
+  int width = 0;   // organized: image columns; unorganized: 0
+  int height = 0;  // organized: image rows; unorganized: 0
 
   std::size_t size() const { return points.size(); }
   bool empty() const { return points.empty(); }

@@ -27,23 +27,23 @@ struct RigCalibration {
 
 // One view (capture) of a calibration, as the calibration judged it.
 struct RigViewQuality {
-  std::string name;            // the capture directory
-  int camera_corners = 0;      // board corners found in the camera image
-  int projector_corners = 0;   // of those, with a projector pixel
+  std::string name;           // the capture directory
+  int camera_corners = 0;     // board corners found in the camera image
+  int projector_corners = 0;  // of those, with a projector pixel
   // Reprojection RMS of the view's corners under the rig that judged it: the written rig for
   // used views, the first solve for dropped outliers; NaN for views never calibrated.
   double camera_rms_px = std::numeric_limits<double>::quiet_NaN();
   double projector_rms_px = std::numeric_limits<double>::quiet_NaN();
-  bool outlier = false;        // its RMS stood out from the other views'
-  bool used = false;           // went into the written calibration
-  std::string problem;         // why it was not used; empty when used
+  bool outlier = false;  // its RMS stood out from the other views'
+  bool used = false;     // went into the written calibration
+  std::string problem;   // why it was not used; empty when used
 };
 
 struct RigCalibrationQuality {
-  std::string date;               // ISO 8601 UTC, when the calibration was computed
-  double camera_rms_px = 0.0;     // reprojection RMS of the camera's own calibration
-  double projector_rms_px = 0.0;  // of the projector's (as an inverse camera)
-  double stereo_rms_px = 0.0;     // of both devices under the final rig
+  std::string date;                   // ISO 8601 UTC, when the calibration was computed
+  double camera_rms_px = 0.0;         // reprojection RMS of the camera's own calibration
+  double projector_rms_px = 0.0;      // of the projector's (as an inverse camera)
+  double stereo_rms_px = 0.0;         // of both devices under the final rig
   std::vector<RigViewQuality> views;  // every view offered, used or not, in the order given
   int viewsUsed() const;
 };
@@ -54,8 +54,7 @@ RigCalibration readRigCalibration(const std::string& path);
 // Written through a temporary file and a rename: a reader never sees half a file.
 void writeRigCalibration(const std::string& path, const RigCalibration& rig);
 // The same, with the calibration's quality in the file's `quality` map.
-void writeRigCalibration(const std::string& path, const RigCalibration& rig,
-                         const RigCalibrationQuality& quality);
+void writeRigCalibration(const std::string& path, const RigCalibration& rig, const RigCalibrationQuality& quality);
 // The `quality` map of a calibration file; empty when the file has none (written by hand or by
 // older versions). Throws core::Error "PATH: ..." on an unreadable file or a malformed map.
 std::optional<RigCalibrationQuality> readRigCalibrationQuality(const std::string& path);

@@ -27,24 +27,24 @@
 #include <cstdint>
 #include <vector>
 
+#include "binpick/io/point_cloud.hpp"
 #include "binpick/picking/gripper.hpp"
 #include "binpick/picking/picking.hpp"
-#include "binpick/io/point_cloud.hpp"
 
 namespace binpick::picking {
 
 struct GraspGenerationParams {
-  double sample_spacing = 0.003;        // metres between candidate grasp points on the surface
-  int max_samples = 6000;               // candidate points at most (the spacing grows to fit)
-  std::uint32_t seed = 1;               // surface sampling
-  int max_grasps = 40;                  // grasps returned at most, >= 1
-  double min_separation = 0.010;        // metres: closer grasps (after symmetry) are one grasp
-  double symmetry_angle_deg = 10.0;     // approach (and closing axis) difference for "the same"
-  double max_antipodal_angle_deg = 5.0; // parallel: opposite faces' normals, degrees from opposite
-  double contact_tolerance = 0.001;     // metres: a finger's contact surface may leave its plane
-  int approach_directions = 8;          // parallel: approaches tried about the closing axis
-  double margin_weight = 0.6;           // quality = w x margin + (1 - w) x closeness to the centre
-  void validate() const;                // throws core::Error naming the field
+  double sample_spacing = 0.003;         // metres between candidate grasp points on the surface
+  int max_samples = 6000;                // candidate points at most (the spacing grows to fit)
+  std::uint32_t seed = 1;                // surface sampling
+  int max_grasps = 40;                   // grasps returned at most, >= 1
+  double min_separation = 0.010;         // metres: closer grasps (after symmetry) are one grasp
+  double symmetry_angle_deg = 10.0;      // approach (and closing axis) difference for "the same"
+  double max_antipodal_angle_deg = 5.0;  // parallel: opposite faces' normals, degrees from opposite
+  double contact_tolerance = 0.001;      // metres: a finger's contact surface may leave its plane
+  int approach_directions = 8;           // parallel: approaches tried about the closing axis
+  double margin_weight = 0.6;            // quality = w x margin + (1 - w) x closeness to the centre
+  void validate() const;                 // throws core::Error naming the field
 };
 
 // Grasps on a closed mesh (metres, outward normals: counter-clockwise seen from outside). Empty

@@ -29,14 +29,14 @@ struct GripperParams {
   double cup_length = 0.025;       // metres: cup + bellows along the approach axis
   double seal_tolerance = 0.0008;  // metres: how far the surface under the cup may leave its plane
   // Parallel jaw
-  double stroke = 0.080;           // metres: widest opening between the contact faces
-  double finger_width = 0.012;     // metres, across the closing direction
-  double finger_depth = 0.020;     // metres, along the approach
-  double finger_thickness = 0.008; // metres, along the closing direction
+  double stroke = 0.080;            // metres: widest opening between the contact faces
+  double finger_width = 0.012;      // metres, across the closing direction
+  double finger_depth = 0.020;      // metres, along the approach
+  double finger_thickness = 0.008;  // metres, along the closing direction
   // Tool body behind the cup or the fingers
-  double tool_radius = 0.015;      // metres
-  double tool_length = 0.15;       // metres
-  void validate() const;           // throws core::Error naming the field
+  double tool_radius = 0.015;  // metres
+  double tool_length = 0.15;   // metres
+  void validate() const;       // throws core::Error naming the field
 };
 
 }  // namespace binpick::picking

@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "binpick/io/point_cloud.hpp"
 #include "binpick/picking/gripper.hpp"
 #include "binpick/picking/seal_check.hpp"
-#include "binpick/io/point_cloud.hpp"
 
 namespace binpick::picking {
 
@@ -49,7 +49,7 @@ struct PartSymmetry {
 // `length`, y along `width`, z up.
 struct BinBox {
   Eigen::Isometry3d T_base_bin = Eigen::Isometry3d::Identity();  // rigid, metres
-  double length = 0.40, width = 0.30, wall_height = 0.15;  // metres, inner sizes
+  double length = 0.40, width = 0.30, wall_height = 0.15;        // metres, inner sizes
 };
 
 enum class PickOrder { HighestFirst, BestScore, BestRank };
@@ -67,37 +67,37 @@ PickOrder pickOrderFromName(const std::string& name);
 //   quality    Grasp::quality
 // A part's pick is its best-ranked grasp; PickOrder::BestRank orders the parts by it.
 struct RankWeights {
-  double free = 2.0;       // being on top matters most: a buried part drags its neighbours along
+  double free = 2.0;  // being on top matters most: a buried part drags its neighbours along
   double height = 1.0;
   double coverage = 1.0;
   double upright = 1.0;
   double clearance = 0.5;
   double quality = 1.0;
-  void validate() const;   // each finite and >= 0; throws core::Error naming the field
+  void validate() const;  // each finite and >= 0; throws core::Error naming the field
 };
 
 struct PickParams {
-  std::vector<Grasp> grasps;               // at least one; rigid, finite poses
+  std::vector<Grasp> grasps;  // at least one; rigid, finite poses
   PartSymmetry symmetry;
   BinBox bin;
-  GripperParams gripper;                   // the tool: its radius is the approach corridor's
-  double approach_distance = 0.10;         // metres from pre-grasp to grasp point
-  double wall_clearance = 0.005;           // metres kept between the corridor and the walls
-  double max_tilt_deg = 60.0;              // approach vs straight down (base -z); steeper: rejected
-  int continuous_symmetry_steps = 36;      // grasps tried around a continuous axis, in [1, 3600]
+  GripperParams gripper;               // the tool: its radius is the approach corridor's
+  double approach_distance = 0.10;     // metres from pre-grasp to grasp point
+  double wall_clearance = 0.005;       // metres kept between the corridor and the walls
+  double max_tilt_deg = 60.0;          // approach vs straight down (base -z); steeper: rejected
+  int continuous_symmetry_steps = 36;  // grasps tried around a continuous axis, in [1, 3600]
   // HighestFirst: the grasp point's base z, descending; BestScore: detection score, descending;
   // BestRank: Pick::rank, descending. Ties: height or score, then the object index.
   PickOrder order = PickOrder::BestRank;
-  double avoid_radius = 0.02;              // metres: a failed object's centre this close is avoided
+  double avoid_radius = 0.02;  // metres: a failed object's centre this close is avoided
   // The tool against the measured cloud (tool_collision.hpp), when planPicks is given one:
-  double collision_margin = 0.002;         // metres the tool's volume is grown by (cloud noise)
-  double finger_clearance = 0.005;         // metres between an open finger and the part, each side
-  double clearance_cap = 0.02;             // metres: clearances up to this count in the ranking
-  double cover_radius = 0.04;              // metres around the grasp point searched for cover
-  double cover_height = 0.005;             // metres above the grasp point a covering point rises
+  double collision_margin = 0.002;  // metres the tool's volume is grown by (cloud noise)
+  double finger_clearance = 0.005;  // metres between an open finger and the part, each side
+  double clearance_cap = 0.02;      // metres: clearances up to this count in the ranking
+  double cover_radius = 0.04;       // metres around the grasp point searched for cover
+  double cover_height = 0.005;      // metres above the grasp point a covering point rises
   RankWeights ranking;
-  SealCheckParams seal_check;              // suction: the measured surface under the cup (seal_check.hpp)
-  void validate() const;                   // throws core::Error naming the field
+  SealCheckParams seal_check;  // suction: the measured surface under the cup (seal_check.hpp)
+  void validate() const;       // throws core::Error naming the field
 };
 
 struct DetectedPart {
@@ -107,8 +107,8 @@ struct DetectedPart {
 };
 
 struct Pick {
-  int object = 0;   // index into the detections
-  int grasp = 0;    // index into PickParams::grasps
+  int object = 0;  // index into the detections
+  int grasp = 0;   // index into PickParams::grasps
   Eigen::Isometry3d T_base_grasp = Eigen::Isometry3d::Identity();
   double tilt_deg = 0.0;   // approach vs straight down
   double clearance = 0.0;  // metres between the tool and the nearest measured point (capped)
@@ -118,12 +118,12 @@ struct Pick {
 // Why parts were not picked, one count per part: the furthest test any of its grasps reached
 // (tilt, then bin, then cloud, then seal) and failed.
 struct PickRejections {
-  int invalid = 0;    // a non-finite or non-rigid pose, or a non-finite score or coverage
-  int avoided = 0;    // near a failed pick
-  int tilt = 0;       // every grasp tilted beyond max_tilt_deg
-  int bin = 0;        // every grasp within the tilt limit: the tool hits the bin's walls or floor
-  int cloud = 0;      // every grasp left: the tool hits the measured cloud (a neighbour, the part)
-  int seal = 0;       // every grasp left: the measured surface under the cup would not seal
+  int invalid = 0;  // a non-finite or non-rigid pose, or a non-finite score or coverage
+  int avoided = 0;  // near a failed pick
+  int tilt = 0;     // every grasp tilted beyond max_tilt_deg
+  int bin = 0;      // every grasp within the tilt limit: the tool hits the bin's walls or floor
+  int cloud = 0;    // every grasp left: the tool hits the measured cloud (a neighbour, the part)
+  int seal = 0;     // every grasp left: the measured surface under the cup would not seal
   int total() const { return invalid + avoided + tilt + bin + cloud + seal; }
 };
 

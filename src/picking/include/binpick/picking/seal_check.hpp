@@ -39,7 +39,8 @@ class MeasuredSurface {
   // `cloud`: organized, camera frame (width x height of `camera`), NaN where nothing was measured.
   // Throws core::Error when the cloud is not organized to the camera's size or the camera is
   // invalid. Both must outlive the object.
-  MeasuredSurface(const io::PointCloud& cloud, const io::LensIntrinsics& camera, const Eigen::Isometry3d& T_base_camera);
+  MeasuredSurface(const io::PointCloud& cloud, const io::LensIntrinsics& camera,
+                  const Eigen::Isometry3d& T_base_camera);
 
   // The disc of `radius` in the grasp frame's xy plane at T_base_grasp (grasp frame: gripper.hpp),
   // measured within `tolerance` + params.noise.

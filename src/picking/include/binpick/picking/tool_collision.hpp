@@ -25,8 +25,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "binpick/picking/gripper.hpp"
 #include "binpick/io/point_cloud.hpp"
+#include "binpick/picking/gripper.hpp"
 
 namespace binpick::picking {
 
@@ -43,7 +43,7 @@ class MeasuredScene {
   MeasuredScene(const io::PointCloud& cloud, const Eigen::Isometry3d& T_base_camera,
                 const MeasuredSceneParams& params = {});
 
-  std::size_t size() const { return points_.size(); }  // points kept after thinning
+  std::size_t size() const { return points_.size(); }                     // points kept after thinning
   const std::vector<Eigen::Vector3f>& points() const { return points_; }  // base frame
 
   // Visits the points in the box [lo, hi] (base frame), and maybe a few just outside it in xy:
@@ -97,8 +97,8 @@ bool MeasuredScene::visitBox(const Eigen::Vector3d& lo, const Eigen::Vector3d& h
   const auto z_hi = static_cast<float>(hi.z());
   for (int y = cells.y0; y <= cells.y1; ++y) {
     for (int x = cells.x0; x <= cells.x1; ++x) {
-      const std::size_t cell = static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) +
-                               static_cast<std::size_t>(x);
+      const std::size_t cell =
+          static_cast<std::size_t>(y) * static_cast<std::size_t>(columns_) + static_cast<std::size_t>(x);
       const auto begin = heights_.begin() + cell_start_[cell];
       const auto end = heights_.begin() + cell_start_[cell + 1];
       for (auto it = std::lower_bound(begin, end, z_lo); it != end && *it <= z_hi; ++it) {

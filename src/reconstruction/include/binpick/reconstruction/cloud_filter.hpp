@@ -21,7 +21,7 @@ struct CloudFilterParams {
   // speckle_min_pixels = 0 turns it off.
   double speckle_max_step = 0.002;  // metres
   int speckle_min_pixels = 50;
-  int threads = 0;  // 0: all cores
+  int threads = 0;        // 0: all cores
   void validate() const;  // throws core::Error naming the field
 };
 

@@ -55,13 +55,13 @@ struct DecodeParams {
   // capture is refused.
   double max_saturated_fraction = 0.5;
   double max_pair_sum_error = 0.25;
-  int threads = 0;  // 0: all cores
+  int threads = 0;        // 0: all cores
   void validate() const;  // throws core::Error naming the field
 };
 
 // Copies share the cv::Mat pixels (as cv::Mat does): clone() a member before changing it.
 struct DecodedCapture {
-  int width = 0;   // camera image size
+  int width = 0;  // camera image size
   int height = 0;
   // Projector pixel coordinates seen by each camera pixel (pixel centres at integers, as in
   // LensIntrinsics), CV_32FC1; NaN where status is not Valid. `row` is empty when the capture

@@ -21,9 +21,9 @@ enum class PixelStatus : uint8_t {
   Inconsistent,    // the decoded row does not lie on the column's epipolar curve
   NoIntersection,  // the camera ray and the projector's light do not meet in front of both
   // Filters.
-  OutOfDepthRange, // outside the configured depth range
-  OutsideCrop,     // outside the configured crop box
-  Speckle,         // part of a small isolated patch of points
+  OutOfDepthRange,  // outside the configured depth range
+  OutsideCrop,      // outside the configured crop box
+  Speckle,          // part of a small isolated patch of points
 };
 constexpr std::size_t kPixelStatusCount = 11;
 

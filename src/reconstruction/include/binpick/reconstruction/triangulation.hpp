@@ -33,7 +33,7 @@ struct TriangulationParams {
   // measured in the undistorted projector image (distortion changes lengths there by a few per
   // cent at most for real lenses). Used only when rows were decoded.
   double max_epipolar_error = 1.5;
-  int threads = 0;  // 0: all cores
+  int threads = 0;        // 0: all cores
   void validate() const;  // throws core::Error naming the field
 };
 

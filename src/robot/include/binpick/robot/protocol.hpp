@@ -45,13 +45,13 @@ enum class Status : int32_t {
   Busy = 5,                // a cycle is already running
   Timeout = 6,             // a stage missed its deadline
   UnknownCommand = 7,
-  BadMessage = 8,          // malformed, truncated, oversized or a bad argument
-  NoCycle = 9,             // NEXT / FAILED before any cycle ran
-  NoMorePicks = 10,        // every pick of the latest cycle was handed out
-  UnknownModel = 11,       // MODEL / TRIGGER named no configured model
-  Unreachable = 12,        // parts detected, but every grasp collides or is avoided
-  InternalError = 13,      // the cycle failed for another reason (logged)
-  BoardNotFound = 14,      // POSE: the image holds no usable calibration board
+  BadMessage = 8,      // malformed, truncated, oversized or a bad argument
+  NoCycle = 9,         // NEXT / FAILED before any cycle ran
+  NoMorePicks = 10,    // every pick of the latest cycle was handed out
+  UnknownModel = 11,   // MODEL / TRIGGER named no configured model
+  Unreachable = 12,    // parts detected, but every grasp collides or is avoided
+  InternalError = 13,  // the cycle failed for another reason (logged)
+  BoardNotFound = 14,  // POSE: the image holds no usable calibration board
 };
 
 // A Command outside the enumerators stands for an unknown command (see Decoded): "UNKNOWN".
@@ -69,8 +69,8 @@ bool isKnownCommand(Command command);         // one of the enumerators above
 struct Request {
   Command command = Command::Ping;
   // The {} initialisers let Request{command, argument} compile clean under -Wextra.
-  std::optional<std::string> argument{};              // binary framing: the int32 in decimal
-  std::optional<Eigen::Isometry3d> T_base_flange{};   // POSE: the flange pose, metres
+  std::optional<std::string> argument{};             // binary framing: the int32 in decimal
+  std::optional<Eigen::Isometry3d> T_base_flange{};  // POSE: the flange pose, metres
 };
 
 // Up to three integers follow the status; their meaning depends on the command:
@@ -107,7 +107,7 @@ struct CodecParams {
   ByteOrder byte_order = ByteOrder::Big;
   double position_scale = 100.0;       // per millimetre (0.01 mm resolution)
   double orientation_scale = 10000.0;  // per orientation unit
-  void validate() const;  // throws core::Error naming the field
+  void validate() const;               // throws core::Error naming the field
 };
 
 // Binary sizes: a request is {command, argument}, except POSE's {command, x, y, z, 4 orientation
@@ -128,8 +128,8 @@ struct Decoded {
   std::optional<Request> request;
   Status error = Status::Ok;  // UnknownCommand or BadMessage when !request
   Command command = Command::Ping;
-  std::string detail;         // what was wrong, for the log (printable ASCII only)
-  int32_t raw_command = 0;    // binary framing: the command id as received; ASCII: 0
+  std::string detail;       // what was wrong, for the log (printable ASCII only)
+  int32_t raw_command = 0;  // binary framing: the command id as received; ASCII: 0
 };
 
 // Splits a byte stream into requests. ASCII: lines end with "\n" ("\r\n" accepted); a line
@@ -149,8 +149,8 @@ class RequestDecoder {
  public:
   explicit RequestDecoder(const CodecParams& params);
   void feed(const char* data, std::size_t size);
-  std::optional<Decoded> next();        // the next complete message, if any
-  std::size_t buffered() const;         // bytes held for an incomplete message
+  std::optional<Decoded> next();  // the next complete message, if any
+  std::size_t buffered() const;   // bytes held for an incomplete message
  private:
   void feedAscii(const char* data, std::size_t size);
   void feedBinary(const char* data, std::size_t size);
@@ -197,6 +197,7 @@ class ReplyDecoder {
   void feed(const char* data, std::size_t size);
   // The next complete reply; throws core::Error naming what was malformed.
   std::optional<Reply> next();
+
  private:
   CodecParams params_;
   std::string buffer_;

@@ -21,18 +21,18 @@
 namespace binpick::robot {
 
 struct RobotServerParams {
-  std::string bind_address = "0.0.0.0";       // IPv4 address to listen on
-  int port = 50100;                            // 0: any free port (tests; see port())
-  std::vector<std::string> allowed_clients;    // IPv4 addresses or CIDR blocks; empty: any
-  int max_clients = 8;                         // further connections are closed at once
+  std::string bind_address = "0.0.0.0";      // IPv4 address to listen on
+  int port = 50100;                          // 0: any free port (tests; see port())
+  std::vector<std::string> allowed_clients;  // IPv4 addresses or CIDR blocks; empty: any
+  int max_clients = 8;                       // further connections are closed at once
   // Requests received but not yet answered, per client, the one with the handler included. A
   // robot sends one at a time; a client that pipelines more is disconnected.
   std::size_t max_queued_requests = 16;
   // Bytes of an incomplete request held per client; at least codec.max_line_length.
   std::size_t max_buffered_input = 4096;
-  std::size_t max_buffered_output = 65536;     // bytes of unread replies per client
+  std::size_t max_buffered_output = 65536;  // bytes of unread replies per client
   robot::CodecParams codec;
-  void validate() const;                       // throws core::Error naming the field
+  void validate() const;  // throws core::Error naming the field
 };
 
 using ClientId = uint64_t;  // never reused within a server's life
@@ -59,7 +59,7 @@ class RobotServer {
   RobotServer(const RobotServer&) = delete;
   RobotServer& operator=(const RobotServer&) = delete;
 
-  int port() const;                 // the bound port
+  int port() const;  // the bound port
   // Serves until stop(), then closes every client (handler.disconnected for each) and the
   // listening socket. Problems of one client never end it; a failing listening socket or poll()
   // throws core::Error. A stopped server stays stopped: run() then returns at once.

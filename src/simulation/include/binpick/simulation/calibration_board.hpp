@@ -40,15 +40,15 @@ using calibration::boardTypeName;
 // marker bit about 5.
 struct BoardSpec {
   BoardType type = BoardType::Charuco;
-  int squares_x = 9;           // squares along the board's x (>= 3)
-  int squares_y = 7;           // squares along its y (>= 3)
-  double square_size = 0.030;  // metres
-  double marker_size = 0.022;  // ChArUco: side of the ArUco marker in each white square, metres
+  int squares_x = 9;                        // squares along the board's x (>= 3)
+  int squares_y = 7;                        // squares along its y (>= 3)
+  double square_size = 0.030;               // metres
+  double marker_size = 0.022;               // ChArUco: side of the ArUco marker in each white square, metres
   std::string dictionary = "DICT_5X5_100";  // ChArUco: an OpenCV predefined dictionary by name
   double margin = 0.015;                    // white border around the squares, metres
   double thickness = 0.005;                 // metres
-  double white_albedo = 0.85;  // diffuse reflectance of the paper and the white squares
-  double black_albedo = 0.05;  // of the black squares and marker bits
+  double white_albedo = 0.85;               // diffuse reflectance of the paper and the white squares
+  double black_albedo = 0.05;               // of the black squares and marker bits
   // The geometry the calibration tools detect (type, squares, markers, dictionary).
   calibration::BoardLayout layout() const;
   // Throws core::Error naming the field: "BoardLayout.marker_size ..." for the geometry,
@@ -84,8 +84,7 @@ class CalibrationBoard {
   float albedo(const Eigen::Vector2d& xy) const;
   // The mean reflectance over the parallelogram centre + footprint * [-1/2, 1/2]^2 (the area a
   // camera pixel covers on the board), from samples x samples points.
-  float meanAlbedo(const Eigen::Vector2d& centre, const Eigen::Matrix2d& footprint,
-                   int samples) const;
+  float meanAlbedo(const Eigen::Vector2d& centre, const Eigen::Matrix2d& footprint, int samples) const;
 
  private:
   BoardSpec spec_;
@@ -109,8 +108,7 @@ struct CornerObservation {
 
 // The corners that both devices see on the board at T_camera_board: inside both images and on
 // the side of the print that faces each device (the board alone hides none of its own corners).
-std::vector<CornerObservation> observeCorners(const CalibrationBoard& board,
-                                              const io::RigCalibration& rig,
+std::vector<CornerObservation> observeCorners(const CalibrationBoard& board, const io::RigCalibration& rig,
                                               const Eigen::Isometry3d& T_camera_board);
 
 // Random board poses in the working volume, for a calibration sequence.
@@ -134,17 +132,15 @@ struct BoardPoseParams {
 
 // Whether the whole board outline lies `image_margin` pixels inside the camera image and the
 // projector image, in front of both, and the print faces both by `min_facing_cosine`.
-bool boardInView(const CalibrationBoard& board, const io::RigCalibration& rig,
-                 const Eigen::Isometry3d& T_camera_board, double image_margin,
-                 double min_facing_cosine);
+bool boardInView(const CalibrationBoard& board, const io::RigCalibration& rig, const Eigen::Isometry3d& T_camera_board,
+                 double image_margin, double min_facing_cosine);
 
 // `params.count` poses T_camera_board. Each draw takes a distance, an offset, a tilt about a
 // random axis in the image plane and an in-plane rotation; a draw that fails boardInView is
 // dropped and the next one taken from the same generator, so a seed gives the same poses on any
 // machine (and the first k poses do not depend on count). Throws core::Error on bad params
 // or when max_attempts draws in a row fail (the board is too large for the views).
-std::vector<Eigen::Isometry3d> randomBoardPoses(const CalibrationBoard& board,
-                                                const io::RigCalibration& rig,
+std::vector<Eigen::Isometry3d> randomBoardPoses(const CalibrationBoard& board, const io::RigCalibration& rig,
                                                 const BoardPoseParams& params);
 
 }  // namespace binpick::simulation

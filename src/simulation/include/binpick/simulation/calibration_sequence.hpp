@@ -50,13 +50,11 @@ struct CalibrationSequenceParams {
 
 // One pose's capture: the images under every pattern of params.pattern_set, in pattern order,
 // and the metadata (source, exposure, pattern names). `noise_seed` seeds the image noise.
-io::Capture renderCalibrationCapture(const CalibrationBoard& board,
-                                 const Eigen::Isometry3d& T_camera_board,
-                                 const CalibrationSequenceParams& params, uint64_t noise_seed);
+io::Capture renderCalibrationCapture(const CalibrationBoard& board, const Eigen::Isometry3d& T_camera_board,
+                                     const CalibrationSequenceParams& params, uint64_t noise_seed);
 // The capture's first image, the white one, alone (the same pixels): for views that need no
 // patterns.
-cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board,
-                                    const Eigen::Isometry3d& T_camera_board,
+cv::Mat renderCalibrationWhiteImage(const CalibrationBoard& board, const Eigen::Isometry3d& T_camera_board,
                                     const CalibrationSequenceParams& params, uint64_t noise_seed);
 
 // Draws params.poses.count poses, renders and writes each as DIR/pose_NNN/, then writes

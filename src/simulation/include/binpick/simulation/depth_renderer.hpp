@@ -29,8 +29,8 @@ struct RenderObject {
 struct DepthImage {
   int width = 0;
   int height = 0;
-  std::vector<float> depth;        // z in the camera frame, +inf where nothing was hit
-  std::vector<int32_t> instance;   // id of the object seen at each pixel, -1 where none
+  std::vector<float> depth;       // z in the camera frame, +inf where nothing was hit
+  std::vector<int32_t> instance;  // id of the object seen at each pixel, -1 where none
 };
 
 DepthImage renderDepth(const PinholeCamera& camera, const std::vector<RenderObject>& objects);

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "binpick/calibration/hand_eye.hpp"
-#include "binpick/io/rig_calibration.hpp"
 #include "binpick/core/orientation.hpp"
+#include "binpick/io/rig_calibration.hpp"
 #include "binpick/simulation/calibration_board.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
 
@@ -53,10 +53,10 @@ struct HandEyeSessionParams {
 };
 
 struct HandEyeSessionView {
-  std::string name;                                                       // "view_00", ...
+  std::string name;  // "view_00", ...
   Eigen::Isometry3d T_base_flange_true = Eigen::Isometry3d::Identity();
-  Eigen::Isometry3d T_base_flange = Eigen::Isometry3d::Identity();        // reported, with noise
-  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();       // true
+  Eigen::Isometry3d T_base_flange = Eigen::Isometry3d::Identity();   // reported, with noise
+  Eigen::Isometry3d T_camera_board = Eigen::Isometry3d::Identity();  // true
 };
 
 struct HandEyeSession {
@@ -78,7 +78,6 @@ cv::Mat renderHandEyeImage(const CalibrationBoard& board, const Eigen::Isometry3
 // Simulates, renders and writes the views directory and its truth; returns the session. Throws
 // core::Error on bad params, when DIR exists and is not empty, or when a file cannot be
 // written.
-HandEyeSession writeHandEyeSession(const std::string& directory,
-                                   const HandEyeSessionParams& params);
+HandEyeSession writeHandEyeSession(const std::string& directory, const HandEyeSessionParams& params);
 
 }  // namespace binpick::simulation

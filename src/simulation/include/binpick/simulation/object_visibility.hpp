@@ -22,15 +22,13 @@ struct ObjectVisibility {
 // object's projected bounding box are examined, and of those only the ones where the object is
 // hidden or shadowed in `geometry` are cast again, against the object alone. Throws
 // core::Error on an invalid rig or params, or a geometry of the wrong size.
-std::vector<ObjectVisibility> computeObjectVisibility(const io::RigCalibration& rig,
-                                                      const RayCaster& scene,
+std::vector<ObjectVisibility> computeObjectVisibility(const io::RigCalibration& rig, const RayCaster& scene,
                                                       const SensorGeometry& geometry,
                                                       const SensorGeometryParams& params = {});
 
 // The same for the objects listed (indices into `scene`), in that order: e.g. the parts but not
 // the bin, whose bounding box covers much of the image. Throws core::Error on a bad index.
-std::vector<ObjectVisibility> computeObjectVisibilityOf(const io::RigCalibration& rig,
-                                                        const RayCaster& scene,
+std::vector<ObjectVisibility> computeObjectVisibilityOf(const io::RigCalibration& rig, const RayCaster& scene,
                                                         const SensorGeometry& geometry,
                                                         const std::vector<int>& object_indices,
                                                         const SensorGeometryParams& params = {});

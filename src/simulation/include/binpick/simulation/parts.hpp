@@ -14,7 +14,7 @@ namespace binpick::simulation {
 // The rotations that map a part onto itself (about its model origin).
 struct Symmetry {
   std::vector<Eigen::Matrix3d> discrete{Eigen::Matrix3d::Identity()};  // always holds identity
-  std::optional<Eigen::Vector3d> continuous_axis;  // unit axis through the origin, if any
+  std::optional<Eigen::Vector3d> continuous_axis;                      // unit axis through the origin, if any
 };
 
 struct Part {
@@ -51,7 +51,6 @@ struct PoseError {
   double translation = 0.0;  // metres (or the mesh's unit)
   double rotation_deg = 0.0;
 };
-PoseError poseError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth,
-                    const Symmetry& symmetry);
+PoseError poseError(const Eigen::Isometry3d& estimate, const Eigen::Isometry3d& truth, const Symmetry& symmetry);
 
 }  // namespace binpick::simulation

@@ -17,43 +17,42 @@ struct PhotometryParams {
   // Counts a full-white projector pixel gives on a white Lambertian surface facing the projector
   // at `reference_distance` (8-bit full scale is 255).
   double projector_white = 280.0;
-  double reference_distance = 0.9;    // metres
+  double reference_distance = 0.9;      // metres
   double projector_black_level = 0.01;  // share of white a black projector pixel still emits
-  double ambient = 6.0;               // counts on a white surface from room light
+  double ambient = 6.0;                 // counts on a white surface from room light
   // Indirect light (interreflections in the bin): share of the direct white light that reaches a
   // surface from elsewhere; it follows the pattern's mean brightness, not its local value.
   double global_light = 0.03;
-  double specular = 0.15;             // Blinn-Phong weight relative to the diffuse albedo 1
-  double shininess = 40.0;            // Blinn-Phong exponent
-  double focus_distance = 0.9;        // metres from the projector where patterns are sharp
+  double specular = 0.15;       // Blinn-Phong weight relative to the diffuse albedo 1
+  double shininess = 40.0;      // Blinn-Phong exponent
+  double focus_distance = 0.9;  // metres from the projector where patterns are sharp
   // Defocus blur (Gaussian sigma, projector pixels) per dioptre away from focus: sigma =
   // hypot(min_blur_sigma, defocus_per_dioptre * |1/d - 1/focus_distance|).
   double defocus_per_dioptre = 6.0;
-  double min_blur_sigma = 0.4;        // projector pixels: optics and the camera pixel's footprint
-  double read_noise = 0.7;            // counts (standard deviation)
-  double shot_noise_gain = 0.03;      // counts per electron: shot variance = gain * signal
-  int bit_depth = 8;                  // 8 or 16 (16 scales the 8-bit counts by 257)
+  double min_blur_sigma = 0.4;    // projector pixels: optics and the camera pixel's footprint
+  double read_noise = 0.7;        // counts (standard deviation)
+  double shot_noise_gain = 0.03;  // counts per electron: shot variance = gain * signal
+  int bit_depth = 8;              // 8 or 16 (16 scales the 8-bit counts by 257)
   uint64_t seed = 1;
-  int threads = 0;                    // 0: all cores
-  void validate() const;              // throws core::Error naming the field
+  int threads = 0;        // 0: all cores
+  void validate() const;  // throws core::Error naming the field
 };
 
 // What one camera pixel sees, in 8-bit counts, independent of the pattern.
 struct PixelLighting {
   float projector_x = 0.0f;  // projector pixel coordinates of the surface point (centre = integer)
   float projector_y = 0.0f;
-  float blur_sigma = 0.0f;   // projector pixels
-  float direct = 0.0f;       // counts from a full-white projector (0 when the point is not lit)
-  float ambient = 0.0f;      // counts that no pattern changes
-  float global = 0.0f;       // counts of indirect light under a full-white projection
+  float blur_sigma = 0.0f;  // projector pixels
+  float direct = 0.0f;      // counts from a full-white projector (0 when the point is not lit)
+  float ambient = 0.0f;     // counts that no pattern changes
+  float global = 0.0f;      // counts of indirect light under a full-white projection
 };
 
 // One image per pattern of `spec` (patternSequence order), `width` x `height`, CV_8UC1 or
 // CV_16UC1. Noise is keyed by (pattern, pixel): the same seed gives the same images on any
 // number of threads. Throws core::Error on a size mismatch or bad params.
-std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width,
-                                         int height, const io::PatternSetSpec& spec,
-                                         const PhotometryParams& params);
+std::vector<cv::Mat> renderPatternImages(const std::vector<PixelLighting>& pixels, int width, int height,
+                                         const io::PatternSetSpec& spec, const PhotometryParams& params);
 
 // renderPatternImages(...).front(), the white image, alone: the same pixels for a fraction of
 // the cost, for views that need no patterns (hand-eye sessions).

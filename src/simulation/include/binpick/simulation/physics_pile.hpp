@@ -101,8 +101,8 @@ struct PhysicsPile {
 // inside out), or a part too large to be released between the walls in every orientation. A mesh
 // with holes is not detected: its collision shape is then the decomposition of what its surface
 // appears to enclose.
-PhysicsPile simulatePile(const io::TriangleMesh& part, int objects, const BinInterior& bin,
-                         const PhysicsParams& params, uint64_t seed);
+PhysicsPile simulatePile(const io::TriangleMesh& part, int objects, const BinInterior& bin, const PhysicsParams& params,
+                         uint64_t seed);
 
 // How the pile re-settled after a part was taken out (PhysicsBin::remove).
 struct SettleResult {
@@ -123,8 +123,7 @@ class PhysicsBin {
   // Builds the part's collision shape (0.03-0.15 s for the built-in parts). Throws
   // core::Error on bad params or bin, a bad mesh, or a part too large for the bin, as
   // simulatePile does.
-  PhysicsBin(const io::TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params,
-             uint64_t seed);
+  PhysicsBin(const io::TriangleMesh& part, const BinInterior& bin, const PhysicsParams& params, uint64_t seed);
   ~PhysicsBin();
   PhysicsBin(PhysicsBin&&) noexcept;
   PhysicsBin& operator=(PhysicsBin&&) noexcept;

@@ -17,22 +17,22 @@ namespace binpick::simulation {
 
 struct PileParams {
   int objects = 20;
-  double bin_length = 0.40;      // metres, inner size along the bin's x
-  double bin_width = 0.30;       // metres, inner size along the bin's y
-  double bin_wall_height = 0.15; // metres
-  double camera_height = 0.90;   // metres from the bin floor to the camera centre
+  double bin_length = 0.40;       // metres, inner size along the bin's x
+  double bin_width = 0.30;        // metres, inner size along the bin's y
+  double bin_wall_height = 0.15;  // metres
+  double camera_height = 0.90;    // metres from the bin floor to the camera centre
   // The measured cloud (PileScene::cloud): noise along the viewing ray, random dropouts, and the
   // steepest viewing angle at which a surface is still decoded.
-  double depth_noise = 0.0003;   // metres, standard deviation
-  double dropout = 0.0;          // fraction of measurable pixels randomly lost
+  double depth_noise = 0.0003;  // metres, standard deviation
+  double dropout = 0.0;         // fraction of measurable pixels randomly lost
   double max_view_angle_deg = 80.0;
-  double part_albedo = 0.55;     // diffuse reflectance of the parts' surface
-  double bin_albedo = 0.30;      // and of the bin's
+  double part_albedo = 0.55;  // diffuse reflectance of the parts' surface
+  double bin_albedo = 0.30;   // and of the bin's
   io::RigCalibration rig = makeVirtualRig();
   PhysicsParams physics;
   uint64_t seed = 1;
-  int threads = 0;               // 0: all cores
-  void validate() const;         // throws core::Error naming the field
+  int threads = 0;        // 0: all cores
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct ObjectTruth {
@@ -47,9 +47,9 @@ struct PileScene {
   // What the sensor measures (an ideal decoder): organized, camera frame, the points both seen and
   // lit, with noise and dropouts; NaN elsewhere.
   io::PointCloud cloud;
-  io::PointCloud exact_cloud;      // every surface point the camera sees, with normals; no noise
-  std::vector<float> depth;    // exact camera z per pixel, NaN where nothing is seen
-  std::vector<int32_t> instance;  // per pixel: object index, -2 the bin, -1 nothing
+  io::PointCloud exact_cloud;        // every surface point the camera sees, with normals; no noise
+  std::vector<float> depth;          // exact camera z per pixel, NaN where nothing is seen
+  std::vector<int32_t> instance;     // per pixel: object index, -2 the bin, -1 nothing
   std::vector<ObjectTruth> objects;  // objects[i] has instance id i
   io::RigCalibration rig;
   // Bin frame: origin at the centre of the floor's top face, x along bin_length, z up. The camera
@@ -65,9 +65,8 @@ struct PileScene {
 PileScene generatePile(const io::TriangleMesh& part, const PileParams& params);
 
 // The camera images of `scene` under every pattern of `patterns` (patternSequence order).
-std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileScene& scene,
-                                      const PileParams& params, const io::PatternSetSpec& patterns,
-                                      const PhotometryParams& photometry);
+std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileScene& scene, const PileParams& params,
+                                      const io::PatternSetSpec& patterns, const PhotometryParams& photometry);
 
 struct PileCapture {
   PileScene scene;
@@ -89,15 +88,13 @@ PileScene viewPile(const io::TriangleMesh& part, const PileParams& params,
 
 // viewPile and its pattern images in one pass, as generatePileCapture.
 PileCapture renderPileCaptureAt(const io::TriangleMesh& part, const PileParams& params,
-                                const std::vector<Eigen::Isometry3d>& T_bin_objects,
-                                const io::PatternSetSpec& patterns,
+                                const std::vector<Eigen::Isometry3d>& T_bin_objects, const io::PatternSetSpec& patterns,
                                 const PhotometryParams& photometry);
 
 // The images as the rig would have recorded them: a Capture with its metadata (image size, bit
 // depth, pattern set and names, a nominal exposure, the time now), ready for writeCapture or the
 // decoder. `source` describes the scene in the metadata.
-io::Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params,
-                        const io::PatternSetSpec& patterns, const PhotometryParams& photometry,
-                        const std::string& source);
+io::Capture recordedCapture(std::vector<cv::Mat> images, const PileParams& params, const io::PatternSetSpec& patterns,
+                            const PhotometryParams& photometry, const std::string& source);
 
 }  // namespace binpick::simulation

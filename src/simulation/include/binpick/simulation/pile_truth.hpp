@@ -16,8 +16,8 @@ struct PileTruth {
 };
 
 // Writes DIR/truth/ (creating it). Throws core::Error naming the file that cannot be written.
-void writePileTruth(const std::string& capture_directory, const PileScene& scene,
-                    const std::string& part_name, const io::TriangleMesh& part);
+void writePileTruth(const std::string& capture_directory, const PileScene& scene, const std::string& part_name,
+                    const io::TriangleMesh& part);
 
 // Reads DIR/truth/objects.json (or the file itself when given one). Throws core::Error
 // "PATH: ..." on a missing file, malformed JSON or a bad pose.

@@ -18,9 +18,7 @@ namespace binpick::simulation {
 // (a calibration board's print depends on the point; a part's paint does not).
 using AlbedoFunction = std::function<float(int32_t object_id, const Eigen::Vector3f& object_point)>;
 
-std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry,
-                                                const io::RigCalibration& rig,
-                                                const PhotometryParams& params,
-                                                const AlbedoFunction& albedo);
+std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry, const io::RigCalibration& rig,
+                                                const PhotometryParams& params, const AlbedoFunction& albedo);
 
 }  // namespace binpick::simulation

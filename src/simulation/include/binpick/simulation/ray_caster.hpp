@@ -39,8 +39,7 @@ struct RayHit {
   // winding ((b - a) x (c - a)); camera frame. Not flipped towards the ray.
   Eigen::Vector3d normal = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   // The hit point in the frame of the object hit (its mesh coordinates).
-  Eigen::Vector3d object_point =
-      Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Eigen::Vector3d object_point = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   int32_t object_id = -1;  // RenderObject::id of the object hit; -1 when nothing was hit
   int object_index = -1;   // position of that object in the list given to the RayCaster, or -1
   int triangle = -1;       // index into the object's mesh triangles, or -1
