@@ -187,6 +187,42 @@ TEST(CaptureSequencer, ALostConnectionFailsAtOnceWithoutRetries) {
   EXPECT_EQ(rig.state->triggers, 5);
 }
 
+// A projector as the hardware is: each pulse shows the next pattern of its preloaded sequence,
+// whatever the software means by it, and the sequence wraps after its last pattern.
+class SequenceProjector : public ProjectorTrigger {
+ public:
+  SequenceProjector(std::shared_ptr<FakeRigState> state, std::size_t sequence_length)
+      : state_(std::move(state)), sequence_length_(sequence_length) {}
+  void showPattern(int /*index*/) override {
+    state_->shown = static_cast<int>(pulses_++ % sequence_length_);
+    state_->shown_log.push_back(state_->shown);
+  }
+  std::string description() const override { return "pulse-advanced projector"; }
+
+ private:
+  std::shared_ptr<FakeRigState> state_;
+  std::size_t sequence_length_;
+  std::size_t pulses_ = 0;
+};
+
+TEST(CaptureSequencer, AfterAnAbortedCaptureTheProjectorIsBroughtBackToItsFirstPattern) {
+  Rig rig;
+  const auto& rendered = renderedPile();
+  SequenceProjector projector(rig.state, rendered.images.size());
+  CaptureSequencer sequencer(rig.camera, projector, rig.params);
+  rig.state->failing_pattern = 7;  // the capture stops there, the projector showing pattern 7
+  EXPECT_THROW(sequencer.capture(rendered.patterns), CaptureError);
+
+  rig.state->failing_pattern = -1;
+  const io::Capture capture = sequencer.capture(rendered.patterns);
+  ASSERT_EQ(capture.images.size(), rendered.images.size());
+  for (std::size_t i = 0; i < capture.images.size(); ++i) {
+    EXPECT_TRUE(identical(capture.images[i], rendered.images[i])) << "image " << i;
+  }
+  // 8 pulses of the stopped capture, the rest of the sequence, then the whole sequence again.
+  EXPECT_EQ(rig.state->shown_log.size(), 2 * rendered.images.size());
+}
+
 TEST(CaptureSequencer, RefusesAFrameOfAnotherSize) {
   Rig rig;
   rig.state->images[3] = cv::Mat(80, 100, CV_8UC1, cv::Scalar(7));

@@ -10,6 +10,7 @@ class FreeRunningProjector : public ProjectorTrigger {
   // only bookkeeping.
   void showPattern(int /*index*/) override {}
   std::string description() const override { return "free-running projector (no trigger line)"; }
+  bool advancesOnPulse() const override { return false; }
 };
 
 }  // namespace

@@ -116,8 +116,23 @@ CaptureSequencer::CaptureSequencer(Camera& camera, ProjectorTrigger& projector, 
   params_.validate();
 }
 
+void CaptureSequencer::resynchroniseProjector() {
+  if (projector_position_ == 0 || !projector_.advancesOnPulse()) return;
+  detail::componentLogger("sequencer")
+      ->warn("the last capture stopped after {} of {} patterns: pulsing the projector {} times to its first pattern",
+             projector_position_, sequence_length_, sequence_length_ - projector_position_);
+  for (std::size_t k = projector_position_; k < sequence_length_; ++k) {
+    showPattern(projector_, static_cast<int>(k), "resynchronising the projector");
+    projector_position_ = k + 1;
+    if (params_.settle_us > 0) std::this_thread::sleep_for(std::chrono::microseconds(params_.settle_us));
+  }
+  projector_position_ = 0;
+  dropLateFrames(camera_);  // a projector that triggers the camera made frames of them
+}
+
 io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, SequencerReport* report) {
   patterns.validate();
+  resynchroniseProjector();
   const core::Stopwatch stopwatch;
   SequencerReport local;
   SequencerReport& out = report != nullptr ? *report : local;
@@ -127,9 +142,11 @@ io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, Sequen
   capture.metadata.timestamp = io::utcTimestamp();  // when the first pattern was shown
   capture.metadata.patterns = reconstruction::patternNames(patterns);
   const std::vector<std::string>& names = capture.metadata.patterns;
+  sequence_length_ = names.size();
   for (std::size_t k = 0; k < names.size(); ++k) {
     const std::string label = patternLabel(k, names[k]);
     showPattern(projector_, static_cast<int>(k), label);
+    projector_position_ = k + 1;
     if (params_.order == TriggerOrder::ProjectorThenCamera && params_.settle_us > 0) {
       std::this_thread::sleep_for(std::chrono::microseconds(params_.settle_us));
     }
@@ -138,6 +155,7 @@ io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, Sequen
     capture.images.push_back(std::move(image));
     capture.metadata.frame_times_ms.push_back(stopwatch.elapsedMs());  // since the capture began, not per frame
   }
+  projector_position_ = 0;  // the sequence is complete: the next pulse shows its first pattern
 
   io::CaptureMetadata& m = capture.metadata;
   m.source = camera_.description();

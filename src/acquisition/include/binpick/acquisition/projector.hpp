@@ -2,7 +2,9 @@
 // The projector, as the sequencer drives it: show pattern k of the preloaded sequence. A real
 // projector in external-trigger mode advances to its next pattern on each pulse of an input line
 // and holds it until the next pulse, so the sequencer pulses once per pattern and may re-trigger
-// the camera for a lost frame without touching the projector.
+// the camera for a lost frame without touching the projector. After its last pattern it wraps to
+// the first: a capture that stopped early leaves it mid-sequence, and the sequencer pulses the
+// rest of the sequence before the next capture (CaptureSequencer).
 //
 // Thread-safety: used from the sequencer's thread only.
 #include <memory>
@@ -17,6 +19,10 @@ class ProjectorTrigger {
   // line cannot be driven.
   virtual void showPattern(int index) = 0;
   virtual std::string description() const = 0;
+  // Whether showPattern() advances the projector, so that the sequencer can tell where it stands.
+  // A free-running projector keeps its own place: nothing the software does can resynchronise it
+  // (its sync output triggers the camera, so images and patterns stay paired by hardware).
+  virtual bool advancesOnPulse() const { return true; }
 };
 
 struct GpioTriggerParams {

@@ -52,12 +52,21 @@ class CaptureSequencer {
   // Captures every pattern of `patterns` (the camera must be open and started). Throws
   // CaptureError naming the pattern when a frame stays lost after the retries, or the camera is
   // gone; the images have the camera's size and depth, the metadata says what was projected.
+  // When the previous capture stopped after k of its n patterns, the projector is first pulsed
+  // n - k times so that it wraps back to its first pattern (frames these pulses trigger are
+  // dropped); a warning says so.
   io::Capture capture(const io::PatternSetSpec& patterns, SequencerReport* report = nullptr);
 
  private:
+  void resynchroniseProjector();
+
   Camera& camera_;
   ProjectorTrigger& projector_;
   SequencerParams params_;
+  // Where the projector stands in its sequence of sequence_length_ patterns: patterns pulsed
+  // since it last showed its first one. 0 after every complete capture.
+  std::size_t projector_position_ = 0;
+  std::size_t sequence_length_ = 0;
 };
 
 }  // namespace binpick::acquisition
