@@ -6,6 +6,7 @@
 #include <chrono>
 #include <fstream>
 #include <thread>
+#include <tuple>
 
 #include "binpick/cell/cell_service.hpp"
 #include "binpick/cell/systemd_notify.hpp"
@@ -34,6 +35,14 @@ int waitForSignal(std::chrono::milliseconds timeout) {
   timespec wait{static_cast<time_t>(timeout.count() / 1000), static_cast<long>(timeout.count() % 1000) * 1000000L};
   const int signal = sigtimedwait(&set, nullptr, &wait);
   return signal > 0 ? signal : 0;
+}
+
+// Whether the robot settings a running server keeps until a restart (its socket, its clients' slots) differ.
+bool restartSettingsDiffer(const robot::RobotServerParams& a, const robot::RobotServerParams& b) {
+  return std::tie(a.bind_address, a.port, a.max_clients, a.idle_timeout_ms, a.keepalive_idle_s, a.keepalive_interval_s,
+                  a.keepalive_count, a.bad_request_log_interval_ms) !=
+         std::tie(b.bind_address, b.port, b.max_clients, b.idle_timeout_ms, b.keepalive_idle_s, b.keepalive_interval_s,
+                  b.keepalive_count, b.bad_request_log_interval_ms);
 }
 
 CellConfig loadConfig(const DaemonOptions& options) {
@@ -105,8 +114,10 @@ class Daemon {
     notifier_.reloading("reloading " + options_.config_path);
     try {
       CellConfig config = loadConfig(options_);
-      if (config.robot.bind_address != config_.robot.bind_address || config.robot.port != config_.robot.port) {
-        spdlog::warn("a new bind address or port takes effect at the next restart");
+      if (restartSettingsDiffer(config.robot, config_.robot)) {
+        spdlog::warn(
+            "a new robot bind address, port, max_clients, idle timeout, keepalive or log interval takes effect at the "
+            "next restart");
       }
       auto setup = prepareCell(config);
       service_.reconfigure(setup, makeCaptureSource(config.source));

@@ -25,7 +25,7 @@ void validateAll(const CellConfig& config) {
       picking.symmetry = recipe.symmetry;
       picking.validate();
     }
-    config.robot.validate();
+    config.robot.validate("robot");  // the section's name, so that messages name the key in the file
     config.limits.validate();
     if (config.artefacts) config.artefacts->validate();
   });

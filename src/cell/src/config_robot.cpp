@@ -85,6 +85,11 @@ robot::RobotServerParams readRobot(core::YamlSection s) {
   s.read("port", params.port);
   s.read("allowed_clients", params.allowed_clients);
   s.read("max_clients", params.max_clients);
+  s.read("idle_timeout_ms", params.idle_timeout_ms);
+  s.read("keepalive_idle_s", params.keepalive_idle_s);
+  s.read("keepalive_interval_s", params.keepalive_interval_s);
+  s.read("keepalive_count", params.keepalive_count);
+  s.read("bad_request_log_interval_ms", params.bad_request_log_interval_ms);
   std::string framing = "ascii", orientation = "quaternion", byte_order = "big";
   s.read("framing", framing);
   s.read("orientation", orientation);

@@ -32,6 +32,23 @@ std::string_view trimSpaces(std::string_view text) {
   return text;
 }
 
+// A line's keyword: its text up to the first comma or forbidden byte, spaces trimmed.
+struct KeywordRead {
+  std::string_view text;
+  bool ended = false;      // a comma or a forbidden byte came after it
+  bool cut_short = false;  // ... and it was a forbidden byte
+};
+
+KeywordRead readKeyword(std::string_view line) {
+  KeywordRead keyword;
+  std::size_t end = 0;
+  while (end < line.size() && line[end] != ',' && !isForbiddenByte(line[end])) ++end;
+  keyword.text = trimSpaces(line.substr(0, end));
+  keyword.ended = end < line.size();
+  keyword.cut_short = keyword.ended && line[end] != ',';
+  return keyword;
+}
+
 Decoded failure(Status error, Command command, std::string detail) {
   Decoded decoded;
   decoded.error = error;
@@ -93,32 +110,30 @@ std::vector<std::string_view> splitAtCommas(std::string_view line) {
 std::optional<Decoded> decodeAsciiRequestLine(std::string_view line, const CodecParams& params) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   if (trimSpaces(line).empty()) return std::nullopt;
-  std::vector<std::string_view> fields = splitAtCommas(line);
-  for (std::string_view& field : fields) field = trimSpaces(field);
-  const std::string_view keyword = fields.front();
-  if (holdsForbiddenByte(keyword)) {
-    return failure(Status::BadMessage, Command::Ping, "a control character or non-ASCII byte in the keyword");
+  const KeywordRead keyword = readKeyword(line);
+  const std::optional<Command> command = commandFromKeyword(keyword.text);
+  if (keyword.cut_short) {
+    // "NEXT\0" was a NEXT; "PI\0NG" or "\xff" names nothing: its reply must not name a command.
+    return failure(Status::BadMessage, command.value_or(Command::Unreadable),
+                   "a control character or non-ASCII byte in the keyword");
   }
-  const std::optional<Command> command = commandFromKeyword(keyword);
   if (!command) {
-    if (keyword.empty()) return failure(Status::BadMessage, Command::Ping, "no keyword");
-    return failure(Status::UnknownCommand, kUnknownAsciiCommand, "unknown command '" + std::string(keyword) + "'");
+    if (keyword.text.empty()) return failure(Status::BadMessage, Command::Unreadable, "no keyword");
+    return failure(Status::UnknownCommand, kUnknownAsciiCommand, "unknown command '" + std::string(keyword.text) + "'");
   }
   if (holdsForbiddenByte(line)) {
     return failure(Status::BadMessage, *command, "a control character or non-ASCII byte in the line");
   }
+  std::vector<std::string_view> fields = splitAtCommas(line);
+  for (std::string_view& field : fields) field = trimSpaces(field);
   return decodeFields(*command, fields, params);
 }
 
 Decoded oversizedAsciiRequest(std::string_view start) {
-  // The keyword is known only if its comma arrived within the limit; else it is garbage.
-  Command command = Command::Ping;
-  const std::size_t comma = start.find(',');
-  if (comma != std::string_view::npos) {
-    const std::string_view keyword = trimSpaces(start.substr(0, comma));
-    if (!holdsForbiddenByte(keyword)) command = commandFromKeyword(keyword).value_or(command);
-  }
-  return failure(Status::BadMessage, command, "a line longer than max_line_length");
+  // The keyword is known only if its end (a comma or a forbidden byte) arrived within the limit.
+  const KeywordRead keyword = readKeyword(start);
+  const std::optional<Command> command = keyword.ended ? commandFromKeyword(keyword.text) : std::optional<Command>();
+  return failure(Status::BadMessage, command.value_or(Command::Unreadable), "a line longer than max_line_length");
 }
 
 std::string encodeAsciiRequest(const Request& request, const CodecParams& params) {
@@ -176,6 +191,7 @@ std::optional<Number> parseNumber(std::string_view text) {
 Command replyCommand(std::string_view line, std::string_view keyword) {
   if (const std::optional<Command> command = commandFromKeyword(keyword)) return *command;
   if (keyword == kUnknownKeyword) return kUnknownAsciiCommand;
+  if (keyword == kUnreadableKeyword) return Command::Unreadable;
   malformed(line, "unknown keyword");
 }
 

@@ -30,7 +30,14 @@ bool isTransient(int error_number) {
 
 ClientConnection::ClientConnection(ClientId id, UniqueFd socket, std::string peer, const robot::CodecParams& codec,
                                    const ClientLimits& limits)
-    : id_(id), socket_(std::move(socket)), peer_(std::move(peer)), codec_(codec), limits_(limits), decoder_(codec) {}
+    : id_(id),
+      socket_(std::move(socket)),
+      peer_(std::move(peer)),
+      codec_(codec),
+      limits_(limits),
+      decoder_(codec),
+      idle_since_(Clock::now()),
+      bad_requests_(id, peer_, limits.bad_request_log_interval) {}
 
 void ClientConnection::markClosing(const std::string& reason) {
   if (close_reason_.empty()) close_reason_ = reason;
@@ -44,6 +51,7 @@ void ClientConnection::receive() {
     if (!isTransient(errno)) markClosing("receive failed: " + errnoText(errno));
     return;
   }
+  idle_since_ = Clock::now();
   decoder_.feed(chunk, static_cast<std::size_t>(got));
   if (decoder_.buffered() > limits_.max_buffered_input) {
     markClosing("more than " + std::to_string(limits_.max_buffered_input) + " bytes of an incomplete request");
@@ -66,7 +74,7 @@ std::optional<robot::Request> ClientConnection::takeNextRequest() {
       outstanding_ = message->request->command;
       return std::move(message->request);
     }
-    serverLogger()->info("client {} ({}): {}: {}", id_, peer_, robot::statusName(message->error), message->detail);
+    bad_requests_.record(*message, Clock::now());
     queueOutput(encodeOrInternalError(errorReply(*message)));
   }
   return std::nullopt;
@@ -80,6 +88,7 @@ bool ClientConnection::answer(const robot::Reply& reply) {
                          robot::commandKeyword(*outstanding_));
   }
   outstanding_.reset();
+  idle_since_ = Clock::now();  // a robot that waited long for a cycle is not idle for it
   queueOutput(encodeOrInternalError(reply));
   return true;
 }
@@ -106,6 +115,22 @@ void ClientConnection::checkBacklog() {
   if (waiting > limits_.max_queued_requests) {
     markClosing(std::to_string(waiting) + " requests waiting for replies (at most " +
                 std::to_string(limits_.max_queued_requests) + ")");
+  }
+}
+
+std::optional<ClientConnection::Clock::time_point> ClientConnection::nextDeadline() const {
+  std::optional<Clock::time_point> deadline = bad_requests_.summaryDue();
+  if (limits_.idle_timeout.count() > 0 && !hasRequestOutstanding() && !closing()) {
+    const Clock::time_point idle_end = idle_since_ + limits_.idle_timeout;
+    if (!deadline || idle_end < *deadline) deadline = idle_end;
+  }
+  return deadline;
+}
+
+void ClientConnection::checkTimers(Clock::time_point now) {
+  bad_requests_.flushIfDue(now);
+  if (limits_.idle_timeout.count() > 0 && !hasRequestOutstanding() && now >= idle_since_ + limits_.idle_timeout) {
+    markClosing("idle for " + std::to_string(limits_.idle_timeout.count()) + " ms (idle_timeout_ms)");
   }
 }
 

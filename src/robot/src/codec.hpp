@@ -17,6 +17,7 @@ constexpr double kMillimetresPerMetre = 1000.0;  // poses cross the wire in mill
 // Decoded::command / Reply::command for an unknown ASCII keyword (no enumerator is 0).
 constexpr Command kUnknownAsciiCommand = static_cast<Command>(0);
 constexpr const char* kUnknownKeyword = "UNKNOWN";
+constexpr const char* kUnreadableKeyword = "ERROR";  // Command::Unreadable
 
 // --- names and arguments (protocol.cpp)
 std::optional<Command> commandFromKeyword(std::string_view keyword);  // case-insensitive

@@ -42,6 +42,7 @@ const char* commandKeyword(Command command) {
     case Command::PickFailed: return "FAILED";
     case Command::SelectModel: return "MODEL";
     case Command::Pose: return "POSE";
+    case Command::Unreadable: return detail::kUnreadableKeyword;
   }
   return detail::kUnknownKeyword;
 }
@@ -86,8 +87,7 @@ ByteOrder byteOrderFromName(const std::string& name) {
   throw core::Error("unknown byte order \"" + name + "\" (use big or little)");
 }
 
-void CodecParams::validate() const {
-  const std::string owner = "robot_protocol";
+void CodecParams::validate(const std::string& owner) const {
   core::requireField(max_line_length >= 16 && max_line_length <= 4096, owner, "max_line_length",
                      "in [16, 4096] characters", max_line_length);
   core::requireField(position_decimals >= 0 && position_decimals <= 9, owner, "position_decimals", "in [0, 9]",

@@ -17,6 +17,8 @@ detail::ClientLimits limitsOf(const RobotServerParams& params) {
   limits.max_queued_requests = params.max_queued_requests;
   limits.max_buffered_input = params.max_buffered_input;
   limits.max_buffered_output = params.max_buffered_output;
+  limits.idle_timeout = std::chrono::milliseconds(params.idle_timeout_ms);
+  limits.bad_request_log_interval = std::chrono::milliseconds(params.bad_request_log_interval_ms);
   return limits;
 }
 
@@ -25,6 +27,7 @@ detail::ClientLimits limitsOf(const RobotServerParams& params) {
 RobotServer::Impl::Impl(const RobotServerParams& params, RequestHandler& request_handler)
     : limits(limitsOf(params)),
       max_clients(params.max_clients),
+      keepalive{params.keepalive_idle_s, params.keepalive_interval_s, params.keepalive_count},
       handler(request_handler),
       listener(detail::listenTcp(params.bind_address, params.port)),
       wake_fd(detail::makeEventFd()),
@@ -99,8 +102,7 @@ void RobotServer::setAllowedClients(const std::vector<std::string>& allowed) {
   impl_->allowed = std::move(filter);
 }
 
-void RobotServerParams::validate() const {
-  const std::string owner = "robot_server";
+void RobotServerParams::validate(const std::string& owner) const {
   in_addr address{};
   core::requireField(inet_pton(AF_INET, bind_address.c_str(), &address) == 1, owner, "bind_address", "an IPv4 address",
                      bind_address);
@@ -108,16 +110,26 @@ void RobotServerParams::validate() const {
   // Parsing is the check; the filter itself is built again by the server.
   detail::AddressFilter{allowed_clients, owner + ".allowed_clients"};
   core::requireField(max_clients >= 1, owner, "max_clients", ">= 1", max_clients);
+  core::requireField(idle_timeout_ms >= 0, owner, "idle_timeout_ms", ">= 0 (0: no idle timeout)", idle_timeout_ms);
+  // Linux's limits for TCP_KEEPIDLE, TCP_KEEPINTVL and TCP_KEEPCNT.
+  core::requireField(keepalive_idle_s >= 0 && keepalive_idle_s <= 32767, owner, "keepalive_idle_s",
+                     "in [0, 32767] seconds (0: no keepalive)", keepalive_idle_s);
+  core::requireField(keepalive_interval_s >= 1 && keepalive_interval_s <= 32767, owner, "keepalive_interval_s",
+                     "in [1, 32767] seconds", keepalive_interval_s);
+  core::requireField(keepalive_count >= 1 && keepalive_count <= 127, owner, "keepalive_count", "in [1, 127]",
+                     keepalive_count);
+  core::requireField(bad_request_log_interval_ms >= 1, owner, "bad_request_log_interval_ms", ">= 1",
+                     bad_request_log_interval_ms);
   core::requireField(max_queued_requests >= 1, owner, "max_queued_requests", ">= 1", max_queued_requests);
+  // The codec first: a bad max_line_length is named as itself, not as a buffer that cannot hold it.
+  codec.validate(owner);
   // A request the codec accepts must fit, or every long request would cost the connection.
   core::requireField(max_buffered_input >= codec.max_line_length && max_buffered_input >= robot::kMaxBinaryRequestSize,
-                     owner, "max_buffered_input", ">= codec.max_line_length and the longest binary request",
+                     owner, "max_buffered_input", ">= max_line_length and the longest binary request",
                      max_buffered_input);
   // One reply must fit, or the first reply to a client that is slow to read would cost it.
   core::requireField(max_buffered_output >= robot::kBinaryReplySize && max_buffered_output >= codec.max_line_length,
-                     owner, "max_buffered_output", ">= codec.max_line_length and the binary reply size",
-                     max_buffered_output);
-  codec.validate();
+                     owner, "max_buffered_output", ">= max_line_length and the binary reply size", max_buffered_output);
 }
 
 }  // namespace binpick::robot

@@ -67,15 +67,21 @@ void RobotServer::Impl::applyReplies() {
 
 void RobotServer::Impl::closeClosingClients() {
   for (auto it = clients.begin(); it != clients.end();) {
-    if (!it->second->closing()) {
-      ++it;
-      continue;
-    }
-    std::unique_ptr<detail::ClientConnection> client = std::move(it->second);
-    it = clients.erase(it);
-    client_count.store(clients.size());
-    disconnect(std::move(client));
+    const auto entry = it++;
+    if (entry->second->closing()) closeClient(entry);
   }
+}
+
+void RobotServer::Impl::closeClient(std::map<ClientId, std::unique_ptr<detail::ClientConnection>>::iterator entry) {
+  std::unique_ptr<detail::ClientConnection> client = std::move(entry->second);
+  clients.erase(entry);
+  client_count.store(clients.size());
+  disconnect(std::move(client));
+}
+
+void RobotServer::Impl::checkClientTimers() {
+  const auto now = std::chrono::steady_clock::now();
+  for (auto& entry : clients) entry.second->checkTimers(now);
 }
 
 void RobotServer::Impl::closeAll(const char* reason) {
@@ -85,6 +91,7 @@ void RobotServer::Impl::closeAll(const char* reason) {
 
 void RobotServer::Impl::disconnect(std::unique_ptr<detail::ClientConnection> client) {
   const ClientId id = client->id();
+  client->flushLog();
   detail::serverLogger()->info("client {} ({}) disconnected: {}", id, client->peer(), client->closeReason());
   client.reset();  // the socket closes before the handler hears of it
   try {

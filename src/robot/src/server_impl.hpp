@@ -33,15 +33,24 @@ struct RobotServer::Impl {
   int pollTimeoutMs() const;
   void acceptClients();
   void admit(detail::UniqueFd socket, const sockaddr_in& peer);
+  // max_clients are connected: closes the longest-idle client without a request outstanding;
+  // false (nothing closed) when every client has one.
+  bool makeRoomFor(const std::string& newcomer);
+  void checkClientTimers();
   void serveReadyClients();
   void handOver(detail::ClientConnection& client, const robot::Request& request);
   void applyReplies();
   void closeClosingClients();
+  void closeClient(std::map<ClientId, std::unique_ptr<detail::ClientConnection>>::iterator entry);
   void closeAll(const char* reason);
   void disconnect(std::unique_ptr<detail::ClientConnection> client);
 
   detail::ClientLimits limits;
   int max_clients;
+  // TCP keepalive of client sockets; idle_s 0: off.
+  struct KeepAlive {
+    int idle_s, interval_s, count;
+  } keepalive;
   RequestHandler& handler;
   detail::UniqueFd listener;
   detail::UniqueFd wake_fd;

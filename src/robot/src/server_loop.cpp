@@ -2,8 +2,11 @@
 // and the clients, then accepting, reading, handing requests over and applying replies.
 #include <arpa/inet.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <exception>
+#include <limits>
+#include <optional>
 #include <string>
 
 #include "binpick/core/error.hpp"
@@ -53,6 +56,7 @@ void RobotServer::Impl::serve() {
     }
     applyReplies();
     serveReadyClients();
+    checkClientTimers();
     closeClosingClients();
   }
 }
@@ -73,9 +77,18 @@ std::vector<pollfd> RobotServer::Impl::pollSet(std::vector<ClientId>& client_of_
 
 int RobotServer::Impl::pollTimeoutMs() const {
   const auto now = std::chrono::steady_clock::now();
-  if (now >= accept_paused_until) return -1;
-  const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(accept_paused_until - now);
-  return static_cast<int>(wait.count()) + 1;
+  // The earliest of: accepting resumes, a client's idle timeout, a client's log summary.
+  std::optional<std::chrono::steady_clock::time_point> wake_at;
+  if (now < accept_paused_until) wake_at = accept_paused_until;
+  for (const auto& entry : clients) {
+    const auto deadline = entry.second->nextDeadline();
+    if (deadline && (!wake_at || *deadline < *wake_at)) wake_at = deadline;
+  }
+  if (!wake_at) return -1;
+  if (*wake_at <= now) return 0;
+  const auto wait = std::chrono::duration_cast<std::chrono::milliseconds>(*wake_at - now).count();
+  // One more millisecond: poll() may not return before the deadline, rounded down, has passed.
+  return static_cast<int>(std::min<long long>(wait, std::numeric_limits<int>::max() - 1)) + 1;
 }
 
 void RobotServer::Impl::acceptClients() {
@@ -115,15 +128,39 @@ void RobotServer::Impl::admit(detail::UniqueFd socket, const sockaddr_in& peer) 
     log->warn("refused {}: not in allowed_clients", peer_text);
     return;  // the socket closes here
   }
-  if (clients.size() >= static_cast<std::size_t>(max_clients)) {
-    log->warn("refused {}: {} clients already connected (max_clients)", peer_text, clients.size());
+  if (clients.size() >= static_cast<std::size_t>(max_clients) && !makeRoomFor(peer_text)) {
+    log->warn("refused {}: all {} clients have a request outstanding (max_clients)", peer_text, clients.size());
     return;
   }
   detail::setNoDelay(socket.get());
+  if (keepalive.idle_s > 0 &&
+      !detail::setKeepAlive(socket.get(), keepalive.idle_s, keepalive.interval_s, keepalive.count)) {
+    log->warn("client from {}: cannot enable TCP keepalive: {}", peer_text, detail::errnoText(errno));
+  }
   const ClientId id = next_id++;
   clients.emplace(id, std::make_unique<detail::ClientConnection>(id, std::move(socket), peer_text, codec_now, limits));
   client_count.store(clients.size());
   log->info("client {} connected from {}", id, peer_text);
+}
+
+bool RobotServer::Impl::makeRoomFor(const std::string& newcomer) {
+  // A robot waiting for a reply keeps its slot; of the others, the one silent longest goes (a
+  // controller that was switched off without closing, or a connection that never said anything).
+  auto victim = clients.end();
+  for (auto it = clients.begin(); it != clients.end(); ++it) {
+    if (it->second->hasRequestOutstanding()) continue;
+    if (victim == clients.end() || it->second->idleSince() < victim->second->idleSince()) victim = it;
+  }
+  if (victim == clients.end()) return false;
+  detail::ClientConnection& client = *victim->second;
+  const double idle_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - client.idleSince()).count();
+  detail::serverLogger()->warn(
+      "max_clients ({}) connected: closing client {} ({}), idle for {:.1f} s without a request outstanding, to "
+      "make room for {}",
+      max_clients, client.id(), client.peer(), idle_s, newcomer);
+  client.markClosing("closed to make room for " + newcomer + " (max_clients; the longest idle)");
+  closeClient(victim);
+  return true;
 }
 
 }  // namespace binpick::robot

@@ -42,6 +42,10 @@ void drainEventFd(int fd);
 UniqueFd acceptClient(int listen_fd, sockaddr_in& peer);
 // Requests leave at once instead of waiting for Nagle's algorithm to fill a segment.
 void setNoDelay(int fd);
+// SO_KEEPALIVE with TCP_KEEPIDLE, TCP_KEEPINTVL and TCP_KEEPCNT: a peer that died without closing
+// (power cut, cable pulled) is noticed after idle_s + interval_s * count seconds of silence.
+// False with errno set when the kernel refused an option.
+bool setKeepAlive(int fd, int idle_s, int interval_s, int count);
 
 std::string errnoText(int error_number);
 

@@ -68,6 +68,26 @@ TEST(CellConfig, PickingReadsEveryGripperKeyAndTheRankingWeights) {
             picking::PickOrder::BestRank);
 }
 
+TEST(CellConfig, RobotConnectionSettingsAreRead) {
+  const robot::RobotServerParams defaults;
+  const robot::RobotServerParams example = loadCellConfig(std::string(BINPICK_CONFIG_DIR) + "/binpickd.yaml").robot;
+  EXPECT_EQ(example.idle_timeout_ms, defaults.idle_timeout_ms);
+  EXPECT_EQ(example.keepalive_idle_s, defaults.keepalive_idle_s);
+  EXPECT_EQ(example.keepalive_interval_s, defaults.keepalive_interval_s);
+  EXPECT_EQ(example.keepalive_count, defaults.keepalive_count);
+  EXPECT_EQ(example.bad_request_log_interval_ms, defaults.bad_request_log_interval_ms);
+  const robot::RobotServerParams read = parse(kMinimal +
+                                              "robot: {idle_timeout_ms: 0, keepalive_idle_s: 5, "
+                                              "keepalive_interval_s: 2, keepalive_count: 4, "
+                                              "bad_request_log_interval_ms: 1000}\n")
+                                            .robot;
+  EXPECT_EQ(read.idle_timeout_ms, 0);
+  EXPECT_EQ(read.keepalive_idle_s, 5);
+  EXPECT_EQ(read.keepalive_interval_s, 2);
+  EXPECT_EQ(read.keepalive_count, 4);
+  EXPECT_EQ(read.bad_request_log_interval_ms, 1000);
+}
+
 TEST(CellConfig, RelativePathsAreRelativeToTheFile) {
   const CellConfig config = parse(kMinimal);
   EXPECT_EQ(config.source.replay.path, "/base/captures");
@@ -107,6 +127,15 @@ TEST(CellConfig, MistakesNameTheKey) {
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {orientation: euler}\n"); }, "robot.orientation"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {framing: json}\n"); }, "robot.framing"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "limits: {capture_timeout_ms: 0}\n"); }, "capture_timeout_ms"));
+  // The robot server's checks name the keys as the file spells them, under robot:.
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {allowed_clients: [\"300.1.1.1\"]}\n"); },
+                           "robot.allowed_clients entry \"300.1.1.1\""));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {max_clients: 0}\n"); }, "robot.max_clients must be >= 1"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {bind_address: here}\n"); }, "robot.bind_address"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {max_line_length: 8}\n"); }, "robot.max_line_length"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {position_decimals: 12}\n"); }, "robot.position_decimals"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {idle_timeout_ms: -1}\n"); }, "robot.idle_timeout_ms must"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {keepalive_count: 0}\n"); }, "robot.keepalive_count must"));
   EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "picking: {order: random}\n"); }, "picking.order"));
   EXPECT_TRUE(
       throwsNaming([] { parse(kMinimal + "picking: {gripper: {tool_radius: -1}}\n"); }, "picking.gripper.tool_radius"));

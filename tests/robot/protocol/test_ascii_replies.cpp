@@ -152,6 +152,30 @@ TEST(ProtocolAsciiReply, MalformedRepliesThrowNamingTheProblem) {
   EXPECT_EQ(decoder.next()->command, Command::Ping);
 }
 
+// What `binpick robot-client` and a robot read for a line the service could not read.
+TEST(ProtocolAsciiReply, TheErrorReplyReadsBackInBothFramings) {
+  const Reply unreadable{Command::Unreadable, Status::BadMessage};
+  for (const Framing framing : {Framing::Ascii, Framing::Binary}) {
+    CodecParams params;
+    params.framing = framing;
+    const std::string bytes = encodeReply(unreadable, params);
+    if (framing == Framing::Ascii) {
+      EXPECT_EQ(bytes, "ERROR,8\r\n");
+    }
+    const Reply back = decodeReply(bytes, params);
+    EXPECT_EQ(back.command, Command::Unreadable);
+    EXPECT_EQ(back.status, Status::BadMessage);
+    EXPECT_FALSE(back.T_base_tool);
+  }
+  EXPECT_TRUE(test::throwsNaming(
+      [] {
+        ReplyDecoder decoder(CodecParams{});
+        decoder.feed("ERROR,0\r\n", 9);
+        decoder.next();
+      },
+      "no command"));
+}
+
 TEST(ProtocolAsciiReply, RepliesTheEncoderCannotStandForAreRefused) {
   const CodecParams params;
   const Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

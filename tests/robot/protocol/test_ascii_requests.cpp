@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "binpick/core/error.hpp"
 #include "binpick/robot/protocol.hpp"
 
 namespace binpick::robot {
@@ -95,24 +96,59 @@ TEST(ProtocolAsciiRequest, BadArgumentsAreBadMessagesOfThatCommand) {
   expectRefused("MODEL,two words\r\n", Status::BadMessage, Command::SelectModel);
   expectRequest("MODEL," + std::string(32, 'm') + "\r\n", Command::SelectModel, std::string(32, 'm'));
   expectRefused("MODEL," + std::string(33, 'm') + "\r\n", Status::BadMessage, Command::SelectModel);
-  expectRefused(",PING\r\n", Status::BadMessage, Command::Ping);
+  expectRefused(",PING\r\n", Status::BadMessage, Command::Unreadable);
 }
 
 TEST(ProtocolAsciiRequest, ControlAndNonAsciiBytesAreBadMessages) {
-  expectRefused(std::string("PI\0NG\r\n", 7), Status::BadMessage, Command::Ping);
+  expectRefused(std::string("PI\0NG\r\n", 7), Status::BadMessage, Command::Unreadable);
   expectRefused("PING\t\r\n", Status::BadMessage, Command::Ping);
   expectRefused("PING\r\r\n", Status::BadMessage, Command::Ping);
   expectRefused("TRIGGER,b\x7f\r\n", Status::BadMessage, Command::Trigger);
   expectRefused("MODEL,\xc3\xa4\r\n", Status::BadMessage, Command::SelectModel);
-  expectRefused("\xff\xfe\r\n", Status::BadMessage, Command::Ping);
+  expectRefused("\xff\xfe\r\n", Status::BadMessage, Command::Unreadable);
+}
+
+// The reply to what the server decodes from `line`.
+std::string answerTo(const std::string& line) {
+  const Decoded decoded = decodeOne(line);
+  EXPECT_FALSE(decoded.request) << line;
+  return encodeReply(Reply{decoded.command, decoded.error}, CodecParams{});
+}
+
+// A robot matching replies to requests must never read a reply naming a command it did not send.
+TEST(ProtocolAsciiRequest, LinesWithoutAReadableKeywordAreAnsweredError) {
+  EXPECT_EQ(answerTo(",,,\r\n"), "ERROR,8\r\n");
+  EXPECT_EQ(answerTo("\x01\x02\r\n"), "ERROR,8\r\n");
+  EXPECT_EQ(answerTo(std::string("\0\r\n", 3)), "ERROR,8\r\n");
+  EXPECT_EQ(answerTo(std::string("NE\0XT\r\n", 7)), "ERROR,8\r\n");
+  EXPECT_EQ(answerTo(std::string("HELLO\0\r\n", 8)), "ERROR,8\r\n");   // cut short: no keyword read
+  EXPECT_EQ(answerTo(std::string(100, 'A') + "\r\n"), "ERROR,8\r\n");  // over the line limit
+  EXPECT_EQ(answerTo("HELLO," + std::string(100, 'A') + "\r\n"), "ERROR,8\r\n");
+  // A known keyword ended by a garbage byte was that command, garbled: it keeps its keyword.
+  EXPECT_EQ(answerTo(std::string("NEXT\0\r\n", 7)), "NEXT,8\r\n");
+  EXPECT_EQ(answerTo("TRIGGER\xff\r\n"), "TRIGGER,8\r\n");
+  EXPECT_EQ(answerTo(" next \x01 \r\n"), "NEXT,8\r\n");
+  EXPECT_EQ(answerTo("NEXT\x01" + std::string(100, 'A') + "\r\n"), "NEXT,8\r\n");  // over the limit
+  // A readable keyword naming no command stays an unknown command.
+  EXPECT_EQ(answerTo("HELLO\r\n"), "UNKNOWN,7\r\n");
+  EXPECT_EQ(answerTo("HELLO,\x01\r\n"), "UNKNOWN,7\r\n");
+}
+
+TEST(ProtocolAsciiRequest, ErrorIsAReplyNeverARequest) {
+  EXPECT_FALSE(isKnownCommand(Command::Unreadable));
+  EXPECT_EQ(std::string(commandKeyword(Command::Unreadable)), "ERROR");
+  EXPECT_EQ(decodeOne("ERROR\r\n").error, Status::UnknownCommand);
+  EXPECT_THROW(encodeRequest(Request{Command::Unreadable, std::nullopt}, CodecParams{}), core::Error);
+  EXPECT_THROW(encodeReply(Reply{Command::Unreadable, Status::Ok}, CodecParams{}), core::Error);
 }
 
 // 80 characters including "\r\n" or "\n" pass; 81 are one BadMessage, then the next line counts.
 TEST(ProtocolAsciiRequest, LinesLongerThanTheLimitAreOneBadMessage) {
   expectRequest("PING" + std::string(74, ' ') + "\r\n", Command::Ping);
   expectRequest("PING" + std::string(75, ' ') + "\n", Command::Ping);
+  // The keyword counts when its end (a comma, a control byte such as '\r') came within the limit.
   expectRefused("PING" + std::string(75, ' ') + "\r\n", Status::BadMessage, Command::Ping);
-  expectRefused("PING" + std::string(76, ' ') + "\n", Status::BadMessage, Command::Ping);
+  expectRefused("PING" + std::string(76, ' ') + "\n", Status::BadMessage, Command::Unreadable);
   const std::vector<Decoded> all = decodeAll("TRIGGER," + std::string(5000, 'x') + "\r\nNEXT\r\n");
   ASSERT_EQ(all.size(), 2u);
   EXPECT_EQ(all[0].error, Status::BadMessage);

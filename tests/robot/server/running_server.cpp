@@ -1,7 +1,6 @@
 #include "running_server.hpp"
 
 #include <gtest/gtest.h>
-#include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -23,8 +22,7 @@ robot::RobotServerParams loopbackParams() {
 }
 
 RunningServer::RunningServer(const robot::RobotServerParams& params, Answer answer) : handler_(answer) {
-  // Connection notices of thousands of test connections would bury the failures.
-  spdlog::set_level(spdlog::level::warn);
+  quietServerLogs();
   server_ = std::make_unique<robot::RobotServer>(params, handler_);
   handler_.attach(*server_);
   std::promise<void> finished;

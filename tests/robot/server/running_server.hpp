@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "binpick/robot/robot_server.hpp"
+#include "log_capture.hpp"
 #include "test_client.hpp"
 #include "test_handler.hpp"
 

@@ -1,9 +1,14 @@
-// Connections coming and going: allow-list, max_clients, clients leaving mid-request, stop(),
-// stray replies, and no descriptor left behind.
+// Connections coming and going: allow-list, max_clients and who makes room, the idle timeout and
+// keepalive, clients leaving mid-request, stop(), stray replies, and no descriptor left behind.
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
 
+#include <chrono>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "running_server.hpp"
@@ -44,21 +49,134 @@ TEST(server_lifecycle, AllowListDecidesWhoIsServed) {
   EXPECT_EQ(running.handler().handledCount(), 6u);
 }
 
-TEST(server_lifecycle, ConnectionsBeyondMaxClientsAreClosedAtOnce) {
+TEST(server_lifecycle, ANewcomerBeyondMaxClientsReplacesTheLongestIdleClient) {
   robot::RobotServerParams params = loopbackParams();
   params.max_clients = 2;
   RunningServer running(params);
-  auto first = std::make_unique<TestClient>(running.port());
+  TestClient first(running.port());
   TestClient second(running.port());
-  EXPECT_EQ(first->roundTrip(request(Command::Ping)).status, Status::Ok);
+  EXPECT_EQ(first.roundTrip(request(Command::Ping)).status, Status::Ok);
   EXPECT_EQ(second.roundTrip(request(Command::Ping)).status, Status::Ok);
-  TestClient third(running.port());
-  EXPECT_TRUE(third.waitForClose());
 
-  first.reset();
-  ASSERT_TRUE(running.waitForClientCount(1));
-  TestClient fourth(running.port());
-  EXPECT_EQ(fourth.roundTrip(request(Command::Ping)).status, Status::Ok);
+  TestClient third(running.port());
+  EXPECT_EQ(third.roundTrip(request(Command::Ping)).status, Status::Ok);
+  EXPECT_TRUE(first.waitForClose());  // its reply came first: idle longest
+  EXPECT_EQ(second.roundTrip(request(Command::Ping)).status, Status::Ok);
+  EXPECT_EQ(running.handler().disconnectedClients().size(), 1u);
+}
+
+// Eight connections that never say anything, or controllers that were switched off without
+// closing, must not lock the robot out.
+TEST(server_lifecycle, SilentConnectionsFillingMaxClientsDoNotLockRobotsOut) {
+  RunningServer running(loopbackParams());  // max_clients 8, no allow-list
+  std::vector<std::unique_ptr<TestClient>> silent;
+  for (int i = 0; i < robot::RobotServerParams().max_clients; ++i) {
+    silent.push_back(std::make_unique<TestClient>(running.port()));
+  }
+  ASSERT_TRUE(running.waitForClientCount(silent.size()));
+  // A robot rebooting over and over, never closing its old connections.
+  std::vector<std::unique_ptr<TestClient>> reboots;
+  for (int boot = 0; boot < 12; ++boot) {
+    reboots.push_back(std::make_unique<TestClient>(running.port()));
+    ASSERT_NO_THROW(EXPECT_EQ(reboots.back()->roundTrip(request(Command::Ping)).status, Status::Ok)) << boot;
+  }
+  for (const auto& connection : silent) EXPECT_TRUE(connection->waitForClose());
+  EXPECT_EQ(running.server().clientCount(), 8u);
+}
+
+TEST(server_lifecycle, ClientsWaitingForAReplyKeepTheirSlots) {
+  robot::RobotServerParams params = loopbackParams();
+  params.max_clients = 2;
+  RunningServer running(params, Answer::ByTheTest);
+  TestClient waiting(running.port());
+  waiting.send(request(Command::Trigger));
+  const auto [waiting_id, trigger] = running.handler().waitForRequest();
+  TestClient idle(running.port());
+  ASSERT_TRUE(running.waitForClientCount(2));
+
+  // The idle one makes room, although the waiting one connected earlier.
+  TestClient newcomer(running.port());
+  EXPECT_TRUE(idle.waitForClose());
+  newcomer.send(request(Command::Ping));
+  const auto [newcomer_id, ping] = running.handler().waitForRequest();
+  ASSERT_TRUE(running.waitForClientCount(2));
+
+  // Both have a request with the handler now: a further connection is refused.
+  TestClient refused(running.port());
+  EXPECT_TRUE(refused.waitForClose());
+  running.handler().answer(waiting_id, trigger);
+  running.handler().answer(newcomer_id, ping);
+  EXPECT_EQ(waiting.receiveReply().command, Command::Trigger);
+  EXPECT_EQ(newcomer.receiveReply().command, Command::Ping);
+}
+
+TEST(server_lifecycle, IdleClientsAreDisconnectedAfterIdleTimeout) {
+  robot::RobotServerParams params = loopbackParams();
+  params.idle_timeout_ms = 300;
+  RunningServer running(params, Answer::ByTheTest);
+  TestClient silent(running.port());
+  EXPECT_TRUE(silent.waitForClose());
+
+  // A request with the handler longer than the timeout does not count as idle, and the timeout
+  // starts again with the reply.
+  TestClient waiting(running.port());
+  waiting.send(request(Command::Trigger));
+  const auto [id, trigger] = running.handler().waitForRequest();
+  std::this_thread::sleep_for(std::chrono::milliseconds(3 * params.idle_timeout_ms));
+  running.handler().answer(id, trigger);
+  EXPECT_EQ(waiting.receiveReply().command, Command::Trigger);
+  EXPECT_TRUE(waiting.waitForClose());
+  ASSERT_TRUE(running.handler().waitForDisconnects(2));
+  EXPECT_EQ(running.server().clientCount(), 0u);
+}
+
+TEST(server_lifecycle, ClientsTalkingWithinTheIdleTimeoutStay) {
+  robot::RobotServerParams params = loopbackParams();
+  params.idle_timeout_ms = 2000;
+  RunningServer running(params);
+  TestClient robot(running.port());
+  // Longer than the timeout in all, each pause far shorter.
+  for (int i = 0; i < 12; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(params.idle_timeout_ms / 8));
+    ASSERT_EQ(robot.roundTrip(request(Command::Ping)).status, Status::Ok) << i;
+  }
+  EXPECT_TRUE(running.handler().disconnectedClients().empty());
+}
+
+// A dead peer is noticed by TCP keepalive: the options are set on the server's end.
+TEST(server_lifecycle, ClientSocketsUseTcpKeepalive) {
+  const robot::RobotServerParams defaults;
+  EXPECT_LE(defaults.keepalive_idle_s + defaults.keepalive_interval_s * defaults.keepalive_count, 60);
+  robot::RobotServerParams params = loopbackParams();
+  params.keepalive_idle_s = 7;
+  params.keepalive_interval_s = 3;
+  params.keepalive_count = 4;
+  RunningServer running(params);
+  TestClient client(running.port());
+  EXPECT_EQ(client.roundTrip(request(Command::Ping)).status, Status::Ok);
+  const int fd = serverSideSocket(running.port(), client.localPort());
+  ASSERT_GE(fd, 0);
+  auto option = [fd](int level, int name) {
+    int value = -1;
+    socklen_t length = sizeof value;
+    ::getsockopt(fd, level, name, &value, &length);
+    return value;
+  };
+  EXPECT_EQ(option(SOL_SOCKET, SO_KEEPALIVE), 1);
+  EXPECT_EQ(option(IPPROTO_TCP, TCP_KEEPIDLE), 7);
+  EXPECT_EQ(option(IPPROTO_TCP, TCP_KEEPINTVL), 3);
+  EXPECT_EQ(option(IPPROTO_TCP, TCP_KEEPCNT), 4);
+
+  params.keepalive_idle_s = 0;  // off
+  RunningServer without(params);
+  TestClient other(without.port());
+  EXPECT_EQ(other.roundTrip(request(Command::Ping)).status, Status::Ok);
+  const int other_fd = serverSideSocket(without.port(), other.localPort());
+  ASSERT_GE(other_fd, 0);
+  int keepalive = -1;
+  socklen_t length = sizeof keepalive;
+  ::getsockopt(other_fd, SOL_SOCKET, SO_KEEPALIVE, &keepalive, &length);
+  EXPECT_EQ(keepalive, 0);
 }
 
 TEST(server_lifecycle, ClientLeavingWithARequestOutstanding) {

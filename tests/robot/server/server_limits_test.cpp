@@ -35,6 +35,64 @@ TEST(server_limits, GarbageGetsErrorRepliesInOrderAndTheConnectionSurvives) {
   EXPECT_EQ(ping.status, Status::Ok);
 }
 
+// A robot matching replies to its requests must never read a reply naming a command it did not
+// send: a line without a readable keyword is answered "ERROR,8".
+TEST(server_limits, UnreadableLinesAreAnsweredWithErrorNeverAnotherCommand) {
+  RunningServer running(loopbackParams());
+  TestClient client(running.port());
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {",,,", "ERROR"},
+      {std::string("NEXT\0", 5), "NEXT"},  // a NEXT, garbled: its own keyword
+      {"TRIGGER\xff", "TRIGGER"},
+      {"\x01\x02", "ERROR"},
+      {std::string("NE\0XT", 5), "ERROR"},
+      {std::string(100, 'A'), "ERROR"},  // longer than max_line_length
+      {"NEXT," + std::string(100, 'A'), "NEXT"},
+  };
+  for (const auto& [line, keyword] : cases) {
+    client.sendBytes(line + "\r\n");
+    const robot::Reply reply = client.receiveReply();
+    EXPECT_EQ(std::string(robot::commandKeyword(reply.command)), keyword) << line;
+    EXPECT_EQ(reply.status, Status::BadMessage) << line;
+  }
+  EXPECT_EQ(client.roundTrip(request(Command::Ping)).status, Status::Ok);
+}
+
+// A program stuck sending garbage must not flood the journal: a few lines, then summaries.
+TEST(server_limits, BadRequestsOfAClientAreLoggedRateLimited) {
+  const RobotLogCapture log;
+  RunningServer running(loopbackParams());
+  TestClient client(running.port());
+  std::string garbage;
+  for (int i = 0; i < 100; ++i) garbage += "HELLO" + std::to_string(i) + "\r\n";
+  client.sendBytes(garbage);
+  for (int i = 0; i < 100; ++i) ASSERT_EQ(client.receiveReply().status, Status::UnknownCommand);
+  EXPECT_EQ(client.roundTrip(request(Command::Ping)).status, Status::Ok);
+  EXPECT_EQ(log.countContaining("unknown command 'HELLO"), static_cast<std::size_t>(robot::kBadRequestsLoggedInFull));
+  // What was not logged is told when the client leaves.
+  client.close();
+  ASSERT_TRUE(running.handler().waitForDisconnects(1));
+  EXPECT_EQ(log.countContaining("95 more bad requests suppressed"), 1u);
+}
+
+TEST(server_limits, BadRequestSummariesComeOncePerInterval) {
+  const RobotLogCapture log;
+  robot::RobotServerParams params = loopbackParams();
+  params.bad_request_log_interval_ms = 200;
+  RunningServer running(params);
+  TestClient client(running.port());
+  for (int burst : {20, 3}) {
+    for (int i = 0; i < burst; ++i) client.sendBytes(",,,\r\n");
+    for (int i = 0; i < burst; ++i) ASSERT_EQ(client.receiveReply().status, Status::BadMessage);
+    // Nothing more arrives: the summary comes when the interval ends, not with the next request.
+    const std::string summary =
+        std::to_string(burst == 20 ? burst - robot::kBadRequestsLoggedInFull : burst) + " more bad requests suppressed";
+    EXPECT_TRUE(log.waitFor(summary)) << summary;
+  }
+  EXPECT_EQ(log.countContaining("no keyword"), static_cast<std::size_t>(robot::kBadRequestsLoggedInFull) + 2);
+  EXPECT_EQ(log.countContaining("suppressed"), 2u);
+}
+
 TEST(server_limits, ErrorRepliesWaitBehindTheRequestWithTheHandler) {
   RunningServer running(loopbackParams(), Answer::ByTheTest);
   TestClient client(running.port());

@@ -33,6 +33,31 @@ TEST(server_params, ValidateNamesTheField) {
   EXPECT_TRUE(refusedNaming([](P& p) { p.max_buffered_input = 40; }, "robot_server.max_buffered_input"));
   EXPECT_TRUE(refusedNaming([](P& p) { p.max_buffered_output = 40; }, "robot_server.max_buffered_output"));
   EXPECT_TRUE(refusedNaming([](P& p) { p.codec.position_decimals = -1; }, "position_decimals"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.idle_timeout_ms = -1; }, "robot_server.idle_timeout_ms"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.keepalive_idle_s = -1; }, "robot_server.keepalive_idle_s"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.keepalive_idle_s = 40000; }, "robot_server.keepalive_idle_s"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.keepalive_interval_s = 0; }, "robot_server.keepalive_interval_s"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.keepalive_count = 0; }, "robot_server.keepalive_count"));
+  EXPECT_TRUE(refusedNaming([](P& p) { p.keepalive_count = 128; }, "robot_server.keepalive_count"));
+  EXPECT_TRUE(
+      refusedNaming([](P& p) { p.bad_request_log_interval_ms = 0; }, "robot_server.bad_request_log_interval_ms"));
+  robot::RobotServerParams off = loopbackParams();
+  off.idle_timeout_ms = 0;
+  off.keepalive_idle_s = 0;
+  EXPECT_EQ(thrownMessage([&] { off.validate(); }), "");
+}
+
+// Read from a settings file, the fields are named as that file's section spells them.
+TEST(server_params, ValidateNamesTheOwnerItIsGiven) {
+  robot::RobotServerParams params = loopbackParams();
+  params.max_clients = 0;
+  EXPECT_TRUE(throwsNaming([&] { params.validate("robot"); }, "robot.max_clients must be >= 1"));
+  params = loopbackParams();
+  params.allowed_clients = {"300.1.1.1"};
+  EXPECT_TRUE(throwsNaming([&] { params.validate("robot"); }, "robot.allowed_clients entry \"300.1.1.1\""));
+  params = loopbackParams();
+  params.codec.max_line_length = 5000;  // named as itself, not as a buffer too small for it
+  EXPECT_TRUE(throwsNaming([&] { params.validate("robot"); }, "robot.max_line_length"));
 }
 
 TEST(server_params, MalformedAllowListEntriesAreNamed) {

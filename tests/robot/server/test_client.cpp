@@ -7,8 +7,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <exception>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace binpick::test {
@@ -46,6 +49,38 @@ std::size_t openDescriptorCount() {
   return count;
 }
 
+namespace {
+
+int portOf(const sockaddr_in& address) { return ntohs(address.sin_port); }
+
+// The local (or, with getpeername, the remote) address of a socket; nothing for other descriptors.
+template <typename Get>
+std::optional<sockaddr_in> addressOf(int fd, Get get) {
+  sockaddr_in address{};
+  socklen_t length = sizeof address;
+  if (get(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0 || address.sin_family != AF_INET) {
+    return std::nullopt;
+  }
+  return address;
+}
+
+}  // namespace
+
+int serverSideSocket(int server_port, int client_port) {
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/fd")) {
+    int fd = -1;
+    try {
+      fd = std::stoi(entry.path().filename().string());
+    } catch (const std::exception&) {
+      continue;
+    }
+    const std::optional<sockaddr_in> local = addressOf(fd, ::getsockname);
+    const std::optional<sockaddr_in> remote = addressOf(fd, ::getpeername);
+    if (local && remote && portOf(*local) == server_port && portOf(*remote) == client_port) return fd;
+  }
+  return -1;
+}
+
 TestClient::TestClient(int port, const robot::CodecParams& codec, int receive_buffer) : codec_(codec), decoder_(codec) {
   fd_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
   if (fd_ < 0) throw std::runtime_error("socket failed");
@@ -65,6 +100,11 @@ TestClient::TestClient(int port, const robot::CodecParams& codec, int receive_bu
 }
 
 TestClient::~TestClient() { close(); }
+
+int TestClient::localPort() const {
+  const std::optional<sockaddr_in> local = addressOf(fd_, ::getsockname);
+  return local ? portOf(*local) : -1;
+}
 
 void TestClient::close() {
   if (fd_ >= 0) ::close(fd_);

@@ -12,6 +12,9 @@ namespace binpick::test {
 robot::CodecParams binaryCodec();
 robot::Request request(robot::Command command, std::optional<std::string> argument = {});
 std::size_t openDescriptorCount();  // of this process
+// The server's end of the connection from loopback port `client_port` to `server_port`, found
+// among this process's descriptors (the servers under test run in it); -1 when there is none.
+int serverSideSocket(int server_port, int client_port);
 
 class TestClient {
  public:
@@ -29,6 +32,7 @@ class TestClient {
   // Reads and discards until the server closes (true) or nothing arrives for the timeout.
   bool waitForClose();
   void close();
+  int localPort() const;
 
  private:
   int fd_ = -1;

@@ -33,6 +33,10 @@ enum class Command : int32_t {
   PickFailed = 5,   // FAILED[,object]: that object (default: the last one handed out) is avoided
   SelectModel = 6,  // MODEL,name|index: the recipe for the next cycles
   Pose = 7,         // POSE,x,y,z,v1,v2,v3[,v4]: the robot's flange pose, for a hand-eye view
+  // Replies only: the answer to a line in which no command could be read ("ERROR,8"), so that a
+  // robot matching replies to its requests never reads one it did not send. No request has it;
+  // the binary framing never needs it (every message starts with an id, which is echoed).
+  Unreadable = -1,
 };
 
 // Wire values are fixed: never renumber.
@@ -55,9 +59,9 @@ enum class Status : int32_t {
 };
 
 // A Command outside the enumerators stands for an unknown command (see Decoded): "UNKNOWN".
-const char* commandKeyword(Command command);  // "PING", "STATUS", ..., "UNKNOWN"
+const char* commandKeyword(Command command);  // "PING", "STATUS", ..., "ERROR", "UNKNOWN"
 const char* statusName(Status status);        // "ok", "no_objects", ...; "unknown" if none
-bool isKnownCommand(Command command);         // one of the enumerators above
+bool isKnownCommand(Command command);         // a request's command: an enumerator but Unreadable
 
 // Arguments: TRIGGER and MODEL take a model name or index, FAILED an object id (decimal, at most
 // 2147483647, stored without leading zeros), PING, STATUS, NEXT and POSE none; MODEL requires
@@ -107,7 +111,8 @@ struct CodecParams {
   ByteOrder byte_order = ByteOrder::Big;
   double position_scale = 100.0;       // per millimetre (0.01 mm resolution)
   double orientation_scale = 10000.0;  // per orientation unit
-  void validate() const;               // throws core::Error naming the field
+  // Throws core::Error naming owner.FIELD; the owner is where the settings were read from.
+  void validate(const std::string& owner = "robot_protocol") const;
 };
 
 // Binary sizes: a request is {command, argument}, except POSE's {command, x, y, z, 4 orientation
@@ -119,11 +124,12 @@ constexpr std::size_t kMaxBinaryRequestSize = kBinaryPoseRequestSize;
 constexpr std::size_t kBinaryReplySize = 12 * 4;
 
 // A decoded request, or why the bytes were not one. `command` is known for an error reply
-// whenever the keyword or id could be read (else Ping is echoed with BadMessage; an oversized
-// line's keyword counts as read when its comma came within max_line_length). For
-// UnknownCommand it is not an enumerator: the raw id (binary) or 0 (ASCII), so that
-// encodeReply(Reply{decoded.command, decoded.error}, params) echoes the id the robot sent
-// (binary) or answers "UNKNOWN,7" (ASCII).
+// whenever the keyword or id could be read; else it is Unreadable with BadMessage ("ERROR,8").
+// An ASCII keyword is read up to the first ',' or byte outside 0x20..0x7e: "NEXT\0" is a bad
+// NEXT ("NEXT,8"), "\x01\x02", ",,," or "NE\0XT" unreadable; an oversized line's keyword counts
+// only when such a byte or its comma came within max_line_length. For UnknownCommand it is no
+// request's command: the raw id (binary) or 0 (ASCII), so that encodeReply(Reply{decoded.command,
+// decoded.error}, params) echoes the id the robot sent (binary) or answers "UNKNOWN,7" (ASCII).
 struct Decoded {
   std::optional<Request> request;
   Status error = Status::Ok;  // UnknownCommand or BadMessage when !request
@@ -136,7 +142,8 @@ struct Decoded {
 // longer than max_line_length (terminator included) is one BadMessage and is skipped up to its
 // end; a line holding a byte below 0x20 (other than the terminator) or above 0x7e is BadMessage;
 // keywords are case-insensitive, spaces around keyword and argument are trimmed, a blank line
-// is ignored, an unknown keyword is UnknownCommand, a second argument or a bad one BadMessage.
+// is ignored, an unknown keyword is UnknownCommand (one cut short by such a byte, or none at
+// all, is Unreadable), a second argument or a bad one BadMessage.
 // POSE needs exactly x, y, z and the convention's orientation values, each a finite decimal
 // number (from_chars syntax: no '+', no "nan" or "inf"), else BadMessage; a zero quaternion is
 // BadMessage too. Binary: the first int32 is the command id; POSE's id makes the request
@@ -186,8 +193,9 @@ std::string encodeReply(const Reply& reply, const CodecParams& params);
 // longer than max_line_length. Stateless: thread-safe.
 std::string encodeRequest(const Request& request, const CodecParams& params);
 
-// The inverse of encodeReply: pose rebuilt with rotationFromValues; "UNKNOWN" and unknown binary
-// ids (only with UnknownCommand or BadMessage) come back as Decoded's non-enumerator commands.
+// The inverse of encodeReply: pose rebuilt with rotationFromValues; "ERROR" comes back as
+// Unreadable, "UNKNOWN" and unknown binary ids as Decoded's non-enumerator commands (each only
+// with UnknownCommand or BadMessage).
 // The binary framing always yields three integers (unused ones 0). A blank ASCII line is
 // skipped; a malformed message is consumed before the throw, so next() can go on with the
 // following one. Not thread-safe: one per connection.

@@ -7,6 +7,11 @@
 // order with its other replies); one that queues more than max_queued_requests unanswered
 // requests, holds more than max_buffered_input bytes of an incomplete request, or does not read
 // its replies (max_buffered_output), is disconnected; no client can stall another or the handler.
+// Slots cannot be held forever: a client idle for idle_timeout_ms is disconnected, TCP keepalive
+// notices peers that died without closing, and a newcomer finding max_clients connected takes
+// the slot of the longest-idle client without a request outstanding (refused only when every
+// client has one). Bad requests are logged rate-limited per client: the first
+// kBadRequestsLoggedInFull one by one, then one summary line per bad_request_log_interval_ms.
 //
 // Thread-safety: reply(), stop(), clientCount(), setCodec() and setAllowedClients() may be called
 // from any thread; run() from one thread at a time. The destructor joins nothing (run() runs on
@@ -20,11 +25,29 @@
 
 namespace binpick::robot {
 
+constexpr int kBadRequestsLoggedInFull = 5;  // per client, before only summaries are logged
+
 struct RobotServerParams {
   std::string bind_address = "0.0.0.0";      // IPv4 address to listen on
   int port = 50100;                          // 0: any free port (tests; see port())
   std::vector<std::string> allowed_clients;  // IPv4 addresses or CIDR blocks; empty: any
-  int max_clients = 8;                       // further connections are closed at once
+  // When this many are connected, a newcomer replaces the client idle longest among those without
+  // a request outstanding; it is refused only when every client has one.
+  int max_clients = 8;
+  // A client that has sent nothing and had no request outstanding for this long is disconnected
+  // (a controller that went away without closing frees its slot). 0: never. A robot polling once
+  // a cycle never comes near the default, 10 minutes.
+  int idle_timeout_ms = 600000;
+  // TCP keepalive on every client socket: after keepalive_idle_s without traffic a probe every
+  // keepalive_interval_s, and keepalive_count unanswered probes drop the connection. With the
+  // defaults a peer that lost power or its cable is noticed within 30 + 3 * 10 = 60 s.
+  // keepalive_idle_s 0: no keepalive.
+  int keepalive_idle_s = 30;
+  int keepalive_interval_s = 10;
+  int keepalive_count = 3;
+  // After a client's first kBadRequestsLoggedInFull bad requests, at most one summary line per
+  // this interval tells how many more there were.
+  int bad_request_log_interval_ms = 60000;
   // Requests received but not yet answered, per client, the one with the handler included. A
   // robot sends one at a time; a client that pipelines more is disconnected.
   std::size_t max_queued_requests = 16;
@@ -32,7 +55,9 @@ struct RobotServerParams {
   std::size_t max_buffered_input = 4096;
   std::size_t max_buffered_output = 65536;  // bytes of unread replies per client
   robot::CodecParams codec;
-  void validate() const;  // throws core::Error naming the field
+  // Throws core::Error naming owner.FIELD (codec fields included); the owner is where the
+  // settings were read from (binpickd: "robot").
+  void validate(const std::string& owner = "robot_server") const;
 };
 
 using ClientId = uint64_t;  // never reused within a server's life
