@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <string>
+#include <thread>
 
 #include "binpick/acquisition/backoff.hpp"
 #include "binpick/acquisition/capture_source.hpp"
@@ -20,7 +21,7 @@ using testing::renderedPile;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-// Backoffs of a millisecond or two: the waits are real sleeps, kept negligible.
+// Backoffs of a millisecond or two, so that the tests wait them out with a short sleep.
 LiveParams fastParams() {
   LiveParams params;
   params.patterns = renderedPile().patterns;
@@ -41,8 +42,13 @@ struct Live {
   }
 };
 
+// After a failure the source refuses at once until its backoff has passed (at most
+// max_reopen_backoff_ms of fastParams).
+void waitOutTheBackoff() { std::this_thread::sleep_for(milliseconds(3)); }
+
 // The error of next(), and whether it said the connection is lost.
 std::string nextError(CaptureSource& source, bool* connection_lost = nullptr) {
+  waitOutTheBackoff();
   try {
     source.next();
   } catch (const CaptureError& e) {
@@ -84,8 +90,24 @@ TEST(LiveSource, ReopensTheCameraAfterALostConnection) {
   EXPECT_TRUE(lost) << error;
   EXPECT_TRUE(contains(error, "pattern 7 (")) << error;
   EXPECT_FALSE(live.state->open);  // closed at once, reopened by the next call
+  waitOutTheBackoff();
   EXPECT_TRUE(matchesRendered(live.source->next()));
   EXPECT_EQ(live.state->opens, 2);
+}
+
+TEST(LiveSource, WithinTheBackoffACaptureFailsAtOnceWithoutTryingTheCamera) {
+  LiveParams params = fastParams();
+  params.reopen_backoff_ms = 60000;  // a camera gone for a while: the next try is a minute away
+  params.max_reopen_backoff_ms = 60000;
+  Live live(params);
+  live.state->failing_opens = 1;
+  const std::string first = nextError(*live.source);
+  EXPECT_TRUE(contains(first, "did not open (attempt 1")) << first;
+  bool lost = false;
+  const std::string second = nextError(*live.source, &lost);
+  EXPECT_TRUE(contains(second, "the next attempt to reopen it is in")) << second;
+  EXPECT_TRUE(lost);
+  EXPECT_EQ(live.state->open_attempts, 1);  // not tried again, and not waited for either
 }
 
 TEST(LiveSource, ACameraThatWillNotOpenIsNamedAndTriedAgain) {
@@ -98,6 +120,7 @@ TEST(LiveSource, ACameraThatWillNotOpenIsNamedAndTriedAgain) {
   EXPECT_TRUE(lost);
   const std::string second = nextError(*live.source);
   EXPECT_TRUE(contains(second, "did not open (attempt 2")) << second;
+  waitOutTheBackoff();
   EXPECT_TRUE(matchesRendered(live.source->next()));
   EXPECT_EQ(live.state->open_attempts, 3);
   EXPECT_EQ(live.state->opens, 1);
@@ -114,6 +137,7 @@ TEST(LiveSource, ALostCameraThatComesBackLaterIsReopened) {
     const std::string error = nextError(*live.source);
     EXPECT_TRUE(contains(error, "did not open (attempt " + std::to_string(attempt))) << error;
   }
+  waitOutTheBackoff();
   EXPECT_TRUE(matchesRendered(live.source->next()));
   EXPECT_EQ(live.state->open_attempts, 5);
 }

@@ -2,7 +2,6 @@
 #include <chrono>
 #include <memory>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "binpick/acquisition/backoff.hpp"
@@ -71,14 +70,17 @@ class LiveSource : public CaptureSource {
     return "camera";
   }
 
-  // Opens and starts the camera unless it streams already, waiting out the backoff of earlier
-  // failures first. A failure is thrown; the next call tries again.
+  // Opens and starts the camera unless it streams already. Within the backoff of earlier failures
+  // it does not try and does not wait either: it fails at once, so that a robot's TRIGGER hears
+  // no_image now rather than after a sleep of up to max_reopen_backoff_ms that nothing could
+  // interrupt. A failure is thrown; a call after the backoff tries again.
   void ensureStreaming() {
     if (streaming_) return;
     const Clock::duration wait = backoff_.wait(Clock::now());
     if (wait > Clock::duration::zero()) {
-      log()->info("{}: waiting {} ms before reopening", cameraName(), toMilliseconds(wait));
-      std::this_thread::sleep_for(wait);
+      throw CaptureError("live source: " + cameraName() + " is away; the next attempt to reopen it is in " +
+                             std::to_string(toMilliseconds(wait)) + " ms",
+                         true);
     }
     try {
       camera_->open();
