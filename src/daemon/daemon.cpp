@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -18,6 +19,10 @@ namespace binpick::daemon {
 namespace {
 
 using namespace binpick::cell;
+
+// The server thread queues replies from other threads and sends them on its next turn, which
+// takes microseconds; this leaves room for a loaded machine.
+constexpr auto kReplyFlushTime = std::chrono::milliseconds(200);
 
 sigset_t stopAndReloadSignals() {
   sigset_t set;
@@ -48,7 +53,10 @@ class Daemon {
       : options_(options),
         config_(loadConfig(options)),
         service_(prepareCell(config_), makeCaptureSource(config_.source),
-                 [this](robot::ClientId client, const robot::Reply& reply) { server_->reply(client, reply); }),
+                 [this](robot::ClientId client, const robot::Reply& reply) {
+                   ++replies_sent_;
+                   server_->reply(client, reply);
+                 }),
         server_(std::make_unique<robot::RobotServer>(config_.robot, service_)),
         notifier_(SystemdNotifier::fromEnvironment()) {}
 
@@ -62,9 +70,8 @@ class Daemon {
     notifier_.ready(statusText(service_.snapshot(), server_->clientCount()));
     loop();
     notifier_.stopping("stopping");
-    server_->stop();
+    stop();
     serving.join();
-    service_.stop();
     spdlog::info("stopped");
     return serve_error_.empty() ? 0 : 1;
   }
@@ -78,6 +85,16 @@ class Daemon {
       spdlog::critical("robot server failed: {}", e.what());
       kill(getpid(), SIGTERM);
     }
+  }
+
+  // The robots waiting on the cycle are answered (internal_error) while the server still runs,
+  // the server gets a moment to send those replies, and only then closes the connections: a
+  // robot hears why, never just a closed connection.
+  void stop() {
+    const uint64_t sent_before = replies_sent_.load();
+    service_.stop();  // answers the waiting robots, ends the running cycle
+    if (replies_sent_.load() != sent_before) std::this_thread::sleep_for(kReplyFlushTime);
+    server_->stop();
   }
 
   // Signals, watchdog pings and the STATUS= line, until SIGTERM or SIGINT.
@@ -122,6 +139,7 @@ class Daemon {
 
   DaemonOptions options_;
   CellConfig config_;
+  std::atomic<uint64_t> replies_sent_{0};  // by the service: stop() waits for them to go out
   CellService service_;
   std::unique_ptr<robot::RobotServer> server_;
   SystemdNotifier notifier_;
