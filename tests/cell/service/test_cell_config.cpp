@@ -29,6 +29,8 @@ TEST(CellConfig, TheDocumentedExampleParsesWithItsDefaults) {
   EXPECT_EQ(config.robot.port, 50100);
   EXPECT_EQ(config.robot.codec.max_line_length, 80u);
   EXPECT_FALSE(config.artefacts.has_value());  // directory "" saves nothing
+  EXPECT_TRUE(config.limits.trim_memory_after_cycle);
+  EXPECT_FALSE(parse(kMinimal + "limits: {trim_memory_after_cycle: false}\n").limits.trim_memory_after_cycle);
   ASSERT_TRUE(config.T_base_camera.has_value());
   // Looking straight down: the camera's z axis is the base's -z.
   EXPECT_NEAR((config.T_base_camera->linear() * Eigen::Vector3d::UnitZ()).z(), -1.0, 1e-12);
