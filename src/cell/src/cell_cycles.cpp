@@ -147,8 +147,10 @@ void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> s
                               io::Capture capture, CycleOutcome outcome, bool processed) {
   State& s = *state_;
   Outbox outbox;
+  bool stopping = false;
   {
     std::lock_guard lock(s.mutex);
+    stopping = s.stopping;
     if (processed && s.stage_expired) {
       outcome.status = Status::Timeout;  // its waiters were told at the deadline; the picks are late
       outcome.detail = "the cycle took " + std::to_string(static_cast<int>(outcome.timing_ms.total)) + " ms" +
@@ -173,7 +175,7 @@ void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> s
                  cycle, robot::statusName(outcome.status), outcome.picks.size(), outcome.T_base_objects.size(), t.total,
                  t.capture, t.reconstruct, t.detect, outcome.detail.empty() ? "" : ": " + outcome.detail);
   for (const std::string& problem : outcome.undeliverable) logger()->error("cycle {}: {}", cycle, problem);
-  if (s.saver && processed) {
+  if (s.saver && processed && !stopping) {  // a cycle cut short by the stop is not worth the wait
     s.saver->offer(SavedCycle{cycle, std::move(setup), recipe_index, std::move(capture), std::move(outcome)});
   }
 }
