@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -71,9 +72,8 @@ class Daemon {
     notifier_.ready(statusText(service_.snapshot(), server_->clientCount()));
     loop();
     notifier_.stopping("stopping");
-    server_->stop();
+    stop();
     serving.join();
-    service_.stop();
     spdlog::info("stopped");
     return serve_error_.empty() ? 0 : 1;
   }
@@ -87,6 +87,14 @@ class Daemon {
       spdlog::critical("robot server failed: {}", e.what());
       kill(getpid(), SIGTERM);
     }
+  }
+
+  // The robots waiting on the cycle are answered (internal_error) while the server still runs;
+  // the server writes those replies out before it closes the connections: a robot hears why,
+  // never just a closed connection.
+  void stop() {
+    service_.stop();  // answers the waiting robots, ends the running cycle
+    server_->stop();
   }
 
   // Signals, watchdog pings and the STATUS= line, until SIGTERM or SIGINT.

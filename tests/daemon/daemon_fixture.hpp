@@ -27,13 +27,16 @@ class DaemonTest : public test::TempDirectoryTest {
     daemon_ = std::make_unique<DaemonProcess>(options);
     port_ = daemon_->port();
   }
-  void writeConfig(const std::string& extra) { std::ofstream(config_path_) << cellConfigYaml(cellScene(), extra); }
+  void writeConfig(const std::string& extra) {
+    std::ofstream(config_path_) << (config_text_.empty() ? cellConfigYaml(cellScene(), extra) : config_text_);
+  }
   std::string daemonStderr() const {
     std::ifstream file(pathOf("stderr"));
     return std::string(std::istreambuf_iterator<char>(file), {});
   }
 
   std::string config_path_;
+  std::string config_text_;  // set before start(): the settings written instead of the scene's
   std::unique_ptr<NotifySocket> notify_;
   std::unique_ptr<DaemonProcess> daemon_;
   int port_ = 0;

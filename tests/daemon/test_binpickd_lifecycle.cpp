@@ -2,6 +2,7 @@
 // middle of a cycle, and refusal of bad settings.
 #include <signal.h>
 
+#include <fstream>
 #include <thread>
 
 #include "binpick/robot/protocol.hpp"
@@ -63,11 +64,37 @@ TEST_F(DaemonTest, StopsCleanlyOnSigtermInTheMiddleOfACycle) {
   std::this_thread::sleep_for(20ms);  // let the cycle start
   daemon_->signal(SIGTERM);
   EXPECT_EQ(daemon_->wait(60s), 0) << daemonStderr();
-  // The robot got its answer (the capture, or "stopping"), or saw the connection close: never silence.
+  // The robot got its answer before the connection closed: the capture, or "stopping".
   const auto reply = robot.receive(1s);
-  if (reply) {
-    EXPECT_TRUE(reply->status == Status::Ok || reply->status == Status::InternalError);
-  }
+  ASSERT_TRUE(reply.has_value()) << "the connection closed without a reply";
+  EXPECT_TRUE(reply->status == Status::Ok || reply->status == Status::InternalError)
+      << robot::statusName(reply->status);
+}
+
+// A robot whose NEXT waits for the cycle hears internal_error when the service stops, not a bare
+// close. The recipe's detection is made slow (every scene point a reference, on one thread), so
+// that the cycle is still computing when SIGTERM comes.
+TEST_F(DaemonTest, ARobotWaitingForTheCycleHearsInternalErrorOnSigterm) {
+  std::ofstream(pathOf("slow.yaml")) << "detection:\n"
+                                        "  method: drost\n"
+                                        "  threads: 1\n"
+                                        "  voting: {reference_fraction: 1.0, referred_fraction: 1.0}\n";
+  config_text_ = cellConfigYaml(cellScene());
+  const std::string settings = std::string("settings: ") + BINPICK_CONFIG_DIR + "/virtual-cell.yaml";
+  ASSERT_NE(config_text_.find(settings), std::string::npos);
+  config_text_.replace(config_text_.find(settings), settings.size(), "settings: " + pathOf("slow.yaml"));
+  start();
+  ASSERT_TRUE(notify_->waitFor("READY=1", 60s));
+  RobotClient robot(port_);
+  ASSERT_EQ(robot.ask(request(Command::Trigger)).status, Status::Ok);  // the images are taken
+  robot.sendRaw(robot::encodeRequest(request(Command::NextPick), {}));
+  std::this_thread::sleep_for(100ms);  // let the NEXT reach the service
+  daemon_->signal(SIGTERM);
+  const auto reply = robot.receive(60s);
+  ASSERT_TRUE(reply.has_value()) << "the connection closed without a reply";
+  EXPECT_EQ(reply->command, Command::NextPick);
+  EXPECT_EQ(reply->status, Status::InternalError);
+  EXPECT_EQ(daemon_->wait(60s), 0) << daemonStderr();
 }
 
 TEST_F(DaemonTest, RefusesBadSettingsNamingTheKey) {

@@ -202,5 +202,26 @@ TEST(DetectorCrop, ACropGivenPerCallReplacesTheParamsCrop) {
   EXPECT_EQ(none.scene_points, 0u);
 }
 
+// A deadline passed: detection stops with core::Cancelled, and each stage checks the flag on its
+// own (a stage that ran on would keep the cell busy until it returned).
+TEST(DetectorCancellation, ACancelledFlagStopsDetectionAndEachLongStage) {
+  const PreparedModel& model = cachedModel("clamp");
+  const Pile& pile = cachedPile("clamp", 10, 11);
+  const DetectorParams params = paramsFor(pile);
+  const Detector detector(model, params);
+  core::CancelFlag cancel;
+  const DetectionResult uncancelled = detector.detect(pile.scene.cloud, params.scene.crop, &cancel);
+  expectIdentical(detector.detect(pile.scene.cloud), uncancelled);
+
+  cancel.cancel();
+  EXPECT_THROW(detector.detect(pile.scene.cloud, params.scene.crop, &cancel), core::Cancelled);
+  const PreparedScene scene = prepareScene(pile.scene.cloud, model, params.scene);
+  EXPECT_THROW(vote(model, scene, params.voting, &cancel), core::Cancelled);
+  const std::vector<PoseCandidate> candidates = vote(model, scene, params.voting);
+  ASSERT_FALSE(candidates.empty());
+  const SceneVoxelGrid grid(scene.points, params.verification.voxel_size_ratio * model.step);
+  EXPECT_THROW(verify(candidates, model, scene, grid, params.verification, &cancel), core::Cancelled);
+}
+
 }  // namespace
 }  // namespace binpick::estimation

@@ -212,6 +212,29 @@ TEST_F(ModelCache, RejectsADirectoryAndUnwritablePathsWithBinpickError) {
   EXPECT_NE(errorMessage([&] { saveModelCache(smallModel(), 1, unwritable); }).find(unwritable), std::string::npos);
 }
 
+TEST_F(ModelCache, AnUnwritableCacheIsReportedInsteadOfThrownWhenTheCallerAsks) {
+  const fs::path source = dir / "clamp.ply";
+  io::writeMesh(source.string(), simulation::makePart("clamp").mesh);
+  ModelParams params;
+  params.sampling_ratio = 0.08f;
+  const std::string unwritable = (dir / "no_such_directory" / "clamp.bpmodel").string();
+  EXPECT_NE(errorMessage([&] { loadOrPrepareModel(source.string(), params, unwritable); }).find(unwritable),
+            std::string::npos);
+
+  std::string problem = "left over";
+  bool reused = true;
+  const PreparedModel model = loadOrPrepareModel(source.string(), params, unwritable, &reused, &problem);
+  EXPECT_FALSE(reused);
+  EXPECT_GT(model.size(), 0u);
+  EXPECT_NE(problem.find(unwritable), std::string::npos) << problem;
+  EXPECT_FALSE(fs::exists(unwritable));
+
+  const std::string writable = (dir / "clamp.bpmodel").string();
+  loadOrPrepareModel(source.string(), params, writable, &reused, &problem);
+  EXPECT_TRUE(problem.empty()) << problem;
+  EXPECT_TRUE(fs::exists(writable));
+}
+
 TEST_F(ModelCache, LoadOrPrepareReusesOnlyAValidMatchingCache) {
   const fs::path source = dir / "clamp.ply";
   const fs::path cache = dir / "clamp.bpmodel";

@@ -5,6 +5,7 @@
 #include "binpick/core/pose_yaml.hpp"
 #include "binpick/reconstruction/reconstruction_config.hpp"
 #include "config_sections.hpp"
+#include "pick_delivery.hpp"
 
 namespace binpick::cell {
 namespace {
@@ -27,6 +28,7 @@ void validateAll(const CellConfig& config) {
     }
     config.robot.validate("robot");  // the section's name, so that messages name the key in the file
     config.limits.validate();
+    checkPickRepliesFit(config.robot.codec, config.limits.max_picks);
     if (config.artefacts) config.artefacts->validate();
   });
 }

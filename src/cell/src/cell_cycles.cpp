@@ -1,5 +1,8 @@
 // CellService's cycle thread (capture, then the rest of the cycle) and deadline thread.
 #include <spdlog/spdlog.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "binpick/acquisition/sequencer.hpp"
 #include "binpick/cell/cell_service.hpp"
@@ -32,9 +35,14 @@ CaptureAttempt captureFrom(acquisition::CaptureSource& source) {
 }
 
 CycleOutcome processSafely(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
-                           const std::vector<Eigen::Vector3d>& avoid) {
+                           const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag& cancel) {
   try {
-    return processCapture(setup, recipe, capture, avoid);
+    return processCapture(setup, recipe, capture, avoid, &cancel);
+  } catch (const core::Cancelled& e) {  // its deadline passed, or the service stops
+    CycleOutcome outcome;
+    outcome.status = Status::Timeout;
+    outcome.detail = std::string("stopped: ") + e.what();
+    return outcome;
   } catch (const core::Error& e) {  // a capture the reconstruction refuses: a bad image
     CycleOutcome outcome;
     outcome.status = Status::NoImage;
@@ -48,17 +56,25 @@ CycleOutcome processSafely(const CellSetup& setup, const Recipe& recipe, const i
   }
 }
 
-robot::Reply triggerReply(Status status, uint64_t cycle) {
-  robot::Reply reply;
-  reply.command = Command::Trigger;
-  reply.status = status;
-  reply.integers = {clampToInt32(cycle)};
-  return reply;
+// A cycle frees images, clouds and tables of a hundred megabytes and more, allocated on several
+// threads (OpenMP workers, the artefact saver): glibc keeps much of that in the threads' arenas
+// instead of returning it to the system, and the resident memory creeps up. Trimming after each
+// cycle, once its replies are out, hands the free pages back; the next cycle faults its buffers
+// in again (docs/binpickd.md, Figures).
+void releaseFreedMemory(uint64_t cycle) {
+#ifdef __GLIBC__
+  const core::Stopwatch trim;
+  malloc_trim(0);
+  logger()->debug("cycle {}: freed memory returned to the system in {:.1f} ms", cycle, trim.elapsedMs());
+#else
+  (void)cycle;
+#endif
 }
 
 }  // namespace
 
 void CellService::State::failRunningStage(Status status, Outbox& outbox) {
+  if (cycle_cancel) cycle_cancel->cancel();  // nobody waits for its result any more
   if (trigger_client) outbox.add(*trigger_client, triggerReply(status, cycles_started));
   trigger_client.reset();
   latest = LatestCycle{};
@@ -78,7 +94,9 @@ void CellService::runCycles() {
     if (s.pending_source) s.source = std::move(s.pending_source);
     const std::shared_ptr<const CellSetup> setup = s.setup;
     const int recipe_index = s.recipe;
-    const uint64_t cycle = ++s.cycles_started;
+    const uint64_t cycle = s.cycles_started;  // numbered when its TRIGGER was accepted
+    const auto cancel = std::make_shared<core::CancelFlag>();
+    s.cycle_cancel = cancel;
     std::vector<Eigen::Vector3d> avoid;
     for (const AvoidEntry& entry : s.avoid) {
       if (entry.until_cycle >= cycle) avoid.push_back(entry.centre);
@@ -113,7 +131,7 @@ void CellService::runCycles() {
 
     CycleOutcome outcome;
     if (go_on) {
-      outcome = processSafely(*setup, setup->recipes.at(recipe_index), attempt.capture, avoid);
+      outcome = processSafely(*setup, setup->recipes.at(recipe_index), attempt.capture, avoid, *cancel);
     } else {
       outcome.status = capture_late ? Status::Timeout : attempt.status;
       outcome.detail = attempt.detail;
@@ -121,6 +139,7 @@ void CellService::runCycles() {
     outcome.timing_ms.capture = capture_ms;
     outcome.timing_ms.total = cycle_time.elapsedMs();
     finishCycle(cycle, setup, recipe_index, std::move(attempt.capture), std::move(outcome), go_on);
+    if (setup->config.limits.trim_memory_after_cycle) releaseFreedMemory(cycle);
   }
 }
 
@@ -128,16 +147,20 @@ void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> s
                               io::Capture capture, CycleOutcome outcome, bool processed) {
   State& s = *state_;
   Outbox outbox;
+  bool stopping = false;
   {
     std::lock_guard lock(s.mutex);
+    stopping = s.stopping;
     if (processed && s.stage_expired) {
       outcome.status = Status::Timeout;  // its waiters were told at the deadline; the picks are late
-      outcome.detail = "the cycle took " + std::to_string(static_cast<int>(outcome.timing_ms.total)) + " ms";
+      outcome.detail = "the cycle took " + std::to_string(static_cast<int>(outcome.timing_ms.total)) + " ms" +
+                       (outcome.detail.empty() ? "" : ": " + outcome.detail);
     } else if (processed) {
       s.latest = LatestCycle{cycle, outcome.status, outcome.picks, outcome.T_base_objects};
       s.answerWaiters(outbox);
     }
     if (processed) s.cell_state = CellState::Idle;  // else the next cycle may already be running
+    s.cycle_cancel.reset();
     s.last.cycles_done = cycle;
     s.last.last_status = outcome.status;
     s.last.last_detail = outcome.detail;
@@ -151,7 +174,8 @@ void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> s
   logger()->info("cycle {}: {} ({} picks, {} parts) in {:.0f} ms: capture {:.0f}, reconstruct {:.0f}, detect {:.0f}{}",
                  cycle, robot::statusName(outcome.status), outcome.picks.size(), outcome.T_base_objects.size(), t.total,
                  t.capture, t.reconstruct, t.detect, outcome.detail.empty() ? "" : ": " + outcome.detail);
-  if (s.saver && processed) {
+  for (const std::string& problem : outcome.undeliverable) logger()->error("cycle {}: {}", cycle, problem);
+  if (s.saver && processed && !stopping) {  // a cycle cut short by the stop is not worth the wait
     s.saver->offer(SavedCycle{cycle, std::move(setup), recipe_index, std::move(capture), std::move(outcome)});
   }
 }
@@ -187,6 +211,7 @@ void CellService::stop() {
     if (s.stopping) return;
     s.stopping = true;
     if (s.cell_state != CellState::Idle && !s.stage_expired) s.failRunningStage(Status::InternalError, outbox);
+    if (s.cycle_cancel) s.cycle_cancel->cancel();  // a stage still running past its deadline too
     s.cycle_wakeup.notify_all();
     s.deadline_wakeup.notify_all();
   }

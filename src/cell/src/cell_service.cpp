@@ -15,19 +15,14 @@ using robot::Command;
 using robot::Reply;
 using robot::Status;
 
-Reply reply(Command command, Status status, std::vector<int32_t> integers = {}) {
-  Reply r;
-  r.command = command;
-  r.status = status;
-  r.integers = std::move(integers);
-  return r;
-}
-
-std::optional<int> parseIndex(const std::string& text) {
-  if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos) {
+// FAILED's argument (the server has checked it is a non-negative int32).
+std::optional<int32_t> parseObjectId(const std::string& text) {
+  if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos) {
     return std::nullopt;
   }
-  return std::stoi(text);
+  const long long value = std::stoll(text);
+  if (value > INT32_MAX) return std::nullopt;
+  return static_cast<int32_t>(value);
 }
 
 constexpr uint64_t kForgetCycles = 200;  // a failed place not failed again for this long is forgotten
@@ -58,14 +53,11 @@ uint64_t CellService::State::avoidFailedPart(const Eigen::Vector3d& centre) {
 }
 
 robot::Reply CellService::State::nextPick() {
-  if (latest->status != Status::Ok) return reply(Command::NextPick, latest->status, {0});
-  if (latest->cursor >= latest->picks.size()) return reply(Command::NextPick, Status::NoMorePicks, {0});
+  if (latest->status != Status::Ok) return nextReply(latest->status);
+  if (latest->cursor >= latest->picks.size()) return nextReply(Status::NoMorePicks);
   const picking::Pick& pick = latest->picks[latest->cursor++];
   latest->last_object = pick.object;
-  const auto remaining = static_cast<int32_t>(latest->picks.size() - latest->cursor);
-  Reply r = reply(Command::NextPick, Status::Ok, {remaining, pick.object, pick.grasp});
-  r.T_base_tool = pick.T_base_grasp;
-  return r;
+  return nextPickReply(pick, latest->picks.size() - latest->cursor);
 }
 
 void CellService::State::answerWaiters(Outbox& outbox) {
@@ -92,78 +84,73 @@ void CellService::handle(robot::ClientId client, const robot::Request& request) 
   Outbox outbox;
   {
     std::lock_guard lock(state_->mutex);
-    State& s = *state_;
-    const std::string argument = request.argument.value_or("");
-    switch (request.command) {
-      case Command::Ping: outbox.add(client, reply(Command::Ping, Status::Ok)); break;
-      case Command::Status:
-        outbox.add(client, reply(Command::Status, Status::Ok,
-                                 {static_cast<int32_t>(s.cell_state), s.recipe, clampToInt32(s.last.cycles_done)}));
-        break;
-      case Command::SelectModel: {
-        const int index = s.setup->recipeIndex(argument);
-        if (index >= 0) s.recipe = index;
-        outbox.add(client, index >= 0 ? reply(Command::SelectModel, Status::Ok, {index})
-                                      : reply(Command::SelectModel, Status::UnknownModel));
-        break;
-      }
-      case Command::Trigger: {
-        const int requested = request.argument ? s.setup->recipeIndex(argument) : s.recipe;
-        if (s.stopping || s.cell_state != CellState::Idle || s.trigger_requested) {
-          outbox.add(client, reply(Command::Trigger, Status::Busy));
-        } else if (!s.setup->reconstructor || !s.setup->config.T_base_camera) {
-          logger()->warn("TRIGGER refused: {}", s.setup->reconstructor ? "no hand-eye T_base_camera is configured"
-                                                                       : s.setup->calibration_problem);
-          outbox.add(client, reply(Command::Trigger, Status::CalibrationMissing));
-        } else if (requested < 0) {
-          outbox.add(client, reply(Command::Trigger, Status::UnknownModel));
-        } else {
-          s.recipe = requested;
-          s.trigger_requested = true;
-          s.trigger_client = client;
-          s.cell_state = CellState::Capturing;
-          s.stage_deadline = Clock::now() + std::chrono::milliseconds(s.setup->config.limits.capture_timeout_ms);
-          s.stage_expired = false;
-          s.latest.reset();
-          s.cycle_wakeup.notify_one();
-          s.deadline_wakeup.notify_one();
-        }
-        break;
-      }
-      case Command::NextPick:
-        if (s.latest)
-          outbox.add(client, s.nextPick());
-        else if (s.cell_state != CellState::Idle)
-          s.next_waiters.push_back(client);
-        else
-          outbox.add(client, reply(Command::NextPick, Status::NoCycle, {0}));
-        break;
-      case Command::PickFailed: {
-        if (!s.latest) {
-          outbox.add(client, reply(Command::PickFailed, Status::NoCycle));
-          break;
-        }
-        const std::optional<int> object =
-            request.argument ? parseIndex(argument) : std::optional<int>(s.latest->last_object);
-        if (!object || *object < 0 || *object >= static_cast<int>(s.latest->T_base_objects.size())) {
-          outbox.add(client, reply(Command::PickFailed, Status::BadMessage));
-          break;
-        }
-        const uint64_t cycles = s.avoidFailedPart(s.latest->T_base_objects[*object].translation());
-        logger()->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *object, s.latest->number, cycles);
-        outbox.add(client, reply(Command::PickFailed, Status::Ok, {*object}));
-        break;
-      }
-      case Command::Pose:
-        // Hand-eye views are recorded by the calibration tool; a robot sending them here is
-        // talking to the wrong program, and the log says which one it wants.
-        logger()->warn("POSE is not served here: hand-eye views are recorded by 'binpick calibrate hand-eye --listen'");
-        outbox.add(client, reply(Command::Pose, Status::UnknownCommand));
-        break;
-      default: outbox.add(client, reply(request.command, Status::UnknownCommand));
-    }
+    if (std::optional<robot::Reply> reply = state_->answer(client, request)) outbox.add(client, std::move(*reply));
   }
   outbox.send(state_->sink);
+}
+
+std::optional<robot::Reply> CellService::State::answer(robot::ClientId client, const robot::Request& request) {
+  const std::string argument = request.argument.value_or("");
+  switch (request.command) {
+    case Command::Ping: return pingReply();
+    case Command::Status: return statusReply(static_cast<int32_t>(cell_state), recipe, last.cycles_done);
+    case Command::SelectModel: {
+      const int index = setup->recipeIndex(argument);
+      if (index >= 0) recipe = index;
+      return modelReply(index >= 0 ? Status::Ok : Status::UnknownModel, recipe);
+    }
+    case Command::Trigger: return trigger(client, request);
+    case Command::NextPick:
+      if (latest) return nextPick();
+      if (cell_state == CellState::Idle) return nextReply(Status::NoCycle);
+      next_waiters.push_back(client);
+      return std::nullopt;
+    case Command::PickFailed: return pickFailed(request);
+    case Command::Pose:
+      // Hand-eye views are recorded by the calibration tool; a robot sending them here is
+      // talking to the wrong program, and the log says which one it wants.
+      logger()->warn("POSE is not served here: hand-eye views are recorded by 'binpick calibrate hand-eye --listen'");
+      return refusedReply(Command::Pose, Status::UnknownCommand);
+    default: return refusedReply(request.command, Status::UnknownCommand);
+  }
+}
+
+std::optional<robot::Reply> CellService::State::trigger(robot::ClientId client, const robot::Request& request) {
+  const int requested = request.argument ? setup->recipeIndex(*request.argument) : recipe;
+  if (stopping || cell_state != CellState::Idle || trigger_requested) return triggerReply(Status::Busy, 0);
+  if (!setup->reconstructor || !setup->config.T_base_camera) {
+    logger()->warn("TRIGGER refused: {}",
+                   setup->reconstructor ? "no hand-eye T_base_camera is configured" : setup->calibration_problem);
+    return triggerReply(Status::CalibrationMissing, 0);
+  }
+  if (requested < 0) return triggerReply(Status::UnknownModel, 0);
+  recipe = requested;
+  ++cycles_started;  // numbered now: a stop before the capture begins still answers with its number
+  trigger_requested = true;
+  trigger_client = client;
+  cell_state = CellState::Capturing;
+  stage_deadline = Clock::now() + std::chrono::milliseconds(setup->config.limits.capture_timeout_ms);
+  stage_expired = false;
+  latest.reset();
+  cycle_wakeup.notify_one();
+  deadline_wakeup.notify_one();
+  return std::nullopt;  // answered when the capture is done
+}
+
+robot::Reply CellService::State::pickFailed(const robot::Request& request) {
+  // The object the request names: its argument, else the last pick handed out (-1: none yet).
+  const std::optional<int32_t> named = request.argument ? parseObjectId(*request.argument)
+                                                        : std::optional<int32_t>(latest ? latest->last_object : kNoId);
+  if (!named) return refusedReply(Command::PickFailed, Status::BadMessage);
+  if (!latest) return failedReply(Status::NoCycle, *named);
+  if (*named < 0 || *named >= static_cast<int32_t>(latest->T_base_objects.size())) {
+    logger()->warn("FAILED names object {}, but the latest cycle ({}) detected {} objects", *named, latest->number,
+                   latest->T_base_objects.size());
+    return refusedReply(Command::PickFailed, Status::BadMessage);
+  }
+  const uint64_t cycles = avoidFailedPart(latest->T_base_objects[static_cast<std::size_t>(*named)].translation());
+  logger()->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *named, latest->number, cycles);
+  return failedReply(Status::Ok, *named);
 }
 
 void CellService::disconnected(robot::ClientId client) {

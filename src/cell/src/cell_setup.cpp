@@ -38,15 +38,29 @@ std::vector<picking::Grasp> generatedGrasps(const RecipeConfig& config, const pi
   return grasps;
 }
 
+// The cache only makes restarts fast: one that cannot be written (a read-only or missing
+// directory) costs the next start the preparation again, never the start itself.
+estimation::PreparedModel preparedModel(const RecipeConfig& config, const estimation::ModelParams& params,
+                                        bool& from_cache) {
+  if (config.model_cache.empty()) return estimation::prepareModel(io::readModelGeometry(config.model_file), params);
+  std::string write_problem;
+  estimation::PreparedModel model =
+      estimation::loadOrPrepareModel(config.model_file, params, config.model_cache, &from_cache, &write_problem);
+  if (!write_problem.empty()) {
+    logger()->warn(
+        "recipe {}: the model was prepared in memory, but its cache cannot be written ({}); the next "
+        "start prepares it again",
+        config.name, write_problem);
+  }
+  return model;
+}
+
 Recipe prepareRecipe(const RecipeConfig& config, const picking::PickParams& cell_picking) {
   estimation::EstimationConfig settings;
   if (!config.settings_file.empty()) settings = estimation::loadEstimationConfig(config.settings_file);
   Recipe recipe;
   recipe.name = config.name;
-  estimation::PreparedModel model =
-      config.model_cache.empty() ? estimation::prepareModel(io::readModelGeometry(config.model_file), settings.model)
-                                 : estimation::loadOrPrepareModel(config.model_file, settings.model, config.model_cache,
-                                                                  &recipe.model_from_cache);
+  estimation::PreparedModel model = preparedModel(config, settings.model, recipe.model_from_cache);
   recipe.detector = std::make_shared<const estimation::Detector>(std::move(model), settings.detector);
   recipe.picking = cell_picking;
   // Hand-written (or file) grasps take precedence over generated ones.

@@ -116,6 +116,7 @@ CycleLimits readLimits(core::YamlSection s) {
   s.read("empty_bin_max_points", limits.empty_bin_max_points);
   s.read("empty_bin_min_height", limits.empty_bin_min_height);
   s.read("avoid_cycles", limits.avoid_cycles);
+  s.read("trim_memory_after_cycle", limits.trim_memory_after_cycle);
   s.finish();
   return limits;
 }

@@ -37,6 +37,7 @@ std::string cycleJson(const SavedCycle& cycle) {
       {"bin_points", outcome.bin_points},
       {"picks", picks},
       {"rejected", rejectedJson(outcome.rejected)},
+      {"undeliverable", outcome.undeliverable},  // picks left out: the robot could not be sent them
       {"timing_ms",
        {{"capture", t.capture},
         {"reconstruct", t.reconstruct},

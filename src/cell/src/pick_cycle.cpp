@@ -5,6 +5,7 @@
 
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/picking/tool_collision.hpp"
+#include "pick_delivery.hpp"
 
 namespace binpick::cell {
 namespace {
@@ -65,15 +66,17 @@ int countPointsInBin(const io::PointCloud& cloud, const Eigen::Isometry3d& T_bas
 }
 
 CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
-                            const std::vector<Eigen::Vector3d>& avoid) {
+                            const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag* cancel) {
   CycleOutcome outcome;
   const Eigen::Isometry3d& T_base_camera = *setup.config.T_base_camera;
   core::Stopwatch stage;
-  outcome.reconstruction = setup.reconstructor->reconstruct(capture);
+  outcome.reconstruction = setup.reconstructor->reconstruct(capture, cancel);
   outcome.timing_ms.reconstruct = stage.lapMs();
 
-  outcome.detection = recipe.detector->detect(outcome.reconstruction.cloud);
+  const estimation::Detector& detector = *recipe.detector;
+  outcome.detection = detector.detect(outcome.reconstruction.cloud, detector.params().scene.crop, cancel);
   outcome.timing_ms.detect = stage.lapMs();
+  core::throwIfCancelled(cancel, "before planning");
 
   outcome.bin_points = countPointsInBin(outcome.reconstruction.cloud, T_base_camera, recipe.picking.bin,
                                         setup.config.limits.empty_bin_min_height);
@@ -93,12 +96,18 @@ CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const 
     plan.picks.resize(setup.config.limits.max_picks);
   }
   for (picking::Pick& pick : plan.picks) pick.object = candidates.detection[static_cast<std::size_t>(pick.object)];
-  outcome.picks = std::move(plan.picks);
+  DeliverablePicks deliverable = deliverablePicks(std::move(plan.picks), setup.config.robot.codec);
+  outcome.picks = std::move(deliverable.picks);
+  outcome.undeliverable = std::move(deliverable.problems);
   outcome.rejected = plan.rejected;
   outcome.timing_ms.plan = stage.lapMs();
 
   if (outcome.T_base_objects.empty()) {
     classifyEmpty(outcome, setup);
+  } else if (outcome.picks.empty() && !outcome.undeliverable.empty()) {
+    outcome.status = robot::Status::Unreachable;
+    outcome.detail = std::to_string(outcome.undeliverable.size()) +
+                     " picks planned, none can be sent to the robot: " + outcome.undeliverable.front();
   } else if (outcome.picks.empty()) {
     outcome.status = robot::Status::Unreachable;
     outcome.detail = unreachableDetail(outcome.T_base_objects.size(),

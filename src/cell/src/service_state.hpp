@@ -14,13 +14,12 @@
 
 #include "artefact_saver.hpp"
 #include "binpick/cell/cell_service.hpp"
+#include "binpick/core/cancellation.hpp"
+#include "cell_replies.hpp"
 
 namespace binpick::cell {
 
 using Clock = std::chrono::steady_clock;
-
-// Counters on the wire are int32.
-inline int32_t clampToInt32(uint64_t value) { return static_cast<int32_t>(std::min<uint64_t>(value, INT32_MAX)); }
 
 class Outbox {
  public:
@@ -67,9 +66,12 @@ struct CellService::State {
   std::vector<robot::ClientId> next_waiters;      // NEXT requests waiting for the running cycle
   Clock::time_point stage_deadline;
   bool stage_expired = false;  // the running stage's waiters got "timeout"
+  // The running cycle's: set when its result is no longer wanted (deadline, stop), so that it
+  // stops computing and the cell is idle again within a fraction of a second.
+  std::shared_ptr<core::CancelFlag> cycle_cancel;
 
   std::optional<LatestCycle> latest;
-  uint64_t cycles_started = 0;
+  uint64_t cycles_started = 0;  // cycles numbered: each accepted TRIGGER takes the next number
   std::vector<AvoidEntry> avoid;
   CellSnapshot last;  // for snapshot()
   bool stopping = false;
@@ -80,6 +82,11 @@ struct CellService::State {
 
   // Helpers; the caller holds the mutex.
   const Recipe& currentRecipe() const { return setup->recipes.at(static_cast<std::size_t>(recipe)); }
+  // The reply to a request, or nothing for a TRIGGER that started a cycle (answered when the
+  // capture is done) and a NEXT that waits for the running cycle.
+  std::optional<robot::Reply> answer(robot::ClientId client, const robot::Request& request);
+  std::optional<robot::Reply> trigger(robot::ClientId client, const robot::Request& request);
+  robot::Reply pickFailed(const robot::Request& request);
   robot::Reply nextPick();  // NEXT from `latest`
   void answerWaiters(Outbox& outbox);
   void failRunningStage(robot::Status status, Outbox& outbox);

@@ -30,9 +30,10 @@ Detection refined(const PoseRefiner& refiner, const PreparedModel& model, const 
 // refined by ICP before its scene points stop existing, so that a coarse candidate does not leave
 // half of its object behind for a repeat detection.
 void selectVerified(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock) {
+                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock,
+                    const core::CancelFlag* cancel) {
   const SceneVoxelGrid grid(scene.points, p.verification.voxel_size_ratio * model.step);
-  const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification);
+  const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification, cancel);
   result.timing_ms.verification = clock.lapMs();
 
   const PoseRefiner refiner(scene, model.step, p.icp);
@@ -52,6 +53,7 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
                         min_distance)) {
       continue;
     }
+    core::throwIfCancelled(cancel, "during selection");
     const core::Stopwatch icp_clock;
     Detection d = refined(refiner, model, verified[pick->candidate].T_camera_model);
     icp_ms += icp_clock.elapsedMs();
@@ -71,13 +73,16 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
 
 // Section II-C: clusters of poses, best first, each refined; repeats of an accepted pose skipped.
 void selectClustered(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                     const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock) {
+                     const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock,
+                     const core::CancelFlag* cancel) {
   const std::vector<PoseCluster> clusters = clusterPoses(candidates, model.diameter, p.clustering);
+  core::throwIfCancelled(cancel, "after clustering");
   result.timing_ms.selection = clock.lapMs();
   const PoseRefiner refiner(scene, model.step, p.icp);
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
   for (const PoseCluster& cluster : clusters) {
     if (static_cast<int>(result.detections.size()) >= p.selection.max_objects) break;
+    core::throwIfCancelled(cancel, "during selection");
     Detection d = refined(refiner, model, cluster.T_camera_model);
     if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
     d.votes = cluster.votes;
@@ -127,7 +132,9 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud) const {
   return detect(scene_cloud, params_.scene.crop);
 }
 
-DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop) const {
+DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop,
+                                 const core::CancelFlag* cancel) const {
+  core::throwIfCancelled(cancel, "before detection");
   const core::Stopwatch total;
   core::Stopwatch clock;
   DetectionResult result;
@@ -136,15 +143,16 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::o
   const PreparedScene scene = prepareScene(scene_cloud, model_, scene_params);
   result.scene_points = scene.size();
   result.timing_ms.prepare_scene = clock.lapMs();
+  core::throwIfCancelled(cancel, "after scene preparation");
 
-  const std::vector<PoseCandidate> candidates = vote(model_, scene, params_.voting);
+  const std::vector<PoseCandidate> candidates = vote(model_, scene, params_.voting, cancel);
   result.candidates = candidates.size();
   result.timing_ms.voting = clock.lapMs();
   if (!candidates.empty()) {
     if (params_.method == Method::LiHashimoto) {
-      selectVerified(model_, scene, params_, candidates, result, clock);
+      selectVerified(model_, scene, params_, candidates, result, clock, cancel);
     } else {
-      selectClustered(model_, scene, params_, candidates, result, clock);
+      selectClustered(model_, scene, params_, candidates, result, clock, cancel);
     }
   }
   result.timing_ms.total = total.elapsedMs();

@@ -211,10 +211,12 @@ uint64_t fingerprintFile(const std::string& path) {
 }
 
 PreparedModel loadOrPrepareModel(const std::string& model_path, const ModelParams& params,
-                                 const std::string& cache_path, bool* reused) {
+                                 const std::string& cache_path, bool* reused, std::string* write_problem) {
   const uint64_t fingerprint = fingerprintFile(model_path);
   if (reused) *reused = false;
-  if (std::filesystem::exists(cache_path)) {
+  if (write_problem) write_problem->clear();
+  std::error_code unreadable;  // a path that cannot even be looked at is no cache either
+  if (std::filesystem::exists(cache_path, unreadable)) {
     try {
       CachedModel cached = loadModelCache(cache_path);
       if (cached.source_fingerprint == fingerprint && sameParams(cached.model.params, params)) {
@@ -226,7 +228,12 @@ PreparedModel loadOrPrepareModel(const std::string& model_path, const ModelParam
     }
   }
   PreparedModel model = prepareModel(io::readModelGeometry(model_path), params);
-  saveModelCache(model, fingerprint, cache_path);
+  try {
+    saveModelCache(model, fingerprint, cache_path);
+  } catch (const core::Error& e) {
+    if (!write_problem) throw;
+    *write_problem = e.what();
+  }
   return model;
 }
 

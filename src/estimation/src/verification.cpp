@@ -35,7 +35,7 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
 
 std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
                                       const PreparedScene& scene, const SceneVoxelGrid& grid,
-                                      const VerificationParams& params) {
+                                      const VerificationParams& params, const core::CancelFlag* cancel) {
   params.validate();
   const float min_cosine = params.max_normal_angle_deg >= 180.0f
                                ? -2.0f
@@ -44,12 +44,14 @@ std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidat
   const int threads = core::resolveThreadCount(params.threads);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 16)
   for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (core::isCancelled(cancel)) continue;  // the rest is skipped; the throw comes after the loop
     VerifiedCandidate& v = verified[c];
     v.T_camera_model = candidates[c].T_camera_model;
     v.votes = candidates[c].votes;
     v.support = correspondingScenePoints(model, v.T_camera_model, grid, scene.normals, min_cosine);
     v.score = static_cast<uint32_t>(v.support.size());
   }
+  core::throwIfCancelled(cancel, "during verification");
   return verified;
 }
 

@@ -79,7 +79,8 @@ std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t 
   return all;
 }
 
-std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params) {
+std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params,
+                                const core::CancelFlag* cancel) {
   params.validate();
   if (scene.size() < 2 || model.size() == 0) return {};
   const PpfQuantizer quantizer = model.quantizer();
@@ -103,6 +104,7 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
     Accumulator accumulator(model.size(), quantizer.alphaBinCount());
 #pragma omp for schedule(dynamic, 4)
     for (std::size_t r = 0; r < references.size(); ++r) {
+      if (core::isCancelled(cancel)) continue;  // the rest is skipped; the throw comes after the region
       const uint32_t s_r = references[r];
       const Eigen::Vector3f& p_r = scene.points[s_r];
       const Eigen::Vector3f& n_r = scene.normals[s_r];
@@ -134,6 +136,7 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
     }
   }
 
+  core::throwIfCancelled(cancel, "during voting");
   std::vector<PoseCandidate> candidates;
   candidates.reserve(slots.size());
   for (std::size_t r = 0; r < references.size(); ++r) {

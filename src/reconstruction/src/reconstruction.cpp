@@ -46,14 +46,17 @@ void ReconstructionParams::validate() const {
 Reconstructor::Reconstructor(const io::RigCalibration& rig, const ReconstructionParams& params)
     : params_(validated(params)), triangulator_(rig, params_.triangulation) {}
 
-Reconstruction Reconstructor::reconstruct(const io::Capture& capture) const {
+Reconstruction Reconstructor::reconstruct(const io::Capture& capture, const core::CancelFlag* cancel) const {
   requireCameraSize(capture, rig());
   Reconstruction result;
   core::Stopwatch stage;
+  core::throwIfCancelled(cancel, "before decoding");
   const DecodedCapture decoded = decodeCapture(capture, params_.decode);
   result.timings.decode = stage.lapMs();
+  core::throwIfCancelled(cancel, "before triangulation");
   TriangulatedCloud triangulated = triangulator_.triangulate(decoded);
   result.timings.triangulate = stage.lapMs();
+  core::throwIfCancelled(cancel, "before filtering");
   filterCloud(triangulated.cloud, triangulated.status, params_.filter);
   result.timings.filter = stage.lapMs();
   // The three stages end to end; the copying into the result below is not part of it.

@@ -56,6 +56,7 @@ void RobotServer::run() {
     Impl& impl;
     const char* reason;
     ~Finish() {
+      impl.deliverRepliesBeforeClosing();
       impl.closeAll(reason);
       impl.listener.reset();
       impl.running.store(false);
@@ -75,8 +76,9 @@ void RobotServer::stop() {
 }
 
 void RobotServer::reply(ClientId client, const robot::Reply& reply) {
-  // Once stopped, nothing would ever take the reply off the queue.
-  if (impl_->stop_requested.load()) return;
+  // Replies given up to the end of run() still go out (deliverRepliesBeforeClosing): a service
+  // answers its waiting robots, then stops the server. After run() nothing takes them any more.
+  if (!impl_->running.load()) return;
   {
     const std::lock_guard<std::mutex> lock(impl_->mutex);
     impl_->incoming_replies.emplace_back(client, reply);

@@ -1,7 +1,12 @@
 // The server thread's side of requests and replies: handing requests to the handler one at a
 // time per client, applying the replies other threads queued, and closing clients.
+#include <poll.h>
+
+#include <cerrno>
+#include <chrono>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include "server_impl.hpp"
 #include "server_logger.hpp"
@@ -82,6 +87,28 @@ void RobotServer::Impl::closeClient(std::map<ClientId, std::unique_ptr<detail::C
 void RobotServer::Impl::checkClientTimers() {
   const auto now = std::chrono::steady_clock::now();
   for (auto& entry : clients) entry.second->checkTimers(now);
+}
+
+void RobotServer::Impl::deliverRepliesBeforeClosing() {
+  constexpr auto kStopFlushTime = std::chrono::milliseconds(500);
+  applyReplies();
+  const auto deadline = std::chrono::steady_clock::now() + kStopFlushTime;
+  for (;;) {
+    std::vector<pollfd> waiting;
+    std::vector<detail::ClientConnection*> owners;
+    for (auto& entry : clients) {
+      if (entry.second->closing() || !entry.second->hasUnsentOutput()) continue;
+      waiting.push_back(pollfd{entry.second->fd(), POLLOUT, 0});
+      owners.push_back(entry.second.get());
+    }
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    if (waiting.empty() || left.count() <= 0) return;
+    if (::poll(waiting.data(), waiting.size(), static_cast<int>(left.count())) < 0 && errno != EINTR) return;
+    for (std::size_t i = 0; i < waiting.size(); ++i) {
+      if (waiting[i].revents != 0) owners[i]->flush();
+    }
+  }
 }
 
 void RobotServer::Impl::closeAll(const char* reason) {

@@ -43,6 +43,9 @@ struct RobotServer::Impl {
   void closeClosingClients();
   void closeClient(std::map<ClientId, std::unique_ptr<detail::ClientConnection>>::iterator entry);
   void closeAll(const char* reason);
+  // Applies the replies given so far and writes out what clients have not been sent, waiting for
+  // slow sockets at most kStopFlushTime in all: a robot hears its internal_error before the close.
+  void deliverRepliesBeforeClosing();
   void disconnect(std::unique_ptr<detail::ClientConnection> client);
 
   detail::ClientLimits limits;

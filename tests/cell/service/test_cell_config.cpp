@@ -29,6 +29,8 @@ TEST(CellConfig, TheDocumentedExampleParsesWithItsDefaults) {
   EXPECT_EQ(config.robot.port, 50100);
   EXPECT_EQ(config.robot.codec.max_line_length, 80u);
   EXPECT_FALSE(config.artefacts.has_value());  // directory "" saves nothing
+  EXPECT_FALSE(config.limits.trim_memory_after_cycle);
+  EXPECT_TRUE(parse(kMinimal + "limits: {trim_memory_after_cycle: true}\n").limits.trim_memory_after_cycle);
   ASSERT_TRUE(config.T_base_camera.has_value());
   // Looking straight down: the camera's z axis is the base's -z.
   EXPECT_NEAR((config.T_base_camera->linear() * Eigen::Vector3d::UnitZ()).z(), -1.0, 1e-12);
@@ -168,6 +170,34 @@ TEST(CellConfig, MistakesNameTheKey) {
   EXPECT_TRUE(throwsNaming([] { parse("source: {mode: replay}\nrecipes: []\n"); }, "replay.path"));
   EXPECT_TRUE(throwsNaming([] { parse("robot: [1, 2\n"); }, "not valid YAML"));
   EXPECT_TRUE(throwsNaming([] { parse(""); }, "empty"));
+}
+
+// Settings whose NEXT reply cannot carry a pick would pass the start and answer every NEXT with
+// bad_message: they are refused, naming the setting and what it must be.
+TEST(CellConfig, ARobotLineTooShortForAPickIsRefusedNamingTheMinimum) {
+  const std::string message = test::thrownMessage([] { parse(kMinimal + "robot: {max_line_length: 20}\n"); });
+  const std::string expected = "cell.yaml: robot.max_line_length must be >= ";
+  ASSERT_EQ(message.rfind(expected, 0), 0u) << message;
+  EXPECT_NE(message.find("(got 20)"), std::string::npos) << message;
+
+  for (const char* orientation : {"quaternion", "euler_zyx", "fixed_xyz", "rotation_vector", "euler_xyz"}) {
+    const std::string robot = std::string("robot: {orientation: ") + orientation;
+    EXPECT_NO_THROW(parse(kMinimal + robot + "}\n")) << "the default 80 characters carry a pick";
+    const std::string refused = test::thrownMessage([&] { parse(kMinimal + robot + ", max_line_length: 16}\n"); });
+    ASSERT_EQ(refused.rfind(expected, 0), 0u) << orientation << ": " << refused;
+    const int minimum = std::stoi(refused.substr(expected.size()));
+    EXPECT_NO_THROW(parse(kMinimal + robot + ", max_line_length: " + std::to_string(minimum) + "}\n")) << orientation;
+    EXPECT_TRUE(throwsNaming(
+        [&] { parse(kMinimal + robot + ", max_line_length: " + std::to_string(minimum - 1) + "}\n"); }, expected))
+        << orientation;
+  }
+  // Binary: a scale at which a coordinate of 10 m overflows an int32 field.
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {framing: binary, position_scale: 1000000}\n"); },
+                           "robot.position_scale must be <= 214748"));
+  EXPECT_TRUE(throwsNaming(
+      [] { parse(kMinimal + "robot: {framing: binary, orientation: euler_zyx, orientation_scale: 1.0e8}\n"); },
+      "robot.orientation_scale must be <= "));
+  EXPECT_NO_THROW(parse(kMinimal + "robot: {framing: binary, max_line_length: 16}\n"));  // lines are ASCII's
 }
 
 class CellConfigFile : public test::TempDirectoryTest {};

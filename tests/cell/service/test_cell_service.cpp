@@ -29,8 +29,9 @@ std::shared_ptr<const CellSetup> setupFor(const std::string& yaml) {
 }
 
 struct Cell {
-  explicit Cell(const std::string& yaml)
-      : setup(setupFor(yaml)), service(setup, makeCaptureSource(setup->config.source), collector.sink()) {}
+  explicit Cell(const std::string& yaml) : Cell(setupFor(yaml)) {}
+  explicit Cell(std::shared_ptr<const CellSetup> prepared)
+      : setup(std::move(prepared)), service(setup, makeCaptureSource(setup->config.source), collector.sink()) {}
   Cell(const std::string& yaml, std::unique_ptr<acquisition::CaptureSource> source)
       : setup(setupFor(yaml)), service(setup, std::move(source), collector.sink()) {}
 
@@ -160,7 +161,9 @@ TEST(CellService, WithoutCalibrationTriggerSaysSo) {
   std::string no_hand_eye = cellConfigYaml(cellScene());
   no_hand_eye.erase(no_hand_eye.find("hand_eye:"), no_hand_eye.find("recipes:") - no_hand_eye.find("hand_eye:"));
   Cell cell(no_hand_eye);
-  EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::CalibrationMissing);
+  const robot::Reply refused = cell.ask(request(Command::Trigger));
+  EXPECT_EQ(refused.status, Status::CalibrationMissing);
+  EXPECT_EQ(refused.integers, std::vector<int32_t>{0}) << "no cycle started";
 
   std::string no_rig = cellConfigYaml(cellScene());
   no_rig.replace(no_rig.find("calibration: "), 13, "calibration: /nonexistent/");
@@ -254,6 +257,111 @@ TEST(CellService, AReloadDuringACycleTakesEffectAfterIt) {
   cell.allPicks();
   ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
   EXPECT_EQ(cell.allPicks().size(), 1u);
+}
+
+// A robot program reads a fixed number of fields: each command's reply carries the same integers
+// whatever its status (counts 0 and ids -1 when there is nothing to tell), except
+// unknown_command and bad_message, which carry none (docs/robot-protocol.md, "Reply shapes").
+TEST(CellService, EachCommandAnswersWithOneShapeWhateverTheStatus) {
+  using Ints = std::vector<int32_t>;
+  Cell cell(cellConfigYaml(cellScene()));
+  const robot::Reply no_cycle = cell.ask(request(Command::NextPick));
+  EXPECT_EQ(no_cycle.status, Status::NoCycle);
+  EXPECT_EQ(no_cycle.integers, (Ints{0, -1, -1}));
+  const robot::Reply failed_before = cell.ask(request(Command::PickFailed));
+  EXPECT_EQ(failed_before.status, Status::NoCycle);
+  EXPECT_EQ(failed_before.integers, Ints{-1}) << "no pick handed out";
+  EXPECT_EQ(cell.ask(request(Command::PickFailed, "7")).integers, Ints{7}) << "the object named";
+  const robot::Reply unknown_trigger = cell.ask(request(Command::Trigger, "nut"));
+  EXPECT_EQ(unknown_trigger.status, Status::UnknownModel);
+  EXPECT_EQ(unknown_trigger.integers, Ints{0}) << "no cycle started";
+  const robot::Reply unknown_model = cell.ask(request(Command::SelectModel, "nut"));
+  EXPECT_EQ(unknown_model.status, Status::UnknownModel);
+  EXPECT_EQ(unknown_model.integers, Ints{0}) << "the model still selected";
+  EXPECT_EQ(cell.ask(request(Command::Ping)).integers, Ints{});
+  EXPECT_EQ(cell.ask(request(Command::Status)).integers.size(), 3u);
+
+  cell.service.handle(kRobot, request(Command::Trigger));
+  const robot::Reply busy = cell.ask(request(Command::Trigger), 2);
+  EXPECT_EQ(busy.status, Status::Busy);
+  EXPECT_EQ(busy.integers, Ints{0});
+  EXPECT_EQ(cell.collector.next(kRobot)->integers, Ints{1});
+  for (const robot::Reply& pick : cell.allPicks()) EXPECT_EQ(pick.integers.size(), 3u);
+  const robot::Reply no_more = cell.ask(request(Command::NextPick));
+  EXPECT_EQ(no_more.status, Status::NoMorePicks);
+  EXPECT_EQ(no_more.integers, (Ints{0, -1, -1}));
+  // An object the cycle did not detect is a bad argument, and bad_message carries no integers.
+  const robot::Reply unknown_object = cell.ask(request(Command::PickFailed, "999"));
+  EXPECT_EQ(unknown_object.status, Status::BadMessage);
+  EXPECT_EQ(unknown_object.integers, Ints{});
+}
+
+// A pick whose NEXT reply the robot's codec cannot encode (here a binary coordinate beyond the
+// int32 range) would reach the robot as bad_message and be used up: the cell leaves it out, and
+// the cycle's detail (and the log) names why. The settings check refuses such a scale at start;
+// a far hand-eye pose or a reload can still produce such picks.
+TEST(CellService, APickTheRobotCannotBeSentIsNeitherHandedOutNorLostSilently) {
+  auto setup = std::make_shared<CellSetup>(*setupFor(cellConfigYaml(cellScene())));
+  robot::CodecParams& codec = setup->config.robot.codec;
+  codec.framing = robot::Framing::Binary;
+  codec.position_scale = 1e7;  // 0.6 m = 6e9: beyond int32
+  Cell cell(setup);
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
+  const robot::Reply next = cell.ask(request(Command::NextPick));
+  EXPECT_EQ(next.status, Status::Unreachable);
+  robot::ReplyDecoder decoder(codec);
+  const std::string bytes = robot::encodeReply(next, codec);
+  decoder.feed(bytes.data(), bytes.size());
+  EXPECT_EQ(decoder.next()->status, next.status) << "the robot hears the reply as it was meant";
+  const CellSnapshot snapshot = cell.service.snapshot();
+  EXPECT_EQ(snapshot.last_picks, 0u);
+  EXPECT_NE(snapshot.last_detail.find("robot.position_scale"), std::string::npos) << snapshot.last_detail;
+}
+
+// The cache only makes restarts fast: one that cannot be written costs the next start the model
+// preparation, not this start.
+TEST_F(CellServiceFiles, AModelCacheThatCannotBeWrittenStillStartsAndServes) {
+  std::ofstream(pathOf("a_file")) << "not a directory";
+  std::string yaml = cellConfigYaml(cellScene());
+  const std::string cache = "cache: " + cellScene().directory + "/part.cache";
+  ASSERT_NE(yaml.find(cache), std::string::npos);
+  yaml.replace(yaml.find(cache), cache.size(), "cache: " + pathOf("a_file") + "/part.cache");
+  Cell cell(yaml);
+  EXPECT_FALSE(cell.setup->recipes[0].model_from_cache);
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
+  EXPECT_EQ(cell.ask(request(Command::NextPick)).status, Status::Ok);
+}
+
+// A cycle past its processing deadline stops computing: the cell is idle again soon after the
+// timeout reply, instead of answering busy until the late stages return.
+TEST(CellService, ACycleThatMissesItsProcessingDeadlineStopsComputing) {
+  Cell cell(cellConfigYaml(cellScene(), "limits: {processing_timeout_ms: 1}\n"));
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);
+  EXPECT_EQ(cell.ask(request(Command::NextPick)).status, Status::Timeout);
+  for (int polls = 0; cell.ask(request(Command::Status)).integers.at(0) != 0; ++polls) {
+    ASSERT_LT(polls, 100000) << "the cell never became idle";
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  const CellSnapshot stopped = cell.service.snapshot();
+  EXPECT_EQ(stopped.last_status, Status::Timeout);
+  EXPECT_EQ(stopped.last_parts_detected, 0u) << "the detection did not run to its end";
+  EXPECT_NE(stopped.last_detail.find("stopped: cancelled"), std::string::npos) << stopped.last_detail;
+  EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok) << "not busy";
+}
+
+// Stopping answers every robot waiting on the cycle, the TRIGGER and the NEXT alike.
+TEST(CellService, StoppingAnswersEveryWaitingRobot) {
+  Cell cell(cellConfigYaml(cellScene()), std::make_unique<SlowSource>(std::chrono::milliseconds(300)));
+  cell.service.handle(kRobot, request(Command::Trigger));
+  cell.service.handle(2, request(Command::NextPick));
+  cell.service.stop();
+  const auto trigger = cell.collector.next(kRobot, std::chrono::milliseconds(0));
+  const auto next = cell.collector.next(2, std::chrono::milliseconds(0));
+  ASSERT_TRUE(trigger && next);
+  EXPECT_EQ(trigger->status, Status::InternalError);
+  EXPECT_EQ(trigger->integers, std::vector<int32_t>{1});
+  EXPECT_EQ(next->status, Status::InternalError);
+  EXPECT_EQ(next->integers, (std::vector<int32_t>{0, -1, -1}));
 }
 
 }  // namespace

@@ -52,7 +52,12 @@ struct CycleLimits {
   int empty_bin_max_points = 300;
   double empty_bin_min_height = 0.005;  // metres above the floor a point must be to count
   int avoid_cycles = 3;                 // a failed pick's object is avoided for that many cycles
-  void validate() const;                // throws core::Error naming the field
+  // Return the memory a cycle freed to the system after it (glibc's malloc_trim): the resident
+  // memory stays lower, at the price of the next cycle faulting its buffers in again, which
+  // costs about half a second per cycle of the demo bin (docs/binpickd.md, Figures). Off: cycle
+  // time comes first on a cell PC; on where memory is tight.
+  bool trim_memory_after_cycle = false;
+  void validate() const;  // throws core::Error naming the field
 };
 
 struct CellConfig {

@@ -1,7 +1,8 @@
 #pragma once
 // The cell's request handling behind the robot server: one pick cycle at a time (capture ->
 // reconstruct -> detect -> plan), requests answered without ever blocking the server thread, and
-// every stage under a deadline, so that the robot always gets an answer:
+// every stage under a deadline (a cycle past it is cancelled), so that the robot always gets an
+// answer, in one reply shape per command (docs/robot-protocol.md, "Reply shapes"):
 //   TRIGGER  answered when the capture is done (the robot may move away while the cycle computes),
 //            or "busy", "calibration missing", "no image", "timeout" at the capture deadline.
 //   NEXT     the next pick of the latest cycle, waiting for the cycle if it is still computing (up
@@ -51,8 +52,9 @@ class CellService : public robot::RequestHandler {
   // A reloaded configuration: the running cycle ends with the old one, the next uses the new.
   // `source` null: keep the current capture source.
   void reconfigure(std::shared_ptr<const CellSetup> setup, std::unique_ptr<acquisition::CaptureSource> source);
-  // Answers every waiting robot ("internal error": the service is stopping), waits for the running
-  // stage and the artefact being saved, and joins the threads. Idempotent.
+  // Answers every waiting robot ("internal error": the service is stopping) through the sink, so
+  // call it while the server still sends replies; cancels the running cycle (a capture under way
+  // is waited for), finishes the artefact being saved and joins the threads. Idempotent.
   void stop();
 
   CellSnapshot snapshot() const;

@@ -34,7 +34,9 @@ struct CellSetup {
   int recipeIndex(const std::string& name_or_index) const;  // -1 when there is none such
 };
 
-// Throws core::Error naming the file when a model, its settings or the cache is unusable.
+// Throws core::Error naming the file when a model or its settings are unusable. A model cache
+// that cannot be read is rebuilt, one that cannot be written is logged (a warning): the model is
+// then prepared in memory at every start.
 std::shared_ptr<const CellSetup> prepareCell(CellConfig config);
 
 // The capture source the settings describe. Live sources open the camera on the first capture.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "binpick/cell/cell_setup.hpp"
+#include "binpick/core/cancellation.hpp"
 #include "binpick/robot/protocol.hpp"
 
 namespace binpick::cell {
@@ -22,6 +23,7 @@ struct CycleOutcome {
   std::string detail;                             // why, when status is not ok
   std::vector<picking::Pick> picks;               // ordered, at most limits.max_picks
   picking::PickRejections rejected;               // the confident detections not picked, by reason
+  std::vector<std::string> undeliverable;         // planned picks left out: which, and why
   std::vector<Eigen::Isometry3d> T_base_objects;  // every detection, base frame
   estimation::DetectionResult detection;
   reconstruction::Reconstruction reconstruction;
@@ -30,10 +32,13 @@ struct CycleOutcome {
 };
 
 // `avoid`: base-frame centres of objects the robot failed to pick. Requires a reconstructor and
-// T_base_camera (the caller answers "calibration missing" otherwise). Throws core::Error only
-// for a capture the reconstruction refuses (a corrupt or mismatched capture).
+// T_base_camera (the caller answers "calibration missing" otherwise). Picks whose NEXT reply the
+// robot codec (setup.config.robot.codec) cannot encode are left out, each named in
+// `undeliverable`: the robot could not be told them. Throws core::Error only for a capture the
+// reconstruction refuses (a corrupt or mismatched capture), and core::Cancelled once `cancel` is
+// set (checked between the stages and inside reconstruction and detection).
 CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
-                            const std::vector<Eigen::Vector3d>& avoid);
+                            const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag* cancel = nullptr);
 
 // Points of `cloud` (camera frame) inside the bin's inner box, at least `min_height` off its floor
 // and walls: tells "bin empty" from "nothing detected".

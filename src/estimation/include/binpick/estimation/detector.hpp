@@ -69,8 +69,11 @@ class Detector {
   Detector(PreparedModel model, DetectorParams params);
   DetectionResult detect(const io::PointCloud& scene_cloud) const;
   // The same with another crop box than the params' (a bin that moves between captures, or one
-  // detector shared by several cells): no copy of the model.
-  DetectionResult detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop) const;
+  // detector shared by several cells): no copy of the model. Once `cancel` is set (a deadline
+  // passed) it throws core::Cancelled within a fraction of a second: it is checked between the
+  // stages, per reference point in voting, per candidate in verification and before every ICP.
+  DetectionResult detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop,
+                         const core::CancelFlag* cancel = nullptr) const;
   const PreparedModel& model() const { return model_; }
   const DetectorParams& params() const { return params_; }
 

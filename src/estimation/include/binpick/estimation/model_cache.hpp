@@ -27,8 +27,11 @@ uint64_t fingerprintFile(const std::string& path);
 
 // The cache at `cache_path` when it exists and was built from the same source with the same
 // params; otherwise the model is prepared from `model_path` and the cache (re)written. `reused`
-// tells which happened.
+// tells which happened. A cache that cannot be written throws core::Error naming it, unless
+// `write_problem` is given: then the prepared model is returned and the problem stored there
+// (empty when the cache was reused or written), for callers to whom the cache is only a speed-up.
 PreparedModel loadOrPrepareModel(const std::string& model_path, const ModelParams& params,
-                                 const std::string& cache_path, bool* reused = nullptr);
+                                 const std::string& cache_path, bool* reused = nullptr,
+                                 std::string* write_problem = nullptr);
 
 }  // namespace binpick::estimation

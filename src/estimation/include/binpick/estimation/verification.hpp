@@ -35,9 +35,10 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
                                                const std::vector<Eigen::Vector3f>& scene_normals,
                                                float min_normal_cosine);
 
+// Throws core::Cancelled once `cancel` is set (checked per candidate).
 std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
                                       const PreparedScene& scene, const SceneVoxelGrid& grid,
-                                      const VerificationParams& params);
+                                      const VerificationParams& params, const core::CancelFlag* cancel = nullptr);
 
 // Eq. 4: how many entries of SS(P) still exist.
 uint32_t existingCount(const std::vector<uint32_t>& support, const std::vector<uint8_t>& exist);

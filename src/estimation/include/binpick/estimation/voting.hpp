@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "binpick/core/cancellation.hpp"
 #include "binpick/estimation/model.hpp"
 #include "binpick/estimation/scene.hpp"
 
@@ -31,7 +32,9 @@ struct PoseCandidate {
 };
 
 // Candidates ordered by reference point, then by votes (descending): the same for any thread count.
-std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params);
+// Throws core::Cancelled once `cancel` is set (checked per reference point).
+std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params,
+                                const core::CancelFlag* cancel = nullptr);
 
 // The indices a fraction selects: a seeded shuffle's prefix, sorted (exposed for tests).
 std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t seed);

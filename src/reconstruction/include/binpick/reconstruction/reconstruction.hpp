@@ -6,6 +6,7 @@
 // from many threads at once.
 #include <opencv2/core.hpp>
 
+#include "binpick/core/cancellation.hpp"
 #include "binpick/io/capture.hpp"
 #include "binpick/io/point_cloud.hpp"
 #include "binpick/io/rig_calibration.hpp"
@@ -49,8 +50,9 @@ class Reconstructor {
   Reconstructor(const io::RigCalibration& rig, const ReconstructionParams& params = {});
 
   // Throws core::Error when the capture cannot be decoded (decoder.hpp) or its images are not
-  // the size of the calibration's camera.
-  Reconstruction reconstruct(const io::Capture& capture) const;
+  // the size of the calibration's camera; core::Cancelled when `cancel` is set before a stage
+  // (decoding, triangulation, filtering) begins.
+  Reconstruction reconstruct(const io::Capture& capture, const core::CancelFlag* cancel = nullptr) const;
 
   const ReconstructionParams& params() const { return params_; }
   const io::RigCalibration& rig() const { return triangulator_.rig(); }

@@ -85,8 +85,9 @@ class RobotServer {
   RobotServer& operator=(const RobotServer&) = delete;
 
   int port() const;  // the bound port
-  // Serves until stop(), then closes every client (handler.disconnected for each) and the
-  // listening socket. Problems of one client never end it; a failing listening socket or poll()
+  // Serves until stop(), then writes out the replies given so far (at most 500 ms for clients
+  // that do not read), closes every client (handler.disconnected for each) and the listening
+  // socket. Problems of one client never end it; a failing listening socket or poll()
   // throws core::Error. A stopped server stays stopped: run() then returns at once.
   void run();
   void stop();
