@@ -230,6 +230,23 @@ TEST(server_lifecycle, StopClosesEveryClientEvenWithARequestOutstanding) {
   EXPECT_EQ(running.server().clientCount(), 0u);
 }
 
+// A service stopping answers its waiting robots (internal_error) and then stops the server at
+// once: those replies still reach the robots before their connections close.
+TEST(server_lifecycle, RepliesGivenJustBeforeStopAreSentBeforeTheClose) {
+  RunningServer running(loopbackParams(), Answer::ByTheTest);
+  TestClient waiting(running.port());
+  waiting.send(request(Command::NextPick));
+  auto [id, next] = running.handler().waitForRequest();
+  robot::Reply failed = replyTo(next);
+  failed.status = robot::Status::InternalError;
+  running.server().reply(id, failed);
+  running.stopAndJoin();
+  const robot::Reply received = waiting.receiveReply();
+  EXPECT_EQ(received.command, Command::NextPick);
+  EXPECT_EQ(received.status, robot::Status::InternalError);
+  EXPECT_TRUE(waiting.waitForClose());
+}
+
 TEST(server_lifecycle, StopBeforeRunMakesRunReturnAtOnce) {
   TestHandler handler(Answer::Immediately);
   robot::RobotServer server(loopbackParams(), handler);
