@@ -16,14 +16,10 @@ constexpr double kMillimetresPerMetre = 1000.0;
 constexpr int32_t kWidestId = 99;
 constexpr std::size_t kLongestLineLength = 4096;  // CodecParams' upper bound
 
-// Whether `reply` goes out as itself rather than as the encoder's bad_message fallback.
+// Whether `reply` goes out as itself rather than as the encoder's bad_message stand-in.
 bool encodes(const robot::Reply& reply, const robot::CodecParams& codec) {
   try {
-    const std::string bytes = robot::encodeReply(reply, codec);
-    robot::ReplyDecoder decoder(codec);
-    decoder.feed(bytes.data(), bytes.size());
-    const std::optional<robot::Reply> sent = decoder.next();
-    return sent && sent->status == reply.status;
+    return robot::encodeReplyIfItFits(reply, codec).has_value();
   } catch (const core::Error&) {  // a pose the encoder refuses (not finite)
     return false;
   }

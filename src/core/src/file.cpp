@@ -4,10 +4,10 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include "binpick/core/error.hpp"
 
@@ -43,19 +43,32 @@ void createParentDirectory(const std::string& path) {
   if (error) failWriting(path, "cannot create " + parent.string() + ": " + error.message());
 }
 
-}  // namespace
-
-std::string readFile(const std::string& path) {
+std::uint64_t regularFileSize(const std::string& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
   if (!fs::exists(status)) throw Error(path + ": the file does not exist");
-  if (fs::is_directory(status)) throw Error(path + ": is a directory, not a file");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(path + ": cannot read the file: " + std::strerror(errno));
-  std::ostringstream bytes;
-  bytes << file.rdbuf();
-  if (file.bad()) throw Error(path + ": cannot read the file: read error");
-  return bytes.str();
+  if (fs::is_directory(status)) throw Error(path + ": is a directory, not a regular file");
+  if (!fs::is_regular_file(status)) throw Error(path + ": not a regular file");
+  const std::uint64_t size = fs::file_size(path, error);
+  if (error) throw Error(path + ": cannot get the file size: " + error.message());
+  return size;
+}
+
+}  // namespace
+
+// The size first, then one read of exactly that many bytes: much faster than streaming for large
+// binary bodies, and a file that shrinks while being read is noticed.
+std::string readFile(const std::string& path) {
+  const std::uint64_t size = regularFileSize(path);
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw Error(path + ": cannot read the file: " + std::strerror(errno));
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  stream.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (static_cast<std::uint64_t>(stream.gcount()) != size) {
+    throw Error(path + ": cannot read the file: got " + std::to_string(stream.gcount()) + " of " +
+                std::to_string(size) + " bytes");
+  }
+  return bytes;
 }
 
 void replaceFileAtomically(const std::string& path, const std::function<void(const std::string&)>& write) {

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "binpick/core/error.hpp"
+#include "binpick/core/file.hpp"
 
 namespace binpick::io::detail {
 
@@ -16,34 +17,8 @@ namespace fs = std::filesystem;
 
 void fail(const std::string& path, const std::string& what) { throw core::Error(path + ": " + what); }
 
-namespace {
-
-std::uint64_t regularFileSize(const std::string& path) {
-  std::error_code error;
-  const fs::file_status status = fs::status(path, error);
-  if (!fs::exists(status)) fail(path, "file does not exist");
-  if (!fs::is_regular_file(status)) fail(path, "not a regular file");
-  const std::uint64_t size = fs::file_size(path, error);
-  if (error) fail(path, "cannot get the file size: " + error.message());
-  return size;
-}
-
-}  // namespace
-
-std::string readFileBytes(const std::string& path) {
-  const std::uint64_t size = regularFileSize(path);
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) fail(path, std::string("cannot be opened: ") + std::strerror(errno));
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  stream.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (static_cast<std::uint64_t>(stream.gcount()) != size) {
-    fail(path, "read error: got " + std::to_string(stream.gcount()) + " of " + std::to_string(size) + " bytes");
-  }
-  return bytes;
-}
-
 std::string readNonEmptyFileBytes(const std::string& path) {
-  std::string bytes = readFileBytes(path);
+  std::string bytes = core::readFile(path);
   if (bytes.empty()) fail(path, "the file is empty");
   return bytes;
 }

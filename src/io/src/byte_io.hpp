@@ -14,10 +14,7 @@ namespace binpick::io::detail {
 // Throws core::Error("PATH: what").
 [[noreturn]] void fail(const std::string& path, const std::string& what);
 
-// The whole file in one read (one block is much faster than streaming for large binary bodies).
-// Throws when the file is missing, is not a regular file or cannot be read.
-std::string readFileBytes(const std::string& path);
-// readFileBytes, and an empty file is an error: no format we read can be empty.
+// core::readFile, and an empty file is an error: no format we read can be empty.
 std::string readNonEmptyFileBytes(const std::string& path);
 // Replaces the file's contents with `bytes`; throws when the file cannot be written completely.
 void writeFileBytes(const std::string& path, std::string_view bytes);

@@ -51,7 +51,7 @@ int expectedType(int bit_depth) { return bit_depth == 16 ? CV_16UC1 : CV_8UC1; }
 cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   if (!fs::exists(path)) fail(path, "the image listed in capture.json is missing");
   // Decoded from memory: cv::imread logs its own warning for unreadable files, our error says it.
-  const std::string bytes = detail::readFileBytes(path);
+  const std::string bytes = core::readFile(path);
   cv::Mat image;
   try {
     image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),

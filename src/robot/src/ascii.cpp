@@ -164,10 +164,6 @@ std::optional<std::string> poseText(const Eigen::Isometry3d& T_base_tool, const 
                        std::max(0, params.orientation_decimals - drop.orientation));
 }
 
-std::string badMessageLine(Command command) {
-  return std::string(commandKeyword(command)) + "," + std::to_string(static_cast<int32_t>(Status::BadMessage)) + "\r\n";
-}
-
 // --- decoding
 
 [[noreturn]] void malformed(std::string_view line, const std::string& problem) {
@@ -211,13 +207,14 @@ Eigen::Isometry3d parsePose(std::string_view line, const std::vector<std::string
 
 }  // namespace
 
-std::string encodeAsciiReply(const Reply& reply, const CodecParams& params) {
+std::optional<std::string> encodeAsciiReply(const Reply& reply, const CodecParams& params) {
   std::string head =
       std::string(commandKeyword(reply.command)) + "," + std::to_string(static_cast<int32_t>(reply.status));
   for (int32_t integer : reply.integers) head += "," + std::to_string(integer);
   if (!reply.T_base_tool) {
-    const std::string line = head + "\r\n";
-    return line.size() <= params.max_line_length ? line : badMessageLine(reply.command);
+    std::string line = head + "\r\n";
+    if (line.size() > params.max_line_length) return std::nullopt;
+    return line;
   }
   for (const PrecisionDrop& drop : kPrecisionDrops) {
     const std::optional<std::string> pose = poseText(*reply.T_base_tool, params, drop);
@@ -225,7 +222,7 @@ std::string encodeAsciiReply(const Reply& reply, const CodecParams& params) {
     const std::string line = head + *pose + "\r\n";
     if (line.size() <= params.max_line_length) return line;
   }
-  return badMessageLine(reply.command);
+  return std::nullopt;
 }
 
 Reply decodeAsciiReplyLine(std::string_view line, const CodecParams& params) {

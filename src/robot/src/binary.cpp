@@ -90,20 +90,15 @@ std::string encodeBinaryRequest(const Request& request, const CodecParams& param
   return message;
 }
 
-std::string encodeBinaryReply(const Reply& reply, const CodecParams& params) {
+std::optional<std::string> encodeBinaryReply(const Reply& reply, const CodecParams& params) {
   std::array<int32_t, kReplyFields> fields{};
   fields[0] = static_cast<int32_t>(reply.command);
   fields[1] = static_cast<int32_t>(reply.status);
   for (std::size_t i = 0; i < reply.integers.size(); ++i) fields[kFirstInteger + i] = reply.integers[i];
   if (reply.T_base_tool) {
     const std::optional<BinaryPoseFields> pose = binaryPoseFields(*reply.T_base_tool, params);
-    if (pose) {
-      std::copy(pose->begin(), pose->end(), fields.begin() + kFirstPosition);
-    } else {
-      fields = {};  // no integers and no pose, as the ASCII framing's "KEYWORD,8"
-      fields[0] = static_cast<int32_t>(reply.command);
-      fields[1] = static_cast<int32_t>(Status::BadMessage);
-    }
+    if (!pose) return std::nullopt;
+    std::copy(pose->begin(), pose->end(), fields.begin() + kFirstPosition);
   }
   std::string message;
   for (int32_t field : fields) appendInt32(message, field, params.byte_order);

@@ -66,7 +66,8 @@ std::optional<Decoded> decodeAsciiRequestLine(std::string_view line, const Codec
 // The BadMessage for a line longer than the limit; `start` is its first max_line_length bytes.
 Decoded oversizedAsciiRequest(std::string_view start);
 std::string encodeAsciiRequest(const Request& request, const CodecParams& params);
-std::string encodeAsciiReply(const Reply& reply, const CodecParams& params);
+// Nothing when the line exceeds max_line_length even at the lowest precision allowed.
+std::optional<std::string> encodeAsciiReply(const Reply& reply, const CodecParams& params);
 // `line` without its '\n'; throws core::Error naming what was malformed.
 Reply decodeAsciiReplyLine(std::string_view line, const CodecParams& params);
 
@@ -83,7 +84,8 @@ Decoded decodeBinaryRequest(const char* bytes, const CodecParams& params);
 Decoded decodeBinaryPoseRequest(const char* bytes, const CodecParams& params);
 std::string encodeBinaryRequest(const Request& request, const CodecParams& params);
 std::string encodeBinaryPoseRequest(const Request& request, const CodecParams& params);
-std::string encodeBinaryReply(const Reply& reply, const CodecParams& params);
+// Nothing when a pose value does not fit an int32 at the configured scale.
+std::optional<std::string> encodeBinaryReply(const Reply& reply, const CodecParams& params);
 Reply decodeBinaryReply(const char* bytes, const CodecParams& params);
 
 }  // namespace binpick::robot::detail

@@ -288,11 +288,21 @@ std::optional<Decoded> RequestDecoder::next() {
 
 std::size_t RequestDecoder::buffered() const { return buffer_.size(); }
 
-std::string encodeReply(const Reply& reply, const CodecParams& params) {
+std::optional<std::string> encodeReplyIfItFits(const Reply& reply, const CodecParams& params) {
   params.validate();
   detail::checkReply(reply);
   return params.framing == Framing::Ascii ? detail::encodeAsciiReply(reply, params)
                                           : detail::encodeBinaryReply(reply, params);
+}
+
+std::string encodeReply(const Reply& reply, const CodecParams& params) {
+  if (std::optional<std::string> bytes = encodeReplyIfItFits(reply, params)) return std::move(*bytes);
+  // No integers and no pose: "KEYWORD,8" fits every line limit, and a binary reply without a pose
+  // cannot overflow.
+  Reply bad_message;
+  bad_message.command = reply.command;
+  bad_message.status = Status::BadMessage;
+  return *encodeReplyIfItFits(bad_message, params);
 }
 
 std::string encodeRequest(const Request& request, const CodecParams& params) {

@@ -10,8 +10,8 @@
 
 namespace binpick::core {
 
-// The file's bytes; throws core::Error naming PATH when it does not exist, is a directory or
-// cannot be read.
+// The file's bytes, in one read; throws core::Error naming PATH when it does not exist, is not a
+// regular file (a directory, a device) or cannot be read whole.
 std::string readFile(const std::string& path);
 
 // Whether a missing directory of PATH is an error (settings and caches go where they are told) or

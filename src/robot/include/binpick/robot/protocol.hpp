@@ -183,6 +183,10 @@ class RequestDecoder {
 // integers, a pose other than on NEXT with status Ok (the binary framing could not tell it
 // from none), a NEXT Ok without a pose, or a non-finite pose. Stateless: thread-safe.
 std::string encodeReply(const Reply& reply, const CodecParams& params);
+// encodeReply without the bad_message stand-in: nothing when the reply does not fit the framing
+// (ASCII line too long at every allowed precision, binary value beyond int32). For a sender
+// that must know whether the robot would get what it was meant to (a pick handed out is used up).
+std::optional<std::string> encodeReplyIfItFits(const Reply& reply, const CodecParams& params);
 
 // The robot's side (binpick robot-client, tests): requests out, replies in. ASCII requests end
 // with "\r\n"; a POSE is written at the codec's precision (position_decimals, orientation_decimals
