@@ -12,9 +12,13 @@ packages=(
   libaravis-dev
   libgpiod-dev
   libspdlog-dev libfmt-dev
+  libcli11-dev                   # the command lines of binpick and binpickd
+  libcpp-httplib-dev             # binpickd's web view
   nlohmann-json3-dev libyaml-cpp-dev
   libgtest-dev libgmock-dev
   systemd                        # systemd-analyze checks the service unit in the tests
+  dpkg-dev file                  # the Debian package: dpkg-shlibdeps finds its Depends, dpkg-deb reads it back
+  chromium chromium-driver python3-selenium  # the web view's test in a real headless browser
   clang libclang-rt-14-dev       # libFuzzer for the robot protocol's fuzz test
 )
 
