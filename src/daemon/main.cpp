@@ -1,23 +1,21 @@
 // binpickd: the bin-picking cell service. It serves robot controllers over TCP: capture (camera +
 // projector, or replay of recorded captures), reconstruct, detect, plan picks, send them.
-//   binpickd --config FILE [--port N] [--port-file FILE] [--check]
+// The command line (CLI11; `binpickd --help`) follows binpick's conventions (core/command_line.hpp).
 // --check loads and prepares everything (writing the model caches), then exits: 0 when the
 // settings are good.
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include <exception>
 #include <iostream>
 #include <string>
-#include <vector>
 
 #include "binpick/cell/cell_config.hpp"
 #include "binpick/cell/cell_setup.hpp"
+#include "binpick/core/command_line.hpp"
+#include "binpick/core/version.hpp"
 #include "daemon.hpp"
 
 namespace {
-
-constexpr const char* kUsage = "usage: binpickd --config FILE [--port N] [--port-file FILE] [--check] [--verbose]\n";
 
 struct CommandLine {
   binpick::daemon::DaemonOptions options;
@@ -25,26 +23,21 @@ struct CommandLine {
   bool verbose = false;
 };
 
-CommandLine parse(const std::vector<std::string>& args) {
-  CommandLine line;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    const bool has_value = i + 1 < args.size();
-    if (arg == "--check")
-      line.check = true;
-    else if (arg == "--verbose")
-      line.verbose = true;
-    else if (arg == "--config" && has_value)
-      line.options.config_path = args[++i];
-    else if (arg == "--port-file" && has_value)
-      line.options.port_file = args[++i];
-    else if (arg == "--port" && has_value)
-      line.options.port_override = std::stoi(args[++i]);
-    else
-      throw binpick::core::Error("unknown or incomplete option '" + arg + "'");
-  }
-  if (line.options.config_path.empty()) throw binpick::core::Error("--config FILE is needed");
-  return line;
+void declareOptions(CLI::App& program, CommandLine& line) {
+  program.add_option("--config", line.options.config_path, "The settings file (binpickd.yaml; docs/binpickd.md)")
+      ->type_name("FILE")
+      ->required();
+  program
+      .add_option("--port", line.options.port_override,
+                  "Listen for robots on this TCP port instead of the settings' robot.port (0: any free port)")
+      ->type_name("N")
+      ->check(CLI::Range(0, 65535));
+  program.add_option("--port-file", line.options.port_file, "Write the bound port to this file once listening")
+      ->type_name("FILE");
+  program.add_flag("--check", line.check,
+                   "Load and prepare everything (settings, calibration, models and their caches), print a "
+                   "summary and exit: 0 when the settings are good");
+  program.add_flag("--verbose", line.verbose, "Log debug messages too");
 }
 
 int check(const std::string& path) {
@@ -54,23 +47,25 @@ int check(const std::string& path) {
   return 0;
 }
 
+int run(const CommandLine& line) {
+  // One stream for the journal (stderr, like every component's logger); journald adds the time.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("binpickd"));
+  spdlog::set_pattern("[%l] %n: %v");
+  if (line.verbose) spdlog::set_level(spdlog::level::debug);
+  if (line.check) return check(line.options.config_path);
+  return binpick::daemon::runDaemon(line.options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   binpick::daemon::blockStopAndReloadSignals();  // before any thread starts
-  try {
-    const CommandLine line = parse(std::vector<std::string>(argv + 1, argv + argc));
-    // One stream for the journal (stderr, like every component's logger); journald adds the time.
-    spdlog::set_default_logger(spdlog::stderr_color_mt("binpickd"));
-    spdlog::set_pattern("[%l] %n: %v");
-    if (line.verbose) spdlog::set_level(spdlog::level::debug);
-    if (line.check) return check(line.options.config_path);
-    return binpick::daemon::runDaemon(line.options);
-  } catch (const std::invalid_argument&) {
-    std::cerr << "binpickd: --port needs a number\n" << kUsage;
-    return 2;
-  } catch (const std::exception& e) {
-    std::cerr << "binpickd: " << e.what() << "\n";
-    return 1;
-  }
+  CLI::App program(
+      "binpickd: the bin-picking cell service. Robot controllers connect over TCP, trigger a cycle "
+      "(capture, reconstruct, detect, plan grasps) and fetch picks (docs/robot-protocol.md).",
+      "binpickd");
+  binpick::core::applyCommandLineConventions(program, binpick::core::versionText());
+  CommandLine line;
+  declareOptions(program, line);
+  return binpick::core::runCommandLine(program, argc, argv, [&line] { return run(line); });
 }
