@@ -139,13 +139,20 @@ TEST_F(ReplaySource, ADamagedCaptureIsReportedAndTheReplayGoesOn) {
   EXPECT_EQ(source->next().metadata.source, "c");
 }
 
-TEST_F(ReplaySource, RefusesAPathWithoutCaptures) {
-  ReplayParams empty;
-  empty.path = root();
-  EXPECT_TRUE(contains(makeError(empty), "holds no capture")) << makeError(empty);
+TEST_F(ReplaySource, APathWithoutCapturesFailsEachCaptureUntilOneIsRecorded) {
+  // A cell installed but not yet recorded starts; each capture says why there is nothing to replay.
   ReplayParams missing;
   missing.path = pathOf("nowhere");
-  EXPECT_TRUE(contains(makeError(missing), pathOf("nowhere") + " is not a directory")) << makeError(missing);
+  const auto from_missing = makeReplaySource(missing);
+  EXPECT_EQ(nextError(*from_missing), "replay: " + pathOf("nowhere") + " is not a directory");
+  ReplayParams empty;
+  empty.path = root();
+  const auto from_empty = makeReplaySource(empty);
+  EXPECT_TRUE(contains(nextError(*from_empty), root() + " holds no capture")) << nextError(*from_empty);
+  EXPECT_TRUE(contains(from_empty->description(), "no capture yet")) << from_empty->description();
+  // A recording copied in later is found at the next capture, without a restart.
+  io::writeCapture(pathOf("a"), tinyCapture("a", 1));
+  EXPECT_EQ(from_empty->next().metadata.source, "a");
 }
 
 TEST_F(ReplaySource, ParamsAreCheckedNamingTheField) {

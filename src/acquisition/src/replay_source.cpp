@@ -18,15 +18,14 @@ bool isCapture(const fs::path& directory) {
   return fs::is_regular_file(directory / "capture.json", error);
 }
 
-// PATH itself when it is a capture, else its subdirectories in name order. A subdirectory without
+// PATH (a directory) itself when it is a capture, else its subdirectories in name order. A subdirectory without
 // capture.json is refused rather than skipped: writeCapture writes capture.json last, so it is a
 // recording that never finished (or something else that does not belong there) and a silently
 // shorter replay would hide that.
 std::vector<std::string> listCaptures(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_directory(path, error)) throw core::Error("replay: " + path + " is not a directory");
   if (isCapture(path)) return {path};
   std::vector<fs::path> directories;
+  std::error_code error;
   for (fs::directory_iterator it(path, error), end; !error && it != end; it.increment(error)) {
     std::error_code type_error;
     if (it->is_directory(type_error)) directories.push_back(it->path());  // files (notes, calib) ignored
@@ -42,20 +41,26 @@ std::vector<std::string> listCaptures(const std::string& path) {
     }
     captures.push_back(directory.string());
   }
-  if (captures.empty()) {
-    throw core::Error("replay: " + path + " holds no capture (no capture.json in it or its subdirectories)");
-  }
   return captures;
 }
 
+// A path that holds no capture yet (missing, or empty) is the normal state of a cell set up but
+// not yet recorded: the source starts, every next() says why it has nothing, and the captures are
+// looked for again then, so that a recording copied in later is replayed without a restart. A
+// half-written recording is still refused at once: it needs a person.
 class ReplaySource : public CaptureSource {
  public:
-  explicit ReplaySource(const ReplayParams& params) : params_(params), captures_(listCaptures(params.path)) {
+  explicit ReplaySource(const ReplayParams& params) : params_(params) {
+    if (!findCaptures(params_.path)) {
+      detail::componentLogger("replay")->warn("{}; every capture fails until there is one", missing_);
+      return;
+    }
     detail::componentLogger("replay")->info("{}: {} capture(s){}", params_.path, captures_.size(),
                                             params_.loop ? ", looping" : "");
   }
 
   io::Capture next() override {
+    if (captures_.empty() && !findCaptures(params_.path)) throw core::Error(missing_);
     if (next_ == captures_.size()) {
       if (!params_.loop) throw core::Error("replay: no more captures in " + params_.path);
       next_ = 0;
@@ -67,12 +72,29 @@ class ReplaySource : public CaptureSource {
   }
 
   std::string description() const override {
+    if (captures_.empty()) return "replay of " + params_.path + " (no capture yet)";
     return "replay of " + params_.path + " (" + std::to_string(captures_.size()) + " capture(s))";
   }
 
  private:
+  // Lists the captures; false (with missing_ saying why) when the path holds none yet.
+  bool findCaptures(const std::string& path) {
+    std::error_code error;
+    if (!fs::is_directory(path, error)) {
+      missing_ = "replay: " + path + " is not a directory";
+      return false;
+    }
+    captures_ = listCaptures(path);
+    if (captures_.empty()) {
+      missing_ = "replay: " + path + " holds no capture (no capture.json in it or its subdirectories)";
+      return false;
+    }
+    return true;
+  }
+
   ReplayParams params_;
   std::vector<std::string> captures_;
+  std::string missing_;  // why there is no capture, while there is none
   std::size_t next_ = 0;
 };
 

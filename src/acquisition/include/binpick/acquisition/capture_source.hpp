@@ -29,8 +29,9 @@ struct ReplayParams {
   int threads = 0;    // image decoding threads (0: all cores)
 };
 
-// Replays capture directories in name order, bit-identical to what was recorded. Throws
-// core::Error when `path` holds no capture.
+// Replays capture directories in name order, bit-identical to what was recorded. A path that holds
+// no capture yet (missing or empty) makes every next() throw core::Error saying so, until one is
+// there; a subdirectory without capture.json (a recording that did not finish) throws here.
 std::unique_ptr<CaptureSource> makeReplaySource(const ReplayParams& params);
 
 struct LiveParams {
