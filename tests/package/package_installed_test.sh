@@ -3,7 +3,7 @@
 # The package as installed, in a scratch root (dpkg-deb -x): the unit passes systemd-analyze verify
 # against the installed binpickd; `binpickd --check` accepts the installed example settings; and
 # binpickd starts from them in replay mode and serves a robot (calibration not yet done: TRIGGER
-# answers calibration_missing).
+# answers calibration_missing), and runs a cycle once a calibration and a capture are in place.
 set -uo pipefail
 deb_dir=$1 analyze=$2 verify_unit=$3
 failures=0
@@ -50,6 +50,15 @@ else
   for expected in "PING ok" "STATUS ok" "TRIGGER calibration_missing"; do
     grep -q "^$expected" "$scratch/client.log" || fail "no '$expected' from binpickd: $(cat "$scratch/client.log")"
   done
+  # Calibrated and recorded: a capture of the virtual cell (with its calib.yaml) in the replay
+  # directory, the settings reloaded (SIGHUP), and the next TRIGGER runs a cycle.
+  "$binpick" simulate --part l_bracket --objects 3 --seed 2 --out "$scratch/state/replay/capture_0001" 2>/dev/null ||
+    fail "the installed binpick cannot simulate a capture"
+  cp "$scratch/state/replay/capture_0001/calib.yaml" "$scratch/etc/calib.yaml"
+  kill -HUP "$daemon"
+  for _ in $(seq 100); do grep -q "reloaded\|reload failed" "$scratch/daemon.log" && break; sleep 0.1; done
+  "$binpick" robot-client --port "$port" --cycles 1 >"$scratch/cycle.log" 2>&1
+  grep -q "^cycle 1: TRIGGER ok" "$scratch/cycle.log" || fail "no cycle after calibration: $(cat "$scratch/cycle.log")"
   kill -TERM "$daemon"
   wait "$daemon"
   code=$?

@@ -60,7 +60,7 @@ class ReplaySource : public CaptureSource {
   }
 
   io::Capture next() override {
-    if (captures_.empty() && !findCaptures(params_.path)) throw core::Error(missing_);
+    if (captures_.empty() && !findCaptures(params_.path)) throw core::Error("replay: " + missing_);
     if (next_ == captures_.size()) {
       if (!params_.loop) throw core::Error("replay: no more captures in " + params_.path);
       next_ = 0;
@@ -81,12 +81,12 @@ class ReplaySource : public CaptureSource {
   bool findCaptures(const std::string& path) {
     std::error_code error;
     if (!fs::is_directory(path, error)) {
-      missing_ = "replay: " + path + " is not a directory";
+      missing_ = path + " is not a directory";
       return false;
     }
     captures_ = listCaptures(path);
     if (captures_.empty()) {
-      missing_ = "replay: " + path + " holds no capture (no capture.json in it or its subdirectories)";
+      missing_ = path + " holds no capture (no capture.json in it or its subdirectories)";
       return false;
     }
     return true;
