@@ -68,6 +68,19 @@ CLI::Option* addFlag(CLI::App& command, const std::string& name, const std::stri
   return command.add_flag(name, help);
 }
 
+void refuseTogether(const std::vector<CLI::Option*>& these, const std::vector<CLI::Option*>& those) {
+  for (CLI::Option* one : these) {
+    for (CLI::Option* other : those) {
+      if (one != other) one->excludes(other);
+    }
+  }
+}
+
+std::vector<CLI::Option*> optionsOf(CLI::App& group) {
+  // An option group declares no --help of its own; a command's is not one of its modes' options.
+  return group.get_options([&group](CLI::Option* option) { return option != group.get_help_ptr(); });
+}
+
 const CLI::Option& Arguments::option(const std::string& name) const {
   // A name not declared is a mistake of the command's own code, not of its user.
   const CLI::Option* declared = command_.get_option_no_throw(name);

@@ -22,6 +22,12 @@ CLI::Option* addNumber(CLI::App& command, const std::string& name, const std::st
                        const std::string& help);
 CLI::Option* addFlag(CLI::App& command, const std::string& name, const std::string& help);
 
+// Options of one mode refused with those of another: giving one of `these` with one of `those`
+// is a usage error naming both.
+void refuseTogether(const std::vector<CLI::Option*>& these, const std::vector<CLI::Option*>& those);
+// Every option of `group` (an option group, or a command).
+std::vector<CLI::Option*> optionsOf(CLI::App& group);
+
 class Arguments {
  public:
   // The options of `command`, parsed.
@@ -33,6 +39,8 @@ class Arguments {
   bool flag(const std::string& name) const;
   std::optional<int> integer(const std::string& name) const;
   std::optional<double> number(const std::string& name) const;
+  // Whether the command declares `name` (for helpers shared by commands with different options).
+  bool declares(const std::string& name) const { return command_.get_option_no_throw(name) != nullptr; }
 
  private:
   const CLI::Option& option(const std::string& name) const;

@@ -35,7 +35,9 @@ void addDetectCommand(CLI::App& program, CommandTable& table);
 void addSimulateCommand(CLI::App& program, CommandTable& table);
 void addEvaluateCommand(CLI::App& program, CommandTable& table);
 void addCalibrateCommand(CLI::App& program, CommandTable& table);  // rig | hand-eye
-void addGraspsCommand(CLI::App& program, CommandTable& table);     // grasps generated from a part model
+void addCalibrateRigCommand(CLI::App& calibrate, CommandTable& table);
+void addCalibrateHandEyeCommand(CLI::App& calibrate, CommandTable& table);  // from a file, or --listen
+void addGraspsCommand(CLI::App& program, CommandTable& table);              // grasps generated from a part model
 void addRobotClientCommand(CLI::App& program, CommandTable& table);
 
 }  // namespace binpick::cli

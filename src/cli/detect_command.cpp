@@ -1,6 +1,4 @@
-// binpick detect --model MODEL (--scene CLOUD | --capture DIR [--calib FILE]) [--max-objects N]
-//                [--config FILE] [--out FILE] [--model-cache FILE] [--threads N]
-//                [--method li_hashimoto|drost]
+// binpick detect --model MODEL (--scene CLOUD | --capture DIR): `binpick detect --help`.
 // With --capture, the pattern images are reconstructed first (the config file's
 // `reconstruction:` section applies): one command from images to poses.
 #include <fstream>
@@ -49,7 +47,6 @@ void writeOutput(const Arguments& args, const std::string& text) {
 io::PointCloud sceneFrom(const Arguments& args) {
   const auto scene = args.value("--scene");
   const auto capture = args.value("--capture");
-  if (!scene && !capture) throw missingOption("--scene or --capture");
   if (scene) return io::readPointCloud(*scene);
   CaptureInput input;
   input.capture_dir = *capture;
@@ -60,6 +57,7 @@ io::PointCloud sceneFrom(const Arguments& args) {
 }
 
 int run(const Arguments& args) {
+  if (!args.value("--scene") && !args.value("--capture")) throw missingOption("--scene or --capture");
   const estimation::EstimationConfig config = configFrom(args);
   const estimation::Detector detector(modelFrom(args, config.model), config.detector);
   const io::PointCloud scene = sceneFrom(args);
