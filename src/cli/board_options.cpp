@@ -16,9 +16,14 @@ void parseSquares(const std::string& text, calibration::BoardLayout& layout) {
 
 }  // namespace
 
-const std::set<std::string>& boardOptionNames() {
-  static const std::set<std::string> names = {"--board", "--squares", "--square-mm", "--marker-mm", "--dictionary"};
-  return names;
+CLI::Option_group& addBoardOptions(CLI::App& command) {
+  CLI::Option_group& group = *command.add_option_group("Board options");
+  addText(group, "--board", "TYPE", "charuco (default) or chessboard");
+  addText(group, "--squares", "CxR", "Squares across and down (default 9x7)");
+  addNumber(group, "--square-mm", "MM", "Side of a square in mm (default 30)");
+  addNumber(group, "--marker-mm", "MM", "ChArUco: side of a marker in mm (default 22)");
+  addText(group, "--dictionary", "NAME", "ChArUco: ArUco dictionary (default DICT_5X5_100)");
+  return group;
 }
 
 calibration::BoardLayout boardLayoutFromArguments(const Arguments& args) {

@@ -1,8 +1,5 @@
-// binpick calibrate hand-eye --listen --record DIR --count K
-//     (--camera ID [--pixel-format F] [--exposure-us E] [--gain-db G] [--timeout-ms T]
-//      | --replay IMAGES_DIR)
-//     [--port N] [--port-file F] [--framing ascii|binary] [--orientation NAME]
-//     [--byte-order big|little] --calib calib.yaml --setup eye-to-hand|eye-in-hand
+// binpick calibrate hand-eye --listen --record DIR --count K (--camera ID ... | --replay DIR)
+//     [--port N] [--port-file F] [robot codec options] --calib calib.yaml --setup SETUP
 //     [board options] [--method NAME] [--min-views N] [--refine] --out hand_eye.yaml
 // The guided hand-eye session: serves the robot protocol until K views are recorded in DIR (the
 // robot sends POSE at each taught pose), then runs the file mode on DIR. Ctrl-C or SIGTERM stops
@@ -18,43 +15,20 @@
 #include "binpick/core/error.hpp"
 #include "binpick/io/rig_calibration.hpp"
 #include "board_options.hpp"
+#include "calibrate_hand_eye.hpp"
 #include "camera_options.hpp"
 #include "commands.hpp"
 #include "hand_eye_guided_serving.hpp"
+#include "robot_codec_options.hpp"
 
 namespace binpick::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Given to the file mode as they are.
-const std::set<std::string> kCalibrationOptions = {"--calib", "--setup", "--method", "--min-views", "--out"};
-
-std::set<std::string> optionNames() {
-  std::set<std::string> names = {"--record",    "--count",   "--replay",      "--timeout-ms", "--port",
-                                 "--port-file", "--framing", "--orientation", "--byte-order"};
-  names.insert(kCalibrationOptions.begin(), kCalibrationOptions.end());
-  names.insert(boardOptionNames().begin(), boardOptionNames().end());
-  names.insert(cameraOptionNames().begin(), cameraOptionNames().end());
-  return names;
-}
-
-robot::CodecParams codecFrom(const Arguments& args) {
-  robot::CodecParams codec;
-  codec.framing = robot::framingFromName(args.value("--framing").value_or("ascii"));
-  codec.byte_order = robot::byteOrderFromName(args.value("--byte-order").value_or("big"));
-  if (const auto name = args.value("--orientation")) {
-    codec.orientation = core::orientationFromName(*name);
-  }
-  codec.validate();
-  return codec;
-}
-
 std::unique_ptr<ViewCamera> viewCameraFrom(const Arguments& args) {
   const auto replay = args.value("--replay");
-  if (replay.has_value() == args.value("--camera").has_value()) {
-    throw core::Error("give either --camera or --replay");
-  }
+  if (!replay && !args.value("--camera")) throw missingOption("--camera or --replay");
   if (replay) return makeReplayViewCamera(*replay);
   acquisition::CameraParams camera = cameraParamsFromArguments(args);
   camera.trigger = acquisition::TriggerSource::Software;  // one frame per view, when asked
@@ -64,7 +38,9 @@ std::unique_ptr<ViewCamera> viewCameraFrom(const Arguments& args) {
 // Everything the session needs, checked before the robot is told to start.
 GuidedSessionParams sessionParamsFrom(const Arguments& args) {
   GuidedSessionParams params;
-  params.wanted = parseInteger("--count", args.required("--count"));
+  const auto count = args.integer("--count");
+  if (!count) throw missingOption("--count");
+  params.wanted = *count;
   params.layout = boardLayoutFromArguments(args);
   params.camera = io::readRigCalibration(args.required("--calib")).camera;
   calibration::handEyeSetupFromName(args.required("--setup"));
@@ -85,25 +61,10 @@ GuidedSessionParams sessionParamsFrom(const Arguments& args) {
 GuidedServerOptions serverOptionsFrom(const Arguments& args) {
   GuidedServerOptions options;
   options.server.port = args.integer("--port").value_or(options.server.port);
-  options.server.codec = codecFrom(args);
+  options.server.codec = codecFromArguments(args);
   options.server.validate();
   options.port_file = args.value("--port-file").value_or("");
   return options;
-}
-
-// The file mode's arguments: the recorded views and the options it shares with this command.
-std::vector<std::string> calibrationArguments(const Arguments& args, const std::string& views) {
-  std::vector<std::string> forwarded = {"--views", views};
-  std::set<std::string> names = kCalibrationOptions;
-  names.insert(boardOptionNames().begin(), boardOptionNames().end());
-  for (const std::string& name : names) {
-    if (const auto value = args.value(name)) {
-      forwarded.push_back(name);
-      forwarded.push_back(*value);
-    }
-  }
-  if (args.flag("--refine")) forwarded.push_back("--refine");
-  return forwarded;
 }
 
 void setStopSignalsBlocked(bool blocked) {
@@ -113,9 +74,27 @@ void setStopSignalsBlocked(bool blocked) {
 
 }  // namespace
 
-int runCalibrateHandEyeGuided(const std::vector<std::string>& raw) {
-  const Arguments args(raw, optionNames(), {"--listen", "--refine"});
-  if (!args.flag("--listen")) throw core::Error("the guided session needs --listen");
+void addGuidedSessionOptions(CLI::App& hand_eye, CLI::Option* listen) {
+  CLI::Option* replay = addText(hand_eye, "--replay", "DIR", "Take the views from DIR's images, in name order");
+  std::vector<CLI::Option*> guided = {
+      addText(hand_eye, "--record", "DIR", "Record the views here (required; continues a session)"),
+      addInteger(hand_eye, "--count", "K", "Views to record (required, at least --min-views)"), replay,
+      addInteger(hand_eye, "--port", "N", "Robot protocol port (default 50100; 0: any free port)"),
+      addText(hand_eye, "--port-file", "FILE", "Write the bound port here once listening")};
+  CLI::Option_group& camera_group = addCameraOptions(hand_eye);
+  CLI::Option* camera = camera_group.get_option("--camera");
+  camera->excludes(replay);
+  guided.push_back(camera);
+  // The camera's other options need --camera, and so --listen through it.
+  for (CLI::Option* option : optionsOf(camera_group)) {
+    if (option != camera) option->needs(camera);
+  }
+  addInteger(camera_group, "--timeout-ms", "MS", "Wait for a frame at most this long (default 5000)")->needs(camera);
+  for (CLI::Option* option : optionsOf(addRobotCodecOptions(hand_eye))) guided.push_back(option);
+  for (CLI::Option* option : guided) option->needs(listen);
+}
+
+int runGuidedSession(const Arguments& args) {
   const std::string directory = args.required("--record");
   const GuidedSessionParams params = sessionParamsFrom(args);
   const GuidedServerOptions server = serverOptionsFrom(args);
@@ -133,7 +112,7 @@ int runCalibrateHandEyeGuided(const std::vector<std::string>& raw) {
     return 1;
   }
   setStopSignalsBlocked(false);  // the calibration may be interrupted as any command
-  return runCalibrateHandEye(calibrationArguments(args, directory));
+  return calibrateFromViews(args, directory);
 }
 
 }  // namespace binpick::cli

@@ -1,6 +1,5 @@
-// binpick calibrate hand-eye --views DIR --calib calib.yaml --setup eye-to-hand|eye-in-hand
-//                            [board options] [--method NAME] [--min-views N] [--refine]
-//                            --out hand_eye.yaml
+// binpick calibrate hand-eye (--views DIR | --listen ...) --calib calib.yaml --setup SETUP
+//                            --out hand_eye.yaml: `binpick calibrate hand-eye --help`.
 // Robot poses from DIR/poses.txt, board poses from DIR/VIEW.png (docs/hand-eye.md); prints the
 // views with their residuals and writes the result in binpickd's settings format. Bad input
 // (a view without image, too few usable views, inverted poses, a poor fit) exits 1 naming it.
@@ -11,17 +10,12 @@
 #include "binpick/core/error.hpp"
 #include "binpick/io/rig_calibration.hpp"
 #include "board_options.hpp"
+#include "calibrate_hand_eye.hpp"
 #include "commands.hpp"
 #include "hand_eye_report.hpp"
 
 namespace binpick::cli {
 namespace {
-
-Arguments parseArguments(const std::vector<std::string>& raw) {
-  std::set<std::string> valued = {"--views", "--calib", "--setup", "--method", "--min-views", "--out"};
-  valued.insert(boardOptionNames().begin(), boardOptionNames().end());
-  return Arguments(raw, valued, {"--refine"});
-}
 
 calibration::HandEyeParams solverParams(const Arguments& args) {
   calibration::HandEyeParams params;
@@ -45,15 +39,21 @@ std::vector<calibration::MeasuredView> measureViews(const std::string& directory
   return views;
 }
 
+int run(const Arguments& args) {
+  if (args.flag("--listen")) return runGuidedSession(args);
+  const auto views = args.value("--views");
+  if (!views) throw missingOption("--views or --listen");
+  return calibrateFromViews(args, *views);
+}
+
 }  // namespace
 
-int runCalibrateHandEye(const std::vector<std::string>& raw) {
-  const Arguments args = parseArguments(raw);
+int calibrateFromViews(const Arguments& args, const std::string& views_directory) {
   const calibration::HandEyeParams params = solverParams(args);
   const calibration::BoardLayout layout = boardLayoutFromArguments(args);
   const std::string out = args.required("--out");
   const io::RigCalibration rig = io::readRigCalibration(args.required("--calib"));
-  const std::vector<calibration::MeasuredView> views = measureViews(args.required("--views"), layout, rig.camera);
+  const std::vector<calibration::MeasuredView> views = measureViews(views_directory, layout, rig.camera);
 
   calibration::HandEyeResult result;
   try {
@@ -71,6 +71,22 @@ int runCalibrateHandEye(const std::vector<std::string>& raw) {
   calibration::writeHandEyeFile(out, calibration::handEyeFileOf(result));
   std::cout << "wrote " << calibration::cameraTransformName(result.setup) << " to " << out << "\n";
   return 0;
+}
+
+void addCalibrateHandEyeCommand(CLI::App& calibrate, CommandTable& table) {
+  CLI::App& command = table.add(calibrate, "hand-eye",
+                                "Find the camera relative to the robot from robot poses and views of a board", run);
+  addText(command, "--calib", "FILE", "The rig calibration (calib.yaml): the camera's lens")->required();
+  addText(command, "--setup", "SETUP", "eye-to-hand (camera fixed) or eye-in-hand (on the flange)")->required();
+  addText(command, "--out", "FILE", "Write the result here (hand_eye.yaml, for binpickd)")->required();
+  CLI::Option* views = addText(command, "--views", "DIR", "The views: DIR/poses.txt and an image per view");
+  CLI::Option* listen = addFlag(command, "--listen", "Guided: the robot sends its poses (POSE), views are taken");
+  views->excludes(listen);
+  addText(command, "--method", "NAME", "shah (default), li, tsai, park, horaud, andreff or daniilidis");
+  addInteger(command, "--min-views", "N", "Usable views needed (default 6)");
+  addFlag(command, "--refine", "Refine both transforms after the closed-form solution");
+  addBoardOptions(command);
+  addGuidedSessionOptions(command, listen);
 }
 
 }  // namespace binpick::cli

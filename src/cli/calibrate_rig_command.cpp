@@ -1,15 +1,10 @@
 // binpick calibrate rig (--sequence DIR | --views DIR... | (--camera ID | --fake-camera DIR)
-//                        --record DIR [--count K] [live options])
-//                       [--board charuco|chessboard] [--squares 9x7] [--square-mm 30]
-//                       [--marker-mm 22] [--dictionary DICT_5X5_100] [--min-views 8]
-//                       [--drop-outliers] [--outlier-factor 3] [--outlier-floor-px 0.5]
-//                       [--corner-window 40] --out calib.yaml
+//                        --record DIR ...) --out calib.yaml: `binpick calibrate rig --help`.
 // Calibrates the camera and the projector from captures of a board at different poses, each with
 // the full pattern set (docs/calibration.md), prints a table of the views and writes calib.yaml
 // with the calibration's quality and date. --sequence takes every subdirectory holding a
 // capture.json, in name order; the live path records each view to RECORD/view_NNN before use.
 #include <iostream>
-#include <set>
 
 #include "arguments.hpp"
 #include "binpick/calibration/rig_calibrator.hpp"
@@ -22,37 +17,6 @@
 
 namespace binpick::cli {
 namespace {
-
-// --views takes every value up to the next option; the rest goes to Arguments.
-struct SplitArguments {
-  std::vector<std::string> views;
-  bool has_views = false;
-  std::vector<std::string> rest;
-};
-
-SplitArguments splitViews(const std::vector<std::string>& raw) {
-  SplitArguments split;
-  for (std::size_t i = 0; i < raw.size(); ++i) {
-    if (raw[i] != "--views") {
-      split.rest.push_back(raw[i]);
-      continue;
-    }
-    if (split.has_views) throw core::Error("--views is given twice");
-    split.has_views = true;
-    while (i + 1 < raw.size() && raw[i + 1].rfind("--", 0) != 0) split.views.push_back(raw[++i]);
-    if (split.views.empty()) throw core::Error("--views needs at least one capture directory");
-  }
-  return split;
-}
-
-Arguments parseArguments(const std::vector<std::string>& rest) {
-  std::set<std::string> valued = liveCaptureOptionNames();
-  const std::set<std::string>& board = boardOptionNames();
-  valued.insert(board.begin(), board.end());
-  valued.insert({"--sequence", "--record", "--count", "--min-views", "--outlier-factor", "--outlier-floor-px",
-                 "--corner-window", "--out"});
-  return Arguments(rest, valued, {"--drop-outliers"});
-}
 
 calibration::RigCalibrationParams calibrationParams(const Arguments& args) {
   calibration::RigCalibrationParams params;
@@ -71,19 +35,9 @@ calibration::RigViewParams viewParams(const Arguments& args) {
   return params;
 }
 
-// Exactly one source of views.
-void requireOneSource(const Arguments& args, bool has_views) {
-  const int sources = (args.value("--sequence") ? 1 : 0) + (has_views ? 1 : 0) + (args.value("--camera") ? 1 : 0) +
-                      (args.value("--fake-camera") ? 1 : 0);
-  if (sources != 1) {
-    throw core::Error("give exactly one of --sequence DIR, --views DIR..., --camera ID or --fake-camera DIR");
-  }
-}
-
-std::vector<calibration::RigView> gatherViews(const Arguments& args, const SplitArguments& split,
-                                              const calibration::BoardLayout& layout,
+std::vector<calibration::RigView> gatherViews(const Arguments& args, const calibration::BoardLayout& layout,
                                               const calibration::RigViewParams& params, int min_views) {
-  if (split.has_views) return readViews(split.views, layout, params);
+  if (const auto views = args.values("--views"); !views.empty()) return readViews(views, layout, params);
   if (const auto sequence = args.value("--sequence")) {
     return readViews(sequenceCaptures(*sequence), layout, params);
   }
@@ -92,24 +46,44 @@ std::vector<calibration::RigView> gatherViews(const Arguments& args, const Split
   return captureLiveViews(args, count, args.required("--record"), layout, params, std::cin);
 }
 
-}  // namespace
-
-int runCalibrateRig(const std::vector<std::string>& raw) {
-  const SplitArguments split = splitViews(raw);
-  const Arguments args = parseArguments(split.rest);
-  requireOneSource(args, split.has_views);
+int run(const Arguments& args) {
+  if (!args.value("--sequence") && !args.value("--views") && !args.value("--camera") && !args.value("--fake-camera")) {
+    throw missingOption("--sequence, --views, --camera or --fake-camera");
+  }
   const std::string out = args.required("--out");
   const calibration::BoardLayout layout = boardLayoutFromArguments(args);
   const calibration::RigCalibrationParams params = calibrationParams(args);
   const calibration::RigViewParams view_params = viewParams(args);
 
-  const std::vector<calibration::RigView> views = gatherViews(args, split, layout, view_params, params.min_views);
+  const std::vector<calibration::RigView> views = gatherViews(args, layout, view_params, params.min_views);
   const calibration::RigCalibrationResult result = calibration::calibrateRig(views, layout, params);
   for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
   printRigReport(std::cout, result);
   io::writeRigCalibration(out, result.rig, result.quality);
   std::cout << "wrote " << out << "\n";
   return 0;
+}
+
+}  // namespace
+
+void addCalibrateRigCommand(CLI::App& calibrate, CommandTable& table) {
+  CLI::App& command = table.add(calibrate, "rig", "Calibrate the camera and the projector from views of a board", run);
+  addText(command, "--out", "FILE", "Write the calibration here (calib.yaml)")->required();
+  CLI::Option* sequence = addText(command, "--sequence", "DIR", "Use every capture directory in DIR, in name order");
+  CLI::Option* views = addText(command, "--views", "DIR", "Use these capture directories");
+  views->expected(1, -1)->allow_extra_args();
+  sequence->excludes(views);
+  std::vector<CLI::Option*> live =
+      addLiveCaptureOptions(command, "Take the views from a fake GigE camera serving DIR's captures in order");
+  live.push_back(addText(command, "--record", "DIR", "Live: record each view to DIR/view_NNN (required)"));
+  live.push_back(addInteger(command, "--count", "K", "Live: views to take (default: --min-views, at least 12)"));
+  refuseTogether(live, {sequence, views});
+  addBoardOptions(command);
+  addInteger(command, "--min-views", "N", "Usable views needed (default 8)");
+  addFlag(command, "--drop-outliers", "Leave out views that fit much worse than the others");
+  addNumber(command, "--outlier-factor", "F", "Outlier: RMS above F times the median view's (default 3)");
+  addNumber(command, "--outlier-floor-px", "PX", "An RMS below PX is never an outlier (default 0.5)");
+  addInteger(command, "--corner-window", "PX", "Half window for the projector's corners (default 40)");
 }
 
 }  // namespace binpick::cli

@@ -1,11 +1,15 @@
-// Camera options: parsed the same way by every command that drives the camera.
+// Camera options: declared and read the same way by every command that drives the camera.
 #include "camera_options.hpp"
 
 namespace binpick::cli {
 
-const std::set<std::string>& cameraOptionNames() {
-  static const std::set<std::string> names = {"--camera", "--pixel-format", "--exposure-us", "--gain-db"};
-  return names;
+CLI::Option_group& addCameraOptions(CLI::App& command) {
+  CLI::Option_group& group = *command.add_option_group("Camera options");
+  addText(group, "--camera", "ID", "GigE Vision camera: device id, serial or IP address");
+  addText(group, "--pixel-format", "FORMAT", "Mono8 (default), Mono10, Mono12 or Mono16");
+  addNumber(group, "--exposure-us", "US", "Exposure time in microseconds (default 8000)");
+  addNumber(group, "--gain-db", "DB", "Gain in dB (default 0)");
+  return group;
 }
 
 acquisition::CameraParams cameraParamsFromArguments(const Arguments& args) {

@@ -1,8 +1,4 @@
-// binpick capture (--camera ID | --fake-camera CAPTURE_DIR) --out DIR
-//                 [--pixel-format Mono8|Mono10|Mono12|Mono16] [--exposure-us E] [--gain-db G]
-//                 [--trigger none|gpio:CHIP:LINE] [--pulse-us P] [--settle-us S] [--timeout-ms T]
-//                 [--retries R] [--projector WIDTHxHEIGHT] [--phase-steps N] [--no-rows]
-//                 [--calib FILE]
+// binpick capture (--camera ID | --fake-camera CAPTURE_DIR) --out DIR: `binpick capture --help`.
 // Records one capture from the live path: the projector shows each pattern (GPIO pulse, or it
 // runs on its own with --trigger none), the camera (Aravis) takes one whole frame per pattern, and
 // the capture directory is written for replay and reconstruction. --fake-camera serves the images
@@ -29,16 +25,10 @@ void copyCalibration(const std::optional<std::string>& calibration, const fs::pa
   if (error) throw core::Error(*calibration + ": cannot copy into the capture: " + error.message());
 }
 
-}  // namespace
-
-int runCapture(const std::vector<std::string>& raw) {
-  std::set<std::string> valued = liveCaptureOptionNames();
-  valued.insert({"--out", "--calib"});
-  const Arguments args(raw, valued, {"--no-rows"});
+int run(const Arguments& args) {
   const fs::path out = args.required("--out");
   const auto fake = args.value("--fake-camera");
-  if (fake.has_value() == args.value("--camera").has_value())
-    throw core::Error("give either --camera or --fake-camera");
+  if (!fake && !args.value("--camera")) throw missingOption("--camera or --fake-camera");
   io::Capture capture =
       fake ? captureFromFake(args, io::readCapture(*fake)) : captureFromCamera(args, patternSetFromArguments(args));
   io::writeCapture(out.string(), std::move(capture));
@@ -47,6 +37,17 @@ int runCapture(const std::vector<std::string>& raw) {
       fake ? std::optional<std::string>((fs::path(*fake) / "calib.yaml").string()) : args.value("--calib");
   copyCalibration(calibration, out);
   return 0;
+}
+
+}  // namespace
+
+void addCaptureCommand(CLI::App& program, CommandTable& table) {
+  CLI::App& command = table.add(program, "capture", "Record one capture from the camera and the projector", run);
+  addText(command, "--out", "DIR", "Write the capture directory here")->required();
+  addLiveCaptureOptions(command, "Serve a recorded capture's images from a fake GigE camera on 127.0.0.1");
+  CLI::Option* camera = command.get_option("--camera");
+  addFlag(command, "--no-rows", "Project column codes only (default: rows too)")->needs(camera);
+  addText(command, "--calib", "FILE", "Copy this rig calibration into the capture as calib.yaml")->needs(camera);
 }
 
 }  // namespace binpick::cli

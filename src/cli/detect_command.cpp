@@ -1,6 +1,4 @@
-// binpick detect --model MODEL (--scene CLOUD | --capture DIR [--calib FILE]) [--max-objects N]
-//                [--config FILE] [--out FILE] [--model-cache FILE] [--threads N]
-//                [--method li_hashimoto|drost]
+// binpick detect --model MODEL (--scene CLOUD | --capture DIR): `binpick detect --help`.
 // With --capture, the pattern images are reconstructed first (the config file's
 // `reconstruction:` section applies): one command from images to poses.
 #include <fstream>
@@ -49,11 +47,7 @@ void writeOutput(const Arguments& args, const std::string& text) {
 io::PointCloud sceneFrom(const Arguments& args) {
   const auto scene = args.value("--scene");
   const auto capture = args.value("--capture");
-  if (scene.has_value() == capture.has_value()) throw core::Error("give either --scene or --capture");
-  if (scene) {
-    if (args.value("--calib")) throw core::Error("--calib applies to --capture only");
-    return io::readPointCloud(*scene);
-  }
+  if (scene) return io::readPointCloud(*scene);
   CaptureInput input;
   input.capture_dir = *capture;
   input.calibration = args.value("--calib");
@@ -62,19 +56,35 @@ io::PointCloud sceneFrom(const Arguments& args) {
   return reconstructCaptureDirectory(input).cloud;
 }
 
-}  // namespace
-
-int runDetect(const std::vector<std::string>& raw) {
-  const Arguments args(raw,
-                       {"--model", "--scene", "--capture", "--calib", "--max-objects", "--config", "--out",
-                        "--model-cache", "--threads", "--method"},
-                       {});
+int run(const Arguments& args) {
+  if (!args.value("--scene") && !args.value("--capture")) throw missingOption("--scene or --capture");
   const estimation::EstimationConfig config = configFrom(args);
   const estimation::Detector detector(modelFrom(args, config.model), config.detector);
   const io::PointCloud scene = sceneFrom(args);
   const estimation::DetectionResult result = detector.detect(scene);
   writeOutput(args, estimation::toJson(result).dump(2));
   return 0;
+}
+
+}  // namespace
+
+void addDetectCommand(CLI::App& program, CommandTable& table) {
+  CLI::App& command = table.add(program, "detect", "Find every part's 6-DoF pose in a scene cloud or a capture", run);
+  addText(command, "--model", "MODEL", "The part's model: a mesh or cloud file, metres, in the model frame")
+      ->required();
+  auto* scene = addText(command, "--scene", "CLOUD", "The scene: a point cloud file (.ply, .pcd)");
+  auto* capture = addText(command, "--capture", "DIR",
+                          "The scene: a capture directory, reconstructed first (docs/capture-format.md)");
+  scene->excludes(capture);
+  addText(command, "--calib", "FILE", "The rig calibration for --capture (default: the capture's calib.yaml)")
+      ->needs(capture);
+  addInteger(command, "--max-objects", "N", "Stop after N detections (default: the settings', 20)");
+  addText(command, "--config", "FILE",
+          "Estimation settings (config/detection.yaml); its reconstruction: section applies to --capture");
+  addText(command, "--out", "FILE", "Write the result JSON here (default: stdout)");
+  addText(command, "--model-cache", "FILE", "Load the prepared model from FILE, or prepare it and write it there");
+  addInteger(command, "--threads", "N", "Threads (default 0: all cores)");
+  addText(command, "--method", "NAME", "li_hashimoto (the default) or drost");
 }
 
 }  // namespace binpick::cli

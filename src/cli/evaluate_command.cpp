@@ -1,4 +1,4 @@
-// binpick evaluate --result result.json --truth CAPTURE_DIR [--part NAME] [--min-visible 0.5]
+// binpick evaluate --result result.json --truth CAPTURE_DIR: `binpick evaluate --help`.
 // (--truth may also name truth/objects.json; the part defaults to the one the pile was made of)
 // Scores a detect result against a simulated pile's truth with the paper's criterion
 // (diam(M)/10 and 10 degrees, symmetry-aware; repeats count as wrong).
@@ -40,10 +40,7 @@ simulation::Part partOf(const std::string& name, const std::string& truth_path) 
   return part;
 }
 
-}  // namespace
-
-int runEvaluate(const std::vector<std::string>& raw) {
-  const Arguments args(raw, {"--result", "--truth", "--part", "--min-visible"}, {});
+int run(const Arguments& args) {
   const std::string result_path = args.required("--result"), truth_path = args.required("--truth");
   const nlohmann::json result = core::readJsonFile(result_path);
   const simulation::PileTruth truth = simulation::readPileTruth(truth_path);
@@ -76,6 +73,16 @@ int runEvaluate(const std::vector<std::string>& raw) {
   std::printf("found %d of %d objects at least half visible; %d correct, %d wrong (%d in the first 10)\n", score.found,
               score.findable, score.correct, score.wrong, score.wrong_in_first_10);
   return 0;
+}
+
+}  // namespace
+
+void addEvaluateCommand(CLI::App& program, CommandTable& table) {
+  CLI::App& command = table.add(program, "evaluate", "Score a detect result against a simulated pile's truth", run);
+  addText(command, "--result", "FILE", "The result JSON of binpick detect")->required();
+  addText(command, "--truth", "DIR", "The simulated capture directory (or its truth/objects.json)")->required();
+  addText(command, "--part", "NAME", "A built-in part, or the truth's own part.ply (default: the pile's part)");
+  addNumber(command, "--min-visible", "FRACTION", "Objects at least this visible must be found (default 0.5)");
 }
 
 }  // namespace binpick::cli

@@ -56,14 +56,29 @@ io::Capture captureOnce(Camera& camera, ProjectorTrigger& projector, const Argum
 
 }  // namespace
 
-const std::set<std::string>& liveCaptureOptionNames() {
-  static const std::set<std::string> names = [] {
-    std::set<std::string> all = cameraOptionNames();
-    all.insert({"--fake-camera", "--trigger", "--pulse-us", "--settle-us", "--timeout-ms", "--retries", "--projector",
-                "--phase-steps"});
-    return all;
-  }();
-  return names;
+std::vector<CLI::Option*> addLiveCaptureOptions(CLI::App& command, const std::string& fake_help) {
+  CLI::Option* fake = addText(command, "--fake-camera", "DIR", fake_help);
+  CLI::Option_group& camera_group = addCameraOptions(command);
+  CLI::Option* camera = camera_group.get_option("--camera");
+  camera->excludes(fake);
+  camera_group.get_option("--pixel-format")->needs(camera);
+
+  CLI::Option_group& live = *command.add_option_group("Live capture options");
+  const std::vector<CLI::Option*> real_camera_only = {
+      addText(live, "--trigger", "SOURCE", "Projector trigger: none (default, free-running) or gpio:CHIP:LINE"),
+      addInteger(live, "--pulse-us", "US", "GPIO trigger pulse in microseconds (default 100)"),
+      addText(live, "--projector", "WxH", "Projector resolution for the patterns (default 1280x800)"),
+      addInteger(live, "--phase-steps", "N", "Phase-shift images per coded axis (default 4; 0: none)")};
+  for (CLI::Option* option : real_camera_only) option->needs(camera);
+  addInteger(live, "--settle-us", "US", "Wait after each pattern before the exposure (default 2000)");
+  addInteger(live, "--timeout-ms", "MS", "Wait for a frame at most this long (default 1000)");
+  addInteger(live, "--retries", "N", "Extra triggers for a pattern whose frame was lost (default 2)");
+
+  std::vector<CLI::Option*> all = {fake};
+  for (CLI::App* group : {static_cast<CLI::App*>(&camera_group), static_cast<CLI::App*>(&live)}) {
+    for (CLI::Option* option : optionsOf(*group)) all.push_back(option);
+  }
+  return all;
 }
 
 // "1280x800" -> the projector's size in the pattern set.
@@ -76,7 +91,7 @@ io::PatternSetSpec patternSetFromArguments(const Arguments& args) {
     spec.projector_height = parseInteger("--projector height", size->substr(x + 1));
   }
   spec.phase_steps = args.integer("--phase-steps").value_or(spec.phase_steps);
-  spec.row_codes = !args.flag("--no-rows");
+  spec.row_codes = !(args.declares("--no-rows") && args.flag("--no-rows"));
   spec.validate();
   return spec;
 }

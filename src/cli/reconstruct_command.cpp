@@ -1,5 +1,4 @@
-// binpick reconstruct --capture DIR [--calib FILE] [--config FILE] [--threads N]
-//                     [--out cloud.ply] [--status status.png]
+// binpick reconstruct --capture DIR: `binpick reconstruct --help`.
 // Decodes a capture's pattern images and triangulates them into an organized point cloud in the
 // camera frame (metres, with the white image as intensity). --status writes why each pixel has
 // no point, as an 8-bit image of PixelStatus values (docs/reconstruction.md).
@@ -12,9 +11,9 @@
 #include "commands.hpp"
 
 namespace binpick::cli {
+namespace {
 
-int runReconstruct(const std::vector<std::string>& raw) {
-  const Arguments args(raw, {"--capture", "--calib", "--config", "--threads", "--out", "--status"}, {});
+int run(const Arguments& args) {
   CaptureInput input;
   input.capture_dir = args.required("--capture");
   input.calibration = args.value("--calib");
@@ -28,6 +27,18 @@ int runReconstruct(const std::vector<std::string>& raw) {
     throw core::Error(*status_path + ": cannot write the status image");
   }
   return 0;
+}
+
+}  // namespace
+
+void addReconstructCommand(CLI::App& program, CommandTable& table) {
+  CLI::App& command = table.add(program, "reconstruct", "Decode a capture into an organized point cloud", run);
+  addText(command, "--capture", "DIR", "The capture directory (docs/capture-format.md)")->required();
+  addText(command, "--calib", "FILE", "The rig calibration (default: the capture's calib.yaml)");
+  addText(command, "--config", "FILE", "Settings whose reconstruction: section applies (config/reconstruction.yaml)");
+  addInteger(command, "--threads", "N", "Threads (default 0: all cores)");
+  addText(command, "--out", "FILE", "Write the cloud here (default cloud.ply)");
+  addText(command, "--status", "FILE", "Write why each pixel has no point, as an 8-bit image");
 }
 
 }  // namespace binpick::cli

@@ -1,6 +1,4 @@
-// binpick robot-client [--host H] [--port P] [--framing ascii|binary] [--orientation NAME]
-//                      [--byte-order big|little] [--timeout-ms T] [--connect-timeout-ms T]
-//                      [--cycles N] [--model NAME] [--send "CMD[,ARG];CMD..."]
+// binpick robot-client [--host H] [--port P] [robot codec options] ...: `binpick robot-client --help`.
 // Plays the robot: per cycle TRIGGER (answered once the capture is done), then NEXT until no pick
 // is left, printing every pick in millimetres and the robot's orientation convention with the
 // time each reply took. --send sends the given requests instead and prints their replies.
@@ -13,6 +11,7 @@
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/robot/robot_connection.hpp"
 #include "commands.hpp"
+#include "robot_codec_options.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -20,15 +19,6 @@ namespace {
 using robot::RobotConnection;
 
 using robot::Command;
-
-robot::CodecParams codecFrom(const Arguments& args) {
-  robot::CodecParams codec;
-  codec.framing = robot::framingFromName(args.value("--framing").value_or("ascii"));
-  codec.byte_order = robot::byteOrderFromName(args.value("--byte-order").value_or("big"));
-  if (const auto name = args.value("--orientation")) codec.orientation = core::orientationFromName(*name);
-  codec.validate();
-  return codec;
-}
 
 // "CMD" or "CMD,ARG" -> a request, read as binpickd reads the line; a POSE's values are in the
 // --orientation convention, whatever the framing that sends them.
@@ -93,14 +83,8 @@ struct Session {
   }
 };
 
-}  // namespace
-
-int runRobotClient(const std::vector<std::string>& raw) {
-  const Arguments args(raw,
-                       {"--host", "--port", "--framing", "--orientation", "--byte-order", "--timeout-ms",
-                        "--connect-timeout-ms", "--cycles", "--model", "--send"},
-                       {});
-  const robot::CodecParams codec = codecFrom(args);
+int run(const Arguments& args) {
+  const robot::CodecParams codec = codecFromArguments(args);
   const int port = args.integer("--port").value_or(50100);
   const int cycles = args.integer("--cycles").value_or(1);
   if (cycles < 1) throw core::Error("--cycles must be at least 1");
@@ -118,6 +102,21 @@ int runRobotClient(const std::vector<std::string>& raw) {
   }
   for (int i = 1; i <= cycles; ++i) session.cycle(i, args.value("--model"));
   return 0;
+}
+
+}  // namespace
+
+void addRobotClientCommand(CLI::App& program, CommandTable& table) {
+  CLI::App& command = table.add(program, "robot-client", "Play the robot against binpickd: cycles, or requests", run);
+  addText(command, "--host", "HOST", "binpickd's address (default 127.0.0.1)");
+  addInteger(command, "--port", "N", "binpickd's robot port (default 50100)");
+  addInteger(command, "--timeout-ms", "MS", "Wait for each reply at most this long (default 60000)");
+  addInteger(command, "--connect-timeout-ms", "MS", "Wait for the connection at most this long (default 10000)");
+  CLI::Option* send = addText(command, "--send", "REQUESTS", "Send \"CMD[,ARG];...\" and print the replies instead");
+  addInteger(command, "--cycles", "N", "Cycles to run: TRIGGER, then NEXT until no pick is left (default 1)")
+      ->excludes(send);
+  addText(command, "--model", "NAME", "The part to pick (TRIGGER's argument)")->excludes(send);
+  addRobotCodecOptions(command);
 }
 
 }  // namespace binpick::cli

@@ -1,13 +1,6 @@
-// binpick simulate (--part NAME | --mesh FILE [--mesh-scale S]) [--objects N] [--seed S]
-//                  [--bin-length L --bin-width W --bin-wall-height H] [--camera-height Z]
-//                  [--bit-depth 8|16] [--cloud-only] [--threads T] --out DIR
-// binpick simulate (--part NAME | --mesh FILE [--mesh-scale S]) [--objects N] [--seed S] --empty-bin
-//                  [--gripper suction|parallel] [--cup-diameter M] [--tool-radius M] [--stroke M]
-//                  [--max-cycles K] [bin options] --out DIR (emptying.hpp)
-// binpick simulate --calibration-board charuco|chessboard [--poses K] [--seed S] --out DIR
-// binpick simulate --hand-eye eye-to-hand|eye-in-hand [--views K] ... --out DIR (simulate_hand_eye.hpp)
-// binpick simulate --list-parts
-// binpick simulate --export-part NAME FILE
+// binpick simulate: a pile (capture or --cloud-only cloud), --empty-bin, --calibration-board,
+// --hand-eye (simulate_hand_eye.hpp), --list-parts or --export-part NAME FILE; each mode refuses
+// the options of the others. `binpick simulate --help` lists them.
 // A pile writes one capture directory (docs/capture-format.md): capture.json, calib.yaml,
 // images/ and truth/; with --cloud-only, cloud.ply (the ideal structured-light cloud) instead of
 // the images.
@@ -26,6 +19,7 @@
 #include "binpick/simulation/pile.hpp"
 #include "binpick/simulation/pile_truth.hpp"
 #include "commands.hpp"
+#include "gripper_options.hpp"
 #include "simulate_hand_eye.hpp"
 
 namespace binpick::cli {
@@ -42,9 +36,7 @@ int listParts() {
 
 // A built-in part, or a user's mesh file (its symmetry unknown: none is assumed).
 simulation::Part partFrom(const Arguments& args) {
-  if (args.value("--part") && args.value("--mesh")) {
-    throw core::Error("simulate: give --part or --mesh, not both");
-  }
+  if (!args.value("--part") && !args.value("--mesh")) throw missingOption("--part or --mesh");
   if (args.value("--part")) return simulation::makePart(*args.value("--part"));
   simulation::Part part;
   part.name = args.required("--mesh");
@@ -83,10 +75,7 @@ int emptyBin(const Arguments& args) {
   params.pile = pileParams(args);
   params.photometry.seed = params.pile.seed;
   params.photometry.threads = params.pile.threads;
-  params.gripper.type = picking::gripperTypeFromName(args.value("--gripper").value_or("suction"));
-  params.gripper.cup_diameter = args.number("--cup-diameter").value_or(params.gripper.cup_diameter);
-  params.gripper.tool_radius = args.number("--tool-radius").value_or(params.gripper.tool_radius);
-  params.gripper.stroke = args.number("--stroke").value_or(params.gripper.stroke);
+  params.gripper = gripperFromArguments(args);
   params.max_cycles = args.integer("--max-cycles").value_or(0);
   params.out_directory = args.required("--out");
   requireFreshDirectory(params.out_directory);
@@ -154,23 +143,72 @@ int simulateCalibration(const Arguments& args) {
   return 0;
 }
 
-}  // namespace
+int exportPart(const Arguments& args) {
+  const std::vector<std::string> name_and_file = args.values("--export-part");
+  io::writeMesh(name_and_file.at(1), simulation::makePart(name_and_file.at(0)).mesh);
+  return 0;
+}
 
-int runSimulate(const std::vector<std::string>& raw) {
-  if (!raw.empty() && raw[0] == "--list-parts") return listParts();
-  if (std::find(raw.begin(), raw.end(), "--hand-eye") != raw.end()) return runSimulateHandEye(raw);
-  if (raw.size() == 3 && raw[0] == "--export-part") {
-    io::writeMesh(raw[2], simulation::makePart(raw[1]).mesh);
-    return 0;
-  }
-  const Arguments args(raw,
-                       {"--part", "--mesh", "--mesh-scale", "--objects", "--seed", "--out", "--bit-depth", "--threads",
-                        "--calibration-board", "--poses", "--bin-length", "--bin-width", "--bin-wall-height",
-                        "--camera-height", "--gripper", "--max-cycles", "--cup-diameter", "--tool-radius", "--stroke"},
-                       {"--cloud-only", "--empty-bin"});
+int run(const Arguments& args) {
+  if (args.flag("--list-parts")) return listParts();
+  if (args.value("--export-part")) return exportPart(args);
+  args.required("--out");  // before any work
+  if (args.value("--hand-eye")) return simulateHandEye(args);
   if (args.value("--calibration-board")) return simulateCalibration(args);
   if (args.flag("--empty-bin")) return emptyBin(args);
   return simulatePile(args);
+}
+
+// The options of a pile, in the pile and the bin-emptying modes.
+std::vector<CLI::Option*> addPileOptions(CLI::App& command) {
+  CLI::Option* part = addText(command, "--part", "NAME", "A built-in part (see --list-parts)");
+  CLI::Option* mesh = addText(command, "--mesh", "FILE", "A mesh file (PLY, STL, OBJ) to pile instead");
+  part->excludes(mesh);
+  std::vector<CLI::Option*> options = {
+      part, mesh,
+      addNumber(command, "--mesh-scale", "S", "Scale the mesh by S, e.g. 0.001 for mm (default 1)")->needs(mesh),
+      addInteger(command, "--objects", "N", "Parts dropped into the bin (default 20)"),
+      addInteger(command, "--threads", "N", "Threads (default 0: all cores)")};
+  CLI::Option_group& bin = *command.add_option_group("Bin options");
+  addNumber(bin, "--bin-length", "M", "Inner length of the bin in metres (default 0.40)");
+  addNumber(bin, "--bin-width", "M", "Inner width of the bin in metres (default 0.30)");
+  addNumber(bin, "--bin-wall-height", "M", "Height of the bin's walls in metres (default 0.15)");
+  addNumber(bin, "--camera-height", "M", "Camera above the bin floor in metres (default 0.90)");
+  for (CLI::Option* option : optionsOf(bin)) options.push_back(option);
+  return options;
+}
+
+// The gripper and the loop of --empty-bin.
+void addEmptyBinOptions(CLI::App& command, CLI::Option* empty_bin) {
+  for (CLI::Option* option : addGripperOptions(command, "suction (default) or parallel")) option->needs(empty_bin);
+  addInteger(command, "--max-cycles", "K", "Stop after K cycles (default 0: until the bin is empty)")->needs(empty_bin);
+}
+
+}  // namespace
+
+void addSimulateCommand(CLI::App& program, CommandTable& table) {
+  CLI::App& command =
+      table.add(program, "simulate", "Render the virtual cell: a pile, bin emptying, calibration views", run);
+  const std::vector<CLI::Option*> pile = addPileOptions(command);
+  CLI::Option* seed = addInteger(command, "--seed", "S", "Random seed (default 1)");
+  CLI::Option* out = addText(command, "--out", "DIR", "Write here (a new or empty directory for a pile)");
+  CLI::Option* bit_depth = addInteger(command, "--bit-depth", "BITS", "Image bit depth: 8 (default) or 16");
+  CLI::Option* cloud_only = addFlag(command, "--cloud-only", "Write the ideal cloud.ply instead of the images");
+
+  CLI::Option* empty_bin = addFlag(command, "--empty-bin", "Run the closed pick loop until the bin is empty");
+  addEmptyBinOptions(command, empty_bin);
+  CLI::Option* board = addText(command, "--calibration-board", "TYPE", "Render views of a charuco or chessboard board");
+  addInteger(command, "--poses", "K", "Board poses (default 10)")->needs(board);
+  CLI::Option* hand_eye = addSimulateHandEyeOptions(command);
+  CLI::Option* list = addFlag(command, "--list-parts", "List the built-in parts");
+  CLI::Option* export_part = addText(command, "--export-part", "NAME FILE", "Write built-in part NAME's mesh to FILE");
+  export_part->expected(2)->option_text("NAME FILE");
+
+  refuseTogether({empty_bin, board, hand_eye, list, export_part}, {empty_bin, board, hand_eye, list, export_part});
+  refuseTogether(pile, {board, hand_eye, list, export_part});
+  refuseTogether({cloud_only}, {empty_bin, board, hand_eye, list, export_part});
+  refuseTogether({bit_depth}, {empty_bin, hand_eye, list, export_part});
+  refuseTogether({seed, out}, {list, export_part});
 }
 
 }  // namespace binpick::cli

@@ -8,9 +8,18 @@
 
 namespace binpick::cli {
 
-int runSimulateHandEye(const std::vector<std::string>& raw) {
-  const Arguments args(
-      raw, {"--hand-eye", "--views", "--seed", "--robot-noise-mm", "--robot-noise-deg", "--orientation", "--out"}, {});
+CLI::Option* addSimulateHandEyeOptions(CLI::App& simulate) {
+  CLI::Option* hand_eye =
+      addText(simulate, "--hand-eye", "SETUP", "Render a hand-eye session: eye-to-hand or eye-in-hand");
+  addInteger(simulate, "--views", "K", "Robot poses with a view of the board (default 12)")->needs(hand_eye);
+  addNumber(simulate, "--robot-noise-mm", "MM", "Noise on the robot's positions (default 0)")->needs(hand_eye);
+  addNumber(simulate, "--robot-noise-deg", "DEG", "Noise on the robot's rotations (default 0)")->needs(hand_eye);
+  addText(simulate, "--orientation", "NAME", "Orientation convention of poses.txt (default euler_zyx)")
+      ->needs(hand_eye);
+  return hand_eye;
+}
+
+int simulateHandEye(const Arguments& args) {
   simulation::HandEyeSessionParams params;
   params.setup = calibration::handEyeSetupFromName(args.required("--hand-eye"));
   params.views = args.integer("--views").value_or(params.views);

@@ -94,17 +94,20 @@ timeout 60 "$binpick" "${common[@]/euler_zyx/quaternion}" --replay "$work/camera
 grep -q "euler_zyx" "$work/mismatch.log" || fail "the refusal does not say why: $(cat "$work/mismatch.log")"
 
 # Mistakes are told before the robot is waited for.
-refused() {  # TEXT OPTION...: the command exits 1 naming TEXT
-  local text="$1"
-  shift
+refused() {  # CODE TEXT OPTION...: the command exits CODE (1 bad input, 2 a usage error) naming TEXT
+  local expected="$1" text="$2"
+  shift 2
   out=$(timeout 60 "$binpick" calibrate hand-eye --listen --record "$work/other" --port 0 \
     --calib "$work/sim/calib.yaml" --setup eye-to-hand --out "$work/other.yaml" "$@" 2>&1)
   code=$?
-  [ "$code" -eq 1 ] && echo "$out" | grep -q -- "$text" || fail "$* gave $code: $out"
+  [ "$code" -eq "$expected" ] && echo "$out" | grep -q -- "$text" || fail "$* gave $code: $out"
 }
-refused "at least the views the calibration needs" --count 3 --replay "$work/camera2"
-refused "either --camera or --replay" --count 6 --replay "$work/camera2" --camera 10.0.0.9
-refused "orientation 'abc' is unknown" --count 6 --replay "$work/camera2" --orientation abc
+refused 1 "at least the views the calibration needs" --count 3 --replay "$work/camera2"
+refused 2 "--replay excludes --camera" --count 6 --replay "$work/camera2" --camera 10.0.0.9
+refused 2 "--camera or --replay is required" --count 6
+refused 2 "--count is required" --replay "$work/camera2"
+refused 2 "--exposure-us requires --camera" --count 6 --replay "$work/camera2" --exposure-us 100
+refused 1 "orientation 'abc' is unknown" --count 6 --replay "$work/camera2" --orientation abc
 [ ! -e "$work/other" ] || fail "a refused session created its directory"
 
 # --- second run: binary, little-endian; the robot disconnects after the last view

@@ -42,12 +42,23 @@ expect_error() {  # expect_error "pattern" command...: exit code 1, the last std
   [ "$code" -eq 1 ] || fail "'$*' exited $code, expected 1"
   echo "$err" | tail -n 1 | grep -q -- "$pattern" || fail "'$*' said '$err', expected '$pattern'"
 }
+expect_usage_error() {  # expect_usage_error "pattern" command...: exit code 2, one line naming it and --help
+  local pattern="$1"; shift
+  local err
+  err=$("$@" 2>&1 >/dev/null </dev/null)
+  local code=$?
+  [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2 (a usage error)"
+  [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
+  echo "$err" | grep -q -- "$pattern" && echo "$err" | grep -q -- "--help" || fail "'$*' said '$err', expected '$pattern' and a hint to --help"
+}
 # The wrong setup is the same mistake as inverted poses: detected, never a silent calibration.
 expect_error "robot poses look inverted" calibrate "$views" --setup eye-in-hand --out "$work/x.yaml"
 [ -e "$work/x.yaml" ] && fail "a failed calibration wrote its file"
 expect_error "needs at least 7 usable views, got 6" calibrate "$views" --setup eye-to-hand --min-views 7 --out "$work/x.yaml"
 expect_error "unknown hand-eye method 'kabsch'" calibrate "$views" --setup eye-to-hand --method kabsch --out "$work/x.yaml"
-expect_error "--setup is required" calibrate "$views" --out "$work/x.yaml"
+expect_usage_error "--setup is required" calibrate "$views" --out "$work/x.yaml"
+expect_usage_error "--port requires --listen" calibrate "$views" --setup eye-to-hand --port 0 --out "$work/x.yaml"
+expect_usage_error "--views excludes --listen" calibrate "$views" --setup eye-to-hand --listen --out "$work/x.yaml"
 
 spoiled() {  # a copy of the views to spoil
   rm -rf "$work/spoiled"

@@ -32,6 +32,15 @@ expect_error() {  # expect_error "pattern" command...
   [ "$code" -eq 1 ] || fail "'$*' exited $code, expected 1"
   echo "$err" | tail -n 1 | grep -q -- "$pattern" || fail "'$*' said '$err', expected '$pattern'"
 }
+expect_usage_error() {  # expect_usage_error "pattern" command...: exit code 2, one line naming it and --help
+  local pattern="$1"; shift
+  local err
+  err=$("$@" 2>&1 >/dev/null </dev/null)
+  local code=$?
+  [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2 (a usage error)"
+  [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
+  echo "$err" | grep -q -- "$pattern" && echo "$err" | grep -q -- "--help" || fail "'$*' said '$err', expected '$pattern' and a hint to --help"
+}
 mkdir -p "$work/corrupt" && printf '{"format_version": 1, "source": ' > "$work/corrupt/capture.json"
 # Views listed one by one; a view without the board is named among the unusable ones.
 expect_error "1 usable view of 2, at least 8 needed; not usable: $data/no_board (board not found" \
@@ -41,9 +50,10 @@ expect_error "$data/no_rows: the capture has no row codes" \
 expect_error "$work/corrupt" "$binpick" calibrate rig --views "$work/corrupt" --out "$work/x.yaml"
 expect_error "$work/empty: holds no capture directory" \
   bash -c "mkdir -p '$work/empty' && '$binpick' calibrate rig --sequence '$work/empty' --out '$work/x.yaml'"
-expect_error "give exactly one of" "$binpick" calibrate rig --out "$work/x.yaml"
-expect_error "give exactly one of" "$binpick" calibrate rig --sequence "$seq" --views "$seq/pose_000" --out "$work/x.yaml"
-expect_error "--out is required" "$binpick" calibrate rig --sequence "$seq"
+expect_usage_error "--sequence, --views, --camera or --fake-camera is required" "$binpick" calibrate rig --out "$work/x.yaml"
+expect_usage_error "--sequence excludes --views" "$binpick" calibrate rig --sequence "$seq" --views "$seq/pose_000" --out "$work/x.yaml"
+expect_usage_error "--sequence excludes --record" "$binpick" calibrate rig --sequence "$seq" --record "$work/r" --out "$work/x.yaml"
+expect_usage_error "--out is required" "$binpick" calibrate rig --sequence "$seq"
 expect_error "board options" "$binpick" calibrate rig --sequence "$seq" --squares 2x7 --out "$work/x.yaml"
 expect_error "RigCalibrationParams.min_views" "$binpick" calibrate rig --sequence "$seq" --min-views 1 --out "$work/x.yaml"
 [ ! -e "$work/x.yaml" ] || fail "a refused calibration wrote a file"

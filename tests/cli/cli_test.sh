@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # End to end through the command line: simulate a pile, detect with a model cache, evaluate, and
-# check that bad input gives one line on stderr naming the problem and exit code 1.
+# check that bad input gives one line on stderr naming the problem and exit code 1 (exit code 2
+# for a usage error).
 set -uo pipefail
 binpick="$1"
 config_dir="$2"
@@ -51,15 +52,24 @@ expect_error() {  # expect_error "pattern" command...
   [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
   echo "$err" | grep -q -- "$pattern" || fail "'$*' said '$err', expected '$pattern'"
 }
+expect_usage_error() {  # expect_usage_error "pattern" command...: exit code 2, one line naming it and --help
+  local pattern="$1"; shift
+  local err
+  err=$("$@" 2>&1 >/dev/null </dev/null)
+  local code=$?
+  [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2 (a usage error)"
+  [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
+  echo "$err" | grep -q -- "$pattern" && echo "$err" | grep -q -- "--help" || fail "'$*' said '$err', expected '$pattern' and a hint to --help"
+}
 printf 'ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\nproperty float y\nproperty float z\nend_header\n\x01\x02' > "$work/truncated.ply"
 printf 'not a cache' > "$work/bad.cache"
 printf 'detection:\n  voting: {reference_fractoin: 0.3}\n' > "$work/typo.yaml"
 expect_error "missing.ply" "$binpick" detect --model "$work/missing.ply" --scene "$work/pile/cloud.ply"
 expect_error "truncated.ply" "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/truncated.ply"
 expect_error "reference_fractoin" "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" --config "$work/typo.yaml"
-expect_error "max-objects" "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" --max-objects -3x
-expect_error "either --scene or --capture" "$binpick" detect --model "$work/pile/truth/part.ply"
-expect_error "unknown option" "$binpick" detect --modle x
+expect_usage_error "--max-objects: needs a whole number, not '-3x'" "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" --max-objects -3x
+expect_usage_error "--scene or --capture is required" "$binpick" detect --model "$work/pile/truth/part.ply"
+expect_usage_error "not expected: --modle x" "$binpick" detect --modle x
 expect_error "gizmo" "$binpick" simulate --part gizmo --out "$work/x"
 expect_error "bin_width" "$binpick" simulate --part clamp --bin-width -0.3 --out "$work/y"
 expect_error "not empty" "$binpick" simulate --part clamp --objects 1 --out "$work/pile"
@@ -107,7 +117,8 @@ done
 [ -s "$work/recorded/calib.yaml" ] || fail "capture --fake-camera copied no calib.yaml"
 "$binpick" reconstruct --capture "$work/recorded" --out "$work/recorded.ply" 2>/dev/null || fail "reconstruct of a recording exited $?"
 expect_error "GPIO chip 'gpiochip9'" "$binpick" capture --camera 127.0.0.9 --trigger gpio:gpiochip9:3 --out "$work/live"
-expect_error "either --camera or --fake-camera" "$binpick" capture --out "$work/live"
+expect_usage_error "--camera or --fake-camera is required" "$binpick" capture --out "$work/live"
+expect_usage_error "--projector requires --camera" "$binpick" capture --fake-camera "$work/capture" --projector 640x400 --out "$work/live"
 [ -e "$work/live" ] && fail "a failed capture wrote a directory"
 
 if [ "$failures" -eq 0 ]; then echo "cli: all checks passed"; else exit 1; fi

@@ -26,6 +26,12 @@ grep -q '"end": "' "$work/run/emptying.json" || fail "emptying.json has no end"
 [ $? -eq 1 ] || fail "an existing --out was accepted"
 "$binpick" simulate --part clamp --objects 3 --empty-bin --gripper magnet --out "$work/other" 2>"$work/err3.txt"
 [ $? -eq 1 ] && grep -q 'magnet' "$work/err3.txt" || fail "an unknown gripper was not named: $(cat "$work/err3.txt")"
+# Options of the other modes are refused as usage errors (exit code 2), before any work.
+"$binpick" simulate --part clamp --empty-bin --cloud-only --out "$work/mixed" 2>"$work/err4.txt"
+[ $? -eq 2 ] && grep -q -- '--cloud-only excludes --empty-bin' "$work/err4.txt" || fail "--cloud-only was taken: $(cat "$work/err4.txt")"
+"$binpick" simulate --part clamp --max-cycles 2 --out "$work/mixed" 2>"$work/err5.txt"
+[ $? -eq 2 ] && grep -q -- '--max-cycles requires --empty-bin' "$work/err5.txt" || fail "--max-cycles was taken: $(cat "$work/err5.txt")"
+[ ! -e "$work/mixed" ] || fail "a refused simulation wrote its directory"
 
 [ "$failures" -eq 0 ] && echo "empty-bin command line: all checks passed"
 exit "$failures"

@@ -28,6 +28,10 @@ grep -q '^  - name: "parallel ' "$work/jaws.yaml" || fail "the file lists no par
 grep -q 'vacuum' "$work/err" || fail "the error does not name the gripper: $(cat "$work/err")"
 "$binpick" grasps --part l_bracket --gripper suction --cup-diameter -1 --out "$work/x.yaml" 2>"$work/err"; code=$?
 [ "$code" -eq 1 ] && grep -q 'cup_diameter' "$work/err" || fail "a negative cup gave $code: $(cat "$work/err")"
+# A size of the other gripper is a usage mistake, not a setting to ignore.
+"$binpick" grasps --part l_bracket --gripper parallel --cup-diameter 0.01 --out "$work/x.yaml" 2>"$work/err"; code=$?
+[ "$code" -eq 2 ] && grep -q -- '--cup-diameter excludes --gripper parallel' "$work/err" ||
+  fail "a suction size for a parallel gripper gave $code: $(cat "$work/err")"
 
 [ "$failures" -eq 0 ] && echo "grasps CLI: all checks passed"
 exit "$failures"

@@ -5,8 +5,9 @@
 //                 and for every subcommand);
 //   --version     the version text given (the project version and git revision: version.hpp);
 //                 exit 0;
-//   usage error   an unknown option, a missing or malformed value, a missing subcommand: one line
-//                 on stderr naming it, with a hint to --help; exit 2;
+//   usage error   an unknown option, a missing or malformed value, a missing subcommand, options
+//                 that exclude each other (or a CLI::ParseError the run throws: an option its
+//                 mode needs, missing): one line on stderr naming it, with a hint to --help; exit 2;
 //   run error     core::Error (or any exception) while running: one line on stderr; exit 1.
 #include <CLI/CLI.hpp>
 #include <functional>
