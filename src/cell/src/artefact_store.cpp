@@ -131,6 +131,20 @@ std::vector<std::string> ArtefactStore::cycles() const {
   return paths;
 }
 
+std::vector<SavedCycleDirectory> savedCycleDirectories(const std::string& directory) {
+  std::vector<SavedCycleDirectory> saved;
+  try {
+    for (const KeptCycle& cycle : listCycles(directory)) {
+      // Numbers beyond 19 digits do not fit; no cell counts that far.
+      if (cycle.name.number.size() > 19) continue;
+      saved.push_back({std::stoull(cycle.name.number), cycle.path.string()});
+    }
+  } catch (const std::exception&) {  // the directory changed under the listing: none this time
+    return {};
+  }
+  return saved;
+}
+
 void ArtefactParams::validate() const {
   const std::string owner = "artefacts";
   core::requireField(!directory.empty(), owner, "directory", "a directory path", "\"\"");

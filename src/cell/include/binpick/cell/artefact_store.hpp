@@ -70,4 +70,16 @@ class ArtefactStore {
   ArtefactParams params_;
 };
 
+// A kept cycle directory, as readers of the artefacts (the web view) find it.
+struct SavedCycleDirectory {
+  uint64_t cycle = 0;
+  std::string path;
+};
+
+// The cycle directories in `directory` (real directories, not symlinks), oldest first; cycle
+// numbers repeat after a restart, so a number may appear more than once. Read-only: safe on any
+// thread beside the store saving into it (a directory it deletes meanwhile is missing from the
+// list, or gone when opened). Empty when `directory` cannot be read.
+std::vector<SavedCycleDirectory> savedCycleDirectories(const std::string& directory);
+
 }  // namespace binpick::cell
