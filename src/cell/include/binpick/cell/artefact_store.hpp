@@ -14,6 +14,7 @@
 // Not thread-safe: one thread at a time, and one store per directory (the constructor deletes
 // the partial directories of an interrupted save, which would be another store's saves in
 // progress).
+#include <chrono>
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
@@ -74,6 +75,7 @@ class ArtefactStore {
 struct SavedCycleDirectory {
   uint64_t cycle = 0;
   std::string path;
+  std::chrono::system_clock::time_point saved_at;  // from its name: when its saving began (1 s steps)
 };
 
 // The cycle directories in `directory` (real directories, not symlinks), oldest first; cycle
