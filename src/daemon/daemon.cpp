@@ -11,9 +11,12 @@
 
 #include "binpick/cell/cell_service.hpp"
 #include "binpick/cell/systemd_notify.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
 #include "binpick/robot/robot_server.hpp"
+#include "binpick/web/log_ring.hpp"
+#include "binpick/web/web_server.hpp"
 #include "status_text.hpp"
 
 namespace binpick::daemon {
@@ -46,6 +49,22 @@ bool restartSettingsDiffer(const robot::RobotServerParams& a, const robot::Robot
                   b.keepalive_count, b.bad_request_log_interval_ms);
 }
 
+bool webSettingsDiffer(const std::optional<WebViewConfig>& a, const std::optional<WebViewConfig>& b) {
+  if (a.has_value() != b.has_value()) return true;
+  if (!a) return false;
+  return std::tie(a->bind_address, a->port, a->allowed_clients, a->threads, a->timeout_ms) !=
+         std::tie(b->bind_address, b->port, b->allowed_clients, b->threads, b->timeout_ms);
+}
+
+// The recent log lines the web view shows, fed by every logger of the process. Installed before
+// the cell's threads start (spdlog's sink lists are not guarded).
+std::shared_ptr<web::LogRing> recentLogLines(const CellConfig& config) {
+  if (!config.web) return nullptr;
+  auto ring = std::make_shared<web::LogRing>();
+  core::addSinkToAllLoggers(ring);
+  return ring;
+}
+
 CellConfig loadConfig(const DaemonOptions& options) {
   CellConfig config = loadCellConfig(options.config_path);
   if (options.port_override >= 0) config.robot.port = options.port_override;
@@ -57,10 +76,13 @@ class Daemon {
   explicit Daemon(const DaemonOptions& options)
       : options_(options),
         config_(loadConfig(options)),
+        log_ring_(recentLogLines(config_)),
         service_(prepareCell(config_), makeCaptureSource(config_.source),
                  [this](robot::ClientId client, const robot::Reply& reply) { server_->reply(client, reply); }),
         server_(std::make_unique<robot::RobotServer>(config_.robot, service_)),
-        notifier_(SystemdNotifier::fromEnvironment()) {}
+        notifier_(SystemdNotifier::fromEnvironment()) {
+    if (config_.web) web_ = std::make_unique<web::WebServer>(*config_.web, webSources());
+  }
 
   int run() {
     std::thread serving([this] { serve(); });
@@ -93,6 +115,7 @@ class Daemon {
   // the server writes those replies out before it closes the connections: a robot hears why,
   // never just a closed connection.
   void stop() {
+    if (web_) web_->stop();
     service_.stop();  // answers the waiting robots, ends the running cycle
     server_->stop();
   }
@@ -122,6 +145,9 @@ class Daemon {
     notifier_.reloading("reloading " + options_.config_path);
     try {
       CellConfig config = loadConfig(options_);
+      if (webSettingsDiffer(config.web, config_.web)) {
+        spdlog::warn("new web view settings take effect at the next restart");
+      }
       if (restartSettingsDiffer(config.robot, config_.robot)) {
         spdlog::warn(
             "a new robot bind address, port, max_clients, idle timeout, keepalive or log interval takes effect at the "
@@ -139,11 +165,22 @@ class Daemon {
     notifier_.ready(statusText(service_.snapshot(), server_->clientCount()));
   }
 
+  // What the web view shows: the cell's published report, the robots, the recent log lines.
+  web::WebSources webSources() {
+    web::WebSources sources;
+    sources.cell = [this] { return service_.report(); };
+    sources.robots = [this] { return server_->clients(); };
+    sources.log = log_ring_;
+    return sources;
+  }
+
   DaemonOptions options_;
   CellConfig config_;
+  std::shared_ptr<web::LogRing> log_ring_;
   CellService service_;
   std::unique_ptr<robot::RobotServer> server_;
   SystemdNotifier notifier_;
+  std::unique_ptr<web::WebServer> web_;  // last: stopped first, while the cell it shows still exists
   std::string serve_error_;
 };
 

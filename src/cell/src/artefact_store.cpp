@@ -1,3 +1,4 @@
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
@@ -70,6 +71,13 @@ void writeImage(const fs::path& path, const cv::Mat& image) {
   if (!written) fail(path, "cannot write the image");
 }
 
+// "20261201T161500Z" (UTC), as cycle directory names have it.
+std::chrono::system_clock::time_point timeOfName(const std::string& timestamp) {
+  std::tm utc{};
+  if (!strptime(timestamp.c_str(), "%Y%m%dT%H%M%SZ", &utc)) return {};
+  return std::chrono::system_clock::from_time_t(timegm(&utc));
+}
+
 // Writes the cycle's items into `directory`, which must not exist yet.
 void writeCycle(const fs::path& directory, const CycleArtefacts& cycle, const ArtefactParams& params) {
   std::error_code error;
@@ -129,6 +137,20 @@ std::vector<std::string> ArtefactStore::cycles() const {
   std::vector<std::string> paths;
   for (const KeptCycle& cycle : listCycles(params_.directory)) paths.push_back(cycle.path.string());
   return paths;
+}
+
+std::vector<SavedCycleDirectory> savedCycleDirectories(const std::string& directory) {
+  std::vector<SavedCycleDirectory> saved;
+  try {
+    for (const KeptCycle& cycle : listCycles(directory)) {
+      // Numbers beyond 19 digits do not fit; no cell counts that far.
+      if (cycle.name.number.size() > 19) continue;
+      saved.push_back({std::stoull(cycle.name.number), cycle.path.string(), timeOfName(cycle.name.timestamp)});
+    }
+  } catch (const std::exception&) {  // the directory changed under the listing: none this time
+    return {};
+  }
+  return saved;
 }
 
 void ArtefactParams::validate() const {

@@ -30,6 +30,14 @@ void validateAll(const CellConfig& config) {
     config.limits.validate();
     checkPickRepliesFit(config.robot.codec, config.limits.max_picks);
     if (config.artefacts) config.artefacts->validate();
+    if (config.web) {
+      config.web->validate();
+      // Both servers on one port of one address: the second could never listen.
+      const bool same_address = config.web->bind_address == config.robot.bind_address ||
+                                config.web->bind_address == "0.0.0.0" || config.robot.bind_address == "0.0.0.0";
+      core::requireField(config.web->port == 0 || config.web->port != config.robot.port || !same_address, "web", "port",
+                         "different from robot.port", config.web->port);
+    }
   });
 }
 
@@ -106,6 +114,7 @@ CellConfig parseCellConfig(const std::string& yaml_text, const std::string& orig
   config.robot = readRobot(top.child("robot"));
   config.limits = readLimits(top.child("limits"));
   config.artefacts = readArtefacts(top.child("artefacts"), resolve);
+  config.web = readWebView(top.child("web"));
   config.reconstruction = reconstruction::readReconstructionSection(top.child("reconstruction"), config.origin);
   top.finish();
   validateAll(config);

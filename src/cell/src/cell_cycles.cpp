@@ -7,6 +7,7 @@
 #include "binpick/acquisition/sequencer.hpp"
 #include "binpick/cell/cell_service.hpp"
 #include "binpick/core/stopwatch.hpp"
+#include "cycle_summary.hpp"
 #include "service_logger.hpp"
 #include "service_state.hpp"
 
@@ -35,9 +36,10 @@ CaptureAttempt captureFrom(acquisition::CaptureSource& source) {
 }
 
 CycleOutcome processSafely(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
-                           const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag& cancel) {
+                           const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag& cancel,
+                           const StageObserver& on_stage) {
   try {
-    return processCapture(setup, recipe, capture, avoid, &cancel);
+    return processCapture(setup, recipe, capture, avoid, &cancel, on_stage);
   } catch (const core::Cancelled& e) {  // its deadline passed, or the service stops
     CycleOutcome outcome;
     outcome.status = Status::Timeout;
@@ -124,6 +126,18 @@ void CellService::runCycles() {
     }
     const bool go_on = !capture_late && attempt.status == Status::Ok && !s.stopping;
     if (!go_on) s.cell_state = CellState::Idle;  // before the robot hears of it: it may trigger again at once
+    s.board.update([&](CellReport& report) {
+      CaptureHealth& health = report.capture;
+      ++health.captures;
+      health.last_capture = std::chrono::system_clock::now();
+      health.last_ok = attempt.status == Status::Ok;
+      if (!health.last_ok) {
+        ++health.failures;
+        health.last_error = attempt.detail;
+      }
+      report.stage = CycleStage::Reconstructing;
+    });
+    s.publish();
     lock.unlock();
     outbox.send(s.sink);
     if (attempt.status != Status::Ok) logger()->warn("cycle {}: no image: {}", cycle, attempt.detail);
@@ -131,7 +145,10 @@ void CellService::runCycles() {
 
     CycleOutcome outcome;
     if (go_on) {
-      outcome = processSafely(*setup, setup->recipes.at(recipe_index), attempt.capture, avoid, *cancel);
+      const StageObserver on_stage = [&s](CycleStage stage) {
+        s.board.update([stage](CellReport& report) { report.stage = stage; });
+      };
+      outcome = processSafely(*setup, setup->recipes.at(recipe_index), attempt.capture, avoid, *cancel, on_stage);
     } else {
       outcome.status = capture_late ? Status::Timeout : attempt.status;
       outcome.detail = attempt.detail;
@@ -168,6 +185,11 @@ void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> s
     s.last.last_parts_detected = outcome.T_base_objects.size();
     s.last.last_timing_ms = outcome.timing_ms;
     s.deadline_wakeup.notify_one();
+    // The history first, so that a report naming this cycle as the latest has it. Microseconds: a
+    // copy of a few summaries.
+    CycleSummary summary = summarizeCycle(cycle, *setup, recipe_index, outcome, std::chrono::system_clock::now());
+    s.board.update([&](CellReport& report) { report.recent = withCycle(*report.recent, std::move(summary)); });
+    s.publish();
   }
   outbox.send(s.sink);
   const CycleTimings& t = outcome.timing_ms;
@@ -197,6 +219,7 @@ void CellService::runDeadlines() {
     logger()->warn("cycle {}: the {} stage missed its deadline", s.cycles_started,
                    s.cell_state == CellState::Capturing ? "capture" : "processing");
     s.failRunningStage(Status::Timeout, outbox);
+    s.publish();
     lock.unlock();
     outbox.send(s.sink);
     lock.lock();
@@ -214,6 +237,7 @@ void CellService::stop() {
     if (s.cycle_cancel) s.cycle_cancel->cancel();  // a stage still running past its deadline too
     s.cycle_wakeup.notify_all();
     s.deadline_wakeup.notify_all();
+    s.publish();
   }
   outbox.send(s.sink);
   if (s.cycle_thread.joinable()) s.cycle_thread.join();

@@ -60,6 +60,31 @@ robot::Reply CellService::State::nextPick() {
   return nextPickReply(pick, latest->picks.size() - latest->cursor);
 }
 
+void CellService::State::publish() {
+  const bool picks_left = latest && latest->status == Status::Ok && latest->cursor < latest->picks.size();
+  const std::size_t waiting = picks_left ? latest->picks.size() - latest->cursor : 0;
+  board.update([&](CellReport& report) {
+    report.state = cell_state;
+    report.recipe = currentRecipe().name;
+    report.cycle = cycles_started;
+    report.picks_waiting = waiting;
+  });
+}
+
+void CellService::State::publishSetup(const acquisition::CaptureSource* new_source) {
+  std::vector<std::string> names;
+  for (const Recipe& r : setup->recipes) names.push_back(r.name);
+  board.update([&](CellReport& report) {
+    report.recipes = names;
+    report.orientation = setup->config.robot.codec.orientation;
+    report.capture.mode = setup->config.source.mode == SourceConfig::Mode::Replay ? "replay" : "live";
+    if (new_source) report.capture.source = new_source->description();
+    report.capture.calibration_problem = setup->reconstructor ? "" : setup->calibration_problem;
+    report.capture.hand_eye = setup->config.T_base_camera.has_value();
+  });
+  publish();
+}
+
 void CellService::State::answerWaiters(Outbox& outbox) {
   for (const robot::ClientId client : next_waiters) outbox.add(client, nextPick());
   next_waiters.clear();
@@ -74,6 +99,12 @@ CellService::CellService(std::shared_ptr<const CellSetup> setup, std::unique_ptr
   state_->last.recipe = state_->currentRecipe().name;
   if (state_->setup->config.artefacts)
     state_->saver = std::make_unique<ArtefactSaver>(*state_->setup->config.artefacts);
+  const std::optional<ArtefactParams>& artefacts = state_->setup->config.artefacts;
+  state_->board.update([&](CellReport& report) {
+    report.started = std::chrono::system_clock::now();
+    if (artefacts) report.artefact_directory = artefacts->directory;
+  });
+  state_->publishSetup(state_->source.get());
   state_->cycle_thread = std::thread([this] { runCycles(); });
   state_->deadline_thread = std::thread([this] { runDeadlines(); });
 }
@@ -85,6 +116,7 @@ void CellService::handle(robot::ClientId client, const robot::Request& request) 
   {
     std::lock_guard lock(state_->mutex);
     if (std::optional<robot::Reply> reply = state_->answer(client, request)) outbox.add(client, std::move(*reply));
+    state_->publish();
   }
   outbox.send(state_->sink);
 }
@@ -169,8 +201,11 @@ void CellService::reconfigure(std::shared_ptr<const CellSetup> setup,
   s.setup = std::move(setup);
   s.recipe = std::max(0, s.setup->recipeIndex(recipe_name));  // keep the recipe if it still exists
   s.last.recipe = s.currentRecipe().name;
+  s.publishSetup(source.get());
   if (source) s.pending_source = std::move(source);
 }
+
+std::shared_ptr<const CellReport> CellService::report() const { return state_->board.read(); }
 
 CellSnapshot CellService::snapshot() const {
   std::lock_guard lock(state_->mutex);

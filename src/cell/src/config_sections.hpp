@@ -20,5 +20,6 @@ picking::PickParams readPicking(core::YamlSection section);
 robot::RobotServerParams readRobot(core::YamlSection section);
 CycleLimits readLimits(core::YamlSection section);
 std::optional<ArtefactParams> readArtefacts(core::YamlSection section, const PathResolver& resolve);
+std::optional<WebViewConfig> readWebView(core::YamlSection section);
 
 }  // namespace binpick::cell

@@ -66,17 +66,24 @@ int countPointsInBin(const io::PointCloud& cloud, const Eigen::Isometry3d& T_bas
 }
 
 CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
-                            const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag* cancel) {
+                            const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag* cancel,
+                            const StageObserver& on_stage) {
+  const auto begin = [&](CycleStage next) {
+    if (on_stage) on_stage(next);
+  };
   CycleOutcome outcome;
   const Eigen::Isometry3d& T_base_camera = *setup.config.T_base_camera;
   core::Stopwatch stage;
+  begin(CycleStage::Reconstructing);
   outcome.reconstruction = setup.reconstructor->reconstruct(capture, cancel);
   outcome.timing_ms.reconstruct = stage.lapMs();
 
   const estimation::Detector& detector = *recipe.detector;
+  begin(CycleStage::Detecting);
   outcome.detection = detector.detect(outcome.reconstruction.cloud, detector.params().scene.crop, cancel);
   outcome.timing_ms.detect = stage.lapMs();
   core::throwIfCancelled(cancel, "before planning");
+  begin(CycleStage::Planning);
 
   outcome.bin_points = countPointsInBin(outcome.reconstruction.cloud, T_base_camera, recipe.picking.bin,
                                         setup.config.limits.empty_bin_min_height);

@@ -16,6 +16,7 @@
 #include "binpick/cell/cell_service.hpp"
 #include "binpick/core/cancellation.hpp"
 #include "cell_replies.hpp"
+#include "report_board.hpp"
 
 namespace binpick::cell {
 
@@ -74,6 +75,7 @@ struct CellService::State {
   uint64_t cycles_started = 0;  // cycles numbered: each accepted TRIGGER takes the next number
   std::vector<AvoidEntry> avoid;
   CellSnapshot last;  // for snapshot()
+  ReportBoard board;  // for report(); has its own locks
   bool stopping = false;
 
   std::unique_ptr<ArtefactSaver> saver;
@@ -90,6 +92,10 @@ struct CellService::State {
   robot::Reply nextPick();  // NEXT from `latest`
   void answerWaiters(Outbox& outbox);
   void failRunningStage(robot::Status status, Outbox& outbox);
+  // Publishes the state, recipe, cycle number and waiting picks on the board.
+  void publish();
+  // Publishes what comes from the settings: recipes, the robot's convention, calibration, source.
+  void publishSetup(const acquisition::CaptureSource* new_source);
   // FAILED: avoid the part at `centre` (base frame); returns for how many cycles.
   uint64_t avoidFailedPart(const Eigen::Vector3d& centre);
 };

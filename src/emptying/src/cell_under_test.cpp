@@ -1,5 +1,7 @@
 #include "cell_under_test.hpp"
 
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -8,6 +10,7 @@
 
 #include "binpick/cell/cell_config.hpp"
 #include "binpick/cell/cell_setup.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/rig_calibration.hpp"
@@ -97,6 +100,20 @@ std::string gripperSettings(const picking::GripperParams& g) {
 // binpickd's settings for the run: the virtual rig's calibration, the camera above the bin, the
 // part's recipe without grasps (the cell generates them), the bin, the gripper, every cycle's
 // overlay and detections saved.
+// EmptyingParams::web_port, else BINPICK_WEB_PORT; -1: no web view.
+int webPort(const EmptyingParams& params) {
+  if (params.web_port >= 0) return params.web_port;
+  const char* text = std::getenv("BINPICK_WEB_PORT");
+  if (!text || !*text) return -1;
+  try {
+    std::size_t used = 0;
+    const int port = std::stoi(text, &used);
+    if (used == std::strlen(text) && port >= 0 && port <= 65535) return port;
+  } catch (const std::exception&) {
+  }
+  throw core::Error(std::string("BINPICK_WEB_PORT must be a port number in [0, 65535] (got \"") + text + "\")");
+}
+
 std::string cellSettings(const EmptyingParams& params, const Eigen::Isometry3d& T_base_camera, int max_cycles) {
   const simulation::PileParams& pile = params.pile;
   std::ostringstream text;
@@ -114,6 +131,7 @@ std::string cellSettings(const EmptyingParams& params, const Eigen::Isometry3d& 
        << gripperSettings(params.gripper) << "robot: {bind_address: 127.0.0.1, port: 0, orientation: euler_zyx}\n"
        << "artefacts: {directory: ../cycles, max_cycles: " << max_cycles
        << ", capture: false, cloud: false, detections: true, overlay: true}\n";
+  if (const int port = webPort(params); port >= 0) text << "web: {bind_address: 127.0.0.1, port: " << port << "}\n";
   return text.str();
 }
 
@@ -137,6 +155,11 @@ CellUnderTest::CellUnderTest(const simulation::Part& part, const EmptyingParams&
   config.recipes.front().symmetry = recipeSymmetry(part.symmetry);
   setup_ = cell::prepareCell(config);
 
+  std::shared_ptr<web::LogRing> log_ring;
+  if (config.web) {  // before the cell's threads start: spdlog's sink lists are not guarded
+    log_ring = std::make_shared<web::LogRing>();
+    core::addSinkToAllLoggers(log_ring);
+  }
   auto camera = std::make_unique<VirtualCamera>();
   camera_ = camera.get();
   service_ = std::make_unique<cell::CellService>(
@@ -145,6 +168,10 @@ CellUnderTest::CellUnderTest(const simulation::Part& part, const EmptyingParams&
   server_ = std::make_unique<robot::RobotServer>(config.robot, *service_);
   serving_ = std::thread([this] { server_->run(); });
   try {
+    if (config.web) {
+      web::WebSources sources{[this] { return service_->report(); }, [this] { return server_->clients(); }, log_ring};
+      web_ = std::make_unique<web::WebServer>(*config.web, std::move(sources));
+    }
     robot_ = std::make_unique<robot::RobotConnection>("127.0.0.1", server_->port(), config.robot.codec,
                                                       std::chrono::milliseconds(5000));
   } catch (...) {
@@ -156,6 +183,7 @@ CellUnderTest::CellUnderTest(const simulation::Part& part, const EmptyingParams&
 CellUnderTest::~CellUnderTest() { stop(); }
 
 void CellUnderTest::stop() {
+  web_.reset();
   robot_.reset();
   if (server_) server_->stop();
   if (serving_.joinable()) serving_.join();

@@ -13,6 +13,8 @@
 #include "binpick/emptying/emptying.hpp"
 #include "binpick/robot/robot_connection.hpp"
 #include "binpick/robot/robot_server.hpp"
+#include "binpick/web/log_ring.hpp"
+#include "binpick/web/web_server.hpp"
 
 namespace binpick::emptying::detail {
 
@@ -44,6 +46,7 @@ class CellUnderTest {
   std::unique_ptr<robot::RobotServer> server_;
   std::thread serving_;
   std::unique_ptr<robot::RobotConnection> robot_;
+  std::unique_ptr<web::WebServer> web_;  // when the settings have a web: section
 };
 
 }  // namespace binpick::emptying::detail

@@ -1,7 +1,7 @@
 #include <arpa/inet.h>
 #include <exception>
 
-#include "address_filter.hpp"
+#include "binpick/core/address_filter.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/robot/robot_server.hpp"
 #include "server_impl.hpp"
@@ -33,7 +33,7 @@ RobotServer::Impl::Impl(const RobotServerParams& params, RequestHandler& request
       wake_fd(detail::makeEventFd()),
       port(detail::boundPort(listener.get())),
       codec(params.codec),
-      allowed(std::make_shared<const detail::AddressFilter>(params.allowed_clients, kOwner + ".allowed_clients")) {}
+      allowed(std::make_shared<const core::AddressFilter>(params.allowed_clients, kOwner + ".allowed_clients")) {}
 
 RobotServer::RobotServer(const RobotServerParams& params, RequestHandler& handler) {
   params.validate();
@@ -88,6 +88,13 @@ void RobotServer::reply(ClientId client, const robot::Reply& reply) {
 
 std::size_t RobotServer::clientCount() const { return impl_->client_count.load(); }
 
+std::vector<ConnectedClient> RobotServer::clients() const {
+  std::vector<ConnectedClient> list;
+  const std::lock_guard<std::mutex> lock(impl_->mutex);
+  for (const auto& entry : impl_->connected) list.push_back(entry.second);  // ids grow: connection order
+  return list;
+}
+
 void RobotServer::setCodec(const robot::CodecParams& codec) {
   codec.validate();
   core::requireField(codec.max_line_length <= impl_->limits.max_buffered_input &&
@@ -99,7 +106,7 @@ void RobotServer::setCodec(const robot::CodecParams& codec) {
 }
 
 void RobotServer::setAllowedClients(const std::vector<std::string>& allowed) {
-  auto filter = std::make_shared<const detail::AddressFilter>(allowed, kOwner + ".allowed_clients");
+  auto filter = std::make_shared<const core::AddressFilter>(allowed, kOwner + ".allowed_clients");
   const std::lock_guard<std::mutex> lock(impl_->mutex);
   impl_->allowed = std::move(filter);
 }
@@ -110,7 +117,7 @@ void RobotServerParams::validate(const std::string& owner) const {
                      bind_address);
   core::requireField(port >= 0 && port <= 65535, owner, "port", "in [0, 65535]", port);
   // Parsing is the check; the filter itself is built again by the server.
-  detail::AddressFilter{allowed_clients, owner + ".allowed_clients"};
+  core::AddressFilter{allowed_clients, owner + ".allowed_clients"};
   core::requireField(max_clients >= 1, owner, "max_clients", ">= 1", max_clients);
   core::requireField(idle_timeout_ms >= 0, owner, "idle_timeout_ms", ">= 0 (0: no idle timeout)", idle_timeout_ms);
   // Linux's limits for TCP_KEEPIDLE, TCP_KEEPINTVL and TCP_KEEPCNT.

@@ -81,6 +81,10 @@ void RobotServer::Impl::closeClient(std::map<ClientId, std::unique_ptr<detail::C
   std::unique_ptr<detail::ClientConnection> client = std::move(entry->second);
   clients.erase(entry);
   client_count.store(clients.size());
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    connected.erase(client->id());
+  }
   disconnect(std::move(client));
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Internal: the state of a RobotServer. Fields above the mutex are set in the constructor (the
 // listener is closed when run() ends); those it guards are shared with the threads calling
-// reply(), setCodec() and setAllowedClients(); the atomics with any thread; the rest belong to
+// reply(), clients(), setCodec() and setAllowedClients(); the atomics with any thread; the rest belong to
 // the thread in run().
 #include <poll.h>
 
@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "address_filter.hpp"
+#include "binpick/core/address_filter.hpp"
 #include "binpick/robot/robot_server.hpp"
 #include "client_connection.hpp"
 #include "socket_util.hpp"
@@ -62,7 +62,8 @@ struct RobotServer::Impl {
   std::mutex mutex;
   std::vector<std::pair<ClientId, robot::Reply>> incoming_replies;
   robot::CodecParams codec;
-  std::shared_ptr<const detail::AddressFilter> allowed;
+  std::shared_ptr<const core::AddressFilter> allowed;
+  std::map<ClientId, ConnectedClient> connected;  // what clients() lists, kept beside `clients`
 
   std::atomic<bool> stop_requested{false};
   std::atomic<bool> running{false};

@@ -115,8 +115,8 @@ void RobotServer::Impl::acceptClients() {
 }
 
 void RobotServer::Impl::admit(detail::UniqueFd socket, const sockaddr_in& peer) {
-  const std::string peer_text = detail::addressText(peer.sin_addr) + ":" + std::to_string(ntohs(peer.sin_port));
-  std::shared_ptr<const detail::AddressFilter> filter;
+  const std::string peer_text = core::addressText(peer.sin_addr) + ":" + std::to_string(ntohs(peer.sin_port));
+  std::shared_ptr<const core::AddressFilter> filter;
   robot::CodecParams codec_now;
   {
     const std::lock_guard<std::mutex> lock(mutex);
@@ -140,6 +140,10 @@ void RobotServer::Impl::admit(detail::UniqueFd socket, const sockaddr_in& peer) 
   const ClientId id = next_id++;
   clients.emplace(id, std::make_unique<detail::ClientConnection>(id, std::move(socket), peer_text, codec_now, limits));
   client_count.store(clients.size());
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    connected[id] = ConnectedClient{id, peer_text, std::chrono::system_clock::now()};
+  }
   log->info("client {} connected from {}", id, peer_text);
 }
 

@@ -213,3 +213,39 @@ TEST_F(CellConfigFile, TheTestSceneSettingsParse) {
 
 }  // namespace
 }  // namespace binpick::cell
+
+namespace binpick::cell {
+namespace {
+
+TEST(CellConfig, TheWebViewIsOffWithoutItsSectionAndLocalByDefault) {
+  EXPECT_FALSE(parse(kMinimal).web.has_value());
+  const CellConfig config = parse(kMinimal + "web: {}\n");
+  ASSERT_TRUE(config.web.has_value());
+  EXPECT_EQ(config.web->bind_address, "127.0.0.1");
+  EXPECT_EQ(config.web->port, 8080);
+  EXPECT_TRUE(config.web->allowed_clients.empty());
+  const CellConfig set = parse(kMinimal +
+                               "web: {bind_address: 0.0.0.0, port: 8081, allowed_clients: [10.0.0.0/8], "
+                               "threads: 2, timeout_ms: 2000}\n");
+  EXPECT_EQ(set.web->bind_address, "0.0.0.0");
+  EXPECT_EQ(set.web->port, 8081);
+  EXPECT_EQ(set.web->allowed_clients, std::vector<std::string>{"10.0.0.0/8"});
+  EXPECT_EQ(set.web->threads, 2);
+  EXPECT_EQ(set.web->timeout_ms, 2000);
+}
+
+TEST(CellConfig, WebViewMistakesNameTheirKey) {
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "web: {port: 70000}\n"); }, "web.port must be in [0, 65535]"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "web: {bind_address: localhost}\n"); }, "web.bind_address"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "web: {allowed_clients: [\"10.0.0.0/33\"]}\n"); },
+                           "web.allowed_clients entry \"10.0.0.0/33\""));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "web: {threads: 0}\n"); }, "web.threads"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "web: {timeout_ms: 10}\n"); }, "web.timeout_ms"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "web: {port: [1]}\n"); }, "web.port"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "web: {colour: blue}\n"); }, "web.colour"));
+  EXPECT_TRUE(throwsNaming([] { parse(kMinimal + "robot: {port: 8080}\nweb: {port: 8080}\n"); },
+                           "web.port must be different from robot.port"));
+}
+
+}  // namespace
+}  // namespace binpick::cell

@@ -14,6 +14,7 @@
 // Not thread-safe: one thread at a time, and one store per directory (the constructor deletes
 // the partial directories of an interrupted save, which would be another store's saves in
 // progress).
+#include <chrono>
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
@@ -69,5 +70,18 @@ class ArtefactStore {
  private:
   ArtefactParams params_;
 };
+
+// A kept cycle directory, as readers of the artefacts (the web view) find it.
+struct SavedCycleDirectory {
+  uint64_t cycle = 0;
+  std::string path;
+  std::chrono::system_clock::time_point saved_at;  // from its name: when its saving began (1 s steps)
+};
+
+// The cycle directories in `directory` (real directories, not symlinks), oldest first; cycle
+// numbers repeat after a restart, so a number may appear more than once. Read-only: safe on any
+// thread beside the store saving into it (a directory it deletes meanwhile is missing from the
+// list, or gone when opened). Empty when `directory` cannot be read.
+std::vector<SavedCycleDirectory> savedCycleDirectories(const std::string& directory);
 
 }  // namespace binpick::cell

@@ -60,6 +60,20 @@ struct CycleLimits {
   void validate() const;  // throws core::Error naming the field
 };
 
+// The web view (binpick::web): a read-only HTTP page and JSON API of the cell's state, off unless
+// the settings have a `web:` section. Served by its own threads, so that no HTTP client can delay
+// a robot's cycle.
+struct WebViewConfig {
+  std::string bind_address = "127.0.0.1";    // this machine only, unless told otherwise
+  int port = 8080;                           // 0: any free port (tests)
+  std::vector<std::string> allowed_clients;  // IPv4 addresses or CIDR blocks; empty: any
+  int threads = 4;                           // requests served at once; more connections wait
+  // A client that sends or reads nothing for this long is disconnected, so that a stalled
+  // browser or a hostile client frees its thread.
+  int timeout_ms = 5000;
+  void validate() const;  // throws core::Error naming web.FIELD
+};
+
 struct CellConfig {
   std::string origin;  // the settings file, for messages
   SourceConfig source;
@@ -70,6 +84,7 @@ struct CellConfig {
   robot::RobotServerParams robot;
   CycleLimits limits;
   std::optional<ArtefactParams> artefacts;  // absent: nothing saved
+  std::optional<WebViewConfig> web;         // absent: no web view
   reconstruction::ReconstructionParams reconstruction;
 };
 

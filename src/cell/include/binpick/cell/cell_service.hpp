@@ -10,12 +10,13 @@
 //   FAILED   the object is avoided in the next limits.avoid_cycles cycles.
 //   MODEL    the recipe of the next cycles;  STATUS, PING.
 // Threads: the cycle runs on its own thread, deadlines on another, saved artefacts on a third.
-// handle(), disconnected(), reconfigure(), snapshot() and healthy() are thread-safe.
+// handle(), disconnected(), reconfigure(), snapshot(), report() and healthy() are thread-safe.
 #include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
 
+#include "binpick/cell/cell_report.hpp"
 #include "binpick/cell/cell_setup.hpp"
 #include "binpick/cell/pick_cycle.hpp"
 #include "binpick/robot/robot_server.hpp"
@@ -23,8 +24,6 @@
 namespace binpick::cell {
 
 using ReplySink = std::function<void(robot::ClientId, const robot::Reply&)>;
-
-enum class CellState : int32_t { Idle = 0, Capturing = 1, Computing = 2 };
 
 struct CellSnapshot {
   CellState state = CellState::Idle;
@@ -58,6 +57,9 @@ class CellService : public robot::RequestHandler {
   void stop();
 
   CellSnapshot snapshot() const;
+  // The state as published at its last change, for observers (the web view). Never waits for the
+  // cycle: it copies a pointer under a lock of its own.
+  std::shared_ptr<const CellReport> report() const;
   // False once a stage has overrun its deadline by far more than any camera timeout (a hung
   // driver): the daemon then stops feeding systemd's watchdog, which restarts the service.
   bool healthy() const;

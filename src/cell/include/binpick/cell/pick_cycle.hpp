@@ -5,6 +5,7 @@
 // outcomes (nothing found, empty bin, nothing reachable) are statuses, not exceptions.
 // Stateless functions: thread-safe.
 #include <Eigen/Geometry>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,12 @@ struct CycleOutcome {
 // `undeliverable`: the robot could not be told them. Throws core::Error only for a capture the
 // reconstruction refuses (a corrupt or mismatched capture), and core::Cancelled once `cancel` is
 // set (checked between the stages and inside reconstruction and detection).
+// `on_stage`, when given, is called as each stage begins (for observers: cheap and non-blocking).
+enum class CycleStage { Reconstructing, Detecting, Planning };
+using StageObserver = std::function<void(CycleStage)>;
 CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
-                            const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag* cancel = nullptr);
+                            const std::vector<Eigen::Vector3d>& avoid, const core::CancelFlag* cancel = nullptr,
+                            const StageObserver& on_stage = {});
 
 // Points of `cloud` (camera frame) inside the bin's inner box, at least `min_height` off its floor
 // and walls: tells "bin empty" from "nothing detected".

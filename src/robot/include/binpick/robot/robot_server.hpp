@@ -13,9 +13,10 @@
 // client has one). Bad requests are logged rate-limited per client: the first
 // kBadRequestsLoggedInFull one by one, then one summary line per bad_request_log_interval_ms.
 //
-// Thread-safety: reply(), stop(), clientCount(), setCodec() and setAllowedClients() may be called
+// Thread-safety: reply(), stop(), clientCount(), clients(), setCodec() and setAllowedClients() may be called
 // from any thread; run() from one thread at a time. The destructor joins nothing (run() runs on
 // the caller's thread): call stop() and wait for run() to return before destroying the server.
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -62,6 +63,13 @@ struct RobotServerParams {
 
 using ClientId = uint64_t;  // never reused within a server's life
 
+// A connected client, as observers (the web view) list them.
+struct ConnectedClient {
+  ClientId id = 0;
+  std::string peer;  // "address:port"
+  std::chrono::system_clock::time_point since;
+};
+
 // Called on the server thread; must not block. It answers now or later by calling
 // RobotServer::reply(client, ...) exactly once per request (from any thread, this one included).
 // Replies for a client that has gone are dropped. A handle() that throws has not answered: the
@@ -93,6 +101,8 @@ class RobotServer {
   void stop();
   void reply(ClientId client, const robot::Reply& reply);
   std::size_t clientCount() const;
+  // The clients connected now, in the order they connected.
+  std::vector<ConnectedClient> clients() const;
   // Takes new codec settings (SIGHUP reload) for connections opened from now on; connected
   // clients keep theirs. Bind address and port changes need a restart. Throws core::Error
   // naming the field for invalid settings and keeps the old ones.

@@ -1,4 +1,4 @@
-#include "address_filter.hpp"
+#include "binpick/core/address_filter.hpp"
 
 #include <arpa/inet.h>
 
@@ -7,7 +7,7 @@
 
 #include "binpick/core/error.hpp"
 
-namespace binpick::robot::detail {
+namespace binpick::core {
 namespace {
 
 // The prefix length of "/N": digits only, so that "/+8" or "/ 8" are refused, not read as 8.
@@ -39,8 +39,8 @@ AddressFilter::AddressFilter(const std::vector<std::string>& entries, const std:
     std::optional<int> prefix = 32;
     if (slash != std::string::npos) prefix = parsePrefixLength(entry.substr(slash + 1));
     if (!address_ok || !prefix) {
-      throw core::Error(field + " entry \"" + entry +
-                        "\" is not an IPv4 address or CIDR block (like 10.0.0.5 or 10.0.0.0/8)");
+      throw Error(field + " entry \"" + entry +
+                  "\" is not an IPv4 address or CIDR block (like 10.0.0.5 or 10.0.0.0/8)");
     }
     const uint32_t mask = maskOfPrefix(*prefix);
     blocks_.push_back({ntohl(address.s_addr) & mask, mask});
@@ -56,10 +56,16 @@ bool AddressFilter::allows(const in_addr& address) const {
   return false;
 }
 
+bool AddressFilter::allows(const std::string& address) const {
+  if (blocks_.empty()) return true;
+  in_addr parsed{};
+  return inet_pton(AF_INET, address.c_str(), &parsed) == 1 && allows(parsed);
+}
+
 std::string addressText(const in_addr& address) {
   char text[INET_ADDRSTRLEN] = {};
   inet_ntop(AF_INET, &address, text, sizeof text);
   return text;
 }
 
-}  // namespace binpick::robot::detail
+}  // namespace binpick::core
