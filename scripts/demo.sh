@@ -13,15 +13,12 @@ cd "$(dirname "$0")/.."
 bash scripts/build.sh binpick
 out=demo-output
 rm -rf "$out"
-# The cell's web view while the run lasts: 8080, or the next free port (BINPICK_WEB_PORT overrides).
+# The cell's web view while the run lasts: 8080, or the next free port.
 port_in_use() { (exec 3<>"/dev/tcp/127.0.0.1/$1") 2>/dev/null; }
-if [ -z "${BINPICK_WEB_PORT:-}" ]; then
-  BINPICK_WEB_PORT=8080
-  while port_in_use "$BINPICK_WEB_PORT" && [ "$BINPICK_WEB_PORT" -lt 8180 ]; do BINPICK_WEB_PORT=$((BINPICK_WEB_PORT + 1)); done
-fi
-export BINPICK_WEB_PORT
-echo "web view: http://127.0.0.1:$BINPICK_WEB_PORT/ (while the demo runs)"
-./build/src/cli/binpick simulate --part l_bracket --objects 20 --seed 3 --empty-bin --out "$out"
+web_port=8080
+while port_in_use "$web_port" && [ "$web_port" -lt 8180 ]; do web_port=$((web_port + 1)); done
+echo "web view: http://127.0.0.1:$web_port/ (while the demo runs)"
+./build/src/cli/binpick simulate --part l_bracket --objects 20 --seed 3 --empty-bin --web-port "$web_port" --out "$out"
 overlay=$(ls -d "$out"/cycles/cycle-*/overlay.png 2>/dev/null | sort -V | head -n 1 || true)
 if [ -n "$overlay" ]; then
   cp "$overlay" "$out/overlay.png"

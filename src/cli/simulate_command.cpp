@@ -77,6 +77,7 @@ int emptyBin(const Arguments& args) {
   params.photometry.threads = params.pile.threads;
   params.gripper = gripperFromArguments(args);
   params.max_cycles = args.integer("--max-cycles").value_or(0);
+  params.web_port = args.integer("--web-port").value_or(-1);
   params.out_directory = args.required("--out");
   requireFreshDirectory(params.out_directory);
   const emptying::EmptyingReport report = emptying::emptyBin(
@@ -182,6 +183,9 @@ std::vector<CLI::Option*> addPileOptions(CLI::App& command) {
 void addEmptyBinOptions(CLI::App& command, CLI::Option* empty_bin) {
   for (CLI::Option* option : addGripperOptions(command, "suction (default) or parallel")) option->needs(empty_bin);
   addInteger(command, "--max-cycles", "K", "Stop after K cycles (default 0: until the bin is empty)")->needs(empty_bin);
+  addInteger(command, "--web-port", "N", "Serve the cell's web view on 127.0.0.1:N while the run lasts (default: none)")
+      ->check(CLI::Range(0, 65535))
+      ->needs(empty_bin);
 }
 
 }  // namespace

@@ -1,7 +1,5 @@
 #include "cell_under_test.hpp"
 
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -99,21 +97,7 @@ std::string gripperSettings(const picking::GripperParams& g) {
 
 // binpickd's settings for the run: the virtual rig's calibration, the camera above the bin, the
 // part's recipe without grasps (the cell generates them), the bin, the gripper, every cycle's
-// overlay and detections saved.
-// EmptyingParams::web_port, else BINPICK_WEB_PORT; -1: no web view.
-int webPort(const EmptyingParams& params) {
-  if (params.web_port >= 0) return params.web_port;
-  const char* text = std::getenv("BINPICK_WEB_PORT");
-  if (!text || !*text) return -1;
-  try {
-    std::size_t used = 0;
-    const int port = std::stoi(text, &used);
-    if (used == std::strlen(text) && port >= 0 && port <= 65535) return port;
-  } catch (const std::exception&) {
-  }
-  throw core::Error(std::string("BINPICK_WEB_PORT must be a port number in [0, 65535] (got \"") + text + "\")");
-}
-
+// overlay and detections saved, and the web view when asked for.
 std::string cellSettings(const EmptyingParams& params, const Eigen::Isometry3d& T_base_camera, int max_cycles) {
   const simulation::PileParams& pile = params.pile;
   std::ostringstream text;
@@ -131,7 +115,7 @@ std::string cellSettings(const EmptyingParams& params, const Eigen::Isometry3d& 
        << gripperSettings(params.gripper) << "robot: {bind_address: 127.0.0.1, port: 0, orientation: euler_zyx}\n"
        << "artefacts: {directory: ../cycles, max_cycles: " << max_cycles
        << ", capture: false, cloud: false, detections: true, overlay: true}\n";
-  if (const int port = webPort(params); port >= 0) text << "web: {bind_address: 127.0.0.1, port: " << port << "}\n";
+  if (params.web_port >= 0) text << "web: {bind_address: 127.0.0.1, port: " << params.web_port << "}\n";
   return text.str();
 }
 

@@ -52,6 +52,8 @@ void EmptyingParams::validate() const {
                      approach_distance);
   core::requireField(max_cycles >= 0, owner, "max_cycles", ">= 0", max_cycles);
   core::requireField(patience >= 1, owner, "patience", ">= 1", patience);
+  core::requireField(web_port >= -1 && web_port <= 65535, owner, "web_port", "a port, 0 (any free) or -1 (none)",
+                     web_port);
   core::requireField(!out_directory.empty(), owner, "out_directory", "given", "\"\"");
 }
 

@@ -38,8 +38,8 @@ struct EmptyingParams {
   // Where the cell's files (settings, model, calibration), its saved cycles (overlay and
   // detections per cycle) and emptying.json go. Must be given.
   std::string out_directory;
-  // The cell's web view (docs/binpickd.md, "Web view") on 127.0.0.1:web_port while the run lasts;
-  // -1: the BINPICK_WEB_PORT environment variable's port when it is set (scripts/demo.sh), else off.
+  // The cell's web view (docs/binpickd.md, "Web view") on 127.0.0.1:web_port while the run lasts
+  // (0: any free port); -1: none.
   int web_port = -1;
   void validate() const;  // throws core::Error naming the field
   int cycleLimit() const { return max_cycles > 0 ? max_cycles : 2 * pile.objects + 10; }
