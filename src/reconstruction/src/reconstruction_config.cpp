@@ -18,10 +18,12 @@ void readDecode(core::YamlSection s, DecodeParams& p) {
   s.read("separation_max_stripe", p.separation_max_stripe);
   s.read("min_bit_difference", p.min_bit_difference);
   s.read("bit_margin", p.bit_margin);
+  s.read("bit_noise_sigmas", p.bit_noise_sigmas);
   s.read("max_code_run_without_phase", p.max_code_run_without_phase);
   s.read("max_code_run_with_phase", p.max_code_run_with_phase);
   s.read("min_phase_amplitude", p.min_phase_amplitude);
   s.read("max_phase_gray_disagreement", p.max_phase_gray_disagreement);
+  s.read("keep_column_without_row", p.keep_column_without_row);
   s.read("max_saturated_fraction", p.max_saturated_fraction);
   s.read("max_pair_sum_error", p.max_pair_sum_error);
   s.finish();

@@ -49,7 +49,7 @@ void estimateLight(const io::Capture& capture, const DecodePlan& plan, const Til
   separateLight<Pixel>(black, t.black_level, high, low, width);
   addToBlack<Pixel, Work>(black, high, direct_level, width);
   addToBlack<Pixel, Work>(black, low, global_level, width);
-  bitMargins<Work>(high, t.min_bit_difference, t.bit_margin, margin, width);
+  bitMargins<Pixel, Work>(high, white, black, t, margin, width);
   flagPixels<Pixel>(white, black, high, t, intensity, lit, white_clipped, width);
   s.direct_light_only = directLightOnly(lit, white_clipped, direct_level, global_level, width);
 }
@@ -152,11 +152,14 @@ void resolveTile(const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s, 
     const AxisVerdict column = verdictAt(s.columns, x, columns, plan.thresholds);
     AxisVerdict row = column;
     if (column.status == PixelStatus::Valid && rows.present) row = verdictAt(s.rows, x, rows, plan.thresholds);
-    const PixelStatus status = column.status != PixelStatus::Valid ? column.status : row.status;
+    const bool column_alone = row.status != PixelStatus::Valid && plan.thresholds.keep_column_without_row;
+    const PixelStatus status = column.status != PixelStatus::Valid ? column.status
+                               : column_alone                      ? PixelStatus::Valid
+                                                                   : row.status;
     out.status[x] = static_cast<uint8_t>(blame(status, s.white_clipped[x] != 0));
     if (status != PixelStatus::Valid) continue;
     out.column[x] = column.position;
-    if (rows.present) out.row[x] = row.position;
+    if (rows.present && row.status == PixelStatus::Valid) out.row[x] = row.position;
   }
 }
 
