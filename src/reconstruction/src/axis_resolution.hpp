@@ -76,17 +76,9 @@ inline AxisVerdict unwrapPhase(const AxisSample& sample, const CodeRun& run, con
   return {position, PixelStatus::Valid};
 }
 
-// The run of columns of a code read without the axis's skipped bits: each candidate stands for a
-// block of 2^skipped_bits columns (the Gray code's top bits decode to column >> skipped_bits).
-inline CodeRun candidateColumns(const AxisSample& sample, const AxisLayout& axis) {
-  const CodeRun blocks = candidateRun(sample.code, sample.uncertain);
-  const unsigned shift = static_cast<unsigned>(axis.skipped_bits);
-  return {blocks.first << shift, ((blocks.last + 1u) << shift) - 1u};
-}
-
 inline AxisVerdict resolveAxis(const AxisSample& sample, const AxisLayout& axis, const DecodeThresholds& t) {
   if (__builtin_popcount(sample.uncertain) > kMaxUncertainBits) return {0.0f, PixelStatus::UncertainCode};
-  CodeRun run = candidateColumns(sample, axis);
+  CodeRun run = candidateRun(sample.code, sample.uncertain);
   const int longest = axis.hasPhase() ? t.max_run_with_phase : t.max_run_without_phase;
   if (run.last - run.first + 1 > static_cast<unsigned>(longest)) return {0.0f, PixelStatus::UncertainCode};
   const unsigned size = static_cast<unsigned>(axis.size);
@@ -102,10 +94,9 @@ constexpr uint8_t kNeedsFullResolution = 255;
 // resolveAxis for a whole tile at once, vectorised, for the common pixels: at most one uncertain
 // bit (a stripe edge or none), a run no longer than `longest`, inside the projector. Writes the
 // run's centre and a verdict per pixel: Valid for those pixels, kNeedsFullResolution for the
-// others. Gives the same result as resolveAxis wherever it decides. `shift`: the axis's skipped
-// bits.
+// others. Gives the same result as resolveAxis wherever it decides.
 void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain, int longest,
-                       int last_index, int shift, float* __restrict centre, uint8_t* __restrict verdict, int width);
+                       int last_index, float* __restrict centre, uint8_t* __restrict verdict, int width);
 // unwrapPhase for the pixels resolveSimpleRuns decided: the centre becomes the unwrapped
 // position, and their verdict Valid, PhaseMismatch or Saturated.
 void unwrapSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain,

@@ -14,12 +14,8 @@ struct AxisLayout {
   std::vector<int> inverse_images;
   std::vector<int> phase_images;  // one per phase step; empty without phase shift
   int phase_period = 0;           // projector pixels
-  // The finest Gray bits the decoder does not read (DecodeParams::min_stripe_with_phase): the
-  // phase resolves within their blocks of 2^skipped_bits columns.
-  int skipped_bits = 0;
 
   int bits() const { return static_cast<int>(bit_images.size()); }
-  int readBits() const { return bits() - skipped_bits; }
   bool hasPhase() const { return !phase_images.empty(); }
   // Width in projector pixels of the stripes of Gray bit j: 2^(bits - 1 - j).
   int stripeWidth(int bit) const { return 1 << (bits() - 1 - bit); }

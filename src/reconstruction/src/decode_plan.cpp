@@ -60,22 +60,6 @@ PhaseWeights phaseWeights(const AxisLayout& axis) {
   return weights;
 }
 
-// With phase, the bits of stripes narrower than min_stripe_with_phase are skipped; their block
-// of columns must fit the longest run allowed, or no pixel could decode.
-void skipFineBits(AxisLayout& axis, const DecodeParams& params) {
-  if (!axis.present || !axis.hasPhase()) return;
-  int skipped = 0;
-  while (skipped < axis.bits() - 1 && axis.stripeWidth(axis.bits() - 1 - skipped) < params.min_stripe_with_phase) {
-    ++skipped;
-  }
-  if ((1 << skipped) > params.max_code_run_with_phase) {
-    throw core::Error("decode: min_stripe_with_phase " + std::to_string(params.min_stripe_with_phase) +
-                      " leaves blocks of " + std::to_string(1 << skipped) +
-                      " columns, more than max_code_run_with_phase " + std::to_string(params.max_code_run_with_phase));
-  }
-  axis.skipped_bits = skipped;
-}
-
 }  // namespace
 
 DecodePlan makeDecodePlan(const CaptureLayout& layout, const DecodeParams& params) {
@@ -83,8 +67,6 @@ DecodePlan makeDecodePlan(const CaptureLayout& layout, const DecodeParams& param
   checkUnwrappable(layout.rows, params);
   DecodePlan plan;
   plan.layout = layout;
-  skipFineBits(plan.layout.columns, params);
-  skipFineBits(plan.layout.rows, params);
   plan.thresholds = thresholdsFor(params, layout.bit_depth);
   addSeparationImages(plan.separation_images, layout.columns, params);
   addSeparationImages(plan.separation_images, layout.rows, params);

@@ -124,8 +124,6 @@ void DecodeParams::validate() const {
                      "max_code_run_without_phase", "in [1, 64]", max_code_run_without_phase);
   core::requireField(max_code_run_with_phase >= 1 && max_code_run_with_phase <= 64, owner, "max_code_run_with_phase",
                      "in [1, 64]", max_code_run_with_phase);
-  core::requireField(min_stripe_with_phase >= 1 && min_stripe_with_phase <= 64, owner, "min_stripe_with_phase",
-                     "in [1, 64]", min_stripe_with_phase);
   core::requireField(nonNegative(min_phase_amplitude), owner, "min_phase_amplitude", "finite and >= 0",
                      min_phase_amplitude);
   core::requireField(nonNegative(max_phase_gray_disagreement), owner, "max_phase_gray_disagreement", "finite and >= 0",

@@ -21,7 +21,6 @@ void readDecode(core::YamlSection s, DecodeParams& p) {
   s.read("bit_noise_sigmas", p.bit_noise_sigmas);
   s.read("max_code_run_without_phase", p.max_code_run_without_phase);
   s.read("max_code_run_with_phase", p.max_code_run_with_phase);
-  s.read("min_stripe_with_phase", p.min_stripe_with_phase);
   s.read("min_phase_amplitude", p.min_phase_amplitude);
   s.read("max_phase_gray_disagreement", p.max_phase_gray_disagreement);
   s.read("keep_column_without_row", p.keep_column_without_row);

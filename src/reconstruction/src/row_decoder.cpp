@@ -59,7 +59,7 @@ void classifyBits(const io::Capture& capture, const AxisLayout& axis, const Tile
                   RowScratch<Work>& s, AxisRow& row) {
   std::fill(row.code.begin(), row.code.begin() + tile.width, uint16_t{0});
   std::fill(row.uncertain.begin(), row.uncertain.begin() + tile.width, uint16_t{0});
-  for (int bit = 0; bit < axis.readBits(); ++bit) {
+  for (int bit = 0; bit < axis.bits(); ++bit) {
     const Pixel* pattern = imageRow<Pixel>(capture, axis.bit_images[bit], tile);
     const Pixel* inverse = imageRow<Pixel>(capture, axis.inverse_images[bit], tile);
     if (s.direct_light_only) {
@@ -115,8 +115,8 @@ AxisSample sampleAt(const AxisRow& row, int x, bool with_phase) {
 
 void resolveSimple(const AxisLayout& axis, const DecodeThresholds& t, AxisRow& row, int width) {
   const int longest = axis.hasPhase() ? t.max_run_with_phase : t.max_run_without_phase;
-  resolveSimpleRuns(row.code.data(), row.uncertain.data(), longest, axis.size - 1, axis.skipped_bits,
-                    row.position.data(), row.verdict.data(), width);
+  resolveSimpleRuns(row.code.data(), row.uncertain.data(), longest, axis.size - 1, row.position.data(),
+                    row.verdict.data(), width);
   if (!axis.hasPhase()) return;
   unwrapSimpleRuns(row.code.data(), row.uncertain.data(), row.phase_offset.data(), row.phase_amplitude.data(),
                    row.phase_clipped.data(), axis, t, row.position.data(), row.verdict.data(), width);
@@ -162,20 +162,7 @@ bool phaseFromUnclippedSteps(const io::Capture& capture, const DecodePlan& plan,
 
 // Without a phase, the Gray code alone when it leaves a run as short as a capture without phase
 // would accept: its centre, to half a projector pixel.
-// The skipped fine bits are read here, for this pixel alone (the brighter of pattern and inverse,
-// uncertain within `margin`): the run must be that short.
-template <typename Pixel>
-AxisVerdict grayCodeAlone(const io::Capture& capture, const DecodePlan& plan, const AxisLayout& axis, std::size_t pixel,
-                          float margin, AxisSample sample) {
-  for (int bit = axis.readBits(); bit < axis.bits(); ++bit) {
-    const auto value = [&](int image) {
-      return static_cast<float>(capture.images[static_cast<std::size_t>(image)].ptr<Pixel>(0)[pixel]);
-    };
-    const float difference = value(axis.bit_images[bit]) - value(axis.inverse_images[bit]);
-    sample.code = (sample.code << 1) | static_cast<uint32_t>(difference > 0.0f);
-    sample.uncertain = (sample.uncertain << 1) | static_cast<uint32_t>(std::fabs(difference) < margin);
-  }
-  const DecodeThresholds& t = plan.thresholds;
+AxisVerdict grayCodeAlone(const AxisSample& sample, const AxisLayout& axis, const DecodeThresholds& t) {
   if (__builtin_popcount(sample.uncertain) > kMaxUncertainBits) return {0.0f, PixelStatus::Saturated};
   const CodeRun run = candidateRun(sample.code, sample.uncertain);
   const auto size = static_cast<unsigned>(axis.size);
@@ -189,13 +176,12 @@ AxisVerdict grayCodeAlone(const io::Capture& capture, const DecodePlan& plan, co
 // Gray code alone.
 template <typename Pixel>
 AxisVerdict verdictWithClipping(const io::Capture& capture, const DecodePlan& plan, const Tile& tile,
-                                const AxisRow& row, int x, const AxisLayout& axis, float margin) {
+                                const AxisRow& row, int x, const AxisLayout& axis) {
   const AxisVerdict verdict = verdictAt(row, x, axis, plan.thresholds);
   if (verdict.status != PixelStatus::Saturated || !axis.hasPhase() || row.phase_clipped[x] == 0) return verdict;
   AxisSample sample = sampleAt(row, x, true);
-  const std::size_t pixel = tile.offset + static_cast<std::size_t>(x);
-  if (!phaseFromUnclippedSteps<Pixel>(capture, plan, axis, pixel, sample)) {
-    return grayCodeAlone<Pixel>(capture, plan, axis, pixel, margin, sample);
+  if (!phaseFromUnclippedSteps<Pixel>(capture, plan, axis, tile.offset + static_cast<std::size_t>(x), sample)) {
+    return grayCodeAlone(sample, axis, plan.thresholds);
   }
   return resolveAxis(sample, axis, plan.thresholds);
 }
@@ -220,11 +206,10 @@ void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile&
       out.status[x] = static_cast<uint8_t>(PixelStatus::Unlit);
       continue;
     }
-    const auto margin = static_cast<float>(s.margin[x]);
-    const AxisVerdict column = verdictWithClipping<Pixel>(capture, plan, tile, s.columns, x, columns, margin);
+    const AxisVerdict column = verdictWithClipping<Pixel>(capture, plan, tile, s.columns, x, columns);
     AxisVerdict row = column;
     if (column.status == PixelStatus::Valid && rows.present) {
-      row = verdictWithClipping<Pixel>(capture, plan, tile, s.rows, x, rows, margin);
+      row = verdictWithClipping<Pixel>(capture, plan, tile, s.rows, x, rows);
     }
     const bool column_alone = row.status != PixelStatus::Valid && plan.thresholds.keep_column_without_row;
     const PixelStatus status = column.status != PixelStatus::Valid ? column.status

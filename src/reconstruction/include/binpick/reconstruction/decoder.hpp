@@ -47,14 +47,9 @@ struct DecodeParams {
   double bit_noise_sigmas = 3.0;
   // Longest run of projector columns (rows) the uncertain bits may leave open. Gray-code only:
   // a pixel on a stripe edge sees 2 columns; with phase, the phase decides within the run, which
-  // must stay well inside one phase period (a block of skipped bits, doubled by a stripe edge).
+  // must stay well inside one phase period.
   int max_code_run_without_phase = 2;
-  int max_code_run_with_phase = 8;
-  // With phase, Gray bits whose stripes are narrower than this (projector pixels) are not read:
-  // the phase resolves the block of columns they would, and where the projector is out of focus
-  // they are noise that could only contradict it. 1 reads every bit. The block (the widest
-  // stripe skipped, doubled) must fit max_code_run_with_phase.
-  int min_stripe_with_phase = 4;
+  int max_code_run_with_phase = 4;
   // Phase-shift images: the sinusoid's amplitude must be at least this many counts, and the
   // unwrapped position may lie at most this far (projector pixels) outside the Gray-code run.
   double min_phase_amplitude = 3.0;
