@@ -1,0 +1,53 @@
+// Depth-edge detection: each point against the median depth of its 8-neighbourhood.
+#include "depth_edges.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace binpick::reconstruction::detail {
+namespace {
+
+// The finite camera z of the 8-neighbours of (x, y), into `depths`; returns their count.
+int neighbourDepths(const io::PointCloud& cloud, int x, int y, float* depths) {
+  int count = 0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    const int v = y + dy;
+    if (v < 0 || v >= cloud.height) continue;
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int u = x + dx;
+      if ((dx == 0 && dy == 0) || u < 0 || u >= cloud.width) continue;
+      const float z = cloud.points[static_cast<std::size_t>(v) * cloud.width + u].z();
+      if (std::isfinite(z)) depths[count++] = z;
+    }
+  }
+  return count;
+}
+
+// The median of `count` values (the upper one of the middle two for an even count: the decision
+// is about large jumps, not a fraction of a step).
+float median(float* values, int count) {
+  std::nth_element(values, values + count / 2, values + count);
+  return values[count / 2];
+}
+
+}  // namespace
+
+std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
+                                           int threads) {
+  std::vector<uint8_t> outlier(cloud.points.size(), 0);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int y = 0; y < cloud.height; ++y) {
+    float depths[8];
+    for (int x = 0; x < cloud.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
+      const float z = cloud.points[i].z();
+      if (!std::isfinite(z)) continue;
+      const int count = neighbourDepths(cloud, x, y, depths);
+      if (count < min_neighbours) continue;
+      outlier[i] = std::fabs(z - median(depths, count)) > max_jump * z ? 1 : 0;
+    }
+  }
+  return outlier;
+}
+
+}  // namespace binpick::reconstruction::detail
