@@ -59,7 +59,7 @@ void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
 void applyDepthEdges(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const std::vector<uint8_t> outlier =
       detail::findDepthEdgeOutliers(cloud, static_cast<float>(params.edge_max_jump), params.edge_min_neighbours,
-                                    core::resolveThreadCount(params.threads));
+                                    params.edge_min_support, core::resolveThreadCount(params.threads));
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
@@ -97,6 +97,7 @@ void CloudFilterParams::validate() const {
           edge_max_jump);
   require(edge_min_neighbours >= 1 && edge_min_neighbours <= 8, "edge_min_neighbours", "in [1, 8]",
           edge_min_neighbours);
+  require(edge_min_support >= 1 && edge_min_support <= 8, "edge_min_support", "in [1, 8]", edge_min_support);
   require(threads >= 0, "threads", ">= 0", threads);
 }
 

@@ -32,8 +32,15 @@ float median(float* values, int count) {
 
 }  // namespace
 
+// How many of `count` depths lie within `reach` of z.
+int support(const float* depths, int count, float z, float reach) {
+  int near = 0;
+  for (int k = 0; k < count; ++k) near += std::fabs(depths[k] - z) <= reach ? 1 : 0;
+  return near;
+}
+
 std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
-                                           int threads) {
+                                           int min_support, int threads) {
   std::vector<uint8_t> outlier(cloud.points.size(), 0);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (int y = 0; y < cloud.height; ++y) {
@@ -44,7 +51,9 @@ std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float ma
       if (!std::isfinite(z)) continue;
       const int count = neighbourDepths(cloud, x, y, depths);
       if (count < min_neighbours) continue;
-      outlier[i] = std::fabs(z - median(depths, count)) > max_jump * z ? 1 : 0;
+      const float reach = max_jump * z;
+      if (support(depths, count, z, reach) >= min_support) continue;
+      outlier[i] = std::fabs(z - median(depths, count)) > reach ? 1 : 0;
     }
   }
   return outlier;

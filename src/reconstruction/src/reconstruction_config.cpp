@@ -50,6 +50,7 @@ void readFilter(core::YamlSection s, CloudFilterParams& p) {
   s.read("speckle_min_pixels", p.speckle_min_pixels);
   s.read("edge_max_jump", p.edge_max_jump);
   s.read("edge_min_neighbours", p.edge_min_neighbours);
+  s.read("edge_min_support", p.edge_min_support);
   s.finish();
 }
 

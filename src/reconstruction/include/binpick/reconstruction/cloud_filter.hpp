@@ -20,10 +20,13 @@ struct CloudFilterParams {
   Eigen::AlignedBox3d crop;
   // Depth-edge removal: a point whose camera z differs from the median z of its finite
   // 8-neighbours by more than edge_max_jump * z (0.005: 4.5 mm at 0.9 m, about 8 pixel
-  // footprints of a 1600 px lens) is removed; points with fewer than edge_min_neighbours finite
+  // footprints of a 1600 px lens), and that has fewer than edge_min_support neighbours within
+  // that distance of itself (the last pixels of a near surface have their surface beside them;
+  // a mixed pixel has not), is removed. Points with fewer than edge_min_neighbours finite
   // neighbours are left to the speckle filter. edge_max_jump = 0 turns it off.
   double edge_max_jump = 0.005;  // a share of the point's z
   int edge_min_neighbours = 3;
+  int edge_min_support = 3;
   // Speckle removal: 4-connected neighbours belong to one patch when their camera z differs by
   // at most speckle_max_step; patches of fewer than speckle_min_pixels points are removed.
   // speckle_min_pixels = 0 turns it off.
