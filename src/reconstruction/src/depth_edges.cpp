@@ -23,13 +23,6 @@ int neighbourDepths(const io::PointCloud& cloud, int x, int y, float* depths) {
   return count;
 }
 
-// The median of `count` values (the upper one of the middle two for an even count: the decision
-// is about large jumps, not a fraction of a step).
-float median(float* values, int count) {
-  std::nth_element(values, values + count / 2, values + count);
-  return values[count / 2];
-}
-
 }  // namespace
 
 // How many of `count` depths lie within `reach` of z.
@@ -51,9 +44,7 @@ std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float ma
       if (!std::isfinite(z)) continue;
       const int count = neighbourDepths(cloud, x, y, depths);
       if (count < min_neighbours) continue;
-      const float reach = max_jump * z;
-      if (support(depths, count, z, reach) >= min_support) continue;
-      outlier[i] = std::fabs(z - median(depths, count)) > reach ? 1 : 0;
+      outlier[i] = support(depths, count, z, max_jump * z) < min_support ? 1 : 0;
     }
   }
   return outlier;

@@ -10,14 +10,14 @@
 namespace binpick::reconstruction::detail {
 
 // One flag per point: 1 where the point is finite, has at least `min_neighbours` finite
-// 8-neighbours, its camera z differs from their median by more than max_jump * its z (the
-// pixel's footprint grows with z, and so do the steps of a slanted surface between pixels), and
-// fewer than `min_support` of them lie within that distance of it. The median of the neighbours
-// of a point on any plane is the point's own z up to the perspective curvature, however steep the
-// plane; at a depth edge it is one side's. The support keeps the last pixels of the near surface
-// at an edge (their own surface continues beside them), which a mixed pixel, seeing neither
-// surface, lacks. Rows in parallel on `threads` threads; the result does not depend on their
-// number.
+// 8-neighbours, and fewer than `min_support` of them lie within max_jump * its z of its camera z
+// (the pixel's footprint grows with z, and so do the steps of a slanted surface between pixels).
+// A point of a surface has its surface around it: on a plane seen up to about 80 degrees from
+// its normal, every neighbour but the diagonals across the slope lies within 8 footprints; the
+// last pixels of a near surface at an edge keep those along the edge and inside. A mixed pixel,
+// which sees neither surface, has at most the other mixed pixels along a 1-pixel veil; a lone
+// misdecoded point has none. Rows in parallel on `threads` threads; the result does not depend on
+// their number.
 std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
                                            int min_support, int threads);
 

@@ -18,12 +18,13 @@ struct CloudFilterParams {
   double max_depth = 1e9;
   // Axis-aligned box in the camera frame, metres; an empty box (the default) keeps everything.
   Eigen::AlignedBox3d crop;
-  // Depth-edge removal: a point whose camera z differs from the median z of its finite
-  // 8-neighbours by more than edge_max_jump * z (0.005: 4.5 mm at 0.9 m, about 8 pixel
-  // footprints of a 1600 px lens), and that has fewer than edge_min_support neighbours within
-  // that distance of itself (the last pixels of a near surface have their surface beside them;
-  // a mixed pixel has not), is removed. Points with fewer than edge_min_neighbours finite
-  // neighbours are left to the speckle filter. edge_max_jump = 0 turns it off.
+  // Depth-edge removal: a point with fewer than edge_min_support of its 8-neighbours within
+  // edge_max_jump * z of its camera z (0.005: 4.5 mm at 0.9 m, about 8 pixel footprints of a
+  // 1600 px lens) is removed: mixed pixels at depth edges (they see neither surface; a veil of
+  // them is one pixel wide) and lone misdecoded points. The last pixels of a near surface keep
+  // their surface beside them, and a plane up to about 80 degrees from the view keeps its
+  // neighbours. Points with fewer than edge_min_neighbours finite neighbours are left to the
+  // speckle filter. edge_max_jump = 0 turns it off.
   double edge_max_jump = 0.005;  // a share of the point's z
   int edge_min_neighbours = 3;
   int edge_min_support = 3;
