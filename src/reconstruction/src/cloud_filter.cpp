@@ -93,8 +93,7 @@ void CloudFilterParams::validate() const {
   require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step", "positive and finite",
           speckle_max_step);
   require(speckle_min_pixels >= 0, "speckle_min_pixels", ">= 0", speckle_min_pixels);
-  require(std::isfinite(edge_max_jump) && edge_max_jump >= 0.0 && edge_max_jump < 1.0, "edge_max_jump", "in [0, 1)",
-          edge_max_jump);
+  require(std::isfinite(edge_max_jump) && edge_max_jump >= 0.0, "edge_max_jump", "finite and >= 0", edge_max_jump);
   require(edge_min_neighbours >= 1 && edge_min_neighbours <= 8, "edge_min_neighbours", "in [1, 8]",
           edge_min_neighbours);
   require(edge_min_support >= 1 && edge_min_support <= 8, "edge_min_support", "in [1, 8]", edge_min_support);

@@ -1,8 +1,6 @@
 // decodeCapture: checks, then every row in parallel.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/thread_count.hpp"
@@ -70,7 +68,6 @@ void useMeasuredNoise(const io::Capture& capture, double sigmas, detail::DecodeP
   detail::DecodeThresholds& t = plan.thresholds;
   const detail::SensorNoise noise = detail::estimateSensorNoise(capture, plan.layout, t.saturation, t.min_contrast);
   if (!noise.measured) return;
-  if (std::getenv("BP_DEBUG_NOISE")) std::fprintf(stderr, "noise read %.3f gain %.4f\n", noise.read, noise.gain);
   const auto k2 = static_cast<float>(sigmas * sigmas);
   t.noise_floor = k2 * 2.0f * noise.read;
   t.noise_slope = k2 * noise.gain;

@@ -10,8 +10,9 @@
 namespace binpick::reconstruction::detail {
 
 // One flag per point: 1 where the point is finite, has at least `min_neighbours` finite
-// 8-neighbours, and fewer than `min_support` of them lie within max_jump * its z of its camera z
-// (the pixel's footprint grows with z, and so do the steps of a slanted surface between pixels).
+// 8-neighbours, and fewer than `min_support` of them lie within `max_jump` pixel footprints of its
+// camera z (a footprint is z times the angle between adjacent rays, measured on the cloud: the
+// steps of a slanted surface between pixels grow with it).
 // A point of a surface has its surface around it: on a plane seen up to about 80 degrees from
 // its normal, every neighbour but the diagonals across the slope lies within 8 footprints; the
 // last pixels of a near surface at an edge keep those along the edge and inside. A mixed pixel,

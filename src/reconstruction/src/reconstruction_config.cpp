@@ -61,6 +61,7 @@ void readReconstruction(core::YamlSection s, ReconstructionParams& p) {
   readDecode(s.child("decode"), p.decode);
   core::YamlSection triangulation = s.child("triangulation");
   triangulation.read("max_epipolar_error", p.triangulation.max_epipolar_error);
+  triangulation.read("column_when_row_inconsistent", p.triangulation.column_when_row_inconsistent);
   triangulation.finish();
   readFilter(s.child("filter"), p.filter);
   s.finish();

@@ -210,8 +210,9 @@ void solveByColumns(const RigGeometry& rig, const ProjectorTables& tables, const
 
 // The row did not decode, or the decoded row lies off the ray's epipolar line (a wrong row: the
 // row check cannot tell a wrong column, which lies on the line anyway).
-bool columnWithoutRow(const TriangulationRowInput& in, const TriangulationScratch& s, int x) {
-  return in.status[x] == kSolved && (std::isnan(in.row[x]) || s.code[x] == kInconsistent);
+bool columnWithoutRow(const RigGeometry& rig, const TriangulationRowInput& in, const TriangulationScratch& s, int x) {
+  return in.status[x] == kSolved &&
+         (std::isnan(in.row[x]) || (rig.column_when_inconsistent && s.code[x] == kInconsistent));
 }
 
 // A capture with rows whose pixels lost the row but kept the column: those get the column-only
@@ -220,11 +221,11 @@ bool columnWithoutRow(const TriangulationRowInput& in, const TriangulationScratc
 void solveMissingRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
                       TriangulationScratch& s) {
   bool any = false;
-  for (int x = 0; x < in.width; ++x) any |= columnWithoutRow(in, s, x);
+  for (int x = 0; x < in.width; ++x) any |= columnWithoutRow(rig, in, s, x);
   if (!any) return;
   solveByColumns(rig, tables, in, s, s.column_code.data(), s.column_px.data(), s.column_py.data(), s.column_pz.data());
   for (int x = 0; x < in.width; ++x) {
-    if (!columnWithoutRow(in, s, x)) continue;
+    if (!columnWithoutRow(rig, in, s, x)) continue;
     s.code[x] = s.column_code[x];
     s.px[x] = s.column_px[x];
     s.py[x] = s.column_py[x];

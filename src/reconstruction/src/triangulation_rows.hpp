@@ -23,6 +23,7 @@ struct RigGeometry {
   // n . e = (C x d) . e = d . (e x C), with d = R (a, b, 1).
   float q2[3] = {}, q3[3] = {};
   float max_depth = 0.0f;  // camera z beyond which rays count as parallel, metres
+  bool column_when_inconsistent = true;  // TriangulationParams::column_when_row_inconsistent
 };
 RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil, double max_epipolar_error);
 

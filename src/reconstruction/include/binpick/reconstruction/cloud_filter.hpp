@@ -19,13 +19,13 @@ struct CloudFilterParams {
   // Axis-aligned box in the camera frame, metres; an empty box (the default) keeps everything.
   Eigen::AlignedBox3d crop;
   // Depth-edge removal: a point with fewer than edge_min_support of its 8-neighbours within
-  // edge_max_jump * z of its camera z (0.005: 4.5 mm at 0.9 m, about 8 pixel footprints of a
-  // 1600 px lens) is removed: mixed pixels at depth edges (they see neither surface; a veil of
-  // them is one pixel wide) and lone misdecoded points. The last pixels of a near surface keep
-  // their surface beside them, and a plane up to about 80 degrees from the view keeps its
+  // edge_max_jump pixel footprints of its camera z (a footprint: z over the focal length in
+  // pixels, measured on the cloud; 8 footprints are 4.5 mm at 0.9 m for a 1600 px lens) is removed: mixed pixels at
+  // depth edges (they see neither surface; a veil of them is one pixel wide) and lone misdecoded points. The last
+  // pixels of a near surface keep their surface beside them, and a plane up to about 80 degrees from the view keeps its
   // neighbours. Points with fewer than edge_min_neighbours finite neighbours are left to the
   // speckle filter. edge_max_jump = 0 turns it off.
-  double edge_max_jump = 0.005;  // a share of the point's z
+  double edge_max_jump = 8.0;  // pixel footprints
   int edge_min_neighbours = 3;
   int edge_min_support = 3;
   // Speckle removal: 4-connected neighbours belong to one patch when their camera z differs by
