@@ -6,6 +6,9 @@
 //
 //   bench_reconstruction [--part l_bracket] [--parts l_bracket,clamp,gear,ring_magnet]
 //                        [--scenes 3] [--repeats 15] [--threads 0] [--skip-large] [--skip-detection]
+//                        [--lighting clean|harsh] [--settings FILE]
+// --settings reads the `reconstruction:` section of a settings file (defaults otherwise).
+// --lighting picks the virtual cell's photometry preset (lighting_presets.hpp) for every capture.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +24,8 @@
 #include "binpick/estimation/detector.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
+#include "binpick/reconstruction/reconstruction_config.hpp"
+#include "binpick/simulation/lighting_presets.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
@@ -43,6 +48,8 @@ struct Options {
   int threads = 0;
   bool skip_large = false;
   bool skip_detection = false;
+  std::string lighting = "clean";
+  std::string settings;  // empty: reconstruction defaults
 };
 
 using bench::splitCommas;
@@ -71,11 +78,16 @@ Options parse(int argc, char** argv) {
       o.repeats = std::stoi(value);
     else if (flag == "--threads")
       o.threads = std::stoi(value);
+    else if (flag == "--lighting")
+      o.lighting = value;
+    else if (flag == "--settings")
+      o.settings = value;
     else
       throw core::Error("bench_reconstruction: unknown option " + flag);
   }
   if (o.scenes < 1 || o.repeats < 1) throw core::Error("bench_reconstruction: --scenes and --repeats must be >= 1");
   if (o.threads < 0) throw core::Error("bench_reconstruction: --threads must be >= 0");
+  simulation::photometryPreset(o.lighting);  // an unknown name fails here, before any rendering
   return o;
 }
 
@@ -109,13 +121,14 @@ io::PatternSetSpec defaultPatterns(const io::RigCalibration& rig) {
   return patterns;
 }
 
-RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& rig, uint64_t seed) {
+RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& rig, uint64_t seed,
+                        const std::string& lighting) {
   RenderedPile r;
   r.params.objects = kObjects;
   r.params.seed = seed;
   r.params.rig = rig;
   const io::PatternSetSpec patterns = defaultPatterns(rig);
-  simulation::PhotometryParams photometry;
+  simulation::PhotometryParams photometry = simulation::photometryPreset(lighting);
   photometry.seed = seed;
   simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, r.params, patterns, photometry);
   r.scene = std::move(pile.scene);
@@ -125,7 +138,8 @@ RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& 
 }
 
 reconstruction::ReconstructionParams reconstructionParams(const Options& o) {
-  reconstruction::ReconstructionParams p;
+  reconstruction::ReconstructionParams p = o.settings.empty() ? reconstruction::ReconstructionParams{}
+                                                              : reconstruction::loadReconstructionParams(o.settings);
   p.setThreads(o.threads);
   return p;
 }
@@ -224,9 +238,9 @@ void printSpeed(const std::vector<SpeedResult>& results, const Options& o) {
 
 struct ErrorStats {
   std::size_t count = 0;
-  double median = NAN, p90 = NAN, p99 = NAN;  // |dz|, mm
-  double bias = NAN;                          // median signed dz (reconstructed - true), mm
-  std::size_t wrong = 0;                      // |dz| > kWrongMm
+  double median = NAN, p90 = NAN, p95 = NAN, p99 = NAN;  // |dz|, mm
+  double bias = NAN;                                     // median signed dz (reconstructed - true), mm
+  std::size_t wrong = 0;                                 // |dz| > kWrongMm
 };
 
 double quantile(const std::vector<double>& sorted, double q) {
@@ -243,6 +257,7 @@ ErrorStats errorStats(std::vector<double> signed_mm) {
   std::sort(signed_mm.begin(), signed_mm.end());
   s.median = quantile(abs_mm, 0.5);
   s.p90 = quantile(abs_mm, 0.9);
+  s.p95 = quantile(abs_mm, 0.95);
   s.p99 = quantile(abs_mm, 0.99);
   s.bias = quantile(signed_mm, 0.5);
   s.wrong = static_cast<std::size_t>(abs_mm.end() - std::upper_bound(abs_mm.begin(), abs_mm.end(), kWrongMm));
@@ -290,6 +305,9 @@ struct Accuracy {
   std::size_t extra_on_bin = 0;            // instance -2: the bin's walls and floor rather than parts
   ErrorStats ideal_sensor;                 // scene.cloud itself against the truth: the noise floor
   reconstruction::StatusCounts missing{};  // ideal pixels the reconstruction lacks, by status
+  std::size_t parts_ideal = 0;             // ideal pixels on the parts (instance >= 0)
+  std::size_t parts_valid = 0;             // of those, valid in the reconstruction
+  reconstruction::StatusCounts parts_missing{};
 };
 
 double zErrorMm(const Eigen::Vector3f& point, float true_z) {
@@ -322,6 +340,10 @@ Accuracy measureAccuracy(const std::string& name, const RenderedPile& pile, cons
     a.ideal += measurable ? 1 : 0;
     a.valid_ideal += measurable && valid ? 1 : 0;
     if (measurable && !valid) ++a.missing[status.data[i]];
+    const bool on_part = measurable && scene.instance[i] >= 0;
+    a.parts_ideal += on_part ? 1 : 0;
+    a.parts_valid += on_part && valid ? 1 : 0;
+    if (on_part && !valid) ++a.parts_missing[status.data[i]];
     if (measurable) ideal.push_back(zErrorMm(scene.cloud.points[i], scene.depth[i]));
     if (!valid || !std::isfinite(scene.depth[i])) continue;
     all.push_back(zErrorMm(p, scene.depth[i]));
@@ -362,27 +384,40 @@ std::string triple(const ErrorStats& s) {
   return fmt("%.2f", s.median) + " " + fmt("%.2f", s.p90) + " " + fmt("%.1f", s.p99);
 }
 
+void printStatusCounts(const std::string& title, const reconstruction::StatusCounts& counts) {
+  std::printf("  %s:", title.c_str());
+  for (std::size_t s = 1; s < reconstruction::kPixelStatusCount; ++s) {
+    if (counts[s] == 0) continue;
+    std::printf(" %s %zu", reconstruction::statusName(static_cast<reconstruction::PixelStatus>(s)), counts[s]);
+  }
+  std::printf("\n");
+}
+
 void printMissing(const std::vector<Accuracy>& results) {
   for (const Accuracy& a : results) {
-    std::printf("  %s, ideal-sensor pixels without a point, by status:", a.name.c_str());
-    for (std::size_t s = 1; s < reconstruction::kPixelStatusCount; ++s) {
-      if (a.missing[s] == 0) continue;
-      std::printf(" %s %zu", reconstruction::statusName(static_cast<reconstruction::PixelStatus>(s)), a.missing[s]);
-    }
-    std::printf("\n");
+    printStatusCounts(a.name + ", ideal-sensor pixels without a point, by status", a.missing);
+    printStatusCounts(a.name + ", parts' pixels without a point, by status", a.parts_missing);
   }
 }
 
-void printAccuracy(const std::vector<Accuracy>& r, const std::string& part) {
-  std::printf("\n== 2. Accuracy against the virtual cell's truth (%s, %d objects, seed 1; dz = z_rec - z_true) ==\n",
-              part.c_str(), kObjects);
+void printAccuracy(const std::vector<Accuracy>& r, const std::string& part, const std::string& lighting) {
+  std::printf(
+      "\n== 2. Accuracy against the virtual cell's truth (%s, %d objects, seed 1, %s lighting; dz = z_rec - z_true) "
+      "==\n",
+      part.c_str(), kObjects, lighting.c_str());
   printAccuracyRow("capture", r, [](const Accuracy& a) { return a.name; });
   printAccuracyRow("ideal-sensor pixels (scene.cloud finite)", r, [](const Accuracy& a) { return countText(a.ideal); });
   printAccuracyRow("  valid in reconstruction", r, [](const Accuracy& a) {
     return fmt("%.2f%%", 100.0 * static_cast<double>(a.valid_ideal) / static_cast<double>(a.ideal));
   });
+  printAccuracyRow("parts' pixels (ideal sensor, on a part)", r,
+                   [](const Accuracy& a) { return countText(a.parts_ideal); });
+  printAccuracyRow("  valid in reconstruction (coverage)", r, [](const Accuracy& a) {
+    return fmt("%.2f%%", 100.0 * static_cast<double>(a.parts_valid) / static_cast<double>(a.parts_ideal));
+  });
   printAccuracyRow("valid points with a true depth", r, [](const Accuracy& a) { return countText(a.all.count); });
   printAccuracyRow("  |dz| median / p90 / p99, mm", r, [](const Accuracy& a) { return triple(a.all); });
+  printAccuracyRow("  |dz| p95, mm", r, [](const Accuracy& a) { return fmt("%.2f", a.all.p95); });
   printAccuracyRow("  median signed dz (bias), mm", r, [](const Accuracy& a) { return fmt("%+.3f", a.all.bias); });
   printAccuracyRow("  wrong (|dz| > 5 mm)", r, [](const Accuracy& a) { return countText(a.all.wrong); });
   printAccuracyRow("    of which within 2 px of a depth edge", r,
@@ -445,7 +480,7 @@ void benchDetectionPart(const std::string& part_name, const reconstruction::Reco
   params.threads = o.threads;
   CloudTotals reconstructed, ideal, exact;
   for (int s = 1; s <= o.scenes; ++s) {
-    const RenderedPile pile = renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s));
+    const RenderedPile pile = renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s), o.lighting);
     params.scene.crop = evaluation::binInterior(pile.scene, pile.params);
     const estimation::Detector detector(model, params);
     detectInto(detector, reconstructor.reconstruct(pile.capture).cloud, pile.scene, part, reconstructed);
@@ -481,7 +516,7 @@ void benchReconstruction(const Options& o) {
   std::vector<Accuracy> accuracy;
   for (const io::RigCalibration& rig : rigs) {
     const core::Stopwatch render;
-    const RenderedPile pile = renderPile(part, rig, 1);
+    const RenderedPile pile = renderPile(part, rig, 1, o.lighting);
     std::printf("rendered %dx%d: %zu images of %s x %d in %.1f s\n", rig.camera.width, rig.camera.height,
                 pile.capture.images.size(), o.part.c_str(), kObjects, render.elapsedMs() / 1000.0);
     std::fflush(stdout);
@@ -490,7 +525,7 @@ void benchReconstruction(const Options& o) {
     accuracy.push_back(measureAccuracy(speed.back().name, pile, result));
   }
   printSpeed(speed, o);
-  printAccuracy(accuracy, o.part);
+  printAccuracy(accuracy, o.part, o.lighting);
 }
 
 }  // namespace
@@ -500,8 +535,9 @@ int main(int argc, char** argv) {
     const Options options = parse(argc, argv);
     std::printf(
         "bench_reconstruction: %d threads (--threads %d), default pattern set (Gray columns + "
-        "rows, 4 phase steps), reconstruction defaults\n",
-        core::resolveThreadCount(options.threads), options.threads);
+        "rows, 4 phase steps), %s lighting, reconstruction settings: %s\n",
+        core::resolveThreadCount(options.threads), options.threads, options.lighting.c_str(),
+        options.settings.empty() ? "defaults" : options.settings.c_str());
     benchReconstruction(options);
     if (!options.skip_detection) benchDetection(options);
     return 0;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -42,9 +43,18 @@ Grid tiltedPlane(int width = 100, int height = 80) {
   return g;
 }
 
+// Neither speckle nor depth-edge removal: the filter under test alone.
 CloudFilterParams noSpeckle() {
   CloudFilterParams params;
   params.speckle_min_pixels = 0;
+  params.edge_max_jump = 0.0;
+  return params;
+}
+
+// Speckle removal alone (the depth-edge filter would take the single stray points first).
+CloudFilterParams speckleOnly() {
+  CloudFilterParams params;
+  params.edge_max_jump = 0.0;
   return params;
 }
 
@@ -136,7 +146,7 @@ TEST(CloudFilter, SpeckleRemovalRemovesSmallIsolatedPatchesAndKeepsLargeSurfaces
   }
   g.at(25, 25).z() -= 0.03f;
   const Grid before = g;
-  CloudFilterParams params;
+  CloudFilterParams params = speckleOnly();
   params.speckle_min_pixels = 50;
   params.speckle_max_step = 0.002;
   filterCloud(g.cloud, g.status, params);
@@ -173,7 +183,7 @@ TEST(CloudFilter, SpeckleRemovalCleansSprinkledOutliers) {
     p.z() -= 0.5f;
     ++outliers;
   }
-  filterCloud(g.cloud, g.status, CloudFilterParams{});
+  filterCloud(g.cloud, g.status, speckleOnly());
   // Outliers that happen to touch form patches of 2 or 3: still far below the limit.
   EXPECT_EQ(count(g, PixelStatus::Speckle), outliers);
   for (const Eigen::Vector3f& p : g.cloud.points) EXPECT_FALSE(p.z() < 0.5f);
@@ -196,13 +206,105 @@ TEST(CloudFilter, SpecklePatchesAcrossThreadBandsAreWholeAndResultsDoNotDependOn
   for (int threads : {1, 2, 3, 7}) {
     Grid g = base;
     g.status = base.status.clone();
-    CloudFilterParams params;
+    CloudFilterParams params = speckleOnly();
     params.threads = threads;
     filterCloud(g.cloud, g.status, params);
     EXPECT_EQ(count(g, PixelStatus::Speckle), 1u) << threads << " threads";
     statuses.push_back(g.status);
   }
   for (const cv::Mat& status : statuses) EXPECT_EQ(cv::norm(status, statuses.front(), cv::NORM_INF), 0.0);
+}
+
+// An organized cloud through a 1600 px pinhole (the virtual camera's focal length): z per pixel.
+Grid pinholeCloud(int width, int height, const std::function<float(int, int)>& depth) {
+  Grid g;
+  g.cloud.width = width;
+  g.cloud.height = height;
+  g.status = cv::Mat(height, width, CV_8UC1, cv::Scalar(kValid));
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const float z = depth(x, y);
+      g.cloud.points.emplace_back(z * (x - width / 2) / 1600.0f, z * (y - height / 2) / 1600.0f, z);
+    }
+  }
+  return g;
+}
+
+// A near surface (0.80 m) beside a far one (0.86 m), and between them a column of mixed pixels:
+// each saw part of both, and decoded to a depth in between that drifts along the edge.
+TEST(CloudFilter, DepthEdgeRemovalTakesMixedPixelsBetweenANearAndAFarSurface) {
+  const Grid before = pinholeCloud(120, 90, [](int x, int y) {
+    if (x < 60) return 0.80f;
+    if (x > 60) return 0.86f;
+    return 0.80f + 0.06f * (0.2f + 0.6f * static_cast<float>(y) / 89.0f);  // 12 to 48 mm behind
+  });
+  Grid after = before;
+  filterCloud(after.cloud, after.status, CloudFilterParams{});
+  for (int y = 0; y < 90; ++y) {
+    EXPECT_EQ(after.statusAt(60, y), static_cast<uint8_t>(PixelStatus::DepthEdge)) << y;
+    EXPECT_TRUE(after.at(60, y).array().isNaN().all()) << y;
+  }
+  // Both surfaces keep every point, their last pixels at the edge included.
+  EXPECT_EQ(count(after, PixelStatus::Valid), before.cloud.size() - 90u);
+}
+
+// The same veil where the far surface lies in projector shadow (no points): the mixed pixels
+// hang off the near surface's edge.
+TEST(CloudFilter, DepthEdgeRemovalTakesMixedPixelsBesideAShadow) {
+  const float nan = kNaN;
+  Grid g = pinholeCloud(120, 90, [nan](int x, int y) {
+    if (x < 60) return 0.80f;
+    if (x > 60) return nan;
+    return 0.81f + 0.03f * static_cast<float>(y % 7) / 7.0f;
+  });
+  filterCloud(g.cloud, g.status, CloudFilterParams{});
+  EXPECT_EQ(count(g, PixelStatus::DepthEdge), 90u);
+  const auto finite = std::count_if(g.cloud.points.begin(), g.cloud.points.end(),
+                                    [](const Eigen::Vector3f& p) { return p.allFinite(); });
+  EXPECT_EQ(finite, 60 * 90);  // the near surface, whole
+}
+
+// A plane seen 75 degrees from its normal (2 mm between neighbours along the slope), with
+// 0.3 mm noise, and a gently curved one: nothing is removed.
+TEST(CloudFilter, DepthEdgeRemovalKeepsSlantedAndCurvedSurfaces) {
+  const double slope = std::tan(75.0 * M_PI / 180.0);
+  std::mt19937 random(5);
+  std::normal_distribution<float> noise(0.0f, 0.0003f);
+  Grid slanted = pinholeCloud(160, 120, [&](int x, int) {
+    // Ray (u, v, 1) / f against the plane z = 0.85 + slope * X: z = 0.85 / (1 - slope * u / f).
+    const double u = (x - 80) / 1600.0;
+    return static_cast<float>(0.85 / (1.0 - slope * u)) + noise(random);
+  });
+  Grid curved = pinholeCloud(160, 120, [](int x, int y) {
+    const float r = std::hypot(static_cast<float>(x - 80), static_cast<float>(y - 60)) / 1600.0f;
+    return 0.8f + 8.0f * r * r;  // a bowl, 30 mm deep at the corners
+  });
+  for (Grid* g : {&slanted, &curved}) {
+    filterCloud(g->cloud, g->status, CloudFilterParams{});
+    EXPECT_EQ(count(*g, PixelStatus::Valid), g->cloud.size());
+  }
+}
+
+TEST(CloudFilter, DepthEdgeRemovalTakesLoneMisdecodedPoints) {
+  Grid g = pinholeCloud(100, 80, [](int, int) { return 0.85f; });
+  g.at(30, 30).z() += 0.01f;  // 10 mm off: 19 footprints
+  g.at(70, 50).z() -= 0.006f;
+  g.at(71, 50).z() -= 0.006f;  // two adjacent: each has one neighbour of its own
+  filterCloud(g.cloud, g.status, CloudFilterParams{});
+  EXPECT_EQ(count(g, PixelStatus::DepthEdge), 3u);
+  EXPECT_EQ(count(g, PixelStatus::Speckle), 0u);
+}
+
+TEST(CloudFilter, DepthEdgeParamsAreChecked) {
+  CloudFilterParams params;
+  params.edge_max_jump = -1.0;
+  EXPECT_TRUE(test::throwsNaming([&] { params.validate(); }, "edge_max_jump"));
+  params = CloudFilterParams{};
+  params.edge_min_support = 9;
+  EXPECT_TRUE(test::throwsNaming([&] { params.validate(); }, "edge_min_support"));
+  params = CloudFilterParams{};
+  params.edge_min_neighbours = 0;
+  EXPECT_TRUE(test::throwsNaming([&] { params.validate(); }, "edge_min_neighbours"));
 }
 
 TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {

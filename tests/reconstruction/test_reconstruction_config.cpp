@@ -28,6 +28,8 @@ TEST(ReconstructionConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(s.separation_max_stripe, d.separation_max_stripe);
   EXPECT_EQ(s.min_bit_difference, d.min_bit_difference);
   EXPECT_EQ(s.bit_margin, d.bit_margin);
+  EXPECT_EQ(s.bit_noise_sigmas, d.bit_noise_sigmas);
+  EXPECT_EQ(s.keep_column_without_row, d.keep_column_without_row);
   EXPECT_EQ(s.max_code_run_without_phase, d.max_code_run_without_phase);
   EXPECT_EQ(s.max_code_run_with_phase, d.max_code_run_with_phase);
   EXPECT_EQ(s.min_phase_amplitude, d.min_phase_amplitude);
@@ -36,11 +38,35 @@ TEST(ReconstructionConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(s.max_pair_sum_error, d.max_pair_sum_error);
   EXPECT_EQ(shipped.triangulation.max_epipolar_error, defaults.triangulation.max_epipolar_error);
   EXPECT_EQ(shipped.triangulation.threads, defaults.triangulation.threads);
+  EXPECT_EQ(shipped.triangulation.column_when_row_inconsistent, defaults.triangulation.column_when_row_inconsistent);
   EXPECT_EQ(shipped.filter.min_depth, defaults.filter.min_depth);
   EXPECT_EQ(shipped.filter.max_depth, defaults.filter.max_depth);
   EXPECT_TRUE(shipped.filter.crop.isEmpty());
   EXPECT_EQ(shipped.filter.speckle_max_step, defaults.filter.speckle_max_step);
   EXPECT_EQ(shipped.filter.speckle_min_pixels, defaults.filter.speckle_min_pixels);
+  EXPECT_EQ(shipped.filter.edge_max_jump, defaults.filter.edge_max_jump);
+  EXPECT_EQ(shipped.filter.edge_min_support, defaults.filter.edge_min_support);
+  EXPECT_EQ(shipped.filter.edge_min_neighbours, defaults.filter.edge_min_neighbours);
+}
+
+TEST(ReconstructionConfig, ReadsTheHarshLightSettingsAndNamesBadOnes) {
+  const ReconstructionParams p = parseReconstructionParams(
+      "reconstruction:\n"
+      "  decode: {bit_noise_sigmas: 2.5, keep_column_without_row: false}\n"
+      "  triangulation: {column_when_row_inconsistent: false}\n"
+      "  filter: {edge_max_jump: 6, edge_min_support: 2, edge_min_neighbours: 4}\n",
+      "cell.yaml");
+  EXPECT_EQ(p.decode.bit_noise_sigmas, 2.5);
+  EXPECT_FALSE(p.decode.keep_column_without_row);
+  EXPECT_FALSE(p.triangulation.column_when_row_inconsistent);
+  EXPECT_EQ(p.filter.edge_max_jump, 6.0);
+  EXPECT_EQ(p.filter.edge_min_support, 2);
+  EXPECT_EQ(p.filter.edge_min_neighbours, 4);
+  EXPECT_NE(parseError("reconstruction: {decode: {bit_noise_sigmas: -1}}").find("bit_noise_sigmas"), std::string::npos);
+  EXPECT_NE(parseError("reconstruction: {filter: {edge_min_support: 0}}").find("edge_min_support"), std::string::npos);
+  EXPECT_NE(parseError("reconstruction: {decode: {keep_column_without_row: 3}}")
+                .find("reconstruction.decode.keep_column_without_row has the wrong type"),
+            std::string::npos);
 }
 
 TEST(ReconstructionConfig, ReadsOverridesAndLeavesEstimationSectionsAlone) {

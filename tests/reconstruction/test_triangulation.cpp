@@ -185,7 +185,9 @@ TEST(Triangulation, PerfectDecodingWorksForAnyProjectorPlacement) {
 
 TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
   const simulation::PileScene& scene = pile(true);
-  const Triangulator triangulator(scene.rig);
+  TriangulationParams params;
+  params.column_when_row_inconsistent = false;
+  const Triangulator triangulator(scene.rig, params);
   const DecodedCapture exact = perfectDecoding(scene, true);
   const TriangulatedCloud truth = triangulator.triangulate(exact);
   for (float shift : {3.0f, -3.0f, 1.0f}) {
@@ -214,6 +216,38 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
       EXPECT_LT(max_moved, 0.002);
     }
   }
+}
+
+// The decoder keeps the column of a pixel whose row failed (row NaN): such pixels are solved from
+// the column's light alone, as in a capture without rows.
+TEST(Triangulation, PixelsWhoseRowIsMissingAreSolvedFromTheirColumn) {
+  const simulation::PileScene& scene = pile(true);
+  const DecodedCapture exact = perfectDecoding(scene, true);
+  DecodedCapture decoded = exact;
+  decoded.row = exact.row.clone();
+  std::size_t dropped = 0;
+  for (std::size_t i = 0; i < scene.exact_cloud.size(); i += 3) {
+    if (statusAt(decoded.status, i) != kValid) continue;
+    at(decoded.row, i) = NAN;
+    ++dropped;
+  }
+  ASSERT_GT(dropped, 10000u);
+  const Comparison c = compare(scene, decoded, Triangulator(scene.rig).triangulate(decoded));
+  EXPECT_EQ(c.valid, c.inputs);
+  EXPECT_LT(c.max_error, 0.0005);  // metres
+}
+
+// A row off the epipolar curve is a wrong row; the column still names the light plane.
+TEST(Triangulation, PixelsWhoseRowIsInconsistentAreSolvedFromTheirColumn) {
+  const simulation::PileScene& scene = pile(true);
+  const DecodedCapture exact = perfectDecoding(scene, true);
+  DecodedCapture decoded = exact;
+  decoded.row = cv::Mat();  // not into the pixels `exact` shares
+  decoded.row = exact.row + 4.0f;
+  const Comparison c = compare(scene, decoded, Triangulator(scene.rig).triangulate(decoded));
+  EXPECT_GT(c.inputs, 50000u);
+  EXPECT_EQ(c.valid, c.inputs);
+  EXPECT_LT(c.max_error, 0.0005);
 }
 
 TEST(Triangulation, KeepsTheDecodersVerdictOnPixelsItRejected) {

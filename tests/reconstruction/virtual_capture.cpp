@@ -1,19 +1,29 @@
 // Rendered captures, cached per options.
 #include "virtual_capture.hpp"
 
+#include <cmath>
 #include <map>
 #include <mutex>
 #include <tuple>
 
+#include "binpick/simulation/lighting_presets.hpp"
 #include "binpick/simulation/parts.hpp"
 
 namespace binpick::reconstruction::testing {
 
+namespace {
+
+// NaN (no override) compares equal to NaN here, so that options are ordered.
+double key(double value) { return std::isnan(value) ? -1e300 : value; }
+
+}  // namespace
+
 bool CaptureOptions::operator<(const CaptureOptions& o) const {
-  return std::tie(part, objects, seed, camera_scale, bin_length, bin_width, row_codes, phase_steps, bit_depth,
-                  global_light, ambient) < std::tie(o.part, o.objects, o.seed, o.camera_scale, o.bin_length,
-                                                    o.bin_width, o.row_codes, o.phase_steps, o.bit_depth,
-                                                    o.global_light, o.ambient);
+  return std::make_tuple(part, objects, seed, camera_scale, bin_length, bin_width, row_codes, phase_steps, bit_depth,
+                         lighting, key(global_light), key(ambient), key(projector_blur)) <
+         std::make_tuple(o.part, o.objects, o.seed, o.camera_scale, o.bin_length, o.bin_width, o.row_codes,
+                         o.phase_steps, o.bit_depth, o.lighting, key(o.global_light), key(o.ambient),
+                         key(o.projector_blur));
 }
 
 namespace {
@@ -30,11 +40,12 @@ VirtualCapture render(const CaptureOptions& options) {
   patterns.projector_height = v.params.rig.projector.height;
   patterns.row_codes = options.row_codes;
   patterns.phase_steps = options.phase_steps;
-  simulation::PhotometryParams photometry;
+  simulation::PhotometryParams photometry = simulation::photometryPreset(options.lighting);
   photometry.seed = options.seed;
   photometry.bit_depth = options.bit_depth;
-  photometry.global_light = options.global_light;
-  photometry.ambient = options.ambient;
+  if (!std::isnan(options.global_light)) photometry.global_light = options.global_light;
+  if (!std::isnan(options.ambient)) photometry.ambient = options.ambient;
+  if (!std::isnan(options.projector_blur)) photometry.min_blur_sigma = options.projector_blur;
   simulation::PileCapture pile =
       simulation::generatePileCapture(simulation::makePart(options.part).mesh, v.params, patterns, photometry);
   v.scene = std::move(pile.scene);

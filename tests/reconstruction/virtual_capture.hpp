@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "binpick/io/capture.hpp"
@@ -21,8 +22,11 @@ struct CaptureOptions {
   bool row_codes = true;
   int phase_steps = 4;
   int bit_depth = 8;
-  double global_light = 0.03;  // PhotometryParams
-  double ambient = 6.0;
+  std::string lighting = "clean";  // simulation::photometryPreset
+  // Overrides of the preset's PhotometryParams; NaN keeps the preset's.
+  double global_light = std::numeric_limits<double>::quiet_NaN();
+  double ambient = std::numeric_limits<double>::quiet_NaN();
+  double projector_blur = std::numeric_limits<double>::quiet_NaN();  // min_blur_sigma
   bool operator<(const CaptureOptions& other) const;
 };
 

@@ -8,6 +8,7 @@
 #include "binpick/core/error.hpp"
 #include "binpick/core/thread_count.hpp"
 #include "binpick/reconstruction/pixel_status.hpp"
+#include "depth_edges.hpp"
 #include "speckle.hpp"
 
 namespace binpick::reconstruction {
@@ -55,6 +56,19 @@ void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
   }
 }
 
+void applyDepthEdges(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+  const std::vector<uint8_t> outlier =
+      detail::findDepthEdgeOutliers(cloud, static_cast<float>(params.edge_max_jump), params.edge_min_neighbours,
+                                    params.edge_min_support, core::resolveThreadCount(params.threads));
+  for (int y = 0; y < cloud.height; ++y) {
+    uint8_t* row_status = status.ptr<uint8_t>(y);
+    for (int x = 0; x < cloud.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
+      if (outlier[i]) removePoint(cloud, i, row_status[x], PixelStatus::DepthEdge);
+    }
+  }
+}
+
 void applySpeckle(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const std::vector<uint8_t> speckle =
       detail::findSpeckles(cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels,
@@ -79,6 +93,10 @@ void CloudFilterParams::validate() const {
   require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step", "positive and finite",
           speckle_max_step);
   require(speckle_min_pixels >= 0, "speckle_min_pixels", ">= 0", speckle_min_pixels);
+  require(std::isfinite(edge_max_jump) && edge_max_jump >= 0.0, "edge_max_jump", "finite and >= 0", edge_max_jump);
+  require(edge_min_neighbours >= 1 && edge_min_neighbours <= 8, "edge_min_neighbours", "in [1, 8]",
+          edge_min_neighbours);
+  require(edge_min_support >= 1 && edge_min_support <= 8, "edge_min_support", "in [1, 8]", edge_min_support);
   require(threads >= 0, "threads", ">= 0", threads);
 }
 
@@ -89,6 +107,7 @@ void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams
   const CloudFilterParams defaults;
   const bool limits_depth = params.min_depth > defaults.min_depth || params.max_depth < defaults.max_depth;
   if (limits_depth || !params.crop.isEmpty()) applyDepthAndCrop(cloud, status, params);
+  if (params.edge_max_jump > 0.0) applyDepthEdges(cloud, status, params);
   if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
 }
 

@@ -24,6 +24,7 @@ DecodeThresholds thresholdsFor(const DecodeParams& params, int bit_depth) {
   t.full_scale = bit_depth == 16 ? 65535.0f : 255.0f;
   t.max_run_without_phase = params.max_code_run_without_phase;
   t.max_run_with_phase = params.max_code_run_with_phase;
+  t.keep_column_without_row = params.keep_column_without_row;
   return t;
 }
 

@@ -2,6 +2,7 @@
 // Everything the per-row decoder needs that depends only on the capture's layout and the params:
 // image indices per role, thresholds in the images' own counts, phase weights. Internal.
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "binpick/reconstruction/decoder.hpp"
@@ -16,12 +17,18 @@ struct DecodeThresholds {
   float black_level = 0.0f;  // Moreno & Taubin's b (a ratio, not counts)
   float min_bit_difference = 0.0f;
   float bit_margin = 0.0f;  // a ratio of L_d
+  // The noise cap of the margin, squared, at a pixel: noise_floor + noise_slope * (white + black),
+  // that is bit_noise_sigmas^2 * var(pattern - inverse). Infinite (no cap) unless the capture's
+  // noise was measured.
+  float noise_floor = std::numeric_limits<float>::infinity();
+  float noise_slope = 0.0f;
   float min_phase_amplitude = 0.0f;
   float phase_tolerance = 0.0f;  // projector pixels
   float saturation = 0.0f;       // a value at or above it was clipped by the sensor
   float full_scale = 255.0f;
   int max_run_without_phase = 2;
   int max_run_with_phase = 4;
+  bool keep_column_without_row = true;
 };
 
 struct PhaseWeights {

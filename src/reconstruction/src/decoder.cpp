@@ -9,6 +9,7 @@
 #include "capture_light_check.hpp"
 #include "decode_plan.hpp"
 #include "row_decoder.hpp"
+#include "sensor_noise_estimate.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -61,12 +62,24 @@ void decodeTiles(const io::Capture& capture, const detail::DecodePlan& plan, int
   }
 }
 
+// The bit margin's noise term: k^2 var(p - q) = k^2 (2 read + gain (p + q)), with p + q = white +
+// black.
+void useMeasuredNoise(const io::Capture& capture, double sigmas, detail::DecodePlan& plan) {
+  detail::DecodeThresholds& t = plan.thresholds;
+  const detail::SensorNoise noise = detail::estimateSensorNoise(capture, plan.layout, t.saturation, t.min_contrast);
+  if (!noise.measured) return;
+  const auto k2 = static_cast<float>(sigmas * sigmas);
+  t.noise_floor = k2 * 2.0f * noise.read;
+  t.noise_slope = k2 * noise.gain;
+}
+
 }  // namespace
 
 DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& params) {
   params.validate();
-  const detail::DecodePlan plan = detail::makeDecodePlan(detail::captureLayout(capture), params);
+  detail::DecodePlan plan = detail::makeDecodePlan(detail::captureLayout(capture), params);
   detail::checkCaptureLight(capture, plan, params);
+  if (params.bit_noise_sigmas > 0.0) useMeasuredNoise(capture, params.bit_noise_sigmas, plan);
   DecodedCapture decoded = allocate(plan.layout);
   const int threads = core::resolveThreadCount(params.threads);
   const io::Capture continuous = withContinuousImages(capture);
@@ -102,6 +115,8 @@ void DecodeParams::validate() const {
                      min_bit_difference);
   core::requireField(std::isfinite(bit_margin) && bit_margin >= 0.0 && bit_margin < 1.0, owner, "bit_margin",
                      "in [0, 1)", bit_margin);
+  core::requireField(std::isfinite(bit_noise_sigmas) && bit_noise_sigmas >= 0.0 && bit_noise_sigmas <= 10.0, owner,
+                     "bit_noise_sigmas", "in [0, 10]", bit_noise_sigmas);
   core::requireField(max_code_run_without_phase >= 1 && max_code_run_without_phase <= 64, owner,
                      "max_code_run_without_phase", "in [1, 64]", max_code_run_without_phase);
   core::requireField(max_code_run_with_phase >= 1 && max_code_run_with_phase <= 64, owner, "max_code_run_with_phase",

@@ -11,10 +11,10 @@ namespace {
 // Indexed by the enum's value; the static_assert keeps the two in step.
 constexpr const char* kNames[] = {
     "valid",        "unlit",           "saturated",          "uncertain_code", "code_out_of_range", "phase_mismatch",
-    "inconsistent", "no_intersection", "out_of_depth_range", "outside_crop",   "speckle",
+    "inconsistent", "no_intersection", "out_of_depth_range", "outside_crop",   "speckle",           "depth_edge",
 };
 static_assert(sizeof(kNames) / sizeof(kNames[0]) == kPixelStatusCount);
-static_assert(static_cast<std::size_t>(PixelStatus::Speckle) + 1 == kPixelStatusCount);
+static_assert(static_cast<std::size_t>(PixelStatus::DepthEdge) + 1 == kPixelStatusCount);
 
 }  // namespace
 

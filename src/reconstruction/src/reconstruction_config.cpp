@@ -18,10 +18,12 @@ void readDecode(core::YamlSection s, DecodeParams& p) {
   s.read("separation_max_stripe", p.separation_max_stripe);
   s.read("min_bit_difference", p.min_bit_difference);
   s.read("bit_margin", p.bit_margin);
+  s.read("bit_noise_sigmas", p.bit_noise_sigmas);
   s.read("max_code_run_without_phase", p.max_code_run_without_phase);
   s.read("max_code_run_with_phase", p.max_code_run_with_phase);
   s.read("min_phase_amplitude", p.min_phase_amplitude);
   s.read("max_phase_gray_disagreement", p.max_phase_gray_disagreement);
+  s.read("keep_column_without_row", p.keep_column_without_row);
   s.read("max_saturated_fraction", p.max_saturated_fraction);
   s.read("max_pair_sum_error", p.max_pair_sum_error);
   s.finish();
@@ -46,6 +48,9 @@ void readFilter(core::YamlSection s, CloudFilterParams& p) {
   readCrop(s.child("crop"), p);
   s.read("speckle_max_step", p.speckle_max_step);
   s.read("speckle_min_pixels", p.speckle_min_pixels);
+  s.read("edge_max_jump", p.edge_max_jump);
+  s.read("edge_min_neighbours", p.edge_min_neighbours);
+  s.read("edge_min_support", p.edge_min_support);
   s.finish();
 }
 
@@ -56,6 +61,7 @@ void readReconstruction(core::YamlSection s, ReconstructionParams& p) {
   readDecode(s.child("decode"), p.decode);
   core::YamlSection triangulation = s.child("triangulation");
   triangulation.read("max_epipolar_error", p.triangulation.max_epipolar_error);
+  triangulation.read("column_when_row_inconsistent", p.triangulation.column_when_row_inconsistent);
   triangulation.finish();
   readFilter(s.child("filter"), p.filter);
   s.finish();

@@ -49,7 +49,7 @@ void estimateLight(const io::Capture& capture, const DecodePlan& plan, const Til
   separateLight<Pixel>(black, t.black_level, high, low, width);
   addToBlack<Pixel, Work>(black, high, direct_level, width);
   addToBlack<Pixel, Work>(black, low, global_level, width);
-  bitMargins<Work>(high, t.min_bit_difference, t.bit_margin, margin, width);
+  bitMargins<Pixel, Work>(high, white, black, t, margin, width);
   flagPixels<Pixel>(white, black, high, t, intensity, lit, white_clipped, width);
   s.direct_light_only = directLightOnly(lit, white_clipped, direct_level, global_level, width);
 }
@@ -130,13 +130,70 @@ AxisVerdict verdictAt(const AxisRow& row, int x, const AxisLayout& axis, const D
   return resolveAxis(sampleAt(row, x, axis.hasPhase()), axis, t);
 }
 
+// The phase of a pixel some of whose steps the sensor clipped, from the others (at least three):
+// least squares of I_k = A + C cos(t_k) + S sin(t_k) over the unclipped steps, phi = atan2(S, C).
+// A highlight often clips only the brightest step or two. False when too few are left.
+template <typename Pixel>
+bool phaseFromUnclippedSteps(const io::Capture& capture, const DecodePlan& plan, const AxisLayout& axis,
+                             std::size_t pixel, AxisSample& sample) {
+  double m[3][3] = {}, v[3] = {};
+  int used = 0;
+  for (std::size_t k = 0; k < axis.phase_images.size(); ++k) {
+    const float value =
+        static_cast<float>(capture.images[static_cast<std::size_t>(axis.phase_images[k])].ptr<Pixel>(0)[pixel]);
+    if (value >= plan.thresholds.saturation) continue;
+    const double basis[3] = {1.0, plan.phase.cosine[k], plan.phase.sine[k]};
+    for (int i = 0; i < 3; ++i) {
+      v[i] += basis[i] * value;
+      for (int j = 0; j < 3; ++j) m[i][j] += basis[i] * basis[j];
+    }
+    ++used;
+  }
+  if (used < 3) return false;
+  const cv::Matx33d normal(m[0][0], m[0][1], m[0][2], m[1][0], m[1][1], m[1][2], m[2][0], m[2][1], m[2][2]);
+  cv::Vec3d solution;
+  if (!cv::solve(normal, cv::Vec3d(v[0], v[1], v[2]), solution, cv::DECOMP_LU)) return false;
+  const double to_pixels = axis.phase_period / (2.0 * M_PI);
+  sample.phase_offset = static_cast<float>(std::atan2(solution[2], solution[1]) * to_pixels);
+  sample.phase_amplitude = static_cast<float>(std::hypot(solution[1], solution[2]));
+  sample.phase_clipped = false;
+  return true;
+}
+
+// Without a phase, the Gray code alone when it leaves a run as short as a capture without phase
+// would accept: its centre, to half a projector pixel.
+AxisVerdict grayCodeAlone(const AxisSample& sample, const AxisLayout& axis, const DecodeThresholds& t) {
+  if (__builtin_popcount(sample.uncertain) > kMaxUncertainBits) return {0.0f, PixelStatus::Saturated};
+  const CodeRun run = candidateRun(sample.code, sample.uncertain);
+  const auto size = static_cast<unsigned>(axis.size);
+  if (run.last - run.first + 1 > static_cast<unsigned>(t.max_run_without_phase) || run.first >= size) {
+    return {0.0f, PixelStatus::Saturated};
+  }
+  return {0.5f * static_cast<float>(run.first + std::min(run.last, size - 1)), PixelStatus::Valid};
+}
+
+// verdictAt, with a clipped phase recovered from the steps that were not clipped, or else the
+// Gray code alone.
+template <typename Pixel>
+AxisVerdict verdictWithClipping(const io::Capture& capture, const DecodePlan& plan, const Tile& tile,
+                                const AxisRow& row, int x, const AxisLayout& axis) {
+  const AxisVerdict verdict = verdictAt(row, x, axis, plan.thresholds);
+  if (verdict.status != PixelStatus::Saturated || !axis.hasPhase() || row.phase_clipped[x] == 0) return verdict;
+  AxisSample sample = sampleAt(row, x, true);
+  if (!phaseFromUnclippedSteps<Pixel>(capture, plan, axis, tile.offset + static_cast<std::size_t>(x), sample)) {
+    return grayCodeAlone(sample, axis, plan.thresholds);
+  }
+  return resolveAxis(sample, axis, plan.thresholds);
+}
+
 // A code the sensor clipped is reported as Saturated rather than merely uncertain.
 PixelStatus blame(PixelStatus status, bool white_clipped) {
   return status == PixelStatus::UncertainCode && white_clipped ? PixelStatus::Saturated : status;
 }
 
-template <typename Work>
-void resolveTile(const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s, const RowOutput& out) {
+template <typename Pixel, typename Work>
+void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s,
+                 const RowOutput& out) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const AxisLayout& columns = plan.layout.columns;
   const AxisLayout& rows = plan.layout.rows;
@@ -149,14 +206,19 @@ void resolveTile(const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s, 
       out.status[x] = static_cast<uint8_t>(PixelStatus::Unlit);
       continue;
     }
-    const AxisVerdict column = verdictAt(s.columns, x, columns, plan.thresholds);
+    const AxisVerdict column = verdictWithClipping<Pixel>(capture, plan, tile, s.columns, x, columns);
     AxisVerdict row = column;
-    if (column.status == PixelStatus::Valid && rows.present) row = verdictAt(s.rows, x, rows, plan.thresholds);
-    const PixelStatus status = column.status != PixelStatus::Valid ? column.status : row.status;
+    if (column.status == PixelStatus::Valid && rows.present) {
+      row = verdictWithClipping<Pixel>(capture, plan, tile, s.rows, x, rows);
+    }
+    const bool column_alone = row.status != PixelStatus::Valid && plan.thresholds.keep_column_without_row;
+    const PixelStatus status = column.status != PixelStatus::Valid ? column.status
+                               : column_alone                      ? PixelStatus::Valid
+                                                                   : row.status;
     out.status[x] = static_cast<uint8_t>(blame(status, s.white_clipped[x] != 0));
     if (status != PixelStatus::Valid) continue;
     out.column[x] = column.position;
-    if (rows.present) out.row[x] = row.position;
+    if (rows.present && row.status == PixelStatus::Valid) out.row[x] = row.position;
   }
 }
 
@@ -197,7 +259,7 @@ void decodeTile(const io::Capture& capture, const DecodePlan& plan, std::size_t 
   estimateLight<Pixel, Work>(capture, plan, tile, scratch, tile_out);
   readAxis<Pixel, Work>(capture, plan, plan.layout.columns, tile, scratch, scratch.columns);
   if (plan.layout.rows.present) readAxis<Pixel, Work>(capture, plan, plan.layout.rows, tile, scratch, scratch.rows);
-  resolveTile(plan, tile, scratch, tile_out);
+  resolveTile<Pixel, Work>(capture, plan, tile, scratch, tile_out);
 }
 
 template struct RowScratch<int16_t>;

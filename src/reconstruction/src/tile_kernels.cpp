@@ -57,10 +57,18 @@ BINPICK_SIMD_PASS void addToBlack(const Pixel* __restrict black, const float* __
   for (int x = 0; x < width; ++x) out[x] = level<Work>(static_cast<float>(black[x]) + counts[x]);
 }
 
-template <typename Work>
-BINPICK_SIMD_PASS void bitMargins(const float* __restrict direct, float least, float ratio, Work* __restrict out,
+template <typename Pixel, typename Work>
+BINPICK_SIMD_PASS void bitMargins(const float* __restrict direct, const Pixel* __restrict white,
+                                  const Pixel* __restrict black, const DecodeThresholds& t, Work* __restrict out,
                                   int width) {
-  for (int x = 0; x < width; ++x) out[x] = ceilingLevel<Work>(std::max(least, ratio * direct[x]));
+  const float least = t.min_bit_difference;
+  const float ratio = t.bit_margin;
+  const float floor = t.noise_floor;
+  const float slope = t.noise_slope;
+  for (int x = 0; x < width; ++x) {
+    const float noise = std::sqrt(floor + slope * (static_cast<float>(white[x]) + static_cast<float>(black[x])));
+    out[x] = ceilingLevel<Work>(std::max(least, std::min(ratio * direct[x], noise)));
+  }
 }
 
 template <typename Work>
@@ -140,8 +148,10 @@ template void separateLight<uint8_t>(const uint8_t*, float, float*, float*, int)
 template void separateLight<uint16_t>(const uint16_t*, float, float*, float*, int);
 template void addToBlack<uint8_t, int16_t>(const uint8_t*, const float*, int16_t*, int);
 template void addToBlack<uint16_t, float>(const uint16_t*, const float*, float*, int);
-template void bitMargins<int16_t>(const float*, float, float, int16_t*, int);
-template void bitMargins<float>(const float*, float, float, float*, int);
+template void bitMargins<uint8_t, int16_t>(const float*, const uint8_t*, const uint8_t*, const DecodeThresholds&,
+                                           int16_t*, int);
+template void bitMargins<uint16_t, float>(const float*, const uint16_t*, const uint16_t*, const DecodeThresholds&,
+                                          float*, int);
 template void flagPixels<uint8_t>(const uint8_t*, const uint8_t*, const float*, const DecodeThresholds&, float*,
                                   uint8_t*, uint8_t*, int);
 template void flagPixels<uint16_t>(const uint16_t*, const uint16_t*, const float*, const DecodeThresholds&, float*,

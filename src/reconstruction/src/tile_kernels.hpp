@@ -43,9 +43,11 @@ void separateLight(const Pixel* __restrict black, float b, float* __restrict hig
 // out = black + counts, as a level.
 template <typename Pixel, typename Work>
 void addToBlack(const Pixel* __restrict black, const float* __restrict counts, Work* __restrict out, int width);
-// The smallest |p - q| that classifies a bit: max(least, ratio * L_d).
-template <typename Work>
-void bitMargins(const float* __restrict direct, float least, float ratio, Work* __restrict out, int width);
+// The smallest |p - q| that classifies a bit: max(least, ratio * L_d, sqrt(noise_floor +
+// noise_slope * (white + black))), the last a multiple of the noise of p - q.
+template <typename Pixel, typename Work>
+void bitMargins(const float* __restrict direct, const Pixel* __restrict white, const Pixel* __restrict black,
+                const DecodeThresholds& t, Work* __restrict out, int width);
 // Intensity, whether the pixel has projector light at all, and whether the sensor clipped it.
 template <typename Pixel>
 void flagPixels(const Pixel* __restrict white, const Pixel* __restrict black, const float* __restrict direct,

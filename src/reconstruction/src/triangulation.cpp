@@ -57,6 +57,7 @@ Triangulator::Triangulator(const io::RigCalibration& rig, const TriangulationPar
   const detail::EpipolarPencil pencil = detail::makeEpipolarPencil(camera_centre);
   tables->projector = detail::buildProjectorTables(rig_.projector, pencil, camera_centre, threads);
   tables->geometry = detail::makeRigGeometry(rig_, pencil, params_.max_epipolar_error);
+  tables->geometry.column_when_inconsistent = params_.column_when_row_inconsistent;
   tables_ = std::move(tables);
 }
 

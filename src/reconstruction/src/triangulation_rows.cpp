@@ -11,6 +11,7 @@
 // plane, read from a table over (column, plane).
 #include "triangulation_rows.hpp"
 
+#include <cmath>
 #include <limits>
 
 #include "binpick/reconstruction/pixel_status.hpp"
@@ -192,6 +193,46 @@ BINPICK_SIMD_PASS void storeStatuses(int n, const uint8_t* __restrict decoded, c
   }
 }
 
+// Columns only, for the pixels of `in` that are still to be solved: the crossing of each ray's
+// epipolar plane with its column's light. Writes code, px, py, pz.
+void solveByColumns(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
+                    TriangulationScratch& s, int32_t* code, float* px, float* py, float* pz) {
+  const int n = in.width;
+  const auto grid = tables.epipolar.view();
+  // Each ray's epipolar plane. Outside the table's labels the plane misses the projector's
+  // image: no light reaches the ray.
+  epipolarLabels(rig, n, in.ray_x, in.ray_y, s.label.data());
+  locateCells(grid, n, in.column, s.label.data(), in.status, tables.min_column, tables.max_column, kNoIntersection,
+              s.cell.data(), s.fx.data(), s.fy.data(), code);
+  crossColumnLight(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
+  solveColumnOnly(rig, n, in.ray_x, in.ray_y, s.light.data(), tables.min_row, tables.max_row, code, px, py, pz);
+}
+
+// The row did not decode, or the decoded row lies off the ray's epipolar line (a wrong row: the
+// row check cannot tell a wrong column, which lies on the line anyway).
+bool columnWithoutRow(const RigGeometry& rig, const TriangulationRowInput& in, const TriangulationScratch& s, int x) {
+  return in.status[x] == kSolved &&
+         (std::isnan(in.row[x]) || (rig.column_when_inconsistent && s.code[x] == kInconsistent));
+}
+
+// A capture with rows whose pixels lost the row but kept the column: those get the column-only
+// solution instead of the CodeOutOfRange the NaN row gave them. Rows without such pixels cost a
+// scan.
+void solveMissingRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
+                      TriangulationScratch& s) {
+  bool any = false;
+  for (int x = 0; x < in.width; ++x) any |= columnWithoutRow(rig, in, s, x);
+  if (!any) return;
+  solveByColumns(rig, tables, in, s, s.column_code.data(), s.column_px.data(), s.column_py.data(), s.column_pz.data());
+  for (int x = 0; x < in.width; ++x) {
+    if (!columnWithoutRow(rig, in, s, x)) continue;
+    s.code[x] = s.column_code[x];
+    s.px[x] = s.column_px[x];
+    s.py[x] = s.column_py[x];
+    s.pz[x] = s.column_pz[x];
+  }
+}
+
 // The solved row into the outputs: the points are in the scratch's px, py, pz.
 void writeRow(const TriangulationRowInput& in, const TriangulationScratch& s, const TriangulationRowOutput& out) {
   storePoints(in.width, s.px.data(), s.py.data(), s.pz.data(), out.points);
@@ -221,7 +262,19 @@ RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil&
 }
 
 TriangulationScratch::TriangulationScratch(int width)
-    : label(width), fx(width), fy(width), px(width), py(width), pz(width), light(4 * width), code(width), cell(width) {}
+    : label(width),
+      fx(width),
+      fy(width),
+      px(width),
+      py(width),
+      pz(width),
+      light(4 * width),
+      code(width),
+      cell(width),
+      column_px(width),
+      column_py(width),
+      column_pz(width),
+      column_code(width) {}
 
 void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
                             TriangulationScratch& s, const TriangulationRowOutput& out) {
@@ -232,21 +285,13 @@ void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& table
               s.fx.data(), s.fy.data(), s.code.data());
   undistortCells(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
   solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), s.code.data(), s.px.data(), s.py.data(), s.pz.data());
+  solveMissingRows(rig, tables, in, s);
   writeRow(in, s, out);
 }
 
 void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
                               TriangulationScratch& s, const TriangulationRowOutput& out) {
-  const int n = in.width;
-  const auto grid = tables.epipolar.view();
-  // Each ray's epipolar plane. Outside the table's labels the plane misses the projector's
-  // image: no light reaches the ray.
-  epipolarLabels(rig, n, in.ray_x, in.ray_y, s.label.data());
-  locateCells(grid, n, in.column, s.label.data(), in.status, tables.min_column, tables.max_column, kNoIntersection,
-              s.cell.data(), s.fx.data(), s.fy.data(), s.code.data());
-  crossColumnLight(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveColumnOnly(rig, n, in.ray_x, in.ray_y, s.light.data(), tables.min_row, tables.max_row, s.code.data(),
-                  s.px.data(), s.py.data(), s.pz.data());
+  solveByColumns(rig, tables, in, s, s.code.data(), s.px.data(), s.py.data(), s.pz.data());
   writeRow(in, s, out);
 }
 

@@ -23,6 +23,7 @@ struct RigGeometry {
   // n . e = (C x d) . e = d . (e x C), with d = R (a, b, 1).
   float q2[3] = {}, q3[3] = {};
   float max_depth = 0.0f;  // camera z beyond which rays count as parallel, metres
+  bool column_when_inconsistent = true;  // TriangulationParams::column_when_row_inconsistent
 };
 RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil& pencil, double max_epipolar_error);
 
@@ -46,8 +47,12 @@ struct TriangulationScratch {
   std::vector<float> label, fx, fy, px, py, pz;
   std::vector<float> light;  // 2 or 4 interleaved floats per pixel
   std::vector<int32_t> code, cell;
+  // Column-only solutions of the pixels whose row did not decode, in a capture with rows.
+  std::vector<float> column_px, column_py, column_pz;
+  std::vector<int32_t> column_code;
 };
 
+// Rows decoded; pixels whose row is NaN (the column decoded alone) are solved as column-only.
 void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
                             TriangulationScratch& scratch, const TriangulationRowOutput& out);
 void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,

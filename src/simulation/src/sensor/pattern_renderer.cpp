@@ -159,6 +159,7 @@ void PhotometryParams::validate() const {
   require(nonNegative(projector_black_level) && projector_black_level < 1.0, "projector_black_level", "in [0, 1)",
           projector_black_level);
   require(nonNegative(ambient), "ambient", ">= 0", ambient);
+  require(nonNegative(albedo_scale), "albedo_scale", ">= 0", albedo_scale);
   require(nonNegative(global_light) && global_light <= 1.0, "global_light", "in [0, 1]", global_light);
   require(nonNegative(specular), "specular", ">= 0", specular);
   require(positive(shininess), "shininess", "positive", shininess);

@@ -66,7 +66,8 @@ std::vector<PixelLighting> computePixelLighting(const SensorGeometry& geometry, 
   for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(count); ++k) {
     const auto i = static_cast<std::size_t>(k);
     if (geometry.object_index[i] < 0) continue;
-    const float a = std::clamp(albedo(geometry.object_id[i], geometry.object_point[i]), 0.0f, 1.0f);
+    const float a = std::clamp(
+        static_cast<float>(params.albedo_scale) * albedo(geometry.object_id[i], geometry.object_point[i]), 0.0f, 1.0f);
     lighting[i] = lightPixel(geometry, i, a, projector_centre, params);
   }
   return lighting;

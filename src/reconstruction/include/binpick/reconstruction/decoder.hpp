@@ -38,9 +38,13 @@ struct DecodeParams {
   int separation_min_stripe = 4;
   int separation_max_stripe = 16;
   // A bit whose pattern and inverse differ by less than max(min_bit_difference,
-  // bit_margin * L_d) counts is uncertain.
+  // bit_margin * L_d, bit_noise_sigmas * sigma) counts is uncertain. sigma is the standard
+  // deviation of pattern - inverse at the pixel's brightness, from the sensor's read + shot noise
+  // measured on the capture itself (pattern + inverse - white - black is pure noise); 0 turns
+  // that term off.
   double min_bit_difference = 2.0;
   double bit_margin = 0.15;
+  double bit_noise_sigmas = 3.0;
   // Longest run of projector columns (rows) the uncertain bits may leave open. Gray-code only:
   // a pixel on a stripe edge sees 2 columns; with phase, the phase decides within the run, which
   // must stay well inside one phase period.
@@ -50,6 +54,10 @@ struct DecodeParams {
   // unwrapped position may lie at most this far (projector pixels) outside the Gray-code run.
   double min_phase_amplitude = 3.0;
   double max_phase_gray_disagreement = 1.0;
+  // A pixel whose column decoded but whose row did not keeps its column (row NaN): triangulation
+  // intersects the camera ray with the column's light alone. With a horizontal baseline the row
+  // carries almost no depth, so little is lost; false: such pixels take the row's status.
+  bool keep_column_without_row = true;
   // Capture-level checks (throw): the share of pixels the white image may saturate, and how far
   // a Gray pair's sum may drift from white + black (a missing or shuffled frame) before the
   // capture is refused.
@@ -65,7 +73,7 @@ struct DecodedCapture {
   int height = 0;
   // Projector pixel coordinates seen by each camera pixel (pixel centres at integers, as in
   // LensIntrinsics), CV_32FC1; NaN where status is not Valid. `row` is empty when the capture
-  // has no row codes.
+  // has no row codes, and NaN at Valid pixels whose row did not decode (keep_column_without_row).
   cv::Mat column;
   cv::Mat row;
   // CV_8UC1 PixelStatus per pixel.

@@ -24,8 +24,9 @@ enum class PixelStatus : uint8_t {
   OutOfDepthRange,  // outside the configured depth range
   OutsideCrop,      // outside the configured crop box
   Speckle,          // part of a small isolated patch of points
+  DepthEdge,        // stands off its neighbours' surface: a mixed pixel at a depth edge
 };
-constexpr std::size_t kPixelStatusCount = 11;
+constexpr std::size_t kPixelStatusCount = 12;
 
 // "valid", "unlit", "saturated", ... (snake case, used in logs and JSON).
 const char* statusName(PixelStatus status);

@@ -9,7 +9,8 @@
 // pixel). When rows were decoded too, the point minimises the distance in the (undistorted)
 // projector image between its projection and the decoded (column, row) along the ray (ray-ray),
 // and a decoded pixel that lies farther than max_epipolar_error from the pixel's epipolar line
-// marks it Inconsistent.
+// marks it Inconsistent, or is solved from the column alone (column_when_row_inconsistent). A
+// pixel whose row is NaN (the decoder kept its column alone) is solved from the column.
 //
 // Statuses: only Valid input pixels are triangulated; the others keep the decoder's status and a
 // NaN point. Coordinates (or NaN) outside the projector image widened by a margin of 8 pixels
@@ -33,6 +34,9 @@ struct TriangulationParams {
   // measured in the undistorted projector image (distortion changes lengths there by a few per
   // cent at most for real lenses). Used only when rows were decoded.
   double max_epipolar_error = 1.5;
+  // A pixel whose decoded row lies off its epipolar line (a wrong row) is triangulated from its
+  // column alone, as a pixel whose row did not decode is; false: it is Inconsistent.
+  bool column_when_row_inconsistent = true;
   int threads = 0;        // 0: all cores
   void validate() const;  // throws core::Error naming the field
 };

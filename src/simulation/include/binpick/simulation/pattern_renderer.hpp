@@ -20,6 +20,9 @@ struct PhotometryParams {
   double reference_distance = 0.9;      // metres
   double projector_black_level = 0.01;  // share of white a black projector pixel still emits
   double ambient = 6.0;                 // counts on a white surface from room light
+  // Multiplies the diffuse reflectance of every surface (parts and bin): dark, e.g. oiled or
+  // blackened, parts. Highlights (specular) are not scaled.
+  double albedo_scale = 1.0;
   // Indirect light (interreflections in the bin): share of the direct white light that reaches a
   // surface from elsewhere; it follows the pattern's mean brightness, not its local value.
   double global_light = 0.03;
