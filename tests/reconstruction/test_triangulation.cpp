@@ -244,7 +244,9 @@ TEST(Triangulation, PixelsWhoseRowIsInconsistentAreSolvedFromTheirColumn) {
   DecodedCapture decoded = exact;
   decoded.row = cv::Mat();  // not into the pixels `exact` shares
   decoded.row = exact.row + 4.0f;
-  const Comparison c = compare(scene, decoded, Triangulator(scene.rig).triangulate(decoded));
+  TriangulationParams params;
+  params.column_when_row_inconsistent = true;
+  const Comparison c = compare(scene, decoded, Triangulator(scene.rig, params).triangulate(decoded));
   EXPECT_GT(c.inputs, 50000u);
   EXPECT_EQ(c.valid, c.inputs);
   EXPECT_LT(c.max_error, 0.0005);

@@ -36,7 +36,7 @@ struct TriangulationParams {
   double max_epipolar_error = 1.5;
   // A pixel whose decoded row lies off its epipolar line (a wrong row) is triangulated from its
   // column alone, as a pixel whose row did not decode is; false: it is Inconsistent.
-  bool column_when_row_inconsistent = true;
+  bool column_when_row_inconsistent = false;
   int threads = 0;        // 0: all cores
   void validate() const;  // throws core::Error naming the field
 };
