@@ -80,7 +80,7 @@ expect_error "BoardSpec\|board" "$binpick" simulate --calibration-board hexagons
 
 # From pattern images: reconstruct alone, and detect straight from the capture directory.
 "$binpick" reconstruct --capture "$work/capture" --out "$work/reconstructed.ply" --status "$work/status.png" \
-  2>"$work/reconstruct.log" || fail "reconstruct exited $?"
+  >"$work/reconstruct.log" || fail "reconstruct exited $?"
 [ -s "$work/reconstructed.ply" ] && [ -s "$work/status.png" ] || fail "reconstruct wrote no cloud or status image"
 grep -q "obj_info organized 1280 1024" "$work/reconstructed.ply" || fail "the reconstructed cloud is not organized"
 grep -q "property float intensity" "$work/reconstructed.ply" || fail "the reconstructed cloud has no intensity"
