@@ -46,11 +46,10 @@ struct AxisSamples {
 struct Fit {
   double agreement = 0.0;
   double jumps = 0.0;
-  // A reflected Gray bit and a reversed phase both agree with the phase modulo a period, and so
-  // does undoing the wrong one of two coarse bits (two reflections are a shift by whole periods):
-  // the right reading also leaves the columns continuous between neighbours.
-  double score() const { return agreement - jumps; }
 };
+// A reflected Gray bit and a reversed phase both agree with the phase modulo a period, and so
+// does undoing the wrong one of two coarse bits (two reflections are a shift by whole periods):
+// the right reading also leaves the columns continuous between neighbours.
 
 template <typename Pixel>
 float valueAt(const io::Capture& capture, int image, int x, int y) {
@@ -181,9 +180,11 @@ std::string percent(double fraction) {
 
 // The best explanation found so far for a disagreement.
 // Phase steps are suspected first: a Gray bit must explain the images clearly better to replace
-// them. When the whole view lies within one stripe block of a coarse bit, undoing that bit and
-// reversing the phase fit equally well; the message then names both.
-constexpr double kTie = 0.02;
+// them, by agreeing on more samples or by leaving clearly fewer jumps (depth edges jump under
+// every reading). When the whole view lies within one stripe block of a coarse bit, undoing that
+// bit and reversing the phase fit equally well; the message then names both.
+constexpr double kTie = 0.02;         // agreement
+constexpr double kFewerJumps = 0.75;  // jump share, relative
 
 struct Suspect {
   Fit fit;
@@ -192,11 +193,13 @@ struct Suspect {
   // Candidates that do not make the phase agree on most pixels explain nothing.
   void consider(const Fit& candidate, const std::string& explanation) {
     if (candidate.agreement < kExplained) return;
-    if (message.empty() || candidate.score() > fit.score() + kTie) {
+    const bool comparable = !message.empty() && candidate.agreement >= fit.agreement - kTie;
+    if (message.empty() || candidate.agreement > fit.agreement + kTie ||
+        (comparable && candidate.jumps < kFewerJumps * fit.jumps)) {
       fit = candidate;
       message = explanation;
       alternative.clear();
-    } else if (candidate.score() >= fit.score() - kTie && alternative.empty()) {
+    } else if (comparable && candidate.jumps * kFewerJumps <= fit.jumps && alternative.empty()) {
       alternative = explanation;
     }
   }
