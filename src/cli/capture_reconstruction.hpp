@@ -1,6 +1,7 @@
 #pragma once
 // Shared by `reconstruct` and `detect --capture`: a capture directory and its calibration in, the
-// reconstructed cloud out, with a one-line summary on stderr.
+// reconstructed cloud out, with a one-line summary (and a line per warning) on `summary`.
+#include <iostream>
 #include <optional>
 #include <string>
 
@@ -15,6 +16,9 @@ struct CaptureInput {
   std::optional<int> threads;
 };
 
-reconstruction::Reconstruction reconstructCaptureDirectory(const CaptureInput& input);
+// Errors about the capture name its directory: "capture DIR: ...". `detect` keeps the summary on
+// stderr (its stdout may carry the result); `reconstruct` prints it on stdout.
+reconstruction::Reconstruction reconstructCaptureDirectory(const CaptureInput& input,
+                                                           std::ostream& summary = std::cerr);
 
 }  // namespace binpick::cli

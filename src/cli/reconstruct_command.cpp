@@ -1,7 +1,9 @@
 // binpick reconstruct --capture DIR: `binpick reconstruct --help`.
 // Decodes a capture's pattern images and triangulates them into an organized point cloud in the
 // camera frame (metres, with the white image as intensity). --status writes why each pixel has
-// no point, as an 8-bit image of PixelStatus values (docs/reconstruction.md).
+// no point, as an 8-bit image of PixelStatus values (docs/reconstruction.md). The summary (points,
+// pixels without a point per reason, times, warnings) goes to stdout.
+#include <iostream>
 #include <opencv2/imgcodecs.hpp>
 
 #include "arguments.hpp"
@@ -21,7 +23,7 @@ int run(const Arguments& args) {
   input.threads = args.integer("--threads");
   const std::string out = args.value("--out").value_or("cloud.ply");
   const auto status_path = args.value("--status");
-  const reconstruction::Reconstruction result = reconstructCaptureDirectory(input);
+  const reconstruction::Reconstruction result = reconstructCaptureDirectory(input, std::cout);
   io::writePointCloud(out, result.cloud);
   if (status_path && !cv::imwrite(*status_path, result.status)) {
     throw core::Error(*status_path + ": cannot write the status image");

@@ -80,7 +80,7 @@ expect_error "BoardSpec\|board" "$binpick" simulate --calibration-board hexagons
 
 # From pattern images: reconstruct alone, and detect straight from the capture directory.
 "$binpick" reconstruct --capture "$work/capture" --out "$work/reconstructed.ply" --status "$work/status.png" \
-  2>"$work/reconstruct.log" || fail "reconstruct exited $?"
+  >"$work/reconstruct.log" || fail "reconstruct exited $?"
 [ -s "$work/reconstructed.ply" ] && [ -s "$work/status.png" ] || fail "reconstruct wrote no cloud or status image"
 grep -q "obj_info organized 1280 1024" "$work/reconstructed.ply" || fail "the reconstructed cloud is not organized"
 grep -q "property float intensity" "$work/reconstructed.ply" || fail "the reconstructed cloud has no intensity"
@@ -115,7 +115,7 @@ for image in "$work/capture/images/"*.png; do
   cmp -s "$image" "$work/recorded/images/$(basename "$image")" || fail "recorded $(basename "$image") differs"
 done
 [ -s "$work/recorded/calib.yaml" ] || fail "capture --fake-camera copied no calib.yaml"
-"$binpick" reconstruct --capture "$work/recorded" --out "$work/recorded.ply" 2>/dev/null || fail "reconstruct of a recording exited $?"
+"$binpick" reconstruct --capture "$work/recorded" --out "$work/recorded.ply" >/dev/null 2>&1 || fail "reconstruct of a recording exited $?"
 expect_error "GPIO chip 'gpiochip9'" "$binpick" capture --camera 127.0.0.9 --trigger gpio:gpiochip9:3 --out "$work/live"
 expect_usage_error "--camera or --fake-camera is required" "$binpick" capture --out "$work/live"
 expect_usage_error "--projector requires --camera" "$binpick" capture --fake-camera "$work/capture" --projector 640x400 --out "$work/live"

@@ -275,6 +275,31 @@ TEST_F(CaptureTest, CorruptPngIsAnError) {
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not a readable PNG image"));
 }
 
+// libpng prints its own complaint about a damaged file to stderr; the reader's error must be the
+// only message, so that a command prints one line.
+TEST_F(CaptureTest, DamagedPngIsNamedWithoutLibpngOutput) {
+  io::writeCapture(directory_, smallCapture(8));
+  const std::string path = imagePath("001_black.png");
+  const std::string bytes = readFile(path);
+  const auto readQuietly = [&](const std::string& expected) {
+    ::testing::internal::CaptureStderr();
+    const ::testing::AssertionResult refused = failsWith([&] { io::readCapture(directory_, 1); }, path, expected);
+    const std::string printed = ::testing::internal::GetCapturedStderr();
+    EXPECT_TRUE(refused);
+    EXPECT_EQ(printed, "") << expected;
+  };
+  // Cut inside the pixel data.
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(0, bytes.size() - 30);
+  readQuietly("not a readable PNG image: truncated: chunk IDAT at byte");
+  // One byte of the pixel data changed.
+  std::string flipped = bytes;
+  flipped[bytes.size() - 30] = static_cast<char>(flipped[bytes.size() - 30] ^ 0x5A);
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << flipped;
+  readQuietly("not a readable PNG image: corrupt: chunk IDAT at byte");
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  EXPECT_NO_THROW(io::readCapture(directory_, 1));
+}
+
 TEST_F(CaptureTest, ImageOfTheWrongSizeIsNamed) {
   io::writeCapture(directory_, smallCapture(8));
   const std::string path = imagePath("000_white.png");

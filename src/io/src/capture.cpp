@@ -13,6 +13,7 @@
 #include "binpick/core/thread_count.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
+#include "png_structure.hpp"
 
 namespace binpick::io {
 namespace fs = std::filesystem;
@@ -51,7 +52,11 @@ int expectedType(int bit_depth) { return bit_depth == 16 ? CV_16UC1 : CV_8UC1; }
 cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   if (!fs::exists(path)) fail(path, "the image listed in capture.json is missing");
   // Decoded from memory: cv::imread logs its own warning for unreadable files, our error says it.
+  // The chunk structure is checked first: libpng prints its own message on a truncated or
+  // corrupt file, and the error should be one line.
   const std::string bytes = core::readFile(path);
+  const std::string defect = detail::pngStructureDefect(bytes);
+  if (!defect.empty()) fail(path, "not a readable PNG image: " + defect);
   cv::Mat image;
   try {
     image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),

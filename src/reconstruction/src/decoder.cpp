@@ -7,6 +7,7 @@
 #include "binpick/reconstruction/decoder.hpp"
 #include "capture_layout.hpp"
 #include "capture_light_check.hpp"
+#include "capture_order_check.hpp"
 #include "decode_plan.hpp"
 #include "row_decoder.hpp"
 #include "sensor_noise_estimate.hpp"
@@ -79,6 +80,7 @@ DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& par
   params.validate();
   detail::DecodePlan plan = detail::makeDecodePlan(detail::captureLayout(capture), params);
   detail::checkCaptureLight(capture, plan, params);
+  detail::checkCaptureOrder(capture, plan);
   if (params.bit_noise_sigmas > 0.0) useMeasuredNoise(capture, params.bit_noise_sigmas, plan);
   DecodedCapture decoded = allocate(plan.layout);
   const int threads = core::resolveThreadCount(params.threads);

@@ -1,8 +1,12 @@
 // Reconstructor: the stages in order, timed.
 #include "binpick/reconstruction/reconstruction.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
 
@@ -15,6 +19,40 @@ void requireCameraSize(const io::Capture& capture, const io::RigCalibration& rig
   throw core::Error("capture: images are " + std::to_string(m.image_width) + "x" + std::to_string(m.image_height) +
                     " but the calibration's camera is " + std::to_string(rig.camera.width) + "x" +
                     std::to_string(rig.camera.height));
+}
+
+std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
+
+// A pattern set made for another projector codes columns the calibration does not have: every
+// decoded coordinate would be scaled wrongly (and many land outside the projector).
+void requireProjectorSize(const io::Capture& capture, const io::RigCalibration& rig) {
+  const io::PatternSetSpec& spec = capture.metadata.pattern_set;
+  if (spec.projector_width == rig.projector.width && spec.projector_height == rig.projector.height) return;
+  throw core::Error("capture: the pattern set is for a " + sizeText(spec.projector_width, spec.projector_height) +
+                    " projector but the calibration's projector is " +
+                    sizeText(rig.projector.width, rig.projector.height));
+}
+
+// Triangulating from columns alone intersects each camera ray with a column's plane of light,
+// which holds the projector's centre and its column direction (y). The depth resolution comes
+// from the baseline's component across the columns (x): a baseline along the columns lies in
+// every such plane, and the intersection degenerates.
+constexpr double kMinBaselineAcrossColumns = 0.5;  // share of the baseline's length
+
+std::vector<std::string> geometryWarnings(const io::Capture& capture, const io::RigCalibration& rig) {
+  if (capture.metadata.pattern_set.row_codes) return {};
+  const Eigen::Vector3d baseline = rig.T_projector_camera.translation();  // camera centre, projector frame
+  const double length = baseline.norm();
+  if (!(length > 0.0)) return {};
+  const double across = std::fabs(baseline.x()) / length;
+  if (across >= kMinBaselineAcrossColumns) return {};
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "column-only capture with the camera-projector baseline nearly along the projector's columns "
+                "(%.0f%% of it across them, %.0f degrees from the rows): triangulation from columns is "
+                "ill-conditioned; code rows too, or mount the camera beside the projector",
+                100.0 * across, std::acos(std::min(1.0, across)) * 180.0 / M_PI);
+  return {text};
 }
 
 // The white image, scaled, for every pixel: also where there is no point, as a camera image.
@@ -48,7 +86,10 @@ Reconstructor::Reconstructor(const io::RigCalibration& rig, const Reconstruction
 
 Reconstruction Reconstructor::reconstruct(const io::Capture& capture, const core::CancelFlag* cancel) const {
   requireCameraSize(capture, rig());
+  requireProjectorSize(capture, rig());
   Reconstruction result;
+  result.warnings = geometryWarnings(capture, rig());
+  for (const std::string& warning : result.warnings) core::componentLogger("reconstruction")->warn(warning);
   core::Stopwatch stage;
   core::throwIfCancelled(cancel, "before decoding");
   const DecodedCapture decoded = decodeCapture(capture, params_.decode);

@@ -86,8 +86,10 @@ struct DecodedCapture {
 // Throws core::Error naming what is wrong when the capture cannot be decoded as a whole: the
 // images do not match the metadata's pattern set (count, order, size, type), the white image is
 // no brighter than the black one (projector off), the white image is saturated over more than
-// max_saturated_fraction of the lit pixels, or a Gray pair does not add up to white + black (a
-// missing, black or shuffled frame).
+// max_saturated_fraction of the lit pixels, a Gray pair does not add up to white + black (a
+// missing, black or shuffled frame), or the phase disagrees with the Gray code on most well-lit
+// pixels in a way that swapping a Gray pattern with its inverse, or two phase steps, undoes (the
+// message names the two images).
 DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& params = {});
 
 }  // namespace binpick::reconstruction

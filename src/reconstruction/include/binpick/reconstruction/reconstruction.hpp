@@ -5,6 +5,8 @@
 // Thread-safety: a Reconstructor is immutable after construction; reconstruct() may be called
 // from many threads at once.
 #include <opencv2/core.hpp>
+#include <string>
+#include <vector>
 
 #include "binpick/core/cancellation.hpp"
 #include "binpick/io/capture.hpp"
@@ -40,6 +42,9 @@ struct Reconstruction {
   cv::Mat status;  // CV_8UC1 PixelStatus per pixel
   StatusCounts counts;
   ReconstructionTimings timings;
+  // What the caller should know about a capture that was reconstructed all the same (also logged
+  // as warnings by the "reconstruction" logger), e.g. a geometry that triangulates poorly.
+  std::vector<std::string> warnings;
   std::size_t validPoints() const { return counts[0]; }
 };
 
@@ -49,8 +54,9 @@ class Reconstructor {
   // params.
   Reconstructor(const io::RigCalibration& rig, const ReconstructionParams& params = {});
 
-  // Throws core::Error when the capture cannot be decoded (decoder.hpp) or its images are not
-  // the size of the calibration's camera; core::Cancelled when `cancel` is set before a stage
+  // Throws core::Error when the capture cannot be decoded (decoder.hpp), its images are not
+  // the size of the calibration's camera, or its pattern set is not for a projector of the
+  // calibration's projector size; core::Cancelled when `cancel` is set before a stage
   // (decoding, triangulation, filtering) begins.
   Reconstruction reconstruct(const io::Capture& capture, const core::CancelFlag* cancel = nullptr) const;
 
