@@ -51,11 +51,13 @@ struct NoiseLevel {
 };
 const std::vector<NoiseLevel> kNoiseLevels = {{0.0, 0.0}, {0.1, 0.05}, {0.5, 0.2}};
 
-// A method alone, or refined (HandEyeParams::refine; shah+refine is the default).
+// A method alone, or refined (HandEyeParams::refine); auto is the default.
 struct Variant {
   HandEyeMethod method;
   bool refine;
-  std::string name() const { return calibration::handEyeMethodName(method) + (refine ? "+refine" : ""); }
+  std::string name() const {
+    return method == HandEyeMethod::Auto ? "auto" : calibration::handEyeMethodName(method) + (refine ? "+refine" : "");
+  }
 };
 
 std::vector<Variant> variants() {
@@ -63,6 +65,7 @@ std::vector<Variant> variants() {
   for (const HandEyeMethod m : calibration::allHandEyeMethods()) out.push_back({m, false});
   out.push_back({HandEyeMethod::Shah, true});
   out.push_back({HandEyeMethod::Tsai, true});  // does the refinement recover a poor start?
+  out.push_back({HandEyeMethod::Auto, true});
   return out;
 }
 

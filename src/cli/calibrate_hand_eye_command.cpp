@@ -25,6 +25,7 @@ calibration::HandEyeParams solverParams(const Arguments& args) {
   }
   params.min_views = args.integer("--min-views").value_or(params.min_views);
   params.refine = args.flag("--refine");
+  params.drop_outliers = args.flag("--drop-outliers");
   params.validate();
   return params;
 }
@@ -82,9 +83,12 @@ void addCalibrateHandEyeCommand(CLI::App& calibrate, CommandTable& table) {
   CLI::Option* views = addText(command, "--views", "DIR", "The views: DIR/poses.txt and an image per view");
   CLI::Option* listen = addFlag(command, "--listen", "Guided: the robot sends its poses (POSE), views are taken");
   views->excludes(listen);
-  addText(command, "--method", "NAME", "shah (default), li, tsai, park, horaud, andreff or daniilidis");
+  addText(command, "--method", "NAME",
+          "auto (default: the best fitting of the others, refined), shah, li, tsai, park, horaud, andreff or "
+          "daniilidis");
   addInteger(command, "--min-views", "N", "Usable views needed (default 6)");
-  addFlag(command, "--refine", "Refine both transforms after the closed-form solution");
+  addFlag(command, "--refine", "Refine both transforms after the closed-form solution (auto always does)");
+  addFlag(command, "--drop-outliers", "Leave out views that disagree with the others, and name them");
   addBoardOptions(command);
   addGuidedSessionOptions(command, listen);
 }

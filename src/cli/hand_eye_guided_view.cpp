@@ -41,8 +41,8 @@ Status HandEyeGuidedSession::takeView(const Job& job) {
     }
     calibration::MeasuredView view;
     try {
-      view =
-          calibration::measureView({attempt, job.T_base_flange, staged}, params_.layout, params_.camera, params_.check);
+      view = calibration::measureView({attempt, job.T_base_flange, staged, {}}, params_.layout, params_.camera,
+                                      params_.check);
     } catch (const core::Error& error) {
       view.problem = error.what();  // an image the check cannot read: no board in it either
     }

@@ -45,15 +45,18 @@ void printViewTable(std::ostream& out, const std::vector<calibration::MeasuredVi
     }
     out << printed("  %8.3f", v.rms_px);
     if (const calibration::HandEyeResidual* r = residualOf(result, v.name)) {
-      out << printed("  %11.3f  %12.4f", r->translation_mm, r->rotation_deg) << (r->outlier ? "  outlier" : "");
+      out << printed("  %11.3f  %12.4f", r->translation_mm, r->rotation_deg)
+          << (r->dropped   ? "  dropped"
+              : r->outlier ? "  outlier"
+                           : "");
     }
     out << "\n";
   }
 }
 
 void printHandEyeResult(std::ostream& out, const calibration::HandEyeResult& result) {
-  out << calibration::handEyeSetupName(result.setup) << ", method " << calibration::handEyeMethodName(result.method)
-      << ", " << result.residuals.size() << " views: residual RMS "
+  out << calibration::handEyeSetupName(result.setup) << ", method " << calibration::handEyeMethodDescription(result)
+      << ", " << result.residuals.size() - result.dropped.size() << " views: residual RMS "
       << printed("%.3f mm, %.4f deg", result.rms_mm, result.rms_deg) << "\n";
   printPose(out, calibration::cameraTransformName(result.setup), result.T_mount_camera);
   printPose(out, calibration::boardTransformName(result.setup), result.T_mount_board);

@@ -8,6 +8,8 @@
 
 #include "binpick/calibration/hand_eye.hpp"
 #include "binpick/calibration/hand_eye_file.hpp"
+#include "binpick/calibration/hand_eye_views.hpp"
+#include "binpick/core/orientation.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 #include "thrown_message.hpp"
 
@@ -258,6 +260,90 @@ TEST(HandEyeSolver, NamesAndParamsAreChecked) {
   params = HandEyeParams{};
   params.inverted_fit_ratio = 0.5;
   EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "HandEyeParams.inverted_fit_ratio"));
+}
+
+// The default (auto: the best fitting OpenCV method, refined) against Shah alone, eye-in-hand with
+// a poor arm (0.5 mm, 0.2 deg per axis), where Shah is several millimetres off.
+TEST(HandEyeMistakes, TheDefaultMethodHoldsWithAPoorArm) {
+  for (const uint64_t seed : {1, 2, 3}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const simulation::HandEyeSession s = session(HandEyeSetup::EyeInHand, 0.5, 0.2, seed);
+    const std::vector<HandEyeView> views = viewsOf(s, 0.2, 0.02);
+    const HandEyeResult automatic = solveHandEye(views, HandEyeParams{HandEyeSetup::EyeInHand});
+    const HandEyeResult shah = solveHandEye(views, paramsFor(HandEyeSetup::EyeInHand));
+    const double automatic_mm = poseDifference(automatic.T_mount_camera, s.T_mount_camera).translation_mm;
+    const double shah_mm = poseDifference(shah.T_mount_camera, s.T_mount_camera).translation_mm;
+    EXPECT_LT(automatic_mm, 1.5);
+    EXPECT_LT(automatic_mm, shah_mm);
+    EXPECT_EQ(automatic.method, HandEyeMethod::Auto);
+    EXPECT_TRUE(automatic.refined);
+  }
+}
+
+// Positions written in metres: the rotations fit, the translations are 1000 times too small.
+TEST(HandEyeMistakes, PositionsInMetresAreNamed) {
+  std::vector<HandEyeView> views = viewsOf(session(HandEyeSetup::EyeToHand, 0.1, 0.05), 0.2, 0.02);
+  for (HandEyeView& view : views) view.T_base_flange.translation() /= 1000.0;
+  EXPECT_TRUE(throwsNaming([&] { solveHandEye(views, HandEyeParams{}); },
+                           "units? the robot positions look like metres, expected millimetres"));
+}
+
+// One robot pose 20 mm off: named in a warning; with drop_outliers left out, and the result
+// within 1 mm of the truth.
+TEST(HandEyeMistakes, OneBadPoseIsNamedAndDropped) {
+  const simulation::HandEyeSession s = session(HandEyeSetup::EyeToHand, 0.1, 0.05);
+  std::vector<HandEyeView> views = viewsOf(s, 0.2, 0.02);
+  views[3].T_base_flange.translation() += Eigen::Vector3d(0.012, -0.016, 0.0);  // 20 mm
+  HandEyeParams params;
+  const HandEyeResult warned = solveHandEye(views, params);
+  const auto named = [](const HandEyeResult& r) {
+    for (const std::string& w : r.warnings) {
+      if (w.find("view view_03 disagrees with the others") != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(named(warned));
+  EXPECT_TRUE(warned.dropped.empty());
+  params.drop_outliers = true;
+  const HandEyeResult dropped = solveHandEye(views, params);
+  EXPECT_EQ(dropped.dropped, std::vector<std::string>{"view_03"});
+  EXPECT_TRUE(dropped.residuals[3].dropped);
+  EXPECT_TRUE(named(dropped));
+  // As good as the views without the bad one (these synthetic board poses leave 1.6 mm).
+  std::vector<HandEyeView> clean = viewsOf(s, 0.2, 0.02);
+  clean.erase(clean.begin() + 3);
+  const HandEyeResult reference = solveHandEye(clean, HandEyeParams{});
+  EXPECT_LT(poseDifference(dropped.T_mount_camera, reference.T_mount_camera).translation_mm, 0.1);
+  EXPECT_TRUE(dropped.ok()) << dropped.failure;
+}
+
+// A board measured 29 mm per square that is 30: every board distance 3.3% short.
+TEST(HandEyeMistakes, AWrongBoardSizeIsWarnedAbout) {
+  std::vector<HandEyeView> views = viewsOf(session(HandEyeSetup::EyeToHand, 0.1, 0.05), 0.2, 0.02);
+  for (HandEyeView& view : views) view.T_camera_board.translation() *= 29.0 / 30.0;
+  const HandEyeResult result = solveHandEye(views, HandEyeParams{});
+  ASSERT_FALSE(result.warnings.empty());
+  EXPECT_NE(result.warnings.back().find("the board size looks wrong"), std::string::npos) << result.warnings.back();
+  EXPECT_NE(result.warnings.back().find("larger (scale 1.03"), std::string::npos) << result.warnings.back();
+}
+
+// KUKA angles written in radians under a file that says degrees (euler_zyx): every angle below
+// 3.2, too little rotation as degrees; the error says radians.
+TEST(HandEyeMistakes, RadiansUnderADegreeConventionAreNamed) {
+  std::vector<MeasuredView> views;
+  for (const HandEyeView& view : viewsOf(session(HandEyeSetup::EyeToHand, 0.1, 0.05), 0.2, 0.02)) {
+    std::vector<double> angles = core::orientationValues(view.T_base_flange.linear(), core::Orientation::EulerZYX);
+    for (double& angle : angles) angle *= kDegree;  // the radians, read as degrees
+    MeasuredView measured;
+    measured.name = view.name;
+    measured.T_base_flange = view.T_base_flange;
+    measured.T_base_flange.linear() = core::rotationFromValues(angles, core::Orientation::EulerZYX);
+    measured.T_camera_board = view.T_camera_board;
+    measured.orientation = core::Orientation::EulerZYX;
+    views.push_back(measured);
+  }
+  EXPECT_TRUE(throwsNaming([&] { solveMeasuredViews(views, HandEyeParams{}); },
+                           "the robot orientations look like radians, expected degrees (euler_zyx)"));
 }
 
 }  // namespace

@@ -77,6 +77,16 @@ TEST(RobotPoseFile, MistakesNameTheLineAndView) {
                            "poses.txt:2: 'view/1' is not a view name"));
 }
 
+// Values the conversion would normalise or wrap silently are more likely another convention.
+TEST(RobotPoseFile, RotationsOfAnotherConventionAreRefused) {
+  EXPECT_TRUE(throwsNaming([] { parse("orientation: quaternion\nv1 1 2 3 0.5 1.2 0 0\n"); },
+                           "poses.txt:2: view v1: quaternion has norm 1.3; not a rotation"));
+  EXPECT_NO_THROW(parse("orientation: quaternion\nv1 1 2 3 1.005 0 0 0\n"));  // rounding: normalised
+  EXPECT_TRUE(throwsNaming([] { parse("orientation: rotation_vector\nv1 1 2 3 0 3.3 0\n"); },
+                           "poses.txt:2: view v1: rotation vector of length 3.3 rad is longer than pi"));
+  EXPECT_NO_THROW(parse("orientation: rotation_vector\nv1 1 2 3 0 3.14159265 0\n"));
+}
+
 class HandEyeViewsDirectory : public test::TempDirectoryTest {
  protected:
   void write(const std::string& name, const std::string& text) { std::ofstream(pathOf(name)) << text; }

@@ -23,7 +23,7 @@ calibrate() {  # calibrate VIEWS_DIR [options...]: the common options, then the 
 calibrate "$views" --setup eye-to-hand --out "$work/hand_eye.yaml" >"$work/table.txt" 2>"$work/warnings.txt" ||
   fail "calibrate exited $?: $(cat "$work/warnings.txt")"
 grep -q '^view_03  *48/48 ' "$work/table.txt" || fail "no row for view_03 with 48 corners: $(cat "$work/table.txt")"
-grep -q '^eye-to-hand, method shah, 6 views: residual RMS' "$work/table.txt" || fail "no result line"
+grep -q '^eye-to-hand, method auto (.*+refine), 6 views: residual RMS' "$work/table.txt" || fail "no result line"
 grep -q '^  T_base_camera:$' "$work/hand_eye.yaml" || fail "hand_eye.yaml has no T_base_camera"
 
 # The recovered camera position within 3 mm of the truth (6 noisy views).
@@ -80,6 +80,27 @@ mv "$work/spoiled/view_02.png" "$work/spoiled/view_01.png"
 mv "$work/swap.png" "$work/spoiled/view_02.png"
 expect_error "hand-eye calibration failed, nothing written: .* without view_0[12] view_0[12]: check" \
   calibrate "$work/spoiled" --setup eye-to-hand --out "$work/x.yaml"
+
+# Mistakes a person makes writing the poses or the board, each named for what it likely is.
+spoiled
+awk '/^view_/ { $2 /= 1000; $3 /= 1000; $4 /= 1000 } { print }' "$views/poses.txt" >"$work/spoiled/poses.txt"
+expect_error "units? the robot positions look like metres, expected millimetres" \
+  calibrate "$work/spoiled" --setup eye-to-hand --out "$work/x.yaml"
+spoiled
+awk '/^view_03/ { $2 += 20 } { print }' "$views/poses.txt" >"$work/spoiled/poses.txt"
+calibrate "$work/spoiled" --setup eye-to-hand --out "$work/x.yaml" >/dev/null 2>"$work/warnings.txt" ||
+  fail "one bad pose failed the calibration: $(cat "$work/warnings.txt")"
+grep -q "view view_03 disagrees with the others.*--drop-outliers" "$work/warnings.txt" ||
+  fail "no warning naming view_03: $(cat "$work/warnings.txt")"
+calibrate "$work/spoiled" --setup eye-to-hand --drop-outliers --min-views 5 --out "$work/x.yaml" \
+  >"$work/table.txt" 2>"$work/warnings.txt" || fail "--drop-outliers exited $?: $(cat "$work/warnings.txt")"
+grep -q "view view_03 disagrees with the others.*: dropped" "$work/warnings.txt" ||
+  fail "--drop-outliers did not name view_03: $(cat "$work/warnings.txt")"
+grep -q "^view_03 .* dropped$" "$work/table.txt" || fail "the table does not show view_03 dropped"
+calibrate "$views" --setup eye-to-hand --square-mm 29 --marker-mm 21.27 --out "$work/x.yaml" >/dev/null \
+  2>"$work/warnings.txt" || fail "--square-mm 29 exited $?: $(cat "$work/warnings.txt")"
+grep -q "warning: the board size looks wrong.*--square-mm" "$work/warnings.txt" ||
+  fail "no warning about the board size: $(cat "$work/warnings.txt")"
 
 [ "$failures" -eq 0 ] || exit 1
 echo "hand-eye CLI: all checks passed ($error_mm mm off the truth)"

@@ -48,6 +48,7 @@ std::string boardTransformName(HandEyeSetup setup) {
 }
 
 std::string handEyeMethodName(HandEyeMethod method) {
+  if (method == HandEyeMethod::Auto) return "auto";
   for (const auto& [value, name] : kMethods) {
     if (value == method) return name;
   }
@@ -55,10 +56,11 @@ std::string handEyeMethodName(HandEyeMethod method) {
 }
 
 HandEyeMethod handEyeMethodFromName(const std::string& name) {
-  std::string names;
+  if (name == "auto") return HandEyeMethod::Auto;
+  std::string names = "auto";
   for (const auto& [value, known] : kMethods) {
     if (name == known) return value;
-    names += (names.empty() ? "" : ", ") + std::string(known);
+    names += ", " + std::string(known);
   }
   throw core::Error("unknown hand-eye method '" + name + "' (" + names + ")");
 }
@@ -92,6 +94,8 @@ void HandEyeParams::validate() const {
   require(std::isfinite(outlier_factor) && outlier_factor > 1.0, "outlier_factor", "> 1", outlier_factor);
   require(nonNegative(outlier_floor_mm), "outlier_floor_mm", ">= 0", outlier_floor_mm);
   require(nonNegative(outlier_floor_deg), "outlier_floor_deg", ">= 0", outlier_floor_deg);
+  require(positive(outlier_mad_factor), "outlier_mad_factor", "positive", outlier_mad_factor);
+  require(positive(warn_rms_mm), "warn_rms_mm", "positive", warn_rms_mm);
   require(positive(max_rms_mm), "max_rms_mm", "positive", max_rms_mm);
   require(positive(max_rms_deg), "max_rms_deg", "positive", max_rms_deg);
 }
@@ -133,12 +137,14 @@ std::vector<HandEyeResidual> residualsOf(const HandEyeProblem& problem, const Mo
 
 PoseDifference rmsOf(const std::vector<HandEyeResidual>& residuals) {
   PoseDifference rms;
-  if (residuals.empty()) return rms;
+  int n = 0;
   for (const HandEyeResidual& r : residuals) {
+    if (r.dropped) continue;
     rms.translation_mm += r.translation_mm * r.translation_mm;
     rms.rotation_deg += r.rotation_deg * r.rotation_deg;
+    ++n;
   }
-  const auto n = static_cast<double>(residuals.size());
+  if (n == 0) return rms;
   rms.translation_mm = std::sqrt(rms.translation_mm / n);
   rms.rotation_deg = std::sqrt(rms.rotation_deg / n);
   return rms;
@@ -195,6 +201,11 @@ PoseDifference poseDifference(const Eigen::Isometry3d& a, const Eigen::Isometry3
   d.translation_mm = 1000.0 * (a.translation() - b.translation()).norm();
   d.rotation_deg = detail::rotationAngleDeg(a.linear().transpose() * b.linear());
   return d;
+}
+
+std::string handEyeMethodDescription(const HandEyeResult& result) {
+  std::string text = handEyeMethodName(result.start) + (result.refined ? "+refine" : "");
+  return result.method == HandEyeMethod::Auto ? "auto (" + text + ")" : text;
 }
 
 }  // namespace binpick::calibration

@@ -18,9 +18,9 @@ HandEyeFile handEyeFileOf(const HandEyeResult& result) {
   file.setup = result.setup;
   file.T_mount_camera = result.T_mount_camera;
   file.T_mount_board = result.T_mount_board;
-  file.method = handEyeMethodName(result.method);
+  file.method = handEyeMethodDescription(result);
   file.date = io::utcTimestamp();
-  file.views = static_cast<int>(result.residuals.size());
+  file.views = static_cast<int>(result.residuals.size() - result.dropped.size());
   file.rms_mm = result.rms_mm;
   file.rms_deg = result.rms_deg;
   return file;

@@ -33,6 +33,17 @@ MountTransforms solveWithOpenCv(const HandEyeProblem& problem, HandEyeMethod met
 // Gauss-Newton on both transforms from `start`, minimising the pose residuals.
 MountTransforms refineMounts(const HandEyeProblem& problem, const MountTransforms& start);
 
+struct Solution {
+  MountTransforms mounts;
+  HandEyeMethod start = HandEyeMethod::Shah;
+  bool refined = false;
+};
+// params.method, refined when params.refine; Auto: every OpenCV method, the one with the lowest
+// residual RMS (mm), refined. Throws core::Error when no method gives a finite solution.
+Solution solveMounts(const HandEyeProblem& problem, const HandEyeParams& params);
+// For the many solves of a diagnosis: params.method unrefined, Shah for Auto.
+MountTransforms solveQuickly(const HandEyeProblem& problem, const HandEyeParams& params);
+
 // The board in its mount as the robot's way predicts it, per view.
 Eigen::Isometry3d predictedBoard(const HandEyeProblem& problem, std::size_t view,
                                  const Eigen::Isometry3d& T_mount_camera);
@@ -53,5 +64,21 @@ std::string blameViews(std::vector<HandEyeView> views, const HandEyeParams& para
 
 // Throws core::Error when the robot motion leaves the rotation unobservable.
 void requireRotationSpread(const HandEyeProblem& problem, const HandEyeParams& params);
+
+// Throws core::Error ("units? ...") when a fit too poor in translation, whose rotation fits,
+// fits with the robot positions multiplied by 1000: they were written in metres.
+void rejectPositionsInMetres(const std::vector<HandEyeView>& views, const HandEyeParams& params,
+                             const PoseDifference& as_given);
+
+// Each view's residual against the solution of the other views (leave one out).
+std::vector<HandEyeResidual> leaveOneOutResiduals(const std::vector<HandEyeView>& views, const HandEyeParams& params);
+// The indices of the views whose leave-one-out residual stands far above the others'
+// (HandEyeParams::outlier_mad_factor and the outlier limits).
+std::vector<std::size_t> disagreeingViews(const std::vector<HandEyeResidual>& left_out, const HandEyeParams& params);
+
+// A warning ("" when none) when the residual RMS exceeds params.warn_rms_mm or scaling the
+// board's distances fits much better: a wrong board size.
+std::string boardSizeWarning(const std::vector<HandEyeView>& views, const HandEyeParams& params,
+                             const PoseDifference& as_given);
 
 }  // namespace binpick::calibration::detail

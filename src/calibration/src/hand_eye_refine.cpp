@@ -112,7 +112,7 @@ bool fitWithout(const std::vector<HandEyeView>& views, const std::vector<std::si
   }
   try {
     const HandEyeProblem problem = makeProblem(rest, params.setup, false);
-    const PoseDifference rms = rmsOf(residualsOf(problem, solveWithOpenCv(problem, params.method)));
+    const PoseDifference rms = rmsOf(residualsOf(problem, solveQuickly(problem, params)));
     fit = {rms.translation_mm, rms.rotation_deg};
     return true;
   } catch (const core::Error&) {

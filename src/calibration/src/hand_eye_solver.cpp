@@ -2,6 +2,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <sstream>
 
@@ -40,11 +41,6 @@ void requireViews(const std::vector<HandEyeView>& views, const HandEyeParams& pa
   }
 }
 
-MountTransforms solve(const HandEyeProblem& problem, const HandEyeParams& params) {
-  const MountTransforms start = detail::solveWithOpenCv(problem, params.method);
-  return params.refine ? detail::refineMounts(problem, start) : start;
-}
-
 std::string describe(const PoseDifference& rms) {
   std::ostringstream text;
   text.precision(3);
@@ -59,7 +55,7 @@ void rejectInvertedPoses(const std::vector<HandEyeView>& views, const HandEyePar
   PoseDifference inverted;
   try {
     const HandEyeProblem problem = detail::makeProblem(views, params.setup, true);
-    inverted = detail::rmsOf(detail::residualsOf(problem, solve(problem, params)));
+    inverted = detail::rmsOf(detail::residualsOf(problem, detail::solveMounts(problem, params).mounts));
   } catch (const core::Error&) {
     return;  // no solution inverted: nothing fits better
   }
@@ -117,27 +113,100 @@ void judgeFit(HandEyeResult& result, const std::vector<HandEyeView>& views, cons
   result.failure = text.str();
 }
 
+// One solve of `views` without the views in `dropped`: the residuals of every view (the
+// dropped ones marked and out of the RMS).
+HandEyeResult solveKeeping(const std::vector<HandEyeView>& views, const std::vector<std::size_t>& dropped,
+                           const HandEyeParams& params) {
+  std::vector<HandEyeView> kept;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    if (std::find(dropped.begin(), dropped.end(), i) == dropped.end()) kept.push_back(views[i]);
+  }
+  const HandEyeProblem problem = detail::makeProblem(kept, params.setup, false);
+  detail::requireRotationSpread(problem, params);
+  const detail::Solution solution = detail::solveMounts(problem, params);
+  HandEyeResult result;
+  result.setup = params.setup;
+  result.method = params.method;
+  result.start = solution.start;
+  result.refined = solution.refined;
+  result.T_mount_camera = solution.mounts.camera;
+  result.T_mount_board = solution.mounts.board;
+  result.residuals = detail::residualsOf(detail::makeProblem(views, params.setup, false), solution.mounts);
+  for (const std::size_t i : dropped) {
+    result.residuals[i].dropped = true;
+    result.dropped.push_back(views[i].name);
+  }
+  const PoseDifference rms = detail::rmsOf(result.residuals);
+  result.rms_mm = rms.translation_mm;
+  result.rms_deg = rms.rotation_deg;
+  return result;
+}
+
+std::string disagreement(const HandEyeResidual& left_out, const HandEyeResult& without) {
+  std::ostringstream text;
+  text.precision(3);
+  text << "view " << left_out.name << " disagrees with the others: " << left_out.translation_mm << " mm, "
+       << left_out.rotation_deg << " deg from where their solution puts it; without it they fit to "
+       << describe({without.rms_mm, without.rms_deg});
+  return text.str();
+}
+
+// Views that disagree with the others: dropped (params.drop_outliers) or warned about by name.
+HandEyeResult handleDisagreeingViews(const std::vector<HandEyeView>& views, const HandEyeParams& params,
+                                     HandEyeResult result) {
+  const std::vector<HandEyeResidual> left_out = detail::leaveOneOutResiduals(views, params);
+  const std::vector<std::size_t> suspects = detail::disagreeingViews(left_out, params);
+  if (suspects.empty()) return result;
+  const bool can_drop = static_cast<int>(views.size() - suspects.size()) >= params.min_views;
+  HandEyeResult without = result;
+  try {
+    without = solveKeeping(views, suspects, params);
+  } catch (const core::Error&) {
+    return result;  // the others alone are not enough to tell
+  }
+  std::vector<std::string> notes;
+  for (const std::size_t i : suspects) {
+    std::string note = disagreement(left_out[i], without);
+    if (params.drop_outliers && can_drop) {
+      note += ": dropped";
+    } else if (params.drop_outliers) {
+      note += ": kept, dropping it would leave fewer than " + std::to_string(params.min_views) + " views";
+    } else {
+      note += ": check its robot pose and image, or leave it out (--drop-outliers)";
+    }
+    notes.push_back(note);
+  }
+  HandEyeResult& chosen = params.drop_outliers && can_drop ? without : result;
+  // The residual-based outlier warnings of these views say less than the notes.
+  for (const std::size_t i : suspects) {
+    const std::string prefix = "view " + views[i].name + ": residual";
+    chosen.warnings.erase(std::remove_if(chosen.warnings.begin(), chosen.warnings.end(),
+                                         [&](const std::string& w) { return w.rfind(prefix, 0) == 0; }),
+                          chosen.warnings.end());
+  }
+  for (const std::size_t i : suspects) chosen.residuals[i].outlier = true;
+  chosen.warnings.insert(chosen.warnings.end(), notes.begin(), notes.end());
+  return chosen;
+}
+
 }  // namespace
 
 HandEyeResult solveHandEye(const std::vector<HandEyeView>& views, const HandEyeParams& params) {
   params.validate();
   requireViews(views, params);
-  const HandEyeProblem problem = detail::makeProblem(views, params.setup, false);
-  detail::requireRotationSpread(problem, params);
-  const MountTransforms mounts = solve(problem, params);
-
-  HandEyeResult result;
-  result.setup = params.setup;
-  result.method = params.method;
-  result.T_mount_camera = mounts.camera;
-  result.T_mount_board = mounts.board;
-  result.residuals = detail::residualsOf(problem, mounts);
-  const PoseDifference rms = detail::rmsOf(result.residuals);
-  result.rms_mm = rms.translation_mm;
-  result.rms_deg = rms.rotation_deg;
+  HandEyeResult result = solveKeeping(views, {}, params);
+  const PoseDifference rms{result.rms_mm, result.rms_deg};
+  detail::rejectPositionsInMetres(views, params, rms);
   rejectInvertedPoses(views, params, rms);
   markOutliers(result, params);
-  judgeFit(result, views, params);
+  result = handleDisagreeingViews(views, params, std::move(result));
+  std::vector<HandEyeView> kept;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    if (!result.residuals[i].dropped) kept.push_back(views[i]);
+  }
+  const std::string board = detail::boardSizeWarning(kept, params, {result.rms_mm, result.rms_deg});
+  if (!board.empty()) result.warnings.push_back(board);
+  judgeFit(result, kept, params);
   return result;
 }
 
@@ -295,7 +364,47 @@ MountTransforms handEye(const HandEyeProblem& problem, HandEyeMethod method) {
 
 bool finite(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
 
+// Every OpenCV method, the one whose views fit best in mm (translation at the board carries the
+// rotation's error too, times the lever arm).
+Solution bestOpenCvStart(const HandEyeProblem& problem) {
+  Solution best;
+  double best_mm = std::numeric_limits<double>::infinity();
+  std::string last_error = "no method";
+  for (const HandEyeMethod method : allHandEyeMethods()) {
+    try {
+      const MountTransforms mounts = solveWithOpenCv(problem, method);
+      const double mm = rmsOf(residualsOf(problem, mounts)).translation_mm;
+      if (mm < best_mm) {
+        best_mm = mm;
+        best = {mounts, method, false};
+      }
+    } catch (const core::Error& e) {
+      last_error = e.what();
+    }
+  }
+  if (!std::isfinite(best_mm)) throw core::Error("hand-eye (auto): no method found a solution; " + last_error);
+  return best;
+}
+
 }  // namespace
+
+Solution solveMounts(const HandEyeProblem& problem, const HandEyeParams& params) {
+  Solution solution;
+  if (params.method == HandEyeMethod::Auto) {
+    solution = bestOpenCvStart(problem);
+  } else {
+    solution = {solveWithOpenCv(problem, params.method), params.method, false};
+  }
+  if (params.refine || params.method == HandEyeMethod::Auto) {
+    solution.mounts = refineMounts(problem, solution.mounts);
+    solution.refined = true;
+  }
+  return solution;
+}
+
+MountTransforms solveQuickly(const HandEyeProblem& problem, const HandEyeParams& params) {
+  return solveWithOpenCv(problem, params.method == HandEyeMethod::Auto ? HandEyeMethod::Shah : params.method);
+}
 
 MountTransforms solveWithOpenCv(const HandEyeProblem& problem, HandEyeMethod method) {
   MountTransforms mounts;

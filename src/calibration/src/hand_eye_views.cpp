@@ -48,7 +48,7 @@ std::vector<HandEyeViewFile> listHandEyeViews(const std::string& directory) {
       throw core::Error(poses_path + ":" + std::to_string(pose.line) + ": view " + pose.view +
                         " has a robot pose but no image " + image.string());
     }
-    views.push_back({pose.view, pose.T_base_flange, image.string()});
+    views.push_back({pose.view, pose.T_base_flange, image.string(), poses.orientation});
   }
   if (!images.empty()) {
     const std::string view = *images.begin();
@@ -102,6 +102,7 @@ MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
   MeasuredView view;
   view.name = file.name;
   view.T_base_flange = file.T_base_flange;
+  view.orientation = file.orientation;
   const BoardDetection detection = detectBoard(readViewImage(file, camera), layout, params.detection);
   view.corners = static_cast<int>(detection.ids.size());
   view.expected = detection.expected;
@@ -137,6 +138,48 @@ MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
   return view;
 }
 
+namespace {
+
+// Every angle of a pose in degrees below this (a little above pi) while the views need 15
+// degrees of motion: radians written where degrees were expected.
+constexpr double kRadiansLimit = 3.2;
+constexpr double kDegreesPerRadian = 180.0 / 3.14159265358979323846;
+
+bool inDegrees(core::Orientation orientation) {
+  return orientation == core::Orientation::EulerZYX || orientation == core::Orientation::FixedXYZ ||
+         orientation == core::Orientation::EulerXYZ;
+}
+
+// Throws when the poses' angles all look like radians and read as radians they fit.
+void rejectRadiansAsDegrees(const std::vector<MeasuredView>& measured, const std::vector<HandEyeView>& views,
+                            const HandEyeParams& params) {
+  if (views.empty() || !measured.front().orientation || !inDegrees(*measured.front().orientation)) return;
+  const core::Orientation orientation = *measured.front().orientation;
+  std::vector<HandEyeView> as_radians = views;
+  for (HandEyeView& view : as_radians) {
+    std::vector<double> angles = core::orientationValues(view.T_base_flange.linear(), orientation);
+    for (double& angle : angles) {
+      if (!(std::abs(angle) < kRadiansLimit)) return;
+      angle *= kDegreesPerRadian;
+    }
+    view.T_base_flange.linear() = core::rotationFromValues(angles, orientation);
+  }
+  HandEyeResult fit;
+  try {
+    fit = solveHandEye(as_radians, params);
+  } catch (const core::Error&) {
+    return;  // read as radians they do not fit either: let the solve say what is wrong
+  }
+  if (!fit.ok()) return;
+  throw core::Error("hand-eye: the robot orientations look like radians, expected degrees (" +
+                    core::orientationName(orientation) + "): every angle is below " +
+                    format("%.1f, and read as radians the views fit to %.3f mm, %.4f deg RMS", kRadiansLimit,
+                           fit.rms_mm, fit.rms_deg) +
+                    "; write the angles in degrees");
+}
+
+}  // namespace
+
 HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views, const HandEyeParams& params) {
   std::vector<HandEyeView> usable;
   std::ostringstream unusable;
@@ -151,6 +194,7 @@ HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views, const H
     throw core::Error("hand-eye needs at least " + std::to_string(params.min_views) + " usable views, got " +
                       std::to_string(usable.size()) + " of " + std::to_string(views.size()) + unusable.str());
   }
+  rejectRadiansAsDegrees(views, usable, params);
   return solveHandEye(usable, params);
 }
 

@@ -63,6 +63,38 @@ core::Orientation orientationLine(const std::string& line, const LineContext& at
   }
 }
 
+// Values the conversion would silently normalise or wrap, which more likely mean another
+// convention than a rotation: a quaternion whose norm is off 1, a rotation vector longer than pi
+// (its reading is unique only up to pi; degrees written as radians give such lengths).
+constexpr double kQuaternionNormTolerance = 0.01;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kRotationVectorSlack = 1e-4;  // radians: a controller rounding at pi
+
+void requireRotationReading(const std::vector<double>& v, core::Orientation orientation, const std::string& view,
+                            const LineContext& at) {
+  char text[300];
+  if (orientation == core::Orientation::Quaternion) {
+    const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
+    if (norm > 0.0 && std::abs(norm - 1.0) > kQuaternionNormTolerance) {
+      std::snprintf(text, sizeof text,
+                    "view %s: quaternion has norm %.4g; not a rotation (a unit quaternion w x y z has norm 1): "
+                    "a different convention?",
+                    view.c_str(), norm);
+      at.fail(text);
+    }
+  }
+  if (orientation == core::Orientation::RotationVector) {
+    const double norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (norm > kPi + kRotationVectorSlack) {
+      std::snprintf(text, sizeof text,
+                    "view %s: rotation vector of length %.4g rad is longer than pi: a rotation vector (rx ry rz, "
+                    "radians) is read uniquely only up to pi; degrees, or a different convention?",
+                    view.c_str(), norm);
+      at.fail(text);
+    }
+  }
+}
+
 RobotPose poseLine(const std::vector<std::string>& fields, core::Orientation orientation, const LineContext& at) {
   RobotPose pose;
   pose.view = fields[0];
@@ -76,6 +108,7 @@ RobotPose poseLine(const std::vector<std::string>& fields, core::Orientation ori
   std::vector<double> values;
   for (std::size_t i = 1; i < fields.size(); ++i) values.push_back(finiteNumber(fields[i], pose.view, at));
   pose.T_base_flange.translation() = Eigen::Vector3d(values[0], values[1], values[2]) / 1000.0;
+  requireRotationReading({values.begin() + 3, values.end()}, orientation, pose.view, at);
   try {
     pose.T_base_flange.linear() = core::rotationFromValues({values.begin() + 3, values.end()}, orientation);
   } catch (const core::Error& e) {

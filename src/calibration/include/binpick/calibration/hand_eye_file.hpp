@@ -26,7 +26,7 @@ struct HandEyeFile {
   HandEyeSetup setup = HandEyeSetup::EyeToHand;
   Eigen::Isometry3d T_mount_camera = Eigen::Isometry3d::Identity();  // cameraTransformName
   Eigen::Isometry3d T_mount_board = Eigen::Isometry3d::Identity();   // boardTransformName
-  std::string method;  // handEyeMethodName, or what else made it ("truth" in the virtual cell)
+  std::string method;  // handEyeMethodDescription, or what else made it ("truth" in the virtual cell)
   std::string date;    // ISO 8601 UTC
   int views = 0;
   double rms_mm = 0.0;

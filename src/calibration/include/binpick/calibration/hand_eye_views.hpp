@@ -13,6 +13,7 @@
 #include "binpick/calibration/board_detection.hpp"
 #include "binpick/calibration/board_layout.hpp"
 #include "binpick/calibration/hand_eye.hpp"
+#include "binpick/core/orientation.hpp"
 #include "binpick/io/lens.hpp"
 
 namespace binpick::calibration {
@@ -21,6 +22,7 @@ struct HandEyeViewFile {
   std::string name;
   Eigen::Isometry3d T_base_flange = Eigen::Isometry3d::Identity();
   std::string image_path;
+  std::optional<core::Orientation> orientation;  // how poses.txt wrote the pose, when from a file
 };
 
 // Views in poses.txt order. Throws core::Error naming the view for a pose without its image
@@ -46,6 +48,7 @@ struct MeasuredView {
   std::optional<Eigen::Isometry3d> T_camera_board;  // empty: the view is not usable
   std::string problem;                              // why it is not usable
   std::string note;                                 // a caveat of a usable view (a partial board)
+  std::optional<core::Orientation> orientation;     // HandEyeViewFile::orientation
   bool usable() const { return T_camera_board.has_value(); }
 };
 
@@ -55,7 +58,9 @@ MeasuredView measureView(const HandEyeViewFile& file, const BoardLayout& layout,
                          const BoardViewParams& params = {});
 
 // The usable views solved. Throws core::Error listing every unusable view with its reason
-// when fewer than params.min_views are usable, and whatever solveHandEye throws.
+// when fewer than params.min_views are usable, and whatever solveHandEye throws; and, before
+// solving, when poses written in a convention of degrees hold angles all below 3.2 that fit read
+// as radians ("the robot orientations look like radians").
 HandEyeResult solveMeasuredViews(const std::vector<MeasuredView>& views, const HandEyeParams& params);
 
 }  // namespace binpick::calibration

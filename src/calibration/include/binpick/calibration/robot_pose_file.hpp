@@ -29,7 +29,8 @@ struct RobotPoseFile {
 
 // Throws core::Error "ORIGIN:LINE: ..." naming the view where there is one: a missing or
 // unknown orientation line, a bad view name, a wrong value count, a value that is not a finite
-// number, a zero quaternion, a view listed twice.
+// number, a zero quaternion or one whose norm is off 1 by more than 1%, a rotation vector
+// longer than pi, a view listed twice.
 RobotPoseFile parseRobotPoses(const std::string& text, const std::string& origin);
 RobotPoseFile readRobotPoseFile(const std::string& path);  // also throws "PATH: cannot read"
 
