@@ -24,6 +24,12 @@ calibration::RigCalibrationParams calibrationParams(const Arguments& args) {
   params.drop_outliers = args.flag("--drop-outliers");
   params.outlier_factor = args.number("--outlier-factor").value_or(params.outlier_factor);
   params.outlier_floor_px = args.number("--outlier-floor-px").value_or(params.outlier_floor_px);
+  if (const auto terms = args.value("--camera-distortion")) {
+    params.camera_distortion = calibration::parseDistortionTerms(*terms, "--camera-distortion");
+  }
+  if (const auto terms = args.value("--projector-distortion")) {
+    params.projector_distortion = calibration::parseDistortionTerms(*terms, "--projector-distortion");
+  }
   params.validate();
   return params;
 }
@@ -64,6 +70,26 @@ int run(const Arguments& args) {
   return 0;
 }
 
+// CLI11 validators: an empty string accepts the value, anything else is the usage error's text.
+// A calibration needs at least three board poses (cv::calibrateCamera's minimum for a lens).
+std::string checkMinViews(const std::string& text) {
+  try {
+    if (parseInteger("--min-views", text) >= 3) return "";
+  } catch (const core::Error&) {
+    return "";  // not a number: the integer check says so
+  }
+  return "must be at least 3, not " + text + " (a lens needs three board poses)";
+}
+
+std::string checkDistortionTerms(const std::string& text) {
+  try {
+    calibration::parseDistortionTerms(text, "the terms");
+    return "";
+  } catch (const core::Error& e) {
+    return e.what();
+  }
+}
+
 }  // namespace
 
 void addCalibrateRigCommand(CLI::App& calibrate, CommandTable& table) {
@@ -79,10 +105,15 @@ void addCalibrateRigCommand(CLI::App& calibrate, CommandTable& table) {
   live.push_back(addInteger(command, "--count", "K", "Live: views to take (default: --min-views, at least 12)"));
   refuseTogether(live, {sequence, views});
   addBoardOptions(command);
-  addInteger(command, "--min-views", "N", "Usable views needed (default 8)");
+  addInteger(command, "--min-views", "N", "Usable views needed, at least 3 (default 8)")
+      ->check(CLI::Validator(checkMinViews, ""));
   addFlag(command, "--drop-outliers", "Leave out views that fit much worse than the others");
   addNumber(command, "--outlier-factor", "F", "Outlier: RMS above F times the median view's (default 3)");
-  addNumber(command, "--outlier-floor-px", "PX", "An RMS below PX is never an outlier (default 0.5)");
+  addNumber(command, "--outlier-floor-px", "PX", "An RMS below PX is never an outlier (default 0.15)");
+  addText(command, "--camera-distortion", "TERMS", "Camera distortion terms fitted (default k1,k2,p1,p2; add k3)")
+      ->check(CLI::Validator(checkDistortionTerms, ""));
+  addText(command, "--projector-distortion", "TERMS", "Projector distortion terms fitted (default k1,k2,p1,p2; add k3)")
+      ->check(CLI::Validator(checkDistortionTerms, ""));
   addInteger(command, "--corner-window", "PX", "Half window for the projector's corners (default 40)");
 }
 

@@ -53,6 +53,21 @@ void printLens(std::ostream& out, const char* device, const io::LensIntrinsics& 
   out << line;
 }
 
+// "camera    terms k1,k2,p1,p2: RMS 0.055 px; k3 held 0.055 px, free 0.054 px (k3 -0.0012 +- 0.0009)"
+// and the fitted terms' standard deviations: whether a term is warranted shows in both.
+void printLensFit(std::ostream& out, const char* device, const calibration::LensFitReport& fit) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "%-9s terms %s: own solve RMS %.3f px; with k3 held %.3f px, free %.3f px (k3 %.4f +- %.4f)\n", device,
+                fit.terms.text().c_str(), fit.rms_px, fit.rms_k3_held_px, fit.rms_k3_free_px, fit.k3_free,
+                fit.k3_free_sd);
+  out << line;
+  std::snprintf(line, sizeof line,
+                "%-9s std dev  fx %.2f  fy %.2f  cx %.2f  cy %.2f  k1 %.4f k2 %.4f p1 %.5f p2 %.5f k3 %.4f\n", "",
+                fit.sd[0], fit.sd[1], fit.sd[2], fit.sd[3], fit.sd[4], fit.sd[5], fit.sd[6], fit.sd[7], fit.sd[8]);
+  out << line;
+}
+
 }  // namespace
 
 void printRigReport(std::ostream& out, const calibration::RigCalibrationResult& result) {
@@ -65,6 +80,8 @@ void printRigReport(std::ostream& out, const calibration::RigCalibrationResult& 
   out << line;
   printLens(out, "camera", result.rig.camera);
   printLens(out, "projector", result.rig.projector);
+  printLensFit(out, "camera", result.camera_fit);
+  printLensFit(out, "projector", result.projector_fit);
   const Eigen::Isometry3d T_camera_projector = result.rig.T_projector_camera.inverse();
   const Eigen::Vector3d centre = T_camera_projector.translation() * 1e3;
   const double angle = Eigen::AngleAxisd(T_camera_projector.linear()).angle() * kDegreesPerRadian;

@@ -55,7 +55,8 @@ expect_usage_error "--sequence excludes --views" "$binpick" calibrate rig --sequ
 expect_usage_error "--sequence excludes --record" "$binpick" calibrate rig --sequence "$seq" --record "$work/r" --out "$work/x.yaml"
 expect_usage_error "--out is required" "$binpick" calibrate rig --sequence "$seq"
 expect_error "board options" "$binpick" calibrate rig --sequence "$seq" --squares 2x7 --out "$work/x.yaml"
-expect_error "RigCalibrationParams.min_views" "$binpick" calibrate rig --sequence "$seq" --min-views 1 --out "$work/x.yaml"
+expect_usage_error "--min-views: must be at least 3" "$binpick" calibrate rig --sequence "$seq" --min-views 2 --out "$work/x.yaml"
+expect_usage_error "--projector-distortion" "$binpick" calibrate rig --sequence "$seq" --projector-distortion k1,p1 --out "$work/x.yaml"
 [ ! -e "$work/x.yaml" ] || fail "a refused calibration wrote a file"
 
 # The live path: one view per line on stdin, each recorded before it is used.

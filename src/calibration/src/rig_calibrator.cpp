@@ -144,6 +144,8 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
 
   const detail::RigSolution& solution = attempt.solution;
   result.rig = solution.rig;
+  result.camera_fit = solution.camera_fit;
+  result.projector_fit = solution.projector_fit;
   result.timings = solution.timings;
   result.quality.date = io::utcTimestamp();
   result.quality.camera_rms_px = solution.camera_rms_px;

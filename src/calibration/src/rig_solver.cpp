@@ -24,20 +24,68 @@ struct LensFit {
   cv::Mat matrix;
   cv::Mat distortion;
   double rms = 0.0;
+  cv::Mat sd;  // standard deviations of the intrinsics, OpenCV's order
 };
 
+// OpenCV's flags holding the terms not in `terms` (at 0: there is no intrinsic guess here).
+int heldTermFlags(const DistortionTerms& terms) {
+  return (terms.k1 ? 0 : cv::CALIB_FIX_K1) | (terms.k2 ? 0 : cv::CALIB_FIX_K2) |
+         (terms.tangential ? 0 : cv::CALIB_ZERO_TANGENT_DIST) | (terms.k3 ? 0 : cv::CALIB_FIX_K3);
+}
+
+// With a `start`, from its intrinsics (CALIB_USE_INTRINSIC_GUESS).
 LensFit calibrateLens(const std::vector<std::vector<cv::Point3f>>& objects,
-                      const std::vector<std::vector<cv::Point2f>>& images, cv::Size size,
-                      const RigCalibrationParams& params, const char* device) {
+                      const std::vector<std::vector<cv::Point2f>>& images, cv::Size size, const DistortionTerms& terms,
+                      const char* device, const LensFit* start = nullptr) {
   LensFit fit;
-  const int flags = params.fix_k3 ? cv::CALIB_FIX_K3 : 0;
+  int flags = heldTermFlags(terms);
+  if (start != nullptr) {
+    fit.matrix = start->matrix.clone();
+    fit.distortion = start->distortion.clone();
+    flags |= cv::CALIB_USE_INTRINSIC_GUESS;
+  }
   try {
     std::vector<cv::Mat> rvecs, tvecs;
-    fit.rms = cv::calibrateCamera(objects, images, size, fit.matrix, fit.distortion, rvecs, tvecs, flags);
+    cv::Mat extrinsic_sd, per_view;
+    fit.rms = cv::calibrateCamera(objects, images, size, fit.matrix, fit.distortion, rvecs, tvecs, fit.sd, extrinsic_sd,
+                                  per_view, flags);
   } catch (const cv::Exception& e) {
     throw core::Error(std::string("calibrate rig: OpenCV could not calibrate the ") + device + ": " + e.err);
   }
   return fit;
+}
+
+// OpenCV's solve started from zero distortion with k3 free runs off to a k3 of the order of 1 (a
+// worse fit than with k3 held): k3 is freed only from the fit that held it.
+LensFit fitLens(const std::vector<std::vector<cv::Point3f>>& objects,
+                const std::vector<std::vector<cv::Point2f>>& images, cv::Size size, const DistortionTerms& terms,
+                const char* device) {
+  DistortionTerms without_k3 = terms;
+  without_k3.k3 = false;
+  const LensFit held = calibrateLens(objects, images, size, without_k3, device);
+  return terms.k3 ? calibrateLens(objects, images, size, terms, device, &held) : held;
+}
+
+double sdAt(const cv::Mat& sd, int i) { return i < static_cast<int>(sd.total()) ? sd.at<double>(i) : 0.0; }
+
+// The chosen fit, and the same solve with k3 toggled, so that the user sees whether k3 pays.
+LensFitReport reportLens(const LensFit& fit, const std::vector<std::vector<cv::Point3f>>& objects,
+                         const std::vector<std::vector<cv::Point2f>>& images, cv::Size size,
+                         const DistortionTerms& terms, const char* device) {
+  LensFitReport report;
+  report.terms = terms;
+  report.rms_px = fit.rms;
+  for (int i = 0; i < 9; ++i) report.sd[i] = sdAt(fit.sd, i);
+  DistortionTerms toggled = terms;
+  toggled.k3 = !terms.k3;
+  const LensFit other = toggled.k3 ? calibrateLens(objects, images, size, toggled, device, &fit)
+                                   : calibrateLens(objects, images, size, toggled, device);
+  const LensFit& free = terms.k3 ? fit : other;
+  report.rms_k3_held_px = terms.k3 ? other.rms : fit.rms;
+  report.rms_k3_free_px = free.rms;
+  report.k3_free = free.distortion.at<double>(4);
+  report.k3_free_sd = sdAt(free.sd, 8);
+  return report;
 }
 
 io::LensIntrinsics lensFrom(const LensFit& fit, cv::Size size) {
@@ -81,14 +129,25 @@ RigSolution solveRig(const std::vector<ViewPoints>& views, cv::Size camera_size,
   }
   RigSolution solution;
   core::Stopwatch stage;
-  LensFit camera = calibrateLens(camera_object, camera_image, camera_size, params, "camera");
+  LensFit camera = fitLens(camera_object, camera_image, camera_size, params.camera_distortion, "camera");
+  solution.camera_fit =
+      reportLens(camera, camera_object, camera_image, camera_size, params.camera_distortion, "camera");
   solution.timings.camera = stage.lapMs();
-  LensFit projector = calibrateLens(shared_object, shared_projector, projector_size, params, "projector");
+  LensFit projector =
+      fitLens(shared_object, shared_projector, projector_size, params.projector_distortion, "projector");
+  solution.projector_fit =
+      reportLens(projector, shared_object, shared_projector, projector_size, params.projector_distortion, "projector");
   solution.timings.projector = stage.lapMs();
 
+  // stereoCalibrate's flags hold a term for both devices at once: a term either device holds is
+  // held, at the value of each device's own solve (the intrinsic guess).
+  const DistortionTerms& a = params.camera_distortion;
+  const DistortionTerms& b = params.projector_distortion;
+  const DistortionTerms both{a.k1 && b.k1, a.k2 && b.k2, a.tangential && b.tangential, a.k3 && b.k3};
   int flags = cv::CALIB_FIX_INTRINSIC;
   if (params.refine_intrinsics_in_stereo) {
-    flags = cv::CALIB_USE_INTRINSIC_GUESS | (params.fix_k3 ? cv::CALIB_FIX_K3 : 0);
+    flags = cv::CALIB_USE_INTRINSIC_GUESS | (heldTermFlags(both) & ~cv::CALIB_ZERO_TANGENT_DIST) |
+            (both.tangential ? 0 : cv::CALIB_FIX_TANGENT_DIST);
   }
   cv::Mat r, t, essential, fundamental, per_view;
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-10);

@@ -25,6 +25,8 @@ struct RigSolution {
   double camera_rms_px = 0.0;
   double projector_rms_px = 0.0;
   double stereo_rms_px = 0.0;
+  LensFitReport camera_fit;
+  LensFitReport projector_fit;
   std::vector<double> view_camera_rms_px;  // per view, under the final rig
   std::vector<double> view_projector_rms_px;
   RigCalibrationTimings timings;

@@ -8,6 +8,8 @@
 //    board pose is then pinned by both devices at once, which on the virtual cell lowered the
 //    translation, rotation and principal point errors against holding the intrinsics fixed
 //    (docs/calibration.md has the figures).
+// Each device's own solve is also run once more with k3 toggled (freed when held, held when
+// free): its RMS either way, and every term's standard deviation, tell whether k3 is warranted.
 // Every view gets its reprojection RMS in both images under the final rig. A view whose RMS
 // exceeds max(outlier_floor_px, outlier_factor x the median view's) is an outlier: reported,
 // and with drop_outliers left out and the calibration computed once more without it.
@@ -17,21 +19,29 @@
 #include <string>
 #include <vector>
 
+#include <array>
+
 #include "binpick/calibration/board_layout.hpp"
+#include "binpick/calibration/distortion_terms.hpp"
 #include "binpick/calibration/rig_views.hpp"
 #include "binpick/io/rig_calibration.hpp"
 
 namespace binpick::calibration {
 
 struct RigCalibrationParams {
-  int min_views = 8;              // usable views needed (after dropping outliers)
-  int min_corners = 10;           // corners with both a camera and a projector pixel, per view
-  double outlier_floor_px = 0.5;  // RMS below this never makes a view an outlier
-  double outlier_factor = 3.0;    // ... nor below this multiple of the median view's RMS
+  int min_views = 8;     // usable views needed (after dropping outliers); at least 3
+  int min_corners = 10;  // corners with both a camera and a projector pixel, per view
+  // RMS below this never makes a view an outlier. Low enough that a view several times worse
+  // than clean ones of 0.05 px (a blurred view at 0.4 px) is flagged, high enough that the
+  // spread of clean views (up to some 0.08 px) is not.
+  double outlier_floor_px = 0.15;
+  double outlier_factor = 3.0;  // ... nor below this multiple of the median view's RMS
   bool drop_outliers = false;
-  // k3 (the sixth-order radial term) is kept at 0: a board that does not reach the image corners
-  // cannot tell it from k1, k2, and a free k3 then bends the model where there are no corners.
-  bool fix_k3 = true;
+  // The distortion terms each device's fit may change (distortion_terms.hpp); k3 is held at 0 by
+  // default. In the stereo step a term is refined only when both devices fit it; a term only
+  // one of them fits keeps the value of that device's own solve there.
+  DistortionTerms camera_distortion;
+  DistortionTerms projector_distortion;
   // Step 3 with CALIB_USE_INTRINSIC_GUESS (true) or CALIB_FIX_INTRINSIC (false).
   bool refine_intrinsics_in_stereo = true;
   // A final stereo RMS above this is reported as a warning: the calibration is written, but
@@ -46,8 +56,23 @@ struct RigCalibrationTimings {  // milliseconds
   double stereo = 0.0;
 };
 
+// One device's own solve (step 1 or 2) with the chosen terms, and once more with k3 toggled.
+struct LensFitReport {
+  DistortionTerms terms;
+  double rms_px = 0.0;
+  // Standard deviation of fx, fy, cx, cy, k1, k2, p1, p2, k3 from the solve's Jacobian (0 for a
+  // term held), in pixels and the terms' units.
+  std::array<double, 9> sd{};
+  double rms_k3_held_px = 0.0;  // the own solve with k3 held at 0 ...
+  double rms_k3_free_px = 0.0;  // ... and with k3 free
+  double k3_free = 0.0;         // k3 when free, and its standard deviation
+  double k3_free_sd = 0.0;
+};
+
 struct RigCalibrationResult {
   io::RigCalibration rig;
+  LensFitReport camera_fit;  // of the final solve
+  LensFitReport projector_fit;
   io::RigCalibrationQuality quality;  // per view, in the order given; ready for calib.yaml
   std::vector<std::string> warnings;  // one line each, naming the view
   RigCalibrationTimings timings;      // of the final solve
