@@ -42,15 +42,7 @@ expect_error() {  # expect_error "pattern" command...: exit code 1, the last std
   [ "$code" -eq 1 ] || fail "'$*' exited $code, expected 1"
   echo "$err" | tail -n 1 | grep -q -- "$pattern" || fail "'$*' said '$err', expected '$pattern'"
 }
-expect_usage_error() {  # expect_usage_error "pattern" command...: exit code 2, one line naming it and --help
-  local pattern="$1"; shift
-  local err
-  err=$("$@" 2>&1 >/dev/null </dev/null)
-  local code=$?
-  [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2 (a usage error)"
-  [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
-  echo "$err" | grep -q -- "$pattern" && echo "$err" | grep -q -- "--help" || fail "'$*' said '$err', expected '$pattern' and a hint to --help"
-}
+source "$(dirname "$0")/usage_error.sh"  # expect_usage_error
 # The wrong setup is the same mistake as inverted poses: detected, never a silent calibration.
 expect_error "robot poses look inverted" calibrate "$views" --setup eye-in-hand --out "$work/x.yaml"
 [ -e "$work/x.yaml" ] && fail "a failed calibration wrote its file"

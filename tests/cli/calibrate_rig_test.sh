@@ -32,15 +32,7 @@ expect_error() {  # expect_error "pattern" command...
   [ "$code" -eq 1 ] || fail "'$*' exited $code, expected 1"
   echo "$err" | tail -n 1 | grep -q -- "$pattern" || fail "'$*' said '$err', expected '$pattern'"
 }
-expect_usage_error() {  # expect_usage_error "pattern" command...: exit code 2, one line naming it and --help
-  local pattern="$1"; shift
-  local err
-  err=$("$@" 2>&1 >/dev/null </dev/null)
-  local code=$?
-  [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2 (a usage error)"
-  [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
-  echo "$err" | grep -q -- "$pattern" && echo "$err" | grep -q -- "--help" || fail "'$*' said '$err', expected '$pattern' and a hint to --help"
-}
+source "$(dirname "$0")/usage_error.sh"  # expect_usage_error
 mkdir -p "$work/corrupt" && printf '{"format_version": 1, "source": ' > "$work/corrupt/capture.json"
 # Views listed one by one; a view without the board is named among the unusable ones.
 expect_error "1 usable view of 2, at least 8 needed; not usable: $data/no_board (board not found" \

@@ -52,15 +52,7 @@ expect_error() {  # expect_error "pattern" command...
   [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
   echo "$err" | grep -q -- "$pattern" || fail "'$*' said '$err', expected '$pattern'"
 }
-expect_usage_error() {  # expect_usage_error "pattern" command...: exit code 2, one line naming it and --help
-  local pattern="$1"; shift
-  local err
-  err=$("$@" 2>&1 >/dev/null </dev/null)
-  local code=$?
-  [ "$code" -eq 2 ] || fail "'$*' exited $code, expected 2 (a usage error)"
-  [ "$(echo "$err" | wc -l)" -eq 1 ] || fail "'$*' printed more than one line: $err"
-  echo "$err" | grep -q -- "$pattern" && echo "$err" | grep -q -- "--help" || fail "'$*' said '$err', expected '$pattern' and a hint to --help"
-}
+source "$(dirname "$0")/usage_error.sh"  # expect_usage_error
 printf 'ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\nproperty float y\nproperty float z\nend_header\n\x01\x02' > "$work/truncated.ply"
 printf 'not a cache' > "$work/bad.cache"
 printf 'detection:\n  voting: {reference_fractoin: 0.3}\n' > "$work/typo.yaml"
