@@ -11,7 +11,6 @@
 
 #include "binpick/cell/cell_service.hpp"
 #include "binpick/cell/systemd_notify.hpp"
-#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
 #include "binpick/robot/robot_server.hpp"
@@ -60,9 +59,7 @@ bool webSettingsDiffer(const std::optional<WebViewConfig>& a, const std::optiona
 // the cell's threads start (spdlog's sink lists are not guarded).
 std::shared_ptr<web::LogRing> recentLogLines(const CellConfig& config) {
   if (!config.web) return nullptr;
-  auto ring = std::make_shared<web::LogRing>();
-  core::addSinkToAllLoggers(ring);
-  return ring;
+  return web::attachLogRing();
 }
 
 CellConfig loadConfig(const DaemonOptions& options) {

@@ -8,7 +8,6 @@
 
 #include "binpick/cell/cell_config.hpp"
 #include "binpick/cell/cell_setup.hpp"
-#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/rig_calibration.hpp"
@@ -141,8 +140,7 @@ CellUnderTest::CellUnderTest(const simulation::Part& part, const EmptyingParams&
 
   std::shared_ptr<web::LogRing> log_ring;
   if (config.web) {  // before the cell's threads start: spdlog's sink lists are not guarded
-    log_ring = std::make_shared<web::LogRing>();
-    core::addSinkToAllLoggers(log_ring);
+    log_ring = web::attachLogRing();
   }
   auto camera = std::make_unique<VirtualCamera>();
   camera_ = camera.get();

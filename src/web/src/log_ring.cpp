@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "binpick/core/component_logger.hpp"
+
 namespace binpick::web {
 
 LogRing::LogRing(std::size_t capacity) : capacity_(std::max<std::size_t>(capacity, 1)) {}
@@ -22,6 +24,12 @@ std::vector<LogLine> LogRing::last(std::size_t count) const {
   const std::lock_guard<std::mutex> lock(mutex_);
   const std::size_t n = std::min(count, lines_.size());
   return std::vector<LogLine>(lines_.end() - static_cast<std::ptrdiff_t>(n), lines_.end());
+}
+
+std::shared_ptr<LogRing> attachLogRing(std::size_t capacity) {
+  auto ring = std::make_shared<LogRing>(capacity);
+  core::addSinkToAllLoggers(ring);
+  return ring;
 }
 
 }  // namespace binpick::web

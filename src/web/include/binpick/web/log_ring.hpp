@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstddef>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -40,5 +41,10 @@ class LogRing : public spdlog::sinks::base_sink<spdlog::details::null_mutex> {
   mutable std::mutex mutex_;
   std::deque<LogLine> lines_;
 };
+
+// A ring fed by every logger of the process, those created later included
+// (core::addSinkToAllLoggers). spdlog's sink lists are not guarded: call it before the threads
+// that log start.
+std::shared_ptr<LogRing> attachLogRing(std::size_t capacity = 200);
 
 }  // namespace binpick::web
