@@ -4,14 +4,21 @@
 //
 //   bench_estimation [--parts l_bracket,clamp] [--scenes 5] [--objects 20] [--seed 1]
 //                    [--method li_hashimoto|ppf1|ppf5] [--threads 0] [--max-pairs-per-feature 2000]
+//                    [--settings detection.yaml] [--explain 1]
+// --settings: the proposed method's detector settings from a detection.yaml (e.g. a deviation
+// switched off); --explain 1: one line per detection (error against the nearest part) and per
+// missed half-visible part (its nearest detection, and how it lies).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "bench_support.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/estimation/config.hpp"
+#include "binpick/estimation/config.hpp"
 #include "binpick/estimation/detector.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
@@ -29,6 +36,8 @@ struct Options {
   std::string method = "li_hashimoto";
   int threads = 0;
   uint32_t max_pairs_per_feature = estimation::ModelParams{}.max_pairs_per_feature;
+  std::string settings;  // a detection.yaml for li_hashimoto; empty: the defaults
+  bool explain = false;
 };
 
 using bench::splitCommas;
@@ -53,6 +62,10 @@ Options parse(int argc, char** argv) {
       o.threads = std::stoi(value);
     else if (flag == "--max-pairs-per-feature")
       o.max_pairs_per_feature = static_cast<uint32_t>(std::stoul(value));
+    else if (flag == "--settings")
+      o.settings = value;
+    else if (flag == "--explain")
+      o.explain = value != "0";
     else
       throw core::Error("bench_estimation: unknown option " + flag);
   }
@@ -68,6 +81,8 @@ estimation::DetectorParams detectorParams(const Options& o) {
     p = estimation::DetectorParams::drost(0.2f);
   else if (o.method != "li_hashimoto")
     throw core::Error("bench_estimation: --method must be li_hashimoto, ppf1 or ppf5");
+  else if (!o.settings.empty())
+    p = estimation::loadEstimationConfig(o.settings).detector;
   p.selection.max_objects = o.objects;
   p.threads = o.threads;
   return p;
@@ -100,6 +115,54 @@ std::size_t validPoints(const io::PointCloud& cloud) {
   return n;
 }
 
+// The nearest part to a pose and the error against it.
+struct Nearest {
+  int object = -1;
+  simulation::PoseError error{1e9, 0.0};
+};
+Nearest nearestObject(const Eigen::Isometry3f& pose, const simulation::PileScene& scene, const simulation::Part& part) {
+  Nearest nearest;
+  for (std::size_t j = 0; j < scene.objects.size(); ++j) {
+    const auto e = simulation::poseError(pose.cast<double>(), scene.objects[j].T_camera_object, part.symmetry);
+    if (e.translation < nearest.error.translation) nearest = {static_cast<int>(j), e};
+  }
+  return nearest;
+}
+
+// What each detection is and what each missed half-visible part lacked: the data behind a
+// recognition rate.
+void explain(const estimation::DetectionResult& result, const evaluation::Score& score,
+             const simulation::PileScene& scene, const simulation::Part& part) {
+  std::printf("  %zu candidates, %zu refined picks refused (seen through)\n", result.candidates,
+              result.seen_through_rejected);
+  for (std::size_t k = 0; k < result.detections.size(); ++k) {
+    const estimation::Detection& d = result.detections[k];
+    const Nearest n = nearestObject(d.T_camera_model, scene, part);
+    std::printf("    detection %2zu %-5s part %2d: %6.1f mm %5.1f deg; score %.2f coverage %.2f seen through %.2f\n", k,
+                score.matched_object[k] >= 0 ? "right" : "WRONG", n.object, n.error.translation * 1000.0,
+                n.error.rotation_deg, d.score, d.coverage, d.seen_through);
+  }
+  for (std::size_t j = 0; j < scene.objects.size(); ++j) {
+    const simulation::ObjectTruth& object = scene.objects[j];
+    if (object.visible_fraction < 0.5) continue;
+    if (std::find(score.matched_object.begin(), score.matched_object.end(), static_cast<int>(j)) !=
+        score.matched_object.end()) {
+      continue;
+    }
+    simulation::PoseError nearest{1e9, 0.0};
+    for (const estimation::Detection& d : result.detections) {
+      const auto e = simulation::poseError(d.T_camera_model.cast<double>(), object.T_camera_object, part.symmetry);
+      if (e.translation < nearest.translation) nearest = e;
+    }
+    // The angle between the model's z axis and the line of sight: near 0, the part shows its z face.
+    const Eigen::Vector3d towards_camera = -object.T_camera_object.translation().normalized();
+    const double z_angle =
+        std::acos(std::min(1.0, std::abs(object.T_camera_object.linear().col(2).dot(towards_camera)))) * 180.0 / M_PI;
+    std::printf("    missed part %2zu (%.0f%% visible, z axis %2.0f deg from the view): nearest detection %.1f mm %.1f deg\n",
+                j, 100.0 * object.visible_fraction, z_angle, nearest.translation * 1000.0, nearest.rotation_deg);
+  }
+}
+
 void benchPart(const std::string& part_name, const Options& o) {
   const simulation::Part part = simulation::makePart(part_name);
   estimation::ModelParams model_params;
@@ -118,6 +181,7 @@ void benchPart(const std::string& part_name, const Options& o) {
     const evaluation::Score score =
         evaluation::scoreDetections(result.detections, scene.objects, part.symmetry, {model.diameter / 10.0, 10.0});
     totals.add(result, score, validPoints(scene.cloud));
+    if (o.explain) explain(result, score, scene, part);
   }
   const double objects = static_cast<double>(o.scenes) * o.objects;
   const auto per_object = [&](double ms) { return ms / objects; };

@@ -60,7 +60,8 @@ const char* paperBenchUsage() {
          "  --threads N           0: all hardware threads (default)\n"
          "  --scaling-part NAME   the part of the scaling runs (default l_bracket)\n"
          "  --scaling-scenes N    scenes per scaling setting (default 2)\n"
-         "  --out DIR             results.md, outcomes.csv and the PNG plots (default docs/benchmark)\n";
+         "  --out DIR             results.md, outcomes.csv and the PNG plots (default docs/benchmark)\n"
+         "  --settings FILE       binpick's detector settings, a detection.yaml (default: the defaults)\n";
 }
 
 bool PaperBenchOptions::has(const std::string& section) const { return contains(sections, section); }
@@ -107,6 +108,8 @@ PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
         o.scaling_scenes = positive(flag, value);
       else if (flag == "--out")
         o.out = value;
+      else if (flag == "--settings")
+        o.settings = value;
       else
         throw core::Error("unknown option " + flag);
     } catch (const std::logic_error&) {  // std::stoi and friends

@@ -101,7 +101,7 @@ void runScene(const std::vector<std::unique_ptr<PoseMethod>>& methods, const Ben
 void runPart(const PaperBenchOptions& o, const std::string& part_name, std::ofstream& csv, ExperimentData& data) {
   const simulation::Part part = simulation::makePart(part_name);
   const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, {});
-  const MethodSetup setup{&model, o.objects, o.threads};
+  const MethodSetup setup{&model, o.objects, o.threads, o.settings};
   std::vector<std::unique_ptr<PoseMethod>> methods;
   if (o.has("paper")) {
     for (const std::string& name : o.methods) {

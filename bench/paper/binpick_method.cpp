@@ -1,6 +1,7 @@
 #include "binpick_method.hpp"
 
 #include "binpick/core/error.hpp"
+#include "binpick/estimation/config.hpp"
 
 namespace binpick::bench {
 
@@ -26,7 +27,12 @@ bool isBinpickMethod(const std::string& name) { return name == "binpick" || name
 std::unique_ptr<BinpickMethod> makeBinpickMethod(const std::string& name, const MethodSetup& setup) {
   // Table I: every method subsamples at tau_d = 0.04 (the model's own step). PPF1 takes every
   // scene point as a reference, PPF5 every fifth; both pair each with all scene points.
-  if (name == "binpick") return std::make_unique<BinpickMethod>(name, setup, estimation::DetectorParams{});
+  if (name == "binpick") {
+    const estimation::DetectorParams params = setup.binpick_settings.empty()
+                                                  ? estimation::DetectorParams{}
+                                                  : estimation::loadEstimationConfig(setup.binpick_settings).detector;
+    return std::make_unique<BinpickMethod>(name, setup, params);
+  }
   if (name == "ppf1") return std::make_unique<BinpickMethod>(name, setup, estimation::DetectorParams::drost(1.0f));
   if (name == "ppf5") return std::make_unique<BinpickMethod>(name, setup, estimation::DetectorParams::drost(0.2f));
   throw core::Error("bench: '" + name + "' is not one of binpick's methods (binpick, ppf1, ppf5)");

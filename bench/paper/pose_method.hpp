@@ -19,6 +19,7 @@ struct MethodSetup {
   const estimation::PreparedModel* model = nullptr;
   int max_objects = 20;  // detections wanted per scene
   int threads = 0;       // 0: all hardware threads (where the library lets us choose)
+  std::string binpick_settings;  // a detection.yaml for the `binpick` method; empty: the defaults
 };
 
 // One scene: an organized cloud in the camera frame (camera at the origin looking along +z,

@@ -62,6 +62,8 @@ int run(const Arguments& args) {
   const estimation::Detector detector(modelFrom(args, config.model), config.detector);
   const io::PointCloud scene = sceneFrom(args);
   const estimation::DetectionResult result = detector.detect(scene);
+  const std::string warning = estimation::sceneWarning(result);
+  if (!warning.empty()) std::cerr << "binpick detect: warning: " << warning << "\n";
   writeOutput(args, estimation::toJson(result).dump(2));
   return 0;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <random>
 #include <ostream>
 #include <thread>
 #include <tuple>
@@ -200,6 +201,63 @@ TEST(DetectorCrop, ACropGivenPerCallReplacesTheParamsCrop) {
   const DetectionResult none = uncropped.detect(pile.scene.cloud, beside);
   EXPECT_TRUE(none.detections.empty());
   EXPECT_EQ(none.scene_points, 0u);
+}
+
+// Every `factor`-th pixel of every `factor`-th row: an organized cloud of a coarser camera.
+io::PointCloud decimated(const io::PointCloud& cloud, int factor) {
+  io::PointCloud coarse;
+  coarse.width = cloud.width / factor;
+  coarse.height = cloud.height / factor;
+  for (int v = 0; v < coarse.height; ++v) {
+    for (int u = 0; u < coarse.width; ++u) {
+      coarse.points.push_back(cloud.points[static_cast<std::size_t>(v * factor) * cloud.width + u * factor]);
+    }
+  }
+  return coarse;
+}
+
+// Pixels 4 apart are about 2 mm apart at the bin, wider than the l_bracket's normal radius (half a
+// step, 1.9 mm): each point would be alone in its radius. The support grows to the neighbouring
+// pixels instead, organized or not.
+TEST(DetectorSparseCloud, PointsWiderApartThanTheNormalRadiusStillGetNormalsAndPartsAreFound) {
+  const std::string part = "l_bracket";
+  const PreparedModel& model = cachedModel(part);
+  const Pile& pile = cachedPile(part, 10, 11);
+  const io::PointCloud coarse = decimated(pile.scene.cloud, 4);
+  io::PointCloud unorganized;
+  for (const Eigen::Vector3f& p : coarse.points) {
+    if (p.allFinite()) unorganized.points.push_back(p);
+  }
+  const Detector detector(model, paramsFor(pile));
+  for (const io::PointCloud* cloud : std::vector<const io::PointCloud*>{&coarse, &unorganized}) {
+    SCOPED_TRACE(cloud->isOrganized() ? "organized" : "unorganized");
+    const DetectionResult result = detector.detect(*cloud);
+    const evaluation::Score s = score(part, model, pile, result);
+    SCOPED_TRACE(describe(s, result));
+    // Points at the parts' edges still lack neighbours (about a fifth); with the model's radius
+    // alone every point would.
+    EXPECT_LT(result.scene_points_without_normal * 3, result.scene_points);
+    EXPECT_EQ(sceneWarning(result), "");
+    EXPECT_GE(s.found, s.findable / 3 + 1);
+  }
+}
+
+// A cloud of isolated point pairs (1 mm apart, the pairs 3 cm apart) cannot give normals: the
+// detector finds nothing and says why.
+TEST(DetectorSparseCloud, IsolatedPointsAreDroppedAndTheWarningSaysWhy) {
+  const PreparedModel& model = cachedModel("l_bracket");
+  io::PointCloud scattered;
+  for (int k = 0; k < 150; ++k) {
+    const Eigen::Vector3f p(0.03f * static_cast<float>(k % 15), 0.03f * static_cast<float>(k / 15), 0.9f);
+    scattered.points.push_back(p);
+    scattered.points.push_back(p + Eigen::Vector3f(0.001f, 0.0f, 0.0f));
+  }
+  const DetectionResult result = Detector(model, DetectorParams{}).detect(scattered);
+  EXPECT_TRUE(result.detections.empty());
+  EXPECT_EQ(result.scene_points, 0u);
+  EXPECT_GE(result.scene_points_without_normal, 150u);
+  const std::string warning = sceneWarning(result);
+  EXPECT_NE(warning.find("too few neighbours for a normal"), std::string::npos) << warning;
 }
 
 // A deadline passed: detection stops with core::Cancelled, and each stage checks the flag on its

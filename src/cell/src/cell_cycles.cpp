@@ -197,6 +197,10 @@ void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> s
                  cycle, robot::statusName(outcome.status), outcome.picks.size(), outcome.T_base_objects.size(), t.total,
                  t.capture, t.reconstruct, t.detect, outcome.detail.empty() ? "" : ": " + outcome.detail);
   for (const std::string& problem : outcome.undeliverable) logger()->error("cycle {}: {}", cycle, problem);
+  if (processed) {
+    const std::string scene_warning = estimation::sceneWarning(outcome.detection);
+    if (!scene_warning.empty()) logger()->warn("cycle {}: {}", cycle, scene_warning);
+  }
   if (s.saver && processed && !stopping) {  // a cycle cut short by the stop is not worth the wait
     s.saver->offer(SavedCycle{cycle, std::move(setup), recipe_index, std::move(capture), std::move(outcome)});
   }

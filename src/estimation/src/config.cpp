@@ -53,6 +53,7 @@ void readDetector(Section s, DetectorParams& p) {
   readCrop(scene.child("crop"), p.scene);
   scene.read("min_normal_neighbours", p.scene.min_normal_neighbours);
   scene.read("max_window_half_size", p.scene.max_window_half_size);
+  scene.read("line_of_sight_cell_ratio", p.scene.line_of_sight_cell_ratio);
   scene.finish();
   Section voting = s.child("voting");
   voting.read("reference_fraction", p.voting.reference_fraction);
@@ -64,6 +65,11 @@ void readDetector(Section s, DetectorParams& p) {
   Section verification = s.child("verification");
   verification.read("voxel_size_ratio", p.verification.voxel_size_ratio);
   verification.read("max_normal_angle_deg", p.verification.max_normal_angle_deg);
+  verification.read("free_space_tolerance_ratio", p.verification.free_space_tolerance_ratio);
+  verification.read("free_space_penalty", p.verification.free_space_penalty);
+  verification.read("refined_tolerance_ratio", p.verification.refined_tolerance_ratio);
+  verification.read("max_refined_seen_through", p.verification.max_refined_seen_through);
+  verification.read("compare_turned", p.verification.compare_turned);
   verification.finish();
   Section selection = s.child("selection");
   selection.read("max_objects", p.selection.max_objects);

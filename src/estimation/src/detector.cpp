@@ -1,9 +1,12 @@
 #include "binpick/estimation/detector.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
+#include "binpick/core/thread_count.hpp"
+#include "near_symmetries.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -16,8 +19,9 @@ bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector
   return false;
 }
 
-Detection refined(const PoseRefiner& refiner, const PreparedModel& model, const Eigen::Isometry3f& pose) {
-  const IcpResult icp = refiner.refine(model, pose);
+Detection refined(const PoseRefiner& refiner, const PreparedModel& model, const Eigen::Isometry3f& pose,
+                  int max_iterations) {
+  const IcpResult icp = refiner.refine(model, pose, max_iterations);
   Detection d;
   d.T_camera_model = icp.T_camera_model;
   d.coverage = icp.coverage;
@@ -26,12 +30,49 @@ Detection refined(const PoseRefiner& refiner, const PreparedModel& model, const 
   return d;
 }
 
+// A pick and its turned twins (near_symmetries.hpp) explain nearly the same scene points when the
+// part shows a single face: each twin that fits a fair share of what the pick fits is refined too,
+// and the pose that explains most, less what the camera saw through, is kept. A twin must win by a
+// margin, so that noise does not swap poses that are equally good.
+Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, Detection pick,
+                         const std::vector<Eigen::Isometry3f>& near_symmetries, float tolerance, int max_iterations,
+                         int threads) {
+  const PoseFit fit = refiner.assess(model, pick.T_camera_model, tolerance);
+  struct Twin {
+    bool refined = false;
+    Detection pose;
+    PoseFit fit;
+  };
+  std::vector<Twin> twins(near_symmetries.size());
+  // The twins are independent: refined side by side (refine() is const and thread-safe), with a
+  // third of the iterations: registered onto the model, each starts within millimetres of its fit.
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (std::size_t t = 0; t < near_symmetries.size(); ++t) {
+    const Eigen::Isometry3f turned = pick.T_camera_model * near_symmetries[t];
+    // Only a twin that is nearly as consistent before ICP can win after it.
+    if (refiner.assess(model, turned, tolerance).consistency() * 5 < fit.consistency() * 4) continue;
+    twins[t].pose = refined(refiner, model, turned, max_iterations / 3);
+    twins[t].fit = refiner.assess(model, twins[t].pose.T_camera_model, tolerance);
+    twins[t].refined = true;
+  }
+  PoseFit best = fit;
+  const int margin = std::max(3, fit.visible / 50);
+  for (const Twin& twin : twins) {
+    if (twin.refined && twin.fit.consistency() > best.consistency() + margin) {
+      best = twin.fit;
+      pick = twin.pose;
+    }
+  }
+  pick.seen_through = best.seenThroughShare();
+  return pick;
+}
+
 // Sections III-C and III-D: verification, then Algorithm 1 picks poses one by one; each pick is
 // refined by ICP before its scene points stop existing, so that a coarse candidate does not leave
 // half of its object behind for a repeat detection.
 void selectVerified(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock,
-                    const core::CancelFlag* cancel) {
+                    const std::vector<Eigen::Isometry3f>& near_symmetries, const std::vector<PoseCandidate>& candidates,
+                    DetectionResult& result, core::Stopwatch& clock, const core::CancelFlag* cancel) {
   const SceneVoxelGrid grid(scene.points, p.verification.voxel_size_ratio * model.step);
   const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification, cancel);
   result.timing_ms.verification = clock.lapMs();
@@ -41,6 +82,8 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   const float removal_radius = 1.5f * grid.voxelSize();
   const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
+  const float refined_tolerance = p.verification.refined_tolerance_ratio * model.step;
+  const int threads = core::resolveThreadCount(p.threads);
   double icp_ms = 0.0;
   while (static_cast<int>(result.detections.size()) < p.selection.max_objects) {
     const auto pick = selection.next();
@@ -49,15 +92,25 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
     // parts have centres that close): skip it before paying for ICP. Repeats do not remove scene
     // points, so a cloud that yields many of them (e.g. many candidates on one flat face) would
     // otherwise spend most of its time refining them.
-    if (repeatsAccepted(result.detections, verified[pick->candidate].T_camera_model * model.centre, model,
-                        min_distance)) {
+    const Eigen::Isometry3f& candidate = verified[pick->candidate].T_camera_model;
+    if (repeatsAccepted(result.detections, candidate * model.centre, model, min_distance)) {
       continue;
     }
     core::throwIfCancelled(cancel, "during selection");
     const core::Stopwatch icp_clock;
-    Detection d = refined(refiner, model, verified[pick->candidate].T_camera_model);
+    Detection d = refined(refiner, model, candidate, p.icp.max_iterations);
+    if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) {
+      icp_ms += icp_clock.elapsedMs();
+      continue;
+    }
+    // Scene-consistent verification again at the refined pose, tighter, and against the pick
+    // turned over: ICP may have pulled a candidate onto the one face of a part turned over.
+    d = mostConsistent(refiner, model, d, near_symmetries, refined_tolerance, p.icp.max_iterations, threads);
     icp_ms += icp_clock.elapsedMs();
-    if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
+    if (d.seen_through > p.verification.max_refined_seen_through) {
+      ++result.seen_through_rejected;
+      continue;
+    }
     d.score = static_cast<float>(pick->score) / static_cast<float>(model.size());
     d.votes = verified[pick->candidate].votes;
     // Algorithm 1 lines 2-6, at the refined pose and for every scene point within the fit
@@ -83,7 +136,7 @@ void selectClustered(const PreparedModel& model, const PreparedScene& scene, con
   for (const PoseCluster& cluster : clusters) {
     if (static_cast<int>(result.detections.size()) >= p.selection.max_objects) break;
     core::throwIfCancelled(cancel, "during selection");
-    Detection d = refined(refiner, model, cluster.T_camera_model);
+    Detection d = refined(refiner, model, cluster.T_camera_model, p.icp.max_iterations);
     if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
     d.votes = cluster.votes;
     d.score = static_cast<float>(cluster.votes) / static_cast<float>(clusters.front().votes);
@@ -93,6 +146,14 @@ void selectClustered(const PreparedModel& model, const PreparedScene& scene, con
 }
 
 }  // namespace
+
+std::string sceneWarning(const DetectionResult& result) {
+  const std::size_t subsampled = result.scene_points + result.scene_points_without_normal;
+  if (result.scene_points_without_normal * 2 <= subsampled) return {};
+  return std::to_string(result.scene_points_without_normal) + " of " + std::to_string(subsampled) +
+         " subsampled scene points had too few neighbours for a normal and were dropped (is the cloud sparse, "
+         "or mostly isolated points?)";
+}
 
 Method methodFromName(const std::string& name) {
   if (name == "li_hashimoto") return Method::LiHashimoto;
@@ -126,6 +187,7 @@ Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::mov
   params_.validate();
   params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.threads;
   if (model_.size() == 0) throw core::Error("detector: the model has no points");
+  if (params_.verification.compare_turned) near_symmetries_ = nearSymmetries(model_);
 }
 
 DetectionResult Detector::detect(const io::PointCloud& scene_cloud) const {
@@ -142,6 +204,7 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::o
   scene_params.crop = crop;
   const PreparedScene scene = prepareScene(scene_cloud, model_, scene_params);
   result.scene_points = scene.size();
+  result.scene_points_without_normal = scene.without_normal;
   result.timing_ms.prepare_scene = clock.lapMs();
   core::throwIfCancelled(cancel, "after scene preparation");
 
@@ -150,7 +213,7 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::o
   result.timing_ms.voting = clock.lapMs();
   if (!candidates.empty()) {
     if (params_.method == Method::LiHashimoto) {
-      selectVerified(model_, scene, params_, candidates, result, clock, cancel);
+      selectVerified(model_, scene, params_, near_symmetries_, candidates, result, clock, cancel);
     } else {
       selectClustered(model_, scene, params_, candidates, result, clock, cancel);
     }

@@ -3,7 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <limits>
 
 #include "binpick/core/error.hpp"
 #include "kdtree.hpp"
@@ -68,24 +68,40 @@ void IcpParams::validate() const {
 
 std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen::Isometry3f& pose) {
   // Back faces first, then a z-buffer over viewing directions with cells about one step wide at
-  // the part's distance: a point more than a step behind the nearest in its cell is hidden.
+  // the part's distance: a point more than a step behind the nearest in its cell is hidden. The
+  // part spans a few dozen cells each way, so the buffer is a small dense grid over its bounds.
   const float depth = std::max((pose * model.centre).z(), model.step);
   const float cell = model.step / depth;
-  std::unordered_map<int64_t, float> nearest;
-  std::vector<std::pair<int64_t, uint32_t>> facing;
+  struct Facing {
+    uint32_t index;
+    float z;
+    int64_t u, v;
+  };
+  std::vector<Facing> facing;
+  facing.reserve(model.size());
+  int64_t u_low = std::numeric_limits<int64_t>::max(), v_low = u_low, u_high = std::numeric_limits<int64_t>::min(),
+          v_high = u_high;
   for (uint32_t k = 0; k < model.size(); ++k) {
     const Eigen::Vector3f p = pose * model.points[k];
     if (!(p.z() > 0.0f) || (pose.linear() * model.normals[k]).dot(p) >= 0.0f) continue;
-    const int64_t u = static_cast<int64_t>(std::floor(p.x() / p.z() / cell));
-    const int64_t v = static_cast<int64_t>(std::floor(p.y() / p.z() / cell));
-    const int64_t key = (u << 32) ^ (v & 0xffffffff);
-    auto [it, inserted] = nearest.try_emplace(key, p.z());
-    if (!inserted) it->second = std::min(it->second, p.z());
-    facing.emplace_back(key, k);
+    const auto u = static_cast<int64_t>(std::floor(p.x() / p.z() / cell));
+    const auto v = static_cast<int64_t>(std::floor(p.y() / p.z() / cell));
+    facing.push_back({k, p.z(), u, v});
+    u_low = std::min(u_low, u), u_high = std::max(u_high, u);
+    v_low = std::min(v_low, v), v_high = std::max(v_high, v);
   }
   std::vector<uint32_t> visible;
-  for (const auto& [key, k] : facing) {
-    if ((pose * model.points[k]).z() <= nearest[key] + model.step) visible.push_back(k);
+  if (facing.empty()) return visible;
+  // A part close to the camera plane could span many cells: the grid is bounded, the rest wraps.
+  const int64_t width = std::min<int64_t>(u_high - u_low + 1, 4096), height = std::min<int64_t>(v_high - v_low + 1, 4096);
+  const auto at = [&](const Facing& f) {
+    return static_cast<std::size_t>(((f.v - v_low) % height) * width + (f.u - u_low) % width);
+  };
+  std::vector<float> nearest(static_cast<std::size_t>(width * height), std::numeric_limits<float>::infinity());
+  for (const Facing& f : facing) nearest[at(f)] = std::min(nearest[at(f)], f.z);
+  visible.reserve(facing.size());
+  for (const Facing& f : facing) {
+    if (f.z <= nearest[at(f)] + model.step) visible.push_back(f.index);
   }
   return visible;
 }
@@ -118,13 +134,17 @@ std::vector<uint32_t> PoseRefiner::scenePointsNear(const PreparedModel& model, c
 }
 
 IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3f& initial) const {
+  return refine(model, initial, params_.max_iterations);
+}
+
+IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3f& initial, int max_iterations) const {
   IcpResult result;
   result.T_camera_model = initial;
   if (scene_.points.empty()) return result;
   std::vector<uint32_t> sources;
   std::vector<Correspondence> pairs;
   const float huber = params_.huber_ratio * step_;
-  for (int it = 0; it < params_.max_iterations; ++it) {
+  for (int it = 0; it < max_iterations; ++it) {
     const Eigen::Isometry3f& pose = result.T_camera_model;
     if (params_.visible_points_only) {
       sources = visibleModelPoints(model, pose);
@@ -133,7 +153,7 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
       for (uint32_t k = 0; k < model.size(); ++k) sources[k] = k;
     }
     const float gate =
-        (it < params_.max_iterations / 3 ? params_.initial_max_distance_ratio : params_.final_max_distance_ratio) *
+        (it < max_iterations / 3 ? params_.initial_max_distance_ratio : params_.final_max_distance_ratio) *
         step_;
     pairs.clear();
     for (uint32_t k : sources) {
@@ -160,22 +180,35 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
   result.T_camera_model.linear() = q.normalized().toRotationMatrix();
 
   // Final fit: residual and how much of what the camera should see of the part is there.
-  const std::vector<uint32_t> visible = visibleModelPoints(model, result.T_camera_model);
-  const float fit = params_.fit_distance_ratio * step_;
+  const PoseFit fit = assess(model, result.T_camera_model, std::numeric_limits<float>::infinity());
+  result.visible_points = fit.visible;
+  result.coverage = fit.coverage();
+  result.rmse = fit.rmse;
+  return result;
+}
+
+PoseFit PoseRefiner::assess(const PreparedModel& model, const Eigen::Isometry3f& pose,
+                            float see_through_tolerance) const {
+  const std::vector<uint32_t> visible = visibleModelPoints(model, pose);
+  const float fit_distance = params_.fit_distance_ratio * step_;
+  const bool check_free_space = std::isfinite(see_through_tolerance) && !scene_.line_of_sight.empty();
+  PoseFit fit;
+  fit.visible = static_cast<int>(visible.size());
   double squared = 0.0;
-  int fitted = 0;
   for (uint32_t k : visible) {
-    const Eigen::Vector3f p = result.T_camera_model * model.points[k];
+    const Eigen::Vector3f p = pose * model.points[k];
+    if (check_free_space &&
+        scene_.line_of_sight.seenThrough(p, pose.linear() * model.normals[k], see_through_tolerance)) {
+      ++fit.seen_through;
+    }
     const auto [s, distance_sq] = index_->tree.nearest(p);
-    if (s < 0 || distance_sq > fit * fit) continue;
+    if (s < 0 || distance_sq > fit_distance * fit_distance) continue;
     const float r = (p - scene_.points[s]).dot(scene_.normals[s]);
     squared += static_cast<double>(r) * r;
-    ++fitted;
+    ++fit.fitted;
   }
-  result.visible_points = static_cast<int>(visible.size());
-  result.coverage = visible.empty() ? 0.0f : static_cast<float>(fitted) / static_cast<float>(visible.size());
-  result.rmse = fitted == 0 ? 0.0f : static_cast<float>(std::sqrt(squared / fitted));
-  return result;
+  fit.rmse = fit.fitted == 0 ? 0.0f : static_cast<float>(std::sqrt(squared / fit.fitted));
+  return fit;
 }
 
 }  // namespace binpick::estimation

@@ -26,6 +26,14 @@ class KdTree {
     return {static_cast<int>(index), distance_sq};
   }
 
+  // Squared distance from the point at `index` to its nearest other point; inf when it has none.
+  float nearestOtherSq(uint32_t index) const {
+    uint32_t found[2] = {0, 0};
+    float distance_sq[2] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+    const std::size_t n = index_.knnSearch(adaptor_.points[index].data(), 2, found, distance_sq);
+    return n == 2 ? distance_sq[1] : std::numeric_limits<float>::infinity();
+  }
+
   // Indices of all points within `radius` (unsorted), written to `out`.
   void withinRadius(const Eigen::Vector3f& query, float radius, std::vector<uint32_t>& out) const {
     matches_buffer().clear();

@@ -10,6 +10,7 @@ nlohmann::json toJson(const DetectionResult& result) {
                           {"score", d.score},
                           {"coverage", d.coverage},
                           {"icp_rmse", d.icp_rmse},
+                          {"seen_through", d.seen_through},
                           {"votes", d.votes}});
   }
   const StageTimings& t = result.timing_ms;
@@ -23,7 +24,11 @@ nlohmann::json toJson(const DetectionResult& result) {
         {"icp", t.icp},
         {"total", t.total}}},
       {"counts",
-       {{"scene_points", result.scene_points}, {"candidates", result.candidates}, {"refreshes", result.refreshes}}}};
+       {{"scene_points", result.scene_points},
+        {"scene_points_without_normal", result.scene_points_without_normal},
+        {"candidates", result.candidates},
+        {"refreshes", result.refreshes},
+        {"seen_through_rejected", result.seen_through_rejected}}}};
 }
 
 nlohmann::json poseJson(const Eigen::Isometry3d& pose) {

@@ -12,12 +12,21 @@
 namespace binpick::estimation {
 namespace {
 
+// The normal's support reaches at least this many point spacings (a 3x3 pixel window), but never
+// past this many subsampling steps: a normal over a wider patch no longer describes the point.
+constexpr float kMinSupportInSpacings = 1.5f;
+constexpr float kMaxSupportInSteps = 2.0f;
+
+float normalSupport(float radius, float spacing, float step) {
+  return std::max(radius, std::min(kMinSupportInSpacings * spacing, kMaxSupportInSteps * step));
+}
+
 // Full-resolution neighbours of a pixel found through the image grid: an organized cloud gives
 // them without a search structure.
 class OrganizedNeighbours {
  public:
-  OrganizedNeighbours(const io::PointCloud& cloud, const SceneParams& params)
-      : cloud_(cloud), max_half_(params.max_window_half_size) {}
+  OrganizedNeighbours(const io::PointCloud& cloud, const SceneParams& params, float step)
+      : cloud_(cloud), max_half_(params.max_window_half_size), step_(step) {}
 
   PlaneFit fit(uint32_t index, float radius) const {
     PlaneFit fit;
@@ -26,8 +35,11 @@ class OrganizedNeighbours {
     const Eigen::Vector3f& centre = cloud_.points[index];
     const float pitch = pixelPitch(u0, v0);
     if (!(pitch > 0.0f)) return fit;
-    const int half = std::clamp(static_cast<int>(std::ceil(radius / pitch)), 1, max_half_);
-    const float radius_sq = radius * radius;
+    // A sparse cloud (pixels wider apart than the radius) would leave the point alone in its
+    // radius: the support grows to reach its neighbouring pixels.
+    const float support = normalSupport(radius, pitch, step_);
+    const int half = std::clamp(static_cast<int>(std::ceil(support / pitch)), 1, max_half_);
+    const float radius_sq = support * support;
     for (int v = std::max(0, v0 - half); v <= std::min(cloud_.height - 1, v0 + half); ++v) {
       const Eigen::Vector3f* row = &cloud_.points[static_cast<std::size_t>(v) * cloud_.width];
       for (int u = std::max(0, u0 - half); u <= std::min(cloud_.width - 1, u0 + half); ++u) {
@@ -58,7 +70,24 @@ class OrganizedNeighbours {
 
   const io::PointCloud& cloud_;
   int max_half_;
+  float step_;
 };
+
+// The typical distance between neighbouring points of an unorganized cloud: the median over a
+// sample of kept points of the distance to their nearest other point.
+float typicalSpacing(const KdTree& tree, const std::vector<uint32_t>& kept) {
+  constexpr std::size_t kSamples = 256;
+  std::vector<float> spacing;
+  const std::size_t stride = std::max<std::size_t>(1, kept.size() / kSamples);
+  for (std::size_t k = 0; k < kept.size(); k += stride) {
+    const float d = tree.nearestOtherSq(kept[k]);
+    if (std::isfinite(d)) spacing.push_back(std::sqrt(d));
+  }
+  if (spacing.empty()) return 0.0f;
+  const auto middle = spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2);
+  std::nth_element(spacing.begin(), middle, spacing.end());
+  return *middle;
+}
 
 std::vector<uint32_t> validIndices(const io::PointCloud& cloud, const SceneParams& params) {
   std::vector<uint32_t> valid;
@@ -70,6 +99,15 @@ std::vector<uint32_t> validIndices(const io::PointCloud& cloud, const SceneParam
     valid.push_back(i);
   }
   return valid;
+}
+
+// The depth a step is measured at: the median depth of the scene's points.
+float medianDepth(const std::vector<Eigen::Vector3f>& points, const std::vector<uint32_t>& kept) {
+  std::vector<float> depths(kept.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) depths[k] = points[kept[k]].z();
+  const auto middle = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
+  std::nth_element(depths.begin(), middle, depths.end());
+  return *middle;
 }
 
 Eigen::Vector3f towardsCamera(const Eigen::Vector3f& n, const Eigen::Vector3f& p) {
@@ -84,6 +122,9 @@ bool CropBox::contains(const Eigen::Vector3f& p_camera) const {
 }
 
 void SceneParams::validate() const {
+  if (!(line_of_sight_cell_ratio >= 0.0f && line_of_sight_cell_ratio <= 10.0f)) {
+    throw core::Error("scene params: line_of_sight_cell_ratio must be in [0, 10]");
+  }
   if (min_normal_neighbours < 3) throw core::Error("scene params: min_normal_neighbours must be at least 3");
   if (max_window_half_size < 1 || max_window_half_size > 50) {
     throw core::Error("scene params: max_window_half_size must be in [1, 50]");
@@ -106,6 +147,10 @@ PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& mod
   std::vector<Eigen::Vector3f> valid_points(valid.size());
   for (std::size_t k = 0; k < valid.size(); ++k) valid_points[k] = cloud.points[valid[k]];
   const std::vector<uint32_t> kept = voxelSubsample(valid_points, nullptr, model.step, 0.0f);
+  const float depth = medianDepth(valid_points, kept);
+  if (params.line_of_sight_cell_ratio > 0.0f && depth > 0.0f) {
+    scene.line_of_sight = LineOfSightMap(cloud.points, params.line_of_sight_cell_ratio * model.step, depth);
+  }
 
   // Section III-A: normals from the full-resolution neighbours of each kept point.
   const float radius = model.params.normal_radius_ratio * model.step;
@@ -113,24 +158,28 @@ PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& mod
   const auto min_neighbours = static_cast<std::size_t>(params.min_normal_neighbours);
   const int threads = core::resolveThreadCount(params.threads);
   if (cloud.isOrganized()) {
-    const OrganizedNeighbours neighbours(cloud, params);
+    const OrganizedNeighbours neighbours(cloud, params, model.step);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < kept.size(); ++k) {
       normals[k] = neighbours.fit(valid[kept[k]], radius).normal(min_neighbours);
     }
   } else {
     const KdTree tree(valid_points);
+    const float support = normalSupport(radius, typicalSpacing(tree, kept), model.step);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < kept.size(); ++k) {
       std::vector<uint32_t> found;
-      tree.withinRadius(valid_points[kept[k]], radius, found);
+      tree.withinRadius(valid_points[kept[k]], support, found);
       PlaneFit fit;
       for (uint32_t j : found) fit.add(valid_points[j]);
       normals[k] = fit.normal(min_neighbours);
     }
   }
   for (std::size_t k = 0; k < kept.size(); ++k) {
-    if (!normals[k]) continue;
+    if (!normals[k]) {
+      ++scene.without_normal;
+      continue;
+    }
     const Eigen::Vector3f& p = valid_points[kept[k]];
     scene.points.push_back(p);
     scene.normals.push_back(towardsCamera(*normals[k], p));

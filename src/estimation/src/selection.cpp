@@ -30,7 +30,11 @@ std::optional<MultipleSelection::Pick> MultipleSelection::next() {
             [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
   std::size_t best = 0;
   for (std::size_t i = 0; i < ranked_.size(); ++i) {
-    ranked_[i].first = existingCount(candidates_[ranked_[i].second].support, exist_);
+    const VerifiedCandidate& candidate = candidates_[ranked_[i].second];
+    // Eq. 4 less the candidate's free-space penalty, which no removal changes: the last known
+    // score stays an upper bound.
+    const uint32_t existing = existingCount(candidate.support, exist_);
+    ranked_[i].first = existing - std::min(existing, candidate.penalty);
     ++refreshes_;
     const auto& b = ranked_[best];
     if (ranked_[i].first > b.first || (ranked_[i].first == b.first && ranked_[i].second < b.second)) best = i;

@@ -1,5 +1,6 @@
 #include "binpick/estimation/verification.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "binpick/core/error.hpp"
@@ -13,6 +14,18 @@ void VerificationParams::validate() const {
   }
   if (!(max_normal_angle_deg > 0.0f && max_normal_angle_deg <= 180.0f)) {
     throw core::Error("verification params: max_normal_angle_deg must be in (0, 180]");
+  }
+  if (!(free_space_tolerance_ratio > 0.0f && free_space_tolerance_ratio <= 100.0f)) {
+    throw core::Error("verification params: free_space_tolerance_ratio must be in (0, 100]");
+  }
+  if (!(free_space_penalty >= 0.0f && free_space_penalty <= 100.0f)) {
+    throw core::Error("verification params: free_space_penalty must be in [0, 100]");
+  }
+  if (!(refined_tolerance_ratio > 0.0f && refined_tolerance_ratio <= 100.0f)) {
+    throw core::Error("verification params: refined_tolerance_ratio must be in (0, 100]");
+  }
+  if (!(max_refined_seen_through >= 0.0f && max_refined_seen_through <= 1.0f)) {
+    throw core::Error("verification params: max_refined_seen_through must be in [0, 1]");
   }
   if (threads < 0) throw core::Error("verification params: threads must be >= 0");
 }
@@ -33,6 +46,21 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
   return support;
 }
 
+uint32_t seenThroughCount(const PreparedModel& model, const Eigen::Isometry3f& pose, const LineOfSightMap& map,
+                          float tolerance, const std::vector<uint32_t>* indices) {
+  if (map.empty()) return 0;
+  const auto seen_through = [&](std::size_t k) {
+    return map.seenThrough(pose * model.points[k], pose.linear() * model.normals[k], tolerance) ? 1u : 0u;
+  };
+  uint32_t count = 0;
+  if (indices) {
+    for (uint32_t k : *indices) count += seen_through(k);
+  } else {
+    for (std::size_t k = 0; k < model.size(); ++k) count += seen_through(k);
+  }
+  return count;
+}
+
 std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
                                       const PreparedScene& scene, const SceneVoxelGrid& grid,
                                       const VerificationParams& params, const core::CancelFlag* cancel) {
@@ -40,6 +68,8 @@ std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidat
   const float min_cosine = params.max_normal_angle_deg >= 180.0f
                                ? -2.0f
                                : std::cos(params.max_normal_angle_deg * static_cast<float>(M_PI / 180.0));
+  const bool check_free_space = params.free_space_penalty > 0.0f && !scene.line_of_sight.empty();
+  const float tolerance = params.free_space_tolerance_ratio * model.step;
   std::vector<VerifiedCandidate> verified(candidates.size());
   const int threads = core::resolveThreadCount(params.threads);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 16)
@@ -49,7 +79,11 @@ std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidat
     v.T_camera_model = candidates[c].T_camera_model;
     v.votes = candidates[c].votes;
     v.support = correspondingScenePoints(model, v.T_camera_model, grid, scene.normals, min_cosine);
-    v.score = static_cast<uint32_t>(v.support.size());
+    if (check_free_space) {
+      const uint32_t seen_through = seenThroughCount(model, v.T_camera_model, scene.line_of_sight, tolerance);
+      v.penalty = static_cast<uint32_t>(std::lround(params.free_space_penalty * static_cast<float>(seen_through)));
+    }
+    v.score = static_cast<uint32_t>(v.support.size()) - std::min(v.penalty, static_cast<uint32_t>(v.support.size()));
   }
   core::throwIfCancelled(cancel, "during verification");
   return verified;

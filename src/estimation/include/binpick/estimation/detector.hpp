@@ -48,6 +48,8 @@ struct Detection {
   float score = 0.0f;     // Score_New / N_m at selection (eq. 4); Drost: cluster votes / max votes
   float coverage = 0.0f;  // after ICP: share of the model points the camera should see that fit
   float icp_rmse = 0.0f;  // model units
+  float seen_through = 0.0f;  // after ICP: share of the visible model points in front of the
+                              // measured surface (free space the camera saw through)
   uint32_t votes = 0;
   int icp_iterations = 0;
 };
@@ -60,9 +62,16 @@ struct DetectionResult {
   std::vector<Detection> detections;  // in selection order
   StageTimings timing_ms;
   std::size_t scene_points = 0;  // after subsampling
+  std::size_t scene_points_without_normal = 0;  // subsampled points dropped: too few neighbours
   std::size_t candidates = 0;
   std::size_t refreshes = 0;  // eq. 4 evaluations during Algorithm 1
+  std::size_t seen_through_rejected = 0;  // refined picks refused: the camera saw through them
 };
+
+// Why a scene gave the detector little to work with, for the user; empty when nothing is wrong.
+// Today: most subsampled points had too few neighbours for a normal (a cloud far sparser than the
+// model's step, or mostly isolated points).
+std::string sceneWarning(const DetectionResult& result);
 
 class Detector {
  public:
@@ -80,6 +89,7 @@ class Detector {
  private:
   PreparedModel model_;
   DetectorParams params_;
+  std::vector<Eigen::Isometry3f> near_symmetries_;  // verification.compare_turned: near_symmetries.hpp
 };
 
 }  // namespace binpick::estimation

@@ -34,6 +34,20 @@ struct IcpResult {
   int visible_points = 0;
 };
 
+// How well a pose explains what the camera saw: its visible model points, those with a scene point
+// within the fit distance, and those the camera saw through (line_of_sight.hpp).
+struct PoseFit {
+  int visible = 0;
+  int fitted = 0;
+  int seen_through = 0;
+  float rmse = 0.0f;  // of the fitted points' plane residuals
+  float coverage() const { return visible == 0 ? 0.0f : static_cast<float>(fitted) / static_cast<float>(visible); }
+  float seenThroughShare() const {
+    return visible == 0 ? 0.0f : static_cast<float>(seen_through) / static_cast<float>(visible);
+  }
+  int consistency() const { return fitted - seen_through; }  // explained less contradicted
+};
+
 // Indices of model points seen by a camera at the origin when the model is at `pose`: facing the
 // camera and nearest in their line of sight (a coarse z-buffer on the part itself).
 std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen::Isometry3f& pose);
@@ -46,6 +60,11 @@ class PoseRefiner {
   PoseRefiner& operator=(const PoseRefiner&) = delete;
 
   IcpResult refine(const PreparedModel& model, const Eigen::Isometry3f& initial) const;
+  // The same with at most `max_iterations` (a start already close to its answer).
+  IcpResult refine(const PreparedModel& model, const Eigen::Isometry3f& initial, int max_iterations) const;
+  // The fit of `pose`; a visible model point is seen through when it lies more than
+  // `see_through_tolerance` in front of the measured surface.
+  PoseFit assess(const PreparedModel& model, const Eigen::Isometry3f& pose, float see_through_tolerance) const;
   // Scene points within `radius` of any model point at `pose` (each once, ascending).
   std::vector<uint32_t> scenePointsNear(const PreparedModel& model, const Eigen::Isometry3f& pose, float radius) const;
 

@@ -1,13 +1,17 @@
 #pragma once
 // Scene preparation (sections II and III-A): the full-resolution cloud in the camera frame (camera
 // at the origin looking along +z) is subsampled at the model's step, and each kept point gets a
-// normal fitted to its full-resolution neighbours, turned towards the camera.
+// normal fitted to its full-resolution neighbours, turned towards the camera. The neighbours are
+// those within the model's normal radius, or within 1.5 point spacings (at most 2 steps) where the
+// cloud is sparser than that: a decimated cloud would otherwise leave every point alone in its
+// radius, and the detector would find nothing.
 // Free function, no shared state: thread-safe.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "binpick/estimation/line_of_sight.hpp"
 #include "binpick/estimation/model.hpp"
 #include "binpick/io/point_cloud.hpp"
 
@@ -25,6 +29,8 @@ struct SceneParams {
   std::optional<CropBox> crop;    // none: keep every finite point
   int min_normal_neighbours = 5;  // fewer full-resolution neighbours: the point is dropped
   int max_window_half_size = 12;  // organized clouds: largest pixel window radius for normals
+  float line_of_sight_cell_ratio = 0.5f;  // cell of the line-of-sight map, in steps at the scene's
+                                          // median depth (0: no map, no free-space checks)
   int threads = 0;                // 0: all hardware threads
   void validate() const;          // throws core::Error naming the field
 };
@@ -34,6 +40,8 @@ struct PreparedScene {
   std::vector<Eigen::Vector3f> normals;  // unit, towards the camera
   std::vector<uint32_t> source_index;    // index of each point in the input cloud
   std::size_t valid_input_points = 0;    // finite points inside the crop box
+  std::size_t without_normal = 0;        // subsampled points dropped: too few neighbours for a normal
+  LineOfSightMap line_of_sight;          // every finite input point, cropped or not
   std::size_t size() const { return points.size(); }
 };
 

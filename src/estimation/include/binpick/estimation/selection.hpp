@@ -14,7 +14,7 @@ namespace binpick::estimation {
 
 struct SelectionParams {
   int max_objects = 20;                    // stop after this many detections
-  float min_score_fraction = 0.1f;         // stop when the best Score_New / N_m falls below this
+  float min_score_fraction = 0.05f;        // stop when the best Score_New / N_m falls below this
   float min_centre_distance_ratio = 0.1f;  // a pose whose model centre lies closer than this
                                            // (times diam(M)) to an accepted one is a repeat
   void validate() const;                   // throws core::Error naming the field

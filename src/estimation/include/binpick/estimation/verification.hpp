@@ -2,10 +2,19 @@
 // Voxel-based pose verification (section III-C): every candidate's model points are moved into
 // the scene and looked up in the voxel grid (eq. 3); the scene points they land near form
 // SS(P_k), and the score counts those that still exist (eq. 4). Thread-safe (no shared state).
+//
+// Deviation: scene-consistent verification. A pose also pays for what the camera would have seen
+// were it right: every model point lying in front of the measured surface along its line of sight
+// (free space the sensor saw through) costs `free_space_penalty` score points. Eq. 4 counts only
+// what a pose explains, so a part turned over that shows the same single face (a flange with its
+// hub put on the hidden side, an L-bracket upside down) scores as high as the truth; its hidden
+// half, now towards the camera, floats in front of the pile and is caught here. A point inside a
+// part seen by the camera is seen through the part's front too, so one test covers both.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
 
+#include "binpick/estimation/line_of_sight.hpp"
 #include "binpick/estimation/model.hpp"
 #include "binpick/estimation/voting.hpp"
 #include "binpick/estimation/voxel_grid.hpp"
@@ -17,6 +26,17 @@ struct VerificationParams {
                                         // point lies within 1-2 voxels)
   float max_normal_angle_deg = 180.0f;  // a fit also needs the scene normal within this angle of
                                         // the moved model normal (180: off, as in the paper)
+  float free_space_tolerance_ratio = 2.0f;  // a model point this far (in steps) in front of the
+                                            // measured surface is seen through (candidates: their
+                                            // poses are as coarse as an alpha bin)
+  float free_space_penalty = 1.0f;          // score points per seen-through model point (0: off,
+                                            // the paper's eq. 4)
+  float refined_tolerance_ratio = 1.0f;     // the same test after ICP, in steps ...
+  float max_refined_seen_through = 0.15f;   // ... rejects a refined pose when more than this share
+                                            // of its visible model points is seen through (1: off)
+  bool compare_turned = true;               // each pick turned by the model's near-symmetries (a
+                                            // part turned over) is refined too; the pose that
+                                            // contradicts less of what the camera saw is kept
   int threads = 0;                      // 0: all hardware threads
   void validate() const;                // throws core::Error naming the field
 };
@@ -24,7 +44,8 @@ struct VerificationParams {
 struct VerifiedCandidate {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
   uint32_t votes = 0;
-  uint32_t score = 0;             // Score(P_k), eq. 4, with every scene point existing
+  uint32_t score = 0;             // Score(P_k), eq. 4, with every scene point existing, less the penalty
+  uint32_t penalty = 0;           // free_space_penalty x seen-through model points
   std::vector<uint32_t> support;  // SS(P_k): the scene point of every fitted model point
 };
 
@@ -39,6 +60,11 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
 std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
                                       const PreparedScene& scene, const SceneVoxelGrid& grid,
                                       const VerificationParams& params, const core::CancelFlag* cancel = nullptr);
+
+// How many of the model points at `pose` that the camera would measure (facing it, not grazing)
+// lie more than `tolerance` in front of the measured surface; only `indices` when given, else all.
+uint32_t seenThroughCount(const PreparedModel& model, const Eigen::Isometry3f& pose, const LineOfSightMap& map,
+                          float tolerance, const std::vector<uint32_t>* indices = nullptr);
 
 // Eq. 4: how many entries of SS(P) still exist.
 uint32_t existingCount(const std::vector<uint32_t>& support, const std::vector<uint8_t>& exist);
