@@ -6,7 +6,13 @@
 // 3. depth: a pile of parts rendered with the true rig and reconstructed with the true and with
 //    the recovered calibration, compared with each other and with the rendered depth.
 //
+// With --projector-k3 the true projector lens gets that sixth-order term; --projector-distortion
+// chooses the terms its fit may change; --max-offset widens the spread of board poses (the board
+// centre's direction off the camera axis, normalised). The projector's lens is then compared with
+// the truth over its image, at the corners in particular.
+//
 //   bench_calibration_rig [--poses 12] [--board charuco|chessboard] [--seed 1] [--objects 10]
+//                         [--projector-k3 K] [--projector-distortion TERMS] [--max-offset 0.2]
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -34,6 +40,9 @@ struct Options {
   std::string board = "charuco";
   int seed = 1;
   int objects = 10;
+  double projector_k3 = 0.0;
+  std::string projector_distortion = "k1,k2,p1,p2";
+  double max_offset = 0.2;
 };
 
 Options parse(int argc, char** argv) {
@@ -50,10 +59,17 @@ Options parse(int argc, char** argv) {
       o.seed = std::stoi(value);
     else if (flag == "--objects")
       o.objects = std::stoi(value);
+    else if (flag == "--projector-k3")
+      o.projector_k3 = std::stod(value);
+    else if (flag == "--projector-distortion")
+      o.projector_distortion = value;
+    else if (flag == "--max-offset")
+      o.max_offset = std::stod(value);
     else
       throw core::Error("bench_calibration_rig: unknown option " + flag);
   }
-  if (o.poses < 3 || o.objects < 1) throw core::Error("bench_calibration_rig: --poses >= 3, --objects >= 1");
+  if (o.poses < 3 || o.objects < 0)
+    throw core::Error("bench_calibration_rig: --poses >= 3, --objects >= 0 (0: no depth)");
   return o;
 }
 
@@ -115,6 +131,23 @@ MeasuredSequence measureSequence(const simulation::CalibrationSequenceParams& pa
   return m;
 }
 
+// How far out the projector corners reach: the largest distance from the principal point, as a
+// share of the distance to the image corner (the radial terms are measured only where corners are).
+void printProjectorCoverage(const MeasuredSequence& m, const io::LensIntrinsics& projector) {
+  const Eigen::Vector2d centre(projector.cx, projector.cy);
+  const double half_diagonal = Eigen::Vector2d(std::max(projector.cx, projector.width - 1 - projector.cx),
+                                               std::max(projector.cy, projector.height - 1 - projector.cy))
+                                   .norm();
+  std::vector<double> reach;
+  for (const calibration::RigView& view : m.views) {
+    for (const calibration::ProjectorCorner& corner : view.projector.corners) {
+      reach.push_back((corner.projector - centre).norm() / half_diagonal);
+    }
+  }
+  std::printf("  projector corners reach %.0f %% of the half-diagonal (95th percentile %.0f %%)\n",
+              100.0 * quantile(reach, 1.0), 100.0 * quantile(reach, 0.95));
+}
+
 void printSequence(const MeasuredSequence& m) {
   const double n = static_cast<double>(m.views.size());
   printQuantiles("camera corners vs truth", m.camera_errors_px, "px");
@@ -131,6 +164,33 @@ void printLensErrors(const char* device, const io::LensIntrinsics& lens, const i
               lens.fy - truth.fy, lens.cx - truth.cx, lens.cy - truth.cy, truth.fx);
 }
 
+void printLensFit(const char* device, const calibration::LensFitReport& fit) {
+  std::printf("  %-9s terms %s, own solve RMS %.4f px; per term RMS fitted / held:\n", device, fit.terms.text().c_str(),
+              fit.rms_px);
+  for (int term = 0; term < calibration::kDistortionTermCount; ++term) {
+    const calibration::TermResidual& r = fit.per_term[static_cast<std::size_t>(term)];
+    std::printf("    %-5s %-6s %.4f / %.4f px  value %+.5f +- %.5f\n", calibration::kDistortionTermNames[term],
+                r.chosen ? "chosen" : "", r.rms_fitted_px, r.rms_held_px, r.value[0], r.sd[0]);
+  }
+}
+
+// How far the recovered lens puts each pixel's true ray from that pixel: at the image corners and
+// over a grid of the whole image.
+void printLensModelError(const char* device, const io::LensIntrinsics& lens, const io::LensIntrinsics& truth) {
+  std::vector<double> grid, corners;
+  const int steps = 32;
+  for (int j = 0; j <= steps; ++j) {
+    for (int i = 0; i <= steps; ++i) {
+      const Eigen::Vector2d pixel((truth.width - 1) * i / double(steps), (truth.height - 1) * j / double(steps));
+      const double error = (lens.project(truth.rayThroughPixel(pixel)) - pixel).norm();
+      grid.push_back(error);
+      if ((i == 0 || i == steps) && (j == 0 || j == steps)) corners.push_back(error);
+    }
+  }
+  std::printf("  %-9s lens vs truth: image corners %.3f %.3f %.3f %.3f px; whole image median %.3f max %.3f px\n",
+              device, corners[0], corners[1], corners[2], corners[3], quantile(grid, 0.5), quantile(grid, 1.0));
+}
+
 void printCalibration(const char* label, const calibration::RigCalibrationResult& r, const io::RigCalibration& truth) {
   const Eigen::Isometry3d& T = r.rig.T_projector_camera;
   const Eigen::Isometry3d& T_true = truth.T_projector_camera;
@@ -141,6 +201,10 @@ void printCalibration(const char* label, const calibration::RigCalibrationResult
               r.quality.views.size());
   printLensErrors("camera", r.rig.camera, truth.camera);
   printLensErrors("projector", r.rig.projector, truth.projector);
+  printLensFit("camera", r.camera_fit);
+  printLensFit("projector", r.projector_fit);
+  printLensModelError("camera", r.rig.camera, truth.camera);
+  printLensModelError("projector", r.rig.projector, truth.projector);
   std::printf("  baseline %+.3f mm (|T| %.2f mm), T off by %.3f mm, rotation off by %.4f deg\n",
               1e3 * (T.translation().norm() - T_true.translation().norm()), 1e3 * T_true.translation().norm(),
               1e3 * (T.translation() - T_true.translation()).norm(), rotation / kDegree);
@@ -201,26 +265,34 @@ void run(const Options& o) {
   params.board.type = simulation::boardTypeFromName(o.board);
   params.poses.count = o.poses;
   params.poses.seed = static_cast<uint64_t>(o.seed);
+  params.poses.max_offset = o.max_offset;
+  params.rig.projector.distortion[4] = o.projector_k3;
   params.pattern_set.projector_width = params.rig.projector.width;
   params.pattern_set.projector_height = params.rig.projector.height;
   params.validate();
   const calibration::BoardLayout layout = params.board.layout();
+  std::printf("projector k3 %.4f, fitted terms %s, pose offsets up to %.2f\n", o.projector_k3,
+              o.projector_distortion.c_str(), o.max_offset);
   std::printf("bench_calibration_rig: %d %s poses, seed %d, camera %dx%d, projector %dx%d, %zu patterns\n", o.poses,
               o.board.c_str(), o.seed, params.rig.camera.width, params.rig.camera.height, params.rig.projector.width,
               params.rig.projector.height, reconstruction::patternNames(params.pattern_set).size());
   std::printf("\n== 1. Views (corners against the true pixels) ==\n");
   const MeasuredSequence m = measureSequence(params, layout);
   printSequence(m);
+  printProjectorCoverage(m, params.rig.projector);
 
   std::printf("\n== 2. Calibration against the true rig ==\n");
-  const calibration::RigCalibrationResult refined = calibration::calibrateRig(m.views, layout);
+  calibration::RigCalibrationParams refined_params;
+  refined_params.projector_distortion =
+      calibration::parseDistortionTerms(o.projector_distortion, "--projector-distortion");
+  const calibration::RigCalibrationResult refined = calibration::calibrateRig(m.views, layout, refined_params);
   printCalibration("intrinsics refined in the stereo step (default)", refined, params.rig);
-  calibration::RigCalibrationParams fixed_params;
+  calibration::RigCalibrationParams fixed_params = refined_params;
   fixed_params.refine_intrinsics_in_stereo = false;
   const calibration::RigCalibrationResult fixed = calibration::calibrateRig(m.views, layout, fixed_params);
   printCalibration("intrinsics held fixed in the stereo step", fixed, params.rig);
 
-  benchDepth(params.rig, refined.rig, o);
+  if (o.objects > 0) benchDepth(params.rig, refined.rig, o);
 }
 
 }  // namespace

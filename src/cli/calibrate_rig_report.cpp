@@ -53,19 +53,37 @@ void printLens(std::ostream& out, const char* device, const io::LensIntrinsics& 
   out << line;
 }
 
-// "camera    terms k1,k2,p1,p2: RMS 0.055 px; k3 held 0.055 px, free 0.054 px (k3 -0.0012 +- 0.0009)"
-// and the fitted terms' standard deviations: whether a term is warranted shows in both.
+std::string termValue(int term, const calibration::TermResidual& residual) {
+  char text[96];
+  if (term == 2) {
+    std::snprintf(text, sizeof text, "p1 %.5f +- %.5f, p2 %.5f +- %.5f", residual.value[0], residual.sd[0],
+                  residual.value[1], residual.sd[1]);
+  } else {
+    std::snprintf(text, sizeof text, "%s %.4f +- %.4f", calibration::kDistortionTermNames[term], residual.value[0],
+                  residual.sd[0]);
+  }
+  return text;
+}
+
+// "camera    terms k1,k2,p1,p2: own solve RMS 0.055 px", the fitted terms' standard deviations,
+// then per term the RMS with it fitted and held and its value where fitted: whether a term is
+// warranted shows in both.
 void printLensFit(std::ostream& out, const char* device, const calibration::LensFitReport& fit) {
   char line[320];
-  std::snprintf(line, sizeof line,
-                "%-9s terms %s: own solve RMS %.3f px; with k3 held %.3f px, free %.3f px (k3 %.4f +- %.4f)\n", device,
-                fit.terms.text().c_str(), fit.rms_px, fit.rms_k3_held_px, fit.rms_k3_free_px, fit.k3_free,
-                fit.k3_free_sd);
+  std::snprintf(line, sizeof line, "%-9s terms %s: own solve RMS %.3f px\n", device, fit.terms.text().c_str(),
+                fit.rms_px);
   out << line;
   std::snprintf(line, sizeof line,
                 "%-9s std dev  fx %.2f  fy %.2f  cx %.2f  cy %.2f  k1 %.4f k2 %.4f p1 %.5f p2 %.5f k3 %.4f\n", "",
                 fit.sd[0], fit.sd[1], fit.sd[2], fit.sd[3], fit.sd[4], fit.sd[5], fit.sd[6], fit.sd[7], fit.sd[8]);
   out << line;
+  for (int term = 0; term < calibration::kDistortionTermCount; ++term) {
+    const calibration::TermResidual& residual = fit.per_term[static_cast<std::size_t>(term)];
+    std::snprintf(line, sizeof line, "%-9s %-5s %-6s RMS fitted %.3f px, held %.3f px; fitted: %s\n", "",
+                  calibration::kDistortionTermNames[term], residual.chosen ? "chosen" : "held", residual.rms_fitted_px,
+                  residual.rms_held_px, termValue(term, residual).c_str());
+    out << line;
+  }
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 #include "binpick/io/capture.hpp"
@@ -16,6 +18,7 @@ namespace fs = std::filesystem;
 
 // The version suffix changes whenever the rendering below does: old data is then never reused.
 constexpr const char* kDataName = "rig_calibration_v1";
+constexpr const char* kBlurredDataName = "rig_calibration_blurred_v3";
 
 // A board pose of the sequence moved sideways by `offset_x` (camera metres).
 Eigen::Isometry3d shifted(const Eigen::Isometry3d& pose, double offset_x) {
@@ -52,14 +55,40 @@ void renderData(const std::string& directory) {
   writeExtraView(columns_only, pose, directory + "/no_rows");
 }
 
+// At the camera's full resolution (the half-resolution views fit to 0.15-0.2 px, too coarse to
+// single out a blurred view), 9 poses: 8 remain when the blurred one is dropped.
+simulation::CalibrationSequenceParams blurredViewParams() {
+  simulation::CalibrationSequenceParams params = rigTestParams();
+  params.rig = simulation::makeVirtualRig();
+  params.board.type = calibration::BoardType::Chessboard;
+  params.poses.count = 9;
+  return params;
+}
+
+std::string poseName(int index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "pose_%03d", index);
+  return name;
+}
+
+// The chessboard sequence, then one of its views defocused: every image of the capture blurred.
+void renderBlurredData(const std::string& directory) {
+  const BlurredViewData defaults;
+  simulation::writeCalibrationSequence(directory + "/sequence", blurredViewParams());
+  io::Capture capture = io::readCapture(directory + "/sequence/" + poseName(defaults.blurred_pose));
+  for (cv::Mat& image : capture.images) cv::GaussianBlur(image, image, cv::Size(), kBlurSigmaPx);
+  io::writeCapture(directory + "/blurred", std::move(capture));
+}
+
 // Rendered aside, then renamed into place: a process never sees half the data, and when two
 // processes render at once, the first rename wins and the other's copy is removed.
-std::string dataDirectory() {
-  const fs::path directory = fs::path(BINPICK_TEST_DATA_DIR) / kDataName;
-  if (fs::exists(directory / "no_rows" / "capture.json")) return directory.string();
+std::string renderedDirectory(const char* name, const char* last_file,
+                              const std::function<void(const std::string&)>& render) {
+  const fs::path directory = fs::path(BINPICK_TEST_DATA_DIR) / name;
+  if (fs::exists(directory / last_file)) return directory.string();
   const fs::path aside = directory.string() + ".partial-" + std::to_string(::getpid());
   fs::remove_all(aside);
-  renderData(aside.string());
+  render(aside.string());
   std::error_code taken;
   fs::rename(aside, directory, taken);
   if (taken) fs::remove_all(aside);
@@ -70,7 +99,7 @@ RigTestData loadData() {
   RigTestData data;
   data.params = rigTestParams();
   data.layout = data.params.board.layout();
-  data.directory = dataDirectory();
+  data.directory = renderedDirectory(kDataName, "no_rows/capture.json", renderData);
   data.sequence = data.directory + "/sequence";
   for (int i = 0; i < data.params.poses.count; ++i) {
     char name[32];
@@ -120,6 +149,22 @@ const io::RigViewQuality& qualityOf(const calibration::RigCalibrationResult& res
 
 const RigTestData& rigTestData() {
   static const RigTestData data = loadData();
+  return data;
+}
+
+const BlurredViewData& blurredViewData() {
+  static const BlurredViewData data = [] {
+    BlurredViewData d;
+    d.params = blurredViewParams();
+    d.layout = d.params.board.layout();
+    const std::string directory = renderedDirectory(kBlurredDataName, "blurred/capture.json", renderBlurredData);
+    for (int i = 0; i < d.params.poses.count; ++i) {
+      if (i != d.blurred_pose) d.views.push_back(directory + "/sequence/" + poseName(i));
+    }
+    d.blurred = directory + "/blurred";
+    d.views.push_back(d.blurred);
+    return d;
+  }();
   return data;
 }
 

@@ -31,6 +31,20 @@ simulation::CalibrationSequenceParams rigTestParams();
 // Rendered on first use (some 20 s), then read from disk.
 const RigTestData& rigTestData();
 
+// A chessboard sequence of the virtual rig at full resolution with one view defocused: pose_NNN as rendered, and
+// `blurred`, pose `blurred_pose`'s capture with every image blurred by a Gaussian of
+// kBlurSigmaPx camera pixels. `views`: the sharp poses but `blurred_pose`, then `blurred`.
+struct BlurredViewData {
+  std::vector<std::string> views;
+  std::string blurred;
+  int blurred_pose = 4;
+  simulation::CalibrationSequenceParams params;
+  calibration::BoardLayout layout;
+};
+constexpr double kBlurSigmaPx = 5.0;
+// Rendered on first use, then read from disk.
+const BlurredViewData& blurredViewData();
+
 // Capture directories read and measured with the default view params.
 std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& directories);
 

@@ -44,15 +44,48 @@ std::string findCharuco(const cv::Mat& image8, const BoardLayout& layout, Corner
   return {};
 }
 
+// Whether the sector-based detector (findChessboardCornersSB) sees the whole pattern, in the
+// image scaled to a quarter, a half or full size, cheapest first (10, 40, 100-250 ms at 1280x1024):
+// scaled down, a blurred board (sigma 5 px) is sharp enough for it.
+bool seesWholeChessboard(const cv::Mat& image8, cv::Size pattern) {
+  std::vector<cv::Point2f> corners;
+  for (const double scale : {0.25, 0.5}) {
+    cv::Mat small;
+    cv::resize(image8, small, cv::Size(), scale, scale, cv::INTER_AREA);
+    if (cv::findChessboardCornersSB(small, pattern, corners)) return true;
+  }
+  return cv::findChessboardCornersSB(image8, pattern, corners);
+}
+
+// cv::findChessboardCorners without a complete board tries every threshold and dilation it knows:
+// 7-28 s on a 1280x1024 view, against a few milliseconds for a complete board. Its own quick check
+// (CALIB_CB_FAST_CHECK) rejects empty views at once but passes some boards cut by the image border
+// (11-15 s each). So it runs only when the sector-based detector sees the whole pattern; the
+// corners still come from it, as before: SB alone gave a false positive on a half-black image
+// (the classic search then rejects it, slowly) and missed views blurred with sigma 5 px at full
+// size.
+bool findChessboardCorners(const cv::Mat& image8, cv::Size pattern, std::vector<cv::Point2f>& pixels) {
+  if (!seesWholeChessboard(image8, pattern)) return false;
+  return cv::findChessboardCorners(image8, pattern, pixels,
+                                   cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE);
+}
+
+// Why no board was found: no chessboard at all, or some of one (the quick check still sees a 3x3
+// patch of squares: a board cut by the image border or partly covered).
+std::string missingChessboardProblem(const cv::Mat& image8, cv::Size pattern) {
+  const std::string size = std::to_string(pattern.width) + "x" + std::to_string(pattern.height);
+  if (!cv::checkChessboard(image8, cv::Size(3, 3)))
+    return "no chessboard in the image (looked for " + size + " inner corners)";
+  return "no complete " + size +
+         " chessboard in the image, only part of one (every inner corner must be visible: is the board cut by the"
+         " image border or covered?)";
+}
+
 // cv::findChessboardCorners lists the corners from either end of a board turned half a turn:
 // start from the end nearest the image's top-left so that views agree.
 std::string findChessboard(const cv::Mat& image8, const BoardLayout& layout, Corners& found) {
   const cv::Size pattern(layout.squares_x - 1, layout.squares_y - 1);
-  const int flags = cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE;
-  if (!cv::findChessboardCorners(image8, pattern, found.pixels, flags)) {
-    return "no complete " + std::to_string(pattern.width) + "x" + std::to_string(pattern.height) +
-           " chessboard in the image (every inner corner must be visible)";
-  }
+  if (!findChessboardCorners(image8, pattern, found.pixels)) return missingChessboardProblem(image8, pattern);
   const cv::Point2f first = found.pixels.front(), last = found.pixels.back();
   if (first.x + first.y > last.x + last.y) std::reverse(found.pixels.begin(), found.pixels.end());
   found.ids.resize(found.pixels.size());

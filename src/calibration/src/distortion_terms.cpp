@@ -22,6 +22,18 @@ std::string DistortionTerms::text() const {
   return out.empty() ? "none" : out;
 }
 
+bool DistortionTerms::fits(int index) const {
+  const std::array<bool, kDistortionTermCount> flags{k1, k2, tangential, k3};
+  return flags.at(static_cast<std::size_t>(index));
+}
+
+DistortionTerms DistortionTerms::with(int index, bool fitted) const {
+  DistortionTerms changed = *this;
+  std::array<bool*, kDistortionTermCount> flags{&changed.k1, &changed.k2, &changed.tangential, &changed.k3};
+  *flags.at(static_cast<std::size_t>(index)) = fitted;
+  return changed;
+}
+
 bool DistortionTerms::operator==(const DistortionTerms& other) const {
   return k1 == other.k1 && k2 == other.k2 && tangential == other.tangential && k3 == other.k3;
 }

@@ -1,6 +1,7 @@
 // Camera, projector and stereo solves with OpenCV's calibration functions.
 #include "rig_solver.hpp"
 
+#include <array>
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 
@@ -68,7 +69,14 @@ LensFit fitLens(const std::vector<std::vector<cv::Point3f>>& objects,
 
 double sdAt(const cv::Mat& sd, int i) { return i < static_cast<int>(sd.total()) ? sd.at<double>(i) : 0.0; }
 
-// The chosen fit, and the same solve with k3 toggled, so that the user sees whether k3 pays.
+// The distortion vector's entries of term `index` (kDistortionTermNames): k1, k2, p1 p2, k3.
+std::array<int, 2> termEntries(int index) {
+  constexpr std::array<std::array<int, 2>, kDistortionTermCount> entries{{{0, -1}, {1, -1}, {2, 3}, {4, -1}}};
+  return entries[static_cast<std::size_t>(index)];
+}
+
+// The chosen fit, and per term the same solve with that term toggled: held (a fresh solve) when
+// the fit has it, freed from the fit when it does not, so that freeing can only lower the RMS.
 LensFitReport reportLens(const LensFit& fit, const std::vector<std::vector<cv::Point3f>>& objects,
                          const std::vector<std::vector<cv::Point2f>>& images, cv::Size size,
                          const DistortionTerms& terms, const char* device) {
@@ -76,15 +84,21 @@ LensFitReport reportLens(const LensFit& fit, const std::vector<std::vector<cv::P
   report.terms = terms;
   report.rms_px = fit.rms;
   for (int i = 0; i < 9; ++i) report.sd[i] = sdAt(fit.sd, i);
-  DistortionTerms toggled = terms;
-  toggled.k3 = !terms.k3;
-  const LensFit other = toggled.k3 ? calibrateLens(objects, images, size, toggled, device, &fit)
-                                   : calibrateLens(objects, images, size, toggled, device);
-  const LensFit& free = terms.k3 ? fit : other;
-  report.rms_k3_held_px = terms.k3 ? other.rms : fit.rms;
-  report.rms_k3_free_px = free.rms;
-  report.k3_free = free.distortion.at<double>(4);
-  report.k3_free_sd = sdAt(free.sd, 8);
+  for (int term = 0; term < kDistortionTermCount; ++term) {
+    TermResidual& residual = report.per_term[static_cast<std::size_t>(term)];
+    residual.chosen = terms.fits(term);
+    const DistortionTerms toggled = terms.with(term, !residual.chosen);
+    const LensFit other = residual.chosen ? fitLens(objects, images, size, toggled, device)
+                                          : calibrateLens(objects, images, size, toggled, device, &fit);
+    const LensFit& fitted = residual.chosen ? fit : other;
+    residual.rms_fitted_px = fitted.rms;
+    residual.rms_held_px = residual.chosen ? other.rms : fit.rms;
+    const std::array<int, 2> entries = termEntries(term);
+    for (std::size_t k = 0; k < 2 && entries[k] >= 0; ++k) {
+      residual.value[k] = fitted.distortion.at<double>(entries[k]);
+      residual.sd[k] = sdAt(fitted.sd, 4 + entries[k]);
+    }
+  }
   return report;
 }
 

@@ -4,9 +4,14 @@
 // there k3 cannot be told from k1 and k2 and a free k3 bends the model where there are no
 // corners. A lens with a strong sixth-order term (a projector lens with k3 = -0.012 left 0.48 px
 // at the image corners with k3 held) needs k3, and views reaching the corners to pin it.
+#include <array>
 #include <string>
 
 namespace binpick::calibration {
+
+// The terms one by one, in OpenCV's order; the tangential pair counts as one.
+constexpr int kDistortionTermCount = 4;
+constexpr std::array<const char*, kDistortionTermCount> kDistortionTermNames{"k1", "k2", "p1,p2", "k3"};
 
 struct DistortionTerms {
   bool k1 = true;
@@ -14,6 +19,9 @@ struct DistortionTerms {
   bool tangential = true;  // p1 and p2, together
   bool k3 = false;
   std::string text() const;  // "k1,k2,p1,p2", "none" when every term is held
+  // Term `index` of kDistortionTermNames.
+  bool fits(int index) const;
+  DistortionTerms with(int index, bool fitted) const;
   bool operator==(const DistortionTerms& other) const;
 };
 

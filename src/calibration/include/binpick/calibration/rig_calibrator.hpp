@@ -8,8 +8,9 @@
 //    board pose is then pinned by both devices at once, which on the virtual cell lowered the
 //    translation, rotation and principal point errors against holding the intrinsics fixed
 //    (docs/calibration.md has the figures).
-// Each device's own solve is also run once more with k3 toggled (freed when held, held when
-// free): its RMS either way, and every term's standard deviation, tell whether k3 is warranted.
+// Each device's own solve is also run once more per distortion term with that term toggled
+// (freed when held, held when free): the RMS either way, the term's value and its standard
+// deviation tell whether the term is warranted.
 // Every view gets its reprojection RMS in both images under the final rig. A view whose RMS
 // exceeds max(outlier_floor_px, outlier_factor x the median view's) is an outlier: reported,
 // and with drop_outliers left out and the calibration computed once more without it.
@@ -56,17 +57,27 @@ struct RigCalibrationTimings {  // milliseconds
   double stereo = 0.0;
 };
 
-// One device's own solve (step 1 or 2) with the chosen terms, and once more with k3 toggled.
+// What one distortion term buys: the device's own solve with the term fitted and with it held
+// at 0, the other terms as chosen. A term is warranted when fitting it lowers the RMS and its
+// value stands several standard deviations clear of 0.
+struct TermResidual {
+  bool chosen = false;            // in LensFitReport::terms (then one of the two RMS is rms_px)
+  double rms_fitted_px = 0.0;     // the own solve with the term fitted ...
+  double rms_held_px = 0.0;       // ... and held at 0
+  std::array<double, 2> value{};  // its value when fitted (p1, p2 for the tangential pair) ...
+  std::array<double, 2> sd{};     // ... and standard deviation
+};
+
+// One device's own solve (step 1 or 2) with the chosen terms, and once more per term with that
+// term toggled (held when chosen, freed from the chosen fit when not).
 struct LensFitReport {
   DistortionTerms terms;
   double rms_px = 0.0;
   // Standard deviation of fx, fy, cx, cy, k1, k2, p1, p2, k3 from the solve's Jacobian (0 for a
   // term held), in pixels and the terms' units.
   std::array<double, 9> sd{};
-  double rms_k3_held_px = 0.0;  // the own solve with k3 held at 0 ...
-  double rms_k3_free_px = 0.0;  // ... and with k3 free
-  double k3_free = 0.0;         // k3 when free, and its standard deviation
-  double k3_free_sd = 0.0;
+  std::array<TermResidual, kDistortionTermCount> per_term;  // in kDistortionTermNames' order
+  const TermResidual& k3() const { return per_term[3]; }
 };
 
 struct RigCalibrationResult {
