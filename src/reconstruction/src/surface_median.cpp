@@ -1,0 +1,57 @@
+// Surface median: each point against the median of its 3x3 neighbourhood's surface.
+#include "surface_median.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace binpick::reconstruction::detail {
+namespace {
+
+// The camera z of (x, y) and of its 8 neighbours within `reach` of it, into `depths`; returns
+// their count (at least 1: the point itself).
+int sameSurfaceDepths(const io::PointCloud& cloud, int x, int y, float z, float reach, float* depths) {
+  int count = 0;
+  for (int v = y - 1; v <= y + 1; ++v) {
+    const Eigen::Vector3f* row = cloud.points.data() + static_cast<std::size_t>(v) * cloud.width;
+    for (int u = x - 1; u <= x + 1; ++u) {
+      const float q = row[u].z();
+      if (std::fabs(q - z) <= reach) depths[count++] = q;  // NaN: never
+    }
+  }
+  return count;
+}
+
+float medianOf(float* values, int count) {
+  std::nth_element(values, values + count / 2, values + count);
+  return values[count / 2];
+}
+
+}  // namespace
+
+std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, float max_pull,
+                                           int threads) {
+  const int width = cloud.width, height = cloud.height;
+  std::vector<uint8_t> outlier(cloud.points.size(), 0);
+  // Each point is decided on the depths as they came: the smoothed ones go to a copy.
+  std::vector<Eigen::Vector3f> smoothed = cloud.points;
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (int y = 1; y < height - 1; ++y) {
+    float depths[9];
+    for (int x = 1; x < width - 1; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * width + x;
+      const float z = cloud.points[i].z();
+      if (!std::isfinite(z)) continue;
+      const int count = sameSurfaceDepths(cloud, x, y, z, reach, depths);
+      const float median = medianOf(depths, count);
+      if (std::fabs(median - z) > max_pull) {
+        outlier[i] = 1;
+      } else {
+        smoothed[i] = cloud.points[i] * (median / z);
+      }
+    }
+  }
+  cloud.points = std::move(smoothed);
+  return outlier;
+}
+
+}  // namespace binpick::reconstruction::detail
