@@ -362,6 +362,28 @@ TEST(CloudFilter, NoiseRemovalKeepsDepthEdgesAndSlopes) {
   }
 }
 
+// With intensities, only the dark points are smoothed: the bright half of the surface keeps its
+// points as they were.
+TEST(CloudFilter, NoiseRemovalLeavesBrightPointsAsTheyAre) {
+  std::mt19937 random(6);
+  std::normal_distribution<float> noise(0.0f, 0.001f);
+  const Grid before = pinholeCloud(160, 120, [&](int, int) { return 0.85f + noise(random); });
+  Grid after = before;
+  after.cloud.intensities.resize(before.cloud.size());
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) after.cloud.intensities[i] = i % 160 < 80 ? 0.1f : 0.5f;
+  filterCloud(after.cloud, after.status, medianOnly());
+  std::size_t dark_moved = 0;
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) {
+    if (i % 160 >= 80) {
+      EXPECT_TRUE(after.cloud.points[i] == before.cloud.points[i]) << i;
+      EXPECT_EQ(after.status.ptr<uint8_t>(0)[i], kValid) << i;
+    } else {
+      dark_moved += after.cloud.points[i] == before.cloud.points[i] ? 0 : 1;
+    }
+  }
+  EXPECT_GT(dark_moved, 80u * 118u / 2u);
+}
+
 TEST(CloudFilter, NoiseRemovalDoesNotDependOnTheThreadCount) {
   std::mt19937 random(4);
   std::normal_distribution<float> noise(0.0f, 0.002f);
@@ -430,6 +452,9 @@ TEST(CloudFilter, RefusesBadParamsNamingTheField) {
   params = {};
   params.median_max_pull = 0.0;
   EXPECT_NE(paramsError(params).find("median_max_pull"), std::string::npos);
+  params = {};
+  params.median_max_intensity = -0.1;
+  EXPECT_NE(paramsError(params).find("median_max_intensity"), std::string::npos);
   params = {};
   params.max_depth = std::numeric_limits<double>::infinity();  // keeps everything: allowed
   EXPECT_EQ(paramsError(params), "");

@@ -60,7 +60,8 @@ void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
 void applySurfaceMedian(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const std::vector<uint8_t> outlier =
       detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
-                                    static_cast<float>(params.median_max_pull), core::resolveThreadCount(params.threads));
+                                    static_cast<float>(params.median_max_pull),
+                                    static_cast<float>(params.median_max_intensity), core::resolveThreadCount(params.threads));
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
@@ -110,6 +111,8 @@ void CloudFilterParams::validate() const {
   require(std::isfinite(median_reach) && median_reach >= 0.0, "median_reach", "finite and >= 0", median_reach);
   require(std::isfinite(median_max_pull) && median_max_pull > 0.0, "median_max_pull", "positive and finite",
           median_max_pull);
+  require(!std::isnan(median_max_intensity) && median_max_intensity >= 0.0, "median_max_intensity", ">= 0",
+          median_max_intensity);
   require(std::isfinite(edge_max_jump) && edge_max_jump >= 0.0, "edge_max_jump", "finite and >= 0", edge_max_jump);
   require(edge_min_neighbours >= 1 && edge_min_neighbours <= 8, "edge_min_neighbours", "in [1, 8]",
           edge_min_neighbours);

@@ -28,8 +28,9 @@ float medianOf(float* values, int count) {
 
 }  // namespace
 
-std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, float max_pull,
+std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, float max_pull, float max_intensity,
                                            int threads) {
+  const bool gated = cloud.hasIntensities();
   const int width = cloud.width, height = cloud.height;
   std::vector<uint8_t> outlier(cloud.points.size(), 0);
   // Each point is decided on the depths as they came: the smoothed ones go to a copy.
@@ -40,7 +41,7 @@ std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, f
     for (int x = 1; x < width - 1; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * width + x;
       const float z = cloud.points[i].z();
-      if (!std::isfinite(z)) continue;
+      if (!std::isfinite(z) || (gated && !(cloud.intensities[i] <= max_intensity))) continue;
       const int count = sameSurfaceDepths(cloud, x, y, z, reach, depths);
       const float median = medianOf(depths, count);
       if (std::fabs(median - z) > max_pull) {

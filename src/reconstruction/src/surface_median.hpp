@@ -17,7 +17,8 @@ namespace binpick::reconstruction::detail {
 // (metres) from the point's z, the point is flagged (returned 1) and left as it is; otherwise it is scaled along its ray onto the median. Border pixels are
 // left as they are. Rows in parallel on `threads` threads; the result does not depend on their
 // number.
-std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, float max_pull,
+// Points brighter than max_intensity (cloud.intensities, when it has them) are left as they are.
+std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, float max_pull, float max_intensity,
                                            int threads);
 
 }  // namespace binpick::reconstruction::detail
