@@ -19,11 +19,6 @@ namespace binpick::reconstruction::detail {
 // which sees neither surface, has at most the other mixed pixels along a 1-pixel veil; a lone
 // misdecoded point has none. Rows in parallel on `threads` threads; the result does not depend on
 // their number.
-// The angle between the rays of horizontally adjacent pixels (1 / f for a pinhole; a pixel
-// footprint is z times it), from the cloud itself: the median of |x/z - x'/z'| over adjacent
-// points of every 8th row. 0 when the cloud has no adjacent points.
-float rayPitch(const io::PointCloud& cloud);
-
 std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
                                            int min_support, int threads);
 
