@@ -1,8 +1,9 @@
 #pragma once
 // Optional clean-up of an organized cloud after triangulation, in this order: a depth range, a
-// crop box, depth noise removal (each point onto the median of its 3x3 neighbourhood's surface;
-// points far from it are removed), the removal of points that stand off their neighbours' surface (depth edges: mixed
-// pixels that see a near and a far surface at once, and lone misdecoded points), and the removal
+// crop box, depth noise removal (off by default: dark points onto the median of their 3x3
+// neighbourhood's surface, those far from it removed), the removal of points that stand off their
+// neighbours' surface (depth edges: mixed pixels that see a near and a far surface at once, and
+// lone misdecoded points), and the removal
 // of small isolated patches (speckle: stray points from misdecoded pixels, usually at depth edges
 // and on dark or glossy spots). Removed points become NaN and their pixels get the status that
 // removed them. Stateless: thread-safe.
@@ -19,13 +20,6 @@ struct CloudFilterParams {
   double max_depth = 1e9;
   // Axis-aligned box in the camera frame, metres; an empty box (the default) keeps everything.
   Eigen::AlignedBox3d crop;
-  // Depth-edge removal: a point with fewer than edge_min_support of its 8-neighbours within
-  // edge_max_jump pixel footprints of its camera z (a footprint: z over the focal length in
-  // pixels, measured on the cloud; 8 footprints are 4.5 mm at 0.9 m for a 1600 px lens) is removed: mixed pixels at
-  // depth edges (they see neither surface; a veil of them is one pixel wide) and lone misdecoded points. The last
-  // pixels of a near surface keep their surface beside them, and a plane up to about 80 degrees from the view keeps its
-  // neighbours. Points with fewer than edge_min_neighbours finite neighbours are left to the
-  // speckle filter. edge_max_jump = 0 turns it off.
   // Noise removal: each point moves along its ray to the median camera z of itself and its
   // 8-neighbours within median_reach of it (the others lie across a depth edge); a point farther
   // than median_max_pull from that median does not lie on its neighbours' surface and is removed
@@ -43,6 +37,13 @@ struct CloudFilterParams {
   // bright ones keep their points as measured (the dark parts of the harsh preset are at 0.07 to
   // 0.15, the clean parts at 0.2 to 0.8).
   double median_max_intensity = 0.2;
+  // Depth-edge removal: a point with fewer than edge_min_support of its 8-neighbours within
+  // edge_max_jump pixel footprints of its camera z (a footprint: z over the focal length in
+  // pixels, measured on the cloud; 8 footprints are 4.5 mm at 0.9 m for a 1600 px lens) is removed: mixed pixels at
+  // depth edges (they see neither surface; a veil of them is one pixel wide) and lone misdecoded points. The last
+  // pixels of a near surface keep their surface beside them, and a plane up to about 80 degrees from the view keeps its
+  // neighbours. Points with fewer than edge_min_neighbours finite neighbours are left to the
+  // speckle filter. edge_max_jump = 0 turns it off.
   double edge_max_jump = 8.0;  // pixel footprints
   int edge_min_neighbours = 3;
   int edge_min_support = 3;
