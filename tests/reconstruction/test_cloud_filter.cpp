@@ -1,4 +1,4 @@
-// Cloud filters on organized clouds: depth range, crop box and speckle removal.
+// Cloud filters on organized clouds: depth range, crop box, noise, depth-edge and speckle removal.
 #include "binpick/reconstruction/cloud_filter.hpp"
 
 #include <gtest/gtest.h>
@@ -43,17 +43,20 @@ Grid tiltedPlane(int width = 100, int height = 80) {
   return g;
 }
 
-// Neither speckle nor depth-edge removal: the filter under test alone.
+// Neither noise, speckle nor depth-edge removal: the filter under test alone.
 CloudFilterParams noSpeckle() {
   CloudFilterParams params;
   params.speckle_min_pixels = 0;
+  params.median_reach = 0.0;
   params.edge_max_jump = 0.0;
   return params;
 }
 
-// Speckle removal alone (the depth-edge filter would take the single stray points first).
+// Speckle removal alone (the noise and depth-edge filters would take the single stray points
+// first).
 CloudFilterParams speckleOnly() {
   CloudFilterParams params;
+  params.median_reach = 0.0;
   params.edge_max_jump = 0.0;
   return params;
 }
@@ -295,6 +298,111 @@ TEST(CloudFilter, DepthEdgeRemovalTakesLoneMisdecodedPoints) {
   EXPECT_EQ(count(g, PixelStatus::Speckle), 0u);
 }
 
+// Noise removal alone.
+CloudFilterParams medianOnly() {
+  CloudFilterParams params = noSpeckle();
+  params.median_reach = 0.0045;
+  return params;
+}
+
+double rmsErrorMm(const Grid& g, float true_z) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const Eigen::Vector3f& p : g.cloud.points) {
+    if (!p.allFinite()) continue;
+    sum += (p.z() - true_z) * (p.z() - true_z);
+    ++n;
+  }
+  return std::sqrt(sum / static_cast<double>(n)) * 1000.0;
+}
+
+// A flat dark surface 0.85 m away with 1 mm of depth noise: the median of each point's
+// neighbourhood has about half the noise; a point more than 3.2 mm from it is removed; every
+// other point stays on its ray.
+TEST(CloudFilter, NoiseRemovalHalvesTheNoiseOfASurfaceAndKeepsItsPoints) {
+  std::mt19937 random(3);
+  std::normal_distribution<float> noise(0.0f, 0.001f);
+  const Grid before = pinholeCloud(160, 120, [&](int, int) { return 0.85f + noise(random); });
+  Grid after = before;
+  filterCloud(after.cloud, after.status, medianOnly());
+  EXPECT_LT(rmsErrorMm(after, 0.85f), 0.6 * rmsErrorMm(before, 0.85f));
+  EXPECT_GT(count(after, PixelStatus::Valid), before.cloud.size() * 99 / 100);
+  EXPECT_EQ(count(after, PixelStatus::Valid) + count(after, PixelStatus::DepthEdge), before.cloud.size());
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) {
+    const Eigen::Vector3f& p = after.cloud.points[i];
+    if (!p.allFinite()) continue;
+    const Eigen::Vector3f& q = before.cloud.points[i];
+    EXPECT_NEAR(p.x() / p.z(), q.x() / q.z(), 1e-6f) << i;  // the same camera ray
+    EXPECT_NEAR(p.z(), 0.85f, 0.004f) << i;
+  }
+}
+
+// A point 3.5 mm off a plane (within the 4.5 mm reach, so its neighbours are its surface) is
+// removed; its neighbours' medians are the plane's and they stay where they are. A point farther
+// off has no neighbour within reach: it is left to the depth-edge filter.
+TEST(CloudFilter, NoiseRemovalTakesAPointOffItsNeighboursSurface) {
+  const Grid before = pinholeCloud(100, 80, [](int x, int y) { return x == 40 && y == 30 ? 0.8535f : 0.85f; });
+  Grid after = before;
+  filterCloud(after.cloud, after.status, medianOnly());
+  EXPECT_EQ(after.statusAt(40, 30), static_cast<uint8_t>(PixelStatus::DepthEdge));
+  expectRemovedExactly(before, after, PixelStatus::DepthEdge, [](const Eigen::Vector3f& p) { return p.z() > 0.851f; });
+}
+
+// At a depth edge 20 mm high and along a slope of 2 mm per pixel (75 degrees from the view), the median is of the point's
+// own surface: nothing moves across the edge and nothing is removed.
+TEST(CloudFilter, NoiseRemovalKeepsDepthEdgesAndSlopes) {
+  const Grid step = pinholeCloud(100, 80, [](int x, int) { return x < 50 ? 0.83f : 0.85f; });
+  const Grid slope = pinholeCloud(100, 80, [](int x, int) { return 0.8f + 0.002f * static_cast<float>(x); });
+  for (const Grid* before : {&step, &slope}) {
+    Grid after = *before;
+    filterCloud(after.cloud, after.status, medianOnly());
+    for (std::size_t i = 0; i < before->cloud.size(); ++i) {
+      EXPECT_NEAR(after.cloud.points[i].z(), before->cloud.points[i].z(), 1e-6f) << i;
+    }
+  }
+}
+
+// With intensities, only the dark points are smoothed: the bright half of the surface keeps its
+// points as they were.
+TEST(CloudFilter, NoiseRemovalLeavesBrightPointsAsTheyAre) {
+  std::mt19937 random(6);
+  std::normal_distribution<float> noise(0.0f, 0.001f);
+  const Grid before = pinholeCloud(160, 120, [&](int, int) { return 0.85f + noise(random); });
+  Grid after = before;
+  after.cloud.intensities.resize(before.cloud.size());
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) after.cloud.intensities[i] = i % 160 < 80 ? 0.1f : 0.5f;
+  filterCloud(after.cloud, after.status, medianOnly());
+  std::size_t dark_moved = 0;
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) {
+    if (i % 160 >= 80) {
+      EXPECT_TRUE(after.cloud.points[i] == before.cloud.points[i]) << i;
+      EXPECT_EQ(after.status.ptr<uint8_t>(0)[i], kValid) << i;
+    } else {
+      dark_moved += after.cloud.points[i] == before.cloud.points[i] ? 0 : 1;
+    }
+  }
+  EXPECT_GT(dark_moved, 80u * 118u / 2u);
+}
+
+TEST(CloudFilter, NoiseRemovalDoesNotDependOnTheThreadCount) {
+  std::mt19937 random(4);
+  std::normal_distribution<float> noise(0.0f, 0.002f);
+  const Grid before = pinholeCloud(160, 120, [&](int x, int) { return 0.8f + 0.0005f * x + noise(random); });
+  CloudFilterParams params = medianOnly();
+  params.threads = 1;
+  Grid one = before;
+  filterCloud(one.cloud, one.status, params);
+  params.threads = 3;
+  Grid three = before;
+  filterCloud(three.cloud, three.status, params);
+  EXPECT_EQ(cv::norm(one.status, three.status, cv::NORM_INF), 0.0);
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) {
+    EXPECT_TRUE(one.cloud.points[i] == three.cloud.points[i] ||
+                (!one.cloud.points[i].allFinite() && !three.cloud.points[i].allFinite()))
+        << i;
+  }
+}
+
 TEST(CloudFilter, DepthEdgeParamsAreChecked) {
   CloudFilterParams params;
   params.edge_max_jump = -1.0;
@@ -338,6 +446,15 @@ TEST(CloudFilter, RefusesBadParamsNamingTheField) {
   params = {};
   params.speckle_min_pixels = -1;
   EXPECT_NE(paramsError(params).find("speckle_min_pixels"), std::string::npos);
+  params = {};
+  params.median_reach = -1.0;
+  EXPECT_NE(paramsError(params).find("median_reach"), std::string::npos);
+  params = {};
+  params.median_max_pull = 0.0;
+  EXPECT_NE(paramsError(params).find("median_max_pull"), std::string::npos);
+  params = {};
+  params.median_max_intensity = -0.1;
+  EXPECT_NE(paramsError(params).find("median_max_intensity"), std::string::npos);
   params = {};
   params.max_depth = std::numeric_limits<double>::infinity();  // keeps everything: allowed
   EXPECT_EQ(paramsError(params), "");

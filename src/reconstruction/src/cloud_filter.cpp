@@ -1,4 +1,4 @@
-// filterCloud: depth range, crop box and speckle removal on an organized cloud.
+// filterCloud: depth range, crop box, noise, depth-edge and speckle removal on an organized cloud.
 #include "binpick/reconstruction/cloud_filter.hpp"
 
 #include <cmath>
@@ -10,6 +10,7 @@
 #include "binpick/reconstruction/pixel_status.hpp"
 #include "depth_edges.hpp"
 #include "speckle.hpp"
+#include "surface_median.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -56,6 +57,20 @@ void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
   }
 }
 
+void applySurfaceMedian(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+  const std::vector<uint8_t> outlier =
+      detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
+                                    static_cast<float>(params.median_max_pull),
+                                    static_cast<float>(params.median_max_intensity), core::resolveThreadCount(params.threads));
+  for (int y = 0; y < cloud.height; ++y) {
+    uint8_t* row_status = status.ptr<uint8_t>(y);
+    for (int x = 0; x < cloud.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
+      if (outlier[i]) removePoint(cloud, i, row_status[x], PixelStatus::DepthEdge);
+    }
+  }
+}
+
 void applyDepthEdges(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const std::vector<uint8_t> outlier =
       detail::findDepthEdgeOutliers(cloud, static_cast<float>(params.edge_max_jump), params.edge_min_neighbours,
@@ -93,6 +108,11 @@ void CloudFilterParams::validate() const {
   require(std::isfinite(speckle_max_step) && speckle_max_step > 0.0, "speckle_max_step", "positive and finite",
           speckle_max_step);
   require(speckle_min_pixels >= 0, "speckle_min_pixels", ">= 0", speckle_min_pixels);
+  require(std::isfinite(median_reach) && median_reach >= 0.0, "median_reach", "finite and >= 0", median_reach);
+  require(std::isfinite(median_max_pull) && median_max_pull > 0.0, "median_max_pull", "positive and finite",
+          median_max_pull);
+  require(!std::isnan(median_max_intensity) && median_max_intensity >= 0.0, "median_max_intensity", ">= 0",
+          median_max_intensity);
   require(std::isfinite(edge_max_jump) && edge_max_jump >= 0.0, "edge_max_jump", "finite and >= 0", edge_max_jump);
   require(edge_min_neighbours >= 1 && edge_min_neighbours <= 8, "edge_min_neighbours", "in [1, 8]",
           edge_min_neighbours);
@@ -107,6 +127,7 @@ void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams
   const CloudFilterParams defaults;
   const bool limits_depth = params.min_depth > defaults.min_depth || params.max_depth < defaults.max_depth;
   if (limits_depth || !params.crop.isEmpty()) applyDepthAndCrop(cloud, status, params);
+  if (params.median_reach > 0.0) applySurfaceMedian(cloud, status, params);
   if (params.edge_max_jump > 0.0) applyDepthEdges(cloud, status, params);
   if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
 }

@@ -98,13 +98,13 @@ Reconstruction Reconstructor::reconstruct(const io::Capture& capture, const core
   TriangulatedCloud triangulated = triangulator_.triangulate(decoded);
   result.timings.triangulate = stage.lapMs();
   core::throwIfCancelled(cancel, "before filtering");
+  triangulated.cloud.intensities = intensitiesOf(decoded.intensity);  // the noise filter reads them
   filterCloud(triangulated.cloud, triangulated.status, params_.filter);
   result.timings.filter = stage.lapMs();
   // The three stages end to end; the copying into the result below is not part of it.
   result.timings.total = result.timings.decode + result.timings.triangulate + result.timings.filter;
 
   result.cloud = std::move(triangulated.cloud);
-  result.cloud.intensities = intensitiesOf(decoded.intensity);
   result.status = triangulated.status;
   result.counts = countStatuses(result.status);
   return result;

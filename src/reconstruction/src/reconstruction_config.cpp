@@ -48,6 +48,9 @@ void readFilter(core::YamlSection s, CloudFilterParams& p) {
   readCrop(s.child("crop"), p);
   s.read("speckle_max_step", p.speckle_max_step);
   s.read("speckle_min_pixels", p.speckle_min_pixels);
+  s.read("median_reach", p.median_reach);
+  s.read("median_max_pull", p.median_max_pull);
+  s.read("median_max_intensity", p.median_max_intensity);
   s.read("edge_max_jump", p.edge_max_jump);
   s.read("edge_min_neighbours", p.edge_min_neighbours);
   s.read("edge_min_support", p.edge_min_support);
