@@ -78,7 +78,11 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   result.timing_ms.verification = clock.lapMs();
 
   const PoseRefiner refiner(scene, model.step, p.icp);
-  MultipleSelection selection(verified, scene.size());
+  // Scene-consistent verification: a candidate's free-space penalty is computed when Algorithm 1
+  // first refreshes it (most candidates never are).
+  MultipleSelection selection(verified, scene.size(), [&](uint32_t c) {
+    return freeSpacePenalty(model, scene, verified[c].T_camera_model, p.verification);
+  });
   const float removal_radius = 1.5f * grid.voxelSize();
   const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;

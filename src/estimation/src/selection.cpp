@@ -16,8 +16,12 @@ void SelectionParams::validate() const {
   }
 }
 
-MultipleSelection::MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points)
-    : candidates_(candidates), exist_(scene_points, 1) {
+MultipleSelection::MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points,
+                                     Penalty penalty)
+    : candidates_(candidates),
+      penalty_(std::move(penalty)),
+      known_penalty_(penalty_ ? candidates.size() : 0, -1),
+      exist_(scene_points, 1) {
   ranked_.reserve(candidates.size());
   for (uint32_t i = 0; i < candidates.size(); ++i) ranked_.emplace_back(candidates[i].score, i);
 }
@@ -30,11 +34,10 @@ std::optional<MultipleSelection::Pick> MultipleSelection::next() {
             [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
   std::size_t best = 0;
   for (std::size_t i = 0; i < ranked_.size(); ++i) {
-    const VerifiedCandidate& candidate = candidates_[ranked_[i].second];
-    // Eq. 4 less the candidate's free-space penalty, which no removal changes: the last known
-    // score stays an upper bound.
-    const uint32_t existing = existingCount(candidate.support, exist_);
-    ranked_[i].first = existing - std::min(existing, candidate.penalty);
+    // Eq. 4 less the candidate's penalty, which no removal changes: the last known score stays an
+    // upper bound.
+    const uint32_t existing = existingCount(candidates_[ranked_[i].second].support, exist_);
+    ranked_[i].first = existing - std::min(existing, penaltyOf(ranked_[i].second));
     ++refreshes_;
     const auto& b = ranked_[best];
     if (ranked_[i].first > b.first || (ranked_[i].first == b.first && ranked_[i].second < b.second)) best = i;
@@ -48,6 +51,12 @@ std::optional<MultipleSelection::Pick> MultipleSelection::next() {
   const Pick pick{ranked_[best].second, ranked_[best].first};
   ranked_.erase(ranked_.begin() + static_cast<std::ptrdiff_t>(best));
   return pick;
+}
+
+uint32_t MultipleSelection::penaltyOf(uint32_t candidate) {
+  if (!penalty_) return 0;
+  if (known_penalty_[candidate] < 0) known_penalty_[candidate] = penalty_(candidate);
+  return static_cast<uint32_t>(known_penalty_[candidate]);
 }
 
 void MultipleSelection::removeExplained(const std::vector<uint32_t>& scene_points) {

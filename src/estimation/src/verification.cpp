@@ -1,6 +1,5 @@
 #include "binpick/estimation/verification.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "binpick/core/error.hpp"
@@ -61,6 +60,14 @@ uint32_t seenThroughCount(const PreparedModel& model, const Eigen::Isometry3f& p
   return count;
 }
 
+uint32_t freeSpacePenalty(const PreparedModel& model, const PreparedScene& scene, const Eigen::Isometry3f& pose,
+                          const VerificationParams& params) {
+  if (!(params.free_space_penalty > 0.0f)) return 0;
+  const uint32_t seen_through =
+      seenThroughCount(model, pose, scene.line_of_sight, params.free_space_tolerance_ratio * model.step);
+  return static_cast<uint32_t>(std::lround(params.free_space_penalty * static_cast<float>(seen_through)));
+}
+
 std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
                                       const PreparedScene& scene, const SceneVoxelGrid& grid,
                                       const VerificationParams& params, const core::CancelFlag* cancel) {
@@ -68,8 +75,6 @@ std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidat
   const float min_cosine = params.max_normal_angle_deg >= 180.0f
                                ? -2.0f
                                : std::cos(params.max_normal_angle_deg * static_cast<float>(M_PI / 180.0));
-  const bool check_free_space = params.free_space_penalty > 0.0f && !scene.line_of_sight.empty();
-  const float tolerance = params.free_space_tolerance_ratio * model.step;
   std::vector<VerifiedCandidate> verified(candidates.size());
   const int threads = core::resolveThreadCount(params.threads);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 16)
@@ -79,11 +84,7 @@ std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidat
     v.T_camera_model = candidates[c].T_camera_model;
     v.votes = candidates[c].votes;
     v.support = correspondingScenePoints(model, v.T_camera_model, grid, scene.normals, min_cosine);
-    if (check_free_space) {
-      const uint32_t seen_through = seenThroughCount(model, v.T_camera_model, scene.line_of_sight, tolerance);
-      v.penalty = static_cast<uint32_t>(std::lround(params.free_space_penalty * static_cast<float>(seen_through)));
-    }
-    v.score = static_cast<uint32_t>(v.support.size()) - std::min(v.penalty, static_cast<uint32_t>(v.support.size()));
+    v.score = static_cast<uint32_t>(v.support.size());
   }
   core::throwIfCancelled(cancel, "during verification");
   return verified;

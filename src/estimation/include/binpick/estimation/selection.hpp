@@ -4,6 +4,7 @@
 // SS(P_k)) in the order of their last known scores, stopping as soon as no unrefreshed candidate
 // can beat the best refreshed one. Not thread-safe: one selection per detection.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -27,8 +28,14 @@ class MultipleSelection {
     uint32_t score = 0;      // Score_New at the time of the pick
   };
 
-  // `candidates` must outlive the selection.
-  MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points);
+  // A fixed cost subtracted from a candidate's eq. 4 score (the free-space penalty of the
+  // scene-consistent verification), computed the first time the candidate is refreshed: most
+  // candidates never are, and an upper bound stays one when the cost is taken off.
+  using Penalty = std::function<uint32_t(uint32_t candidate)>;
+
+  // `candidates` must outlive the selection. Without a penalty: eq. 4 alone, as in the paper.
+  MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points,
+                    Penalty penalty = nullptr);
 
   // The remaining candidate with the highest Score_New under the current Exist flags (ties: the
   // lower index), taken out of the running; nothing when no candidate is left.
@@ -40,7 +47,11 @@ class MultipleSelection {
   std::size_t refreshCount() const { return refreshes_; }  // how many eq. 4 evaluations ran
 
  private:
+  uint32_t penaltyOf(uint32_t candidate);
+
   const std::vector<VerifiedCandidate>& candidates_;
+  Penalty penalty_;
+  std::vector<int64_t> known_penalty_;  // -1 until computed
   std::vector<uint8_t> exist_;
   std::vector<std::pair<uint32_t, uint32_t>> ranked_;  // (known upper bound of the score, index)
   std::size_t refreshes_ = 0;

@@ -5,7 +5,8 @@
 //
 // Deviation: scene-consistent verification. A pose also pays for what the camera would have seen
 // were it right: every model point lying in front of the measured surface along its line of sight
-// (free space the sensor saw through) costs `free_space_penalty` score points. Eq. 4 counts only
+// (free space the sensor saw through) costs `free_space_penalty` score points, taken off when
+// Algorithm 1 first refreshes the candidate (freeSpacePenalty, MultipleSelection). Eq. 4 counts only
 // what a pose explains, so a part turned over that shows the same single face (a flange with its
 // hub put on the hidden side, an L-bracket upside down) scores as high as the truth; its hidden
 // half, now towards the camera, floats in front of the pile and is caught here. A point inside a
@@ -44,8 +45,7 @@ struct VerificationParams {
 struct VerifiedCandidate {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
   uint32_t votes = 0;
-  uint32_t score = 0;             // Score(P_k), eq. 4, with every scene point existing, less the penalty
-  uint32_t penalty = 0;           // free_space_penalty x seen-through model points
+  uint32_t score = 0;             // Score(P_k), eq. 4, with every scene point existing
   std::vector<uint32_t> support;  // SS(P_k): the scene point of every fitted model point
 };
 
@@ -65,6 +65,11 @@ std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidat
 // lie more than `tolerance` in front of the measured surface; only `indices` when given, else all.
 uint32_t seenThroughCount(const PreparedModel& model, const Eigen::Isometry3f& pose, const LineOfSightMap& map,
                           float tolerance, const std::vector<uint32_t>* indices = nullptr);
+
+// The score a pose pays for what the camera saw through (free_space_penalty x seen-through model
+// points at free_space_tolerance_ratio); 0 when the penalty is off or the scene has no map.
+uint32_t freeSpacePenalty(const PreparedModel& model, const PreparedScene& scene, const Eigen::Isometry3f& pose,
+                          const VerificationParams& params);
 
 // Eq. 4: how many entries of SS(P) still exist.
 uint32_t existingCount(const std::vector<uint32_t>& support, const std::vector<uint8_t>& exist);
