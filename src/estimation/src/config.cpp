@@ -74,6 +74,7 @@ void readDetector(Section s, DetectorParams& p) {
   Section selection = s.child("selection");
   selection.read("max_objects", p.selection.max_objects);
   selection.read("min_score_fraction", p.selection.min_score_fraction);
+  selection.read("min_coverage", p.selection.min_coverage);
   selection.read("min_centre_distance_ratio", p.selection.min_centre_distance_ratio);
   selection.finish();
   Section icp = s.child("icp");

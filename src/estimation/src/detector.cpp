@@ -115,6 +115,7 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
       ++result.seen_through_rejected;
       continue;
     }
+    if (d.coverage < p.selection.min_coverage) continue;  // refined onto nothing: no part there
     d.score = static_cast<float>(pick->score) / static_cast<float>(model.size());
     d.votes = verified[pick->candidate].votes;
     // Algorithm 1 lines 2-6, at the refined pose and for every scene point within the fit

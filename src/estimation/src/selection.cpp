@@ -11,6 +11,9 @@ void SelectionParams::validate() const {
   if (!(min_score_fraction >= 0.0f && min_score_fraction <= 1.0f)) {
     throw core::Error("selection params: min_score_fraction must be in [0, 1]");
   }
+  if (!(min_coverage >= 0.0f && min_coverage <= 1.0f)) {
+    throw core::Error("selection params: min_coverage must be in [0, 1]");
+  }
   if (!(min_centre_distance_ratio >= 0.0f && min_centre_distance_ratio <= 10.0f)) {
     throw core::Error("selection params: min_centre_distance_ratio must be in [0, 10]");
   }

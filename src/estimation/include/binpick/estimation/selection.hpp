@@ -16,6 +16,8 @@ namespace binpick::estimation {
 struct SelectionParams {
   int max_objects = 20;                    // stop after this many detections
   float min_score_fraction = 0.05f;        // stop when the best Score_New / N_m falls below this
+  float min_coverage = 0.2f;               // a refined pick fitting less of its visible model points is
+                                           // refused: ICP found nothing there (0: keep every pick)
   float min_centre_distance_ratio = 0.1f;  // a pose whose model centre lies closer than this
                                            // (times diam(M)) to an accepted one is a repeat
   void validate() const;                   // throws core::Error naming the field
