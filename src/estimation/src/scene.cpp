@@ -17,6 +17,16 @@ namespace {
 constexpr float kMinSupportInSpacings = 1.5f;
 constexpr float kMaxSupportInSteps = 2.0f;
 
+constexpr std::size_t kSpacingSamples = 256;  // points sampled to measure a cloud's spacing
+
+float median(std::vector<float> values) {
+  if (values.empty()) return 0.0f;
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// The radius of a scene normal's neighbourhood in a cloud whose points lie `spacing` apart.
 float normalSupport(float radius, float spacing, float step) {
   return std::max(radius, std::min(kMinSupportInSpacings * spacing, kMaxSupportInSteps * step));
 }
@@ -25,8 +35,8 @@ float normalSupport(float radius, float spacing, float step) {
 // them without a search structure.
 class OrganizedNeighbours {
  public:
-  OrganizedNeighbours(const io::PointCloud& cloud, const SceneParams& params, float step)
-      : cloud_(cloud), max_half_(params.max_window_half_size), step_(step) {}
+  OrganizedNeighbours(const io::PointCloud& cloud, const SceneParams& params)
+      : cloud_(cloud), max_half_(params.max_window_half_size) {}
 
   PlaneFit fit(uint32_t index, float radius) const {
     PlaneFit fit;
@@ -35,11 +45,8 @@ class OrganizedNeighbours {
     const Eigen::Vector3f& centre = cloud_.points[index];
     const float pitch = pixelPitch(u0, v0);
     if (!(pitch > 0.0f)) return fit;
-    // A sparse cloud (pixels wider apart than the radius) would leave the point alone in its
-    // radius: the support grows to reach its neighbouring pixels.
-    const float support = normalSupport(radius, pitch, step_);
-    const int half = std::clamp(static_cast<int>(std::ceil(support / pitch)), 1, max_half_);
-    const float radius_sq = support * support;
+    const int half = std::clamp(static_cast<int>(std::ceil(radius / pitch)), 1, max_half_);
+    const float radius_sq = radius * radius;
     for (int v = std::max(0, v0 - half); v <= std::min(cloud_.height - 1, v0 + half); ++v) {
       const Eigen::Vector3f* row = &cloud_.points[static_cast<std::size_t>(v) * cloud_.width];
       for (int u = std::max(0, u0 - half); u <= std::min(cloud_.width - 1, u0 + half); ++u) {
@@ -48,6 +55,19 @@ class OrganizedNeighbours {
       }
     }
     return fit;
+  }
+
+  // The typical distance between adjacent pixels' points: the median over a sample of `indices`.
+  float typicalPitch(const std::vector<uint32_t>& indices) const {
+    std::vector<float> pitches;
+    const std::size_t stride = std::max<std::size_t>(1, indices.size() / kSpacingSamples);
+    for (std::size_t k = 0; k < indices.size(); k += stride) {
+      const auto u = static_cast<int>(indices[k] % static_cast<uint32_t>(cloud_.width));
+      const auto v = static_cast<int>(indices[k] / static_cast<uint32_t>(cloud_.width));
+      const float pitch = pixelPitch(u, v);
+      if (pitch > 0.0f) pitches.push_back(pitch);
+    }
+    return median(pitches);
   }
 
  private:
@@ -70,23 +90,18 @@ class OrganizedNeighbours {
 
   const io::PointCloud& cloud_;
   int max_half_;
-  float step_;
 };
 
 // The typical distance between neighbouring points of an unorganized cloud: the median over a
 // sample of kept points of the distance to their nearest other point.
 float typicalSpacing(const KdTree& tree, const std::vector<uint32_t>& kept) {
-  constexpr std::size_t kSamples = 256;
   std::vector<float> spacing;
-  const std::size_t stride = std::max<std::size_t>(1, kept.size() / kSamples);
+  const std::size_t stride = std::max<std::size_t>(1, kept.size() / kSpacingSamples);
   for (std::size_t k = 0; k < kept.size(); k += stride) {
     const float d = tree.nearestOtherSq(kept[k]);
     if (std::isfinite(d)) spacing.push_back(std::sqrt(d));
   }
-  if (spacing.empty()) return 0.0f;
-  const auto middle = spacing.begin() + static_cast<std::ptrdiff_t>(spacing.size() / 2);
-  std::nth_element(spacing.begin(), middle, spacing.end());
-  return *middle;
+  return median(spacing);
 }
 
 std::vector<uint32_t> validIndices(const io::PointCloud& cloud, const SceneParams& params) {
@@ -105,9 +120,7 @@ std::vector<uint32_t> validIndices(const io::PointCloud& cloud, const SceneParam
 float medianDepth(const std::vector<Eigen::Vector3f>& points, const std::vector<uint32_t>& kept) {
   std::vector<float> depths(kept.size());
   for (std::size_t k = 0; k < kept.size(); ++k) depths[k] = points[kept[k]].z();
-  const auto middle = depths.begin() + static_cast<std::ptrdiff_t>(depths.size() / 2);
-  std::nth_element(depths.begin(), middle, depths.end());
-  return *middle;
+  return median(std::move(depths));
 }
 
 Eigen::Vector3f towardsCamera(const Eigen::Vector3f& n, const Eigen::Vector3f& p) {
@@ -158,10 +171,13 @@ PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& mod
   const auto min_neighbours = static_cast<std::size_t>(params.min_normal_neighbours);
   const int threads = core::resolveThreadCount(params.threads);
   if (cloud.isOrganized()) {
-    const OrganizedNeighbours neighbours(cloud, params, model.step);
+    const OrganizedNeighbours neighbours(cloud, params);
+    std::vector<uint32_t> kept_pixels(kept.size());
+    for (std::size_t k = 0; k < kept.size(); ++k) kept_pixels[k] = valid[kept[k]];
+    const float support = normalSupport(radius, neighbours.typicalPitch(kept_pixels), model.step);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t k = 0; k < kept.size(); ++k) {
-      normals[k] = neighbours.fit(valid[kept[k]], radius).normal(min_neighbours);
+      normals[k] = neighbours.fit(kept_pixels[k], support).normal(min_neighbours);
     }
   } else {
     const KdTree tree(valid_points);
