@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <random>
 
 #include "binpick/estimation/selection.hpp"
@@ -156,15 +157,18 @@ TEST(MultipleSelection, APenaltyTakenOffAtTheFirstRefreshGivesTheNaiveSequence) 
     expectSameSequence(lazy, naive);
     for (int n : computed) EXPECT_LE(n, 1);
   }
-  // One pick from many candidates computes few penalties.
+  // One pick from many candidates computes few penalties, on two threads too.
   const auto candidates = randomCandidates(2000, 200, 0, 40, 7);
-  std::size_t computed = 0;
-  MultipleSelection selection(candidates, 200, [&](uint32_t) {
-    ++computed;
-    return 5u;
-  });
+  std::atomic<std::size_t> computed{0};
+  MultipleSelection selection(
+      candidates, 200,
+      [&](uint32_t) {
+        ++computed;
+        return 5u;
+      },
+      2);
   ASSERT_TRUE(selection.next().has_value());
-  EXPECT_LT(computed, candidates.size() / 5);
+  EXPECT_LT(computed.load(), candidates.size() / 5);
 }
 
 TEST(MultipleSelection, ExistFlagsAndEmptyInput) {

@@ -80,14 +80,15 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   const PoseRefiner refiner(scene, model.step, p.icp);
   // Scene-consistent verification: a candidate's free-space penalty is computed when Algorithm 1
   // first refreshes it (most candidates never are).
-  MultipleSelection selection(verified, scene.size(), [&](uint32_t c) {
-    return freeSpacePenalty(model, scene, verified[c].T_camera_model, p.verification);
-  });
+  const int threads = core::resolveThreadCount(p.threads);
+  MultipleSelection selection(
+      verified, scene.size(),
+      [&](uint32_t c) { return freeSpacePenalty(model, scene, verified[c].T_camera_model, p.verification); },
+      threads);
   const float removal_radius = 1.5f * grid.voxelSize();
   const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
   const float refined_tolerance = p.verification.refined_tolerance_ratio * model.step;
-  const int threads = core::resolveThreadCount(p.threads);
   double icp_ms = 0.0;
   while (static_cast<int>(result.detections.size()) < p.selection.max_objects) {
     const auto pick = selection.next();

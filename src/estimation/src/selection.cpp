@@ -20,9 +20,10 @@ void SelectionParams::validate() const {
 }
 
 MultipleSelection::MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points,
-                                     Penalty penalty)
+                                     Penalty penalty, int threads)
     : candidates_(candidates),
       penalty_(std::move(penalty)),
+      threads_(std::max(1, threads)),
       known_penalty_(penalty_ ? candidates.size() : 0, -1),
       exist_(scene_points, 1) {
   ranked_.reserve(candidates.size());
@@ -40,7 +41,7 @@ std::optional<MultipleSelection::Pick> MultipleSelection::next() {
     // Eq. 4 less the candidate's penalty, which no removal changes: the last known score stays an
     // upper bound.
     const uint32_t existing = existingCount(candidates_[ranked_[i].second].support, exist_);
-    ranked_[i].first = existing - std::min(existing, penaltyOf(ranked_[i].second));
+    ranked_[i].first = existing - std::min(existing, penaltyAt(i));
     ++refreshes_;
     const auto& b = ranked_[best];
     if (ranked_[i].first > b.first || (ranked_[i].first == b.first && ranked_[i].second < b.second)) best = i;
@@ -56,9 +57,19 @@ std::optional<MultipleSelection::Pick> MultipleSelection::next() {
   return pick;
 }
 
-uint32_t MultipleSelection::penaltyOf(uint32_t candidate) {
+uint32_t MultipleSelection::penaltyAt(std::size_t rank) {
   if (!penalty_) return 0;
-  if (known_penalty_[candidate] < 0) known_penalty_[candidate] = penalty_(candidate);
+  const uint32_t candidate = ranked_[rank].second;
+  if (known_penalty_[candidate] < 0) {
+    // The candidates ranked next are the likeliest to be refreshed next: their penalties are
+    // computed now, side by side on the threads.
+    std::vector<uint32_t> batch;
+    for (std::size_t r = rank; r < ranked_.size() && batch.size() < kPenaltyBatch; ++r) {
+      if (known_penalty_[ranked_[r].second] < 0) batch.push_back(ranked_[r].second);
+    }
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 1)
+    for (std::size_t b = 0; b < batch.size(); ++b) known_penalty_[batch[b]] = penalty_(batch[b]);
+  }
   return static_cast<uint32_t>(known_penalty_[candidate]);
 }
 

@@ -17,8 +17,9 @@ struct IcpParams {
   float initial_max_distance_ratio = 2.0f;      // correspondence gate in steps, first iterations
   float final_max_distance_ratio = 0.75f;       // gate in steps once the pose has settled
   float huber_ratio = 0.25f;                    // Huber threshold on the plane residual, in steps
-  float convergence_translation_ratio = 1e-3f;  // stop when a step moves less (in steps) ...
-  float convergence_rotation_deg = 0.01f;       // ... and turns less than this
+  float convergence_translation_ratio = 1e-2f;  // stop when a step moves less (in steps: 0.04 mm
+                                                // for a 100 mm part) ...
+  float convergence_rotation_deg = 0.05f;       // ... and turns less than this
   float fit_distance_ratio = 0.75f;             // final coverage: a visible model point fits when a
                                                 // scene point lies this close (in steps)
   bool visible_points_only = true;              // false: use all model points (for comparison)

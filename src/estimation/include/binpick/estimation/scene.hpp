@@ -2,9 +2,9 @@
 // Scene preparation (sections II and III-A): the full-resolution cloud in the camera frame (camera
 // at the origin looking along +z) is subsampled at the model's step, and each kept point gets a
 // normal fitted to its full-resolution neighbours, turned towards the camera. The neighbours are
-// those within the model's normal radius, or within 1.5 point spacings (at most 2 steps) where the
-// cloud is sparser than that: a decimated cloud would otherwise leave every point alone in its
-// radius, and the detector would find nothing.
+// those within the model's normal radius, or within 1.5 of the cloud's typical point spacings (at
+// most 2 steps) where the cloud is sparser than that: a decimated cloud would otherwise leave
+// every point alone in its radius, and the detector would find nothing.
 // Free function, no shared state: thread-safe.
 #include <Eigen/Geometry>
 #include <cstdint>

@@ -36,8 +36,9 @@ class MultipleSelection {
   using Penalty = std::function<uint32_t(uint32_t candidate)>;
 
   // `candidates` must outlive the selection. Without a penalty: eq. 4 alone, as in the paper.
+  // `penalty` must be thread-safe: it runs on up to `threads` threads.
   MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points,
-                    Penalty penalty = nullptr);
+                    Penalty penalty = nullptr, int threads = 1);
 
   // The remaining candidate with the highest Score_New under the current Exist flags (ties: the
   // lower index), taken out of the running; nothing when no candidate is left.
@@ -49,10 +50,12 @@ class MultipleSelection {
   std::size_t refreshCount() const { return refreshes_; }  // how many eq. 4 evaluations ran
 
  private:
-  uint32_t penaltyOf(uint32_t candidate);
+  static constexpr std::size_t kPenaltyBatch = 32;
+  uint32_t penaltyAt(std::size_t rank);  // of the candidate at ranked_[rank]
 
   const std::vector<VerifiedCandidate>& candidates_;
   Penalty penalty_;
+  int threads_;
   std::vector<int64_t> known_penalty_;  // -1 until computed
   std::vector<uint8_t> exist_;
   std::vector<std::pair<uint32_t, uint32_t>> ranked_;  // (known upper bound of the score, index)
