@@ -45,7 +45,8 @@ struct DetectorParams {
 
 struct Detection {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
-  float score = 0.0f;     // Score_New / N_m at selection (eq. 4); Drost: cluster votes / max votes
+  float score = 0.0f;     // Score_New / N_m at selection (eq. 4, less the free-space penalty);
+                          // Drost: cluster votes / max votes
   float coverage = 0.0f;  // after ICP: share of the model points the camera should see that fit
   float icp_rmse = 0.0f;  // model units
   float seen_through = 0.0f;  // after ICP: share of the visible model points in front of the
