@@ -19,52 +19,54 @@ bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector
   return false;
 }
 
-Detection refined(const PoseRefiner& refiner, const PreparedModel& model, const Eigen::Isometry3f& pose,
-                  int max_iterations) {
+// A refined pose and its fit (seen-through points counted at the refiner's tolerance).
+struct Refined {
+  Detection detection;
+  PoseFit fit;
+};
+
+Refined refined(const PoseRefiner& refiner, const PreparedModel& model, const Eigen::Isometry3f& pose,
+                int max_iterations) {
   const IcpResult icp = refiner.refine(model, pose, max_iterations);
-  Detection d;
-  d.T_camera_model = icp.T_camera_model;
-  d.coverage = icp.coverage;
-  d.icp_rmse = icp.rmse;
-  d.icp_iterations = icp.iterations;
-  return d;
+  Refined r;
+  r.detection.T_camera_model = icp.T_camera_model;
+  r.detection.coverage = icp.coverage;
+  r.detection.icp_rmse = icp.rmse;
+  r.detection.icp_iterations = icp.iterations;
+  r.fit = icp.fit;
+  return r;
 }
 
 // A pick and its turned twins (near_symmetries.hpp) explain nearly the same scene points when the
 // part shows a single face: each twin that fits a fair share of what the pick fits is refined too,
 // and the pose that explains most, less what the camera saw through, is kept. A twin must win by a
 // margin, so that noise does not swap poses that are equally good.
-Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, Detection pick,
+Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, const Refined& pick,
                          const std::vector<Eigen::Isometry3f>& near_symmetries, float tolerance, int max_iterations,
                          int threads) {
-  const PoseFit fit = refiner.assess(model, pick.T_camera_model, tolerance);
   struct Twin {
     bool refined = false;
-    Detection pose;
-    PoseFit fit;
+    Refined pose;
   };
   std::vector<Twin> twins(near_symmetries.size());
   // The twins are independent: refined side by side (refine() is const and thread-safe), with a
   // third of the iterations: registered onto the model, each starts within millimetres of its fit.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (std::size_t t = 0; t < near_symmetries.size(); ++t) {
-    const Eigen::Isometry3f turned = pick.T_camera_model * near_symmetries[t];
+    const Eigen::Isometry3f turned = pick.detection.T_camera_model * near_symmetries[t];
     // Only a twin that is nearly as consistent before ICP can win after it.
-    if (refiner.assess(model, turned, tolerance).consistency() * 5 < fit.consistency() * 4) continue;
+    if (refiner.assess(model, turned, tolerance).consistency() * 5 < pick.fit.consistency() * 4) continue;
     twins[t].pose = refined(refiner, model, turned, max_iterations / 3);
-    twins[t].fit = refiner.assess(model, twins[t].pose.T_camera_model, tolerance);
     twins[t].refined = true;
   }
-  PoseFit best = fit;
-  const int margin = std::max(3, fit.visible / 50);
+  const Refined* best = &pick;
+  const int margin = std::max(3, pick.fit.visible / 50);
   for (const Twin& twin : twins) {
-    if (twin.refined && twin.fit.consistency() > best.consistency() + margin) {
-      best = twin.fit;
-      pick = twin.pose;
-    }
+    if (twin.refined && twin.pose.fit.consistency() > best->fit.consistency() + margin) best = &twin.pose;
   }
-  pick.seen_through = best.seenThroughShare();
-  return pick;
+  Detection chosen = best->detection;
+  chosen.seen_through = best->fit.seenThroughShare();
+  return chosen;
 }
 
 // Sections III-C and III-D: verification, then Algorithm 1 picks poses one by one; each pick is
@@ -77,7 +79,8 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification, cancel);
   result.timing_ms.verification = clock.lapMs();
 
-  const PoseRefiner refiner(scene, model.step, p.icp);
+  const float refined_tolerance = p.verification.refined_tolerance_ratio * model.step;
+  const PoseRefiner refiner(scene, model.step, p.icp, refined_tolerance);
   // Scene-consistent verification: a candidate's free-space penalty is computed when Algorithm 1
   // first refreshes it (most candidates never are).
   const int threads = core::resolveThreadCount(p.threads);
@@ -88,7 +91,6 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   const float removal_radius = 1.5f * grid.voxelSize();
   const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
-  const float refined_tolerance = p.verification.refined_tolerance_ratio * model.step;
   double icp_ms = 0.0;
   while (static_cast<int>(result.detections.size()) < p.selection.max_objects) {
     const auto pick = selection.next();
@@ -103,14 +105,15 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
     }
     core::throwIfCancelled(cancel, "during selection");
     const core::Stopwatch icp_clock;
-    Detection d = refined(refiner, model, candidate, p.icp.max_iterations);
-    if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) {
+    const Refined first = refined(refiner, model, candidate, p.icp.max_iterations);
+    if (repeatsAccepted(result.detections, first.detection.T_camera_model * model.centre, model, min_distance)) {
       icp_ms += icp_clock.elapsedMs();
       continue;
     }
     // Scene-consistent verification again at the refined pose, tighter, and against the pick
     // turned over: ICP may have pulled a candidate onto the one face of a part turned over.
-    d = mostConsistent(refiner, model, d, near_symmetries, refined_tolerance, p.icp.max_iterations, threads);
+    Detection d = mostConsistent(refiner, model, first, near_symmetries, refined_tolerance, p.icp.max_iterations,
+                                 threads);
     icp_ms += icp_clock.elapsedMs();
     if (d.seen_through > p.verification.max_refined_seen_through) {
       ++result.seen_through_rejected;
@@ -142,7 +145,7 @@ void selectClustered(const PreparedModel& model, const PreparedScene& scene, con
   for (const PoseCluster& cluster : clusters) {
     if (static_cast<int>(result.detections.size()) >= p.selection.max_objects) break;
     core::throwIfCancelled(cancel, "during selection");
-    Detection d = refined(refiner, model, cluster.T_camera_model, p.icp.max_iterations);
+    Detection d = refined(refiner, model, cluster.T_camera_model, p.icp.max_iterations).detection;
     if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
     d.votes = cluster.votes;
     d.score = static_cast<float>(cluster.votes) / static_cast<float>(clusters.front().votes);

@@ -111,8 +111,12 @@ struct PoseRefiner::Index {
   KdTree tree;
 };
 
-PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams params)
-    : scene_(scene), step_(step), params_(params), index_(std::make_unique<Index>(scene.points)) {
+PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams params, float see_through_tolerance)
+    : scene_(scene),
+      step_(step),
+      params_(params),
+      see_through_tolerance_(see_through_tolerance),
+      index_(std::make_unique<Index>(scene.points)) {
   params_.validate();
 }
 
@@ -180,10 +184,10 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
   result.T_camera_model.linear() = q.normalized().toRotationMatrix();
 
   // Final fit: residual and how much of what the camera should see of the part is there.
-  const PoseFit fit = assess(model, result.T_camera_model, std::numeric_limits<float>::infinity());
-  result.visible_points = fit.visible;
-  result.coverage = fit.coverage();
-  result.rmse = fit.rmse;
+  result.fit = assess(model, result.T_camera_model, see_through_tolerance_);
+  result.visible_points = result.fit.visible;
+  result.coverage = result.fit.coverage();
+  result.rmse = result.fit.rmse;
   return result;
 }
 

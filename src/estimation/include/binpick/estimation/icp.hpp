@@ -4,6 +4,7 @@
 // onto the scene, with a robust (Huber) weight. refine() is const: one PoseRefiner may serve many
 // threads.
 #include <Eigen/Geometry>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -26,15 +27,6 @@ struct IcpParams {
   void validate() const;                        // throws core::Error naming the field
 };
 
-struct IcpResult {
-  Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
-  int iterations = 0;
-  bool converged = false;
-  float rmse = 0.0f;      // of the plane residuals of the final correspondences
-  float coverage = 0.0f;  // fitted visible model points / visible model points, in [0, 1]
-  int visible_points = 0;
-};
-
 // How well a pose explains what the camera saw: its visible model points, those with a scene point
 // within the fit distance, and those the camera saw through (line_of_sight.hpp).
 struct PoseFit {
@@ -49,13 +41,26 @@ struct PoseFit {
   int consistency() const { return fitted - seen_through; }  // explained less contradicted
 };
 
+struct IcpResult {
+  Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
+  int iterations = 0;
+  bool converged = false;
+  float rmse = 0.0f;      // of the plane residuals of the final correspondences
+  float coverage = 0.0f;  // fitted visible model points / visible model points, in [0, 1]
+  int visible_points = 0;
+  PoseFit fit;  // the final fit, points seen through counted at the refiner's tolerance
+};
+
 // Indices of model points seen by a camera at the origin when the model is at `pose`: facing the
 // camera and nearest in their line of sight (a coarse z-buffer on the part itself).
 std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen::Isometry3f& pose);
 
 class PoseRefiner {
  public:
-  PoseRefiner(const PreparedScene& scene, float step, IcpParams params);
+  // `see_through_tolerance`: how far in front of the measured surface a visible model point counts
+  // as seen through in the final fit (infinite: none counted).
+  PoseRefiner(const PreparedScene& scene, float step, IcpParams params,
+              float see_through_tolerance = std::numeric_limits<float>::infinity());
   ~PoseRefiner();
   PoseRefiner(const PoseRefiner&) = delete;
   PoseRefiner& operator=(const PoseRefiner&) = delete;
@@ -74,6 +79,7 @@ class PoseRefiner {
   const PreparedScene& scene_;
   float step_;
   IcpParams params_;
+  float see_through_tolerance_;
   std::unique_ptr<Index> index_;
 };
 
