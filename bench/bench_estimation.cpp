@@ -6,8 +6,9 @@
 //                    [--method li_hashimoto|ppf1|ppf5] [--threads 0] [--max-pairs-per-feature 2000]
 //                    [--settings detection.yaml] [--explain 1]
 // --settings: the proposed method's detector settings from a detection.yaml (e.g. a deviation
-// switched off); --explain 1: one line per detection (error against the nearest part) and per
-// missed half-visible part (its nearest detection, and how it lies).
+// switched off); --explain 1: one line per detection (error against the nearest part; for a wrong
+// one, how it and the truth agree with the measured range) and per missed half-visible part (its
+// nearest detection, and how it lies).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,8 +19,9 @@
 #include "bench_support.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/estimation/config.hpp"
-#include "binpick/estimation/config.hpp"
 #include "binpick/estimation/detector.hpp"
+#include "binpick/estimation/icp.hpp"
+#include "binpick/estimation/range_agreement.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
@@ -129,10 +131,32 @@ Nearest nearestObject(const Eigen::Isometry3f& pose, const simulation::PileScene
   return nearest;
 }
 
+// The detector's own measure of a pose (range_agreement.hpp), for a wrong detection and for the
+// part's true pose, before and after ICP: tells a search failure (the truth agrees better) from a
+// scoring one (it does not), and shows ICP drifting off the truth.
+struct Judge {
+  const estimation::PreparedModel& model;
+  const estimation::PreparedScene& scene;
+  const estimation::PoseRefiner& refiner;
+  float tolerance;
+};
+void explainWrong(const Eigen::Isometry3f& detected, const Eigen::Isometry3f& truth, const Judge& judge) {
+  const auto agreement = [&](const Eigen::Isometry3f& pose) {
+    const estimation::RangeAgreement a =
+        estimation::rangeAgreement(judge.model, pose, judge.scene.line_of_sight, judge.tolerance);
+    return std::to_string(a.explained) + " - " + std::to_string(a.seen_through) + " of " + std::to_string(a.visible);
+  };
+  const Eigen::Isometry3f refined = judge.refiner.refine(judge.model, truth).T_camera_model;
+  const Eigen::Isometry3f drift = truth.inverse() * refined;
+  std::printf("      explained - seen through: detected %s; truth %s; truth after ICP %s (moved %.1f mm %.1f deg)\n",
+              agreement(detected).c_str(), agreement(truth).c_str(), agreement(refined).c_str(),
+              drift.translation().norm() * 1000.0, Eigen::AngleAxisf(drift.linear()).angle() * 180.0 / M_PI);
+}
+
 // What each detection is and what each missed half-visible part lacked: the data behind a
 // recognition rate.
 void explain(const estimation::DetectionResult& result, const evaluation::Score& score,
-             const simulation::PileScene& scene, const simulation::Part& part) {
+             const simulation::PileScene& scene, const simulation::Part& part, const Judge& judge) {
   std::printf("  %zu candidates, %zu refined picks refused (seen through)\n", result.candidates,
               result.seen_through_rejected);
   for (std::size_t k = 0; k < result.detections.size(); ++k) {
@@ -141,6 +165,10 @@ void explain(const estimation::DetectionResult& result, const evaluation::Score&
     std::printf("    detection %2zu %-5s part %2d: %6.1f mm %5.1f deg; score %.2f coverage %.2f seen through %.2f\n", k,
                 score.matched_object[k] >= 0 ? "right" : "WRONG", n.object, n.error.translation * 1000.0,
                 n.error.rotation_deg, d.score, d.coverage, d.seen_through);
+    if (score.matched_object[k] < 0 && n.object >= 0) {
+      explainWrong(d.T_camera_model, scene.objects[static_cast<std::size_t>(n.object)].T_camera_object.cast<float>(),
+                   judge);
+    }
   }
   for (std::size_t j = 0; j < scene.objects.size(); ++j) {
     const simulation::ObjectTruth& object = scene.objects[j];
@@ -181,7 +209,12 @@ void benchPart(const std::string& part_name, const Options& o) {
     const evaluation::Score score =
         evaluation::scoreDetections(result.detections, scene.objects, part.symmetry, {model.diameter / 10.0, 10.0});
     totals.add(result, score, validPoints(scene.cloud));
-    if (o.explain) explain(result, score, scene, part);
+    if (o.explain) {
+      const estimation::PreparedScene prepared = estimation::prepareScene(scene.cloud, model, params.scene);
+      const float tolerance = params.verification.refined_tolerance_ratio * model.step;
+      const estimation::PoseRefiner refiner(prepared, model.step, params.icp, tolerance);
+      explain(result, score, scene, part, {model, prepared, refiner, tolerance});
+    }
   }
   const double objects = static_cast<double>(o.scenes) * o.objects;
   const auto per_object = [&](double ms) { return ms / objects; };

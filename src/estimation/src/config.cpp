@@ -82,6 +82,7 @@ void readDetector(Section s, DetectorParams& p) {
   icp.read("initial_max_distance_ratio", p.icp.initial_max_distance_ratio);
   icp.read("final_max_distance_ratio", p.icp.final_max_distance_ratio);
   icp.read("huber_ratio", p.icp.huber_ratio);
+  icp.read("point_weight", p.icp.point_weight);
   icp.read("convergence_translation_ratio", p.icp.convergence_translation_ratio);
   icp.read("convergence_rotation_deg", p.icp.convergence_rotation_deg);
   icp.read("fit_distance_ratio", p.icp.fit_distance_ratio);

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/core/thread_count.hpp"
+#include "binpick/estimation/range_agreement.hpp"
 #include "near_symmetries.hpp"
 
 namespace binpick::estimation {
@@ -37,32 +39,58 @@ Refined refined(const PoseRefiner& refiner, const PreparedModel& model, const Ei
   return r;
 }
 
+// A pose with the range's judgement of it (range_agreement.hpp).
+struct Judged {
+  Refined pose;
+  int consistency = std::numeric_limits<int>::min();  // lowest: not judged
+};
+
+// A turned twin, refined; or where it started when ICP made it agree less with the range (ICP can
+// slide a part lying on one face along it, off its outline). Not judged when it agrees with the
+// range less than `floor` before ICP: it could not win after.
+Judged judgedTwin(const PoseRefiner& refiner, const PreparedModel& model, const LineOfSightMap& map,
+                  const Eigen::Isometry3f& turned, float tolerance, int max_iterations, int floor) {
+  Judged twin;
+  const int start = rangeAgreement(model, turned, map, tolerance).consistency();
+  if (start < floor) return twin;
+  twin.pose = refined(refiner, model, turned, max_iterations);
+  twin.consistency = rangeAgreement(model, twin.pose.detection.T_camera_model, map, tolerance).consistency();
+  if (start > twin.consistency) {
+    twin.pose.fit = refiner.assess(model, turned, tolerance);
+    twin.pose.detection.T_camera_model = turned;
+    twin.pose.detection.coverage = twin.pose.fit.coverage();
+    twin.pose.detection.icp_rmse = twin.pose.fit.rmse;
+    twin.consistency = start;
+  }
+  return twin;
+}
+
 // A pick and its turned twins (near_symmetries.hpp) explain nearly the same scene points when the
-// part shows a single face: each twin that fits a fair share of what the pick fits is refined too,
-// and the pose that explains most, less what the camera saw through, is kept. A twin must win by a
-// margin, so that noise does not swap poses that are equally good.
-Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, const Refined& pick,
-                         const std::vector<Eigen::Isometry3f>& near_symmetries, float tolerance, int max_iterations,
-                         int threads) {
-  struct Twin {
-    bool refined = false;
-    Refined pose;
-  };
-  std::vector<Twin> twins(near_symmetries.size());
-  // The twins are independent: refined side by side (refine() is const and thread-safe), with a
+// part shows a single face: each twin that agrees nearly as well with the measured range is
+// refined too, and the pose whose fine surface the range explains most, less what the camera saw
+// through (range_agreement.hpp), is kept. A twin must win by a margin, so that noise does not swap
+// poses that are equally good.
+Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, const LineOfSightMap& map,
+                         const Refined& pick, const std::vector<Eigen::Isometry3f>& near_symmetries, float tolerance,
+                         int max_iterations, int threads) {
+  if (near_symmetries.empty()) {
+    Detection chosen = pick.detection;
+    chosen.seen_through = pick.fit.seenThroughShare();
+    return chosen;
+  }
+  const RangeAgreement agreement = rangeAgreement(model, pick.detection.T_camera_model, map, tolerance);
+  std::vector<Judged> twins(near_symmetries.size());
+  // The twins are independent: judged side by side (refine() is const and thread-safe), with a
   // third of the iterations: registered onto the model, each starts within millimetres of its fit.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (std::size_t t = 0; t < near_symmetries.size(); ++t) {
-    const Eigen::Isometry3f turned = pick.detection.T_camera_model * near_symmetries[t];
-    // Only a twin that is nearly as consistent before ICP can win after it.
-    if (refiner.assess(model, turned, tolerance).consistency() * 5 < pick.fit.consistency() * 4) continue;
-    twins[t].pose = refined(refiner, model, turned, max_iterations / 3);
-    twins[t].refined = true;
+    twins[t] = judgedTwin(refiner, model, map, pick.detection.T_camera_model * near_symmetries[t], tolerance,
+                          max_iterations / 3, agreement.consistency() * 4 / 5);
   }
   const Refined* best = &pick;
-  const int margin = std::max(3, pick.fit.visible / 50);
-  for (const Twin& twin : twins) {
-    if (twin.refined && twin.pose.fit.consistency() > best->fit.consistency() + margin) best = &twin.pose;
+  int best_consistency = agreement.consistency() + std::max(3, agreement.visible / 50);
+  for (const Judged& twin : twins) {
+    if (twin.consistency > best_consistency) best = &twin.pose, best_consistency = twin.consistency;
   }
   Detection chosen = best->detection;
   chosen.seen_through = best->fit.seenThroughShare();
@@ -112,8 +140,8 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
     }
     // Scene-consistent verification again at the refined pose, tighter, and against the pick
     // turned over: ICP may have pulled a candidate onto the one face of a part turned over.
-    Detection d = mostConsistent(refiner, model, first, near_symmetries, refined_tolerance, p.icp.max_iterations,
-                                 threads);
+    Detection d = mostConsistent(refiner, model, scene.line_of_sight, first, near_symmetries, refined_tolerance,
+                                 p.icp.max_iterations, threads);
     icp_ms += icp_clock.elapsedMs();
     if (d.seen_through > p.verification.max_refined_seen_through) {
       ++result.seen_through_rejected;

@@ -23,7 +23,7 @@ struct Correspondence {
 // isometry applied on the left. Rotations are taken about the correspondences' centroid (not the
 // camera origin ~1 m away), and a little damping keeps directions that the points do not
 // constrain (sliding along a lone plane) where they are instead of sending them anywhere.
-Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, float huber) {
+Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, float huber, float point_weight) {
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();
   for (const Correspondence& c : pairs) centre += c.source;
   centre /= static_cast<float>(std::max<std::size_t>(pairs.size(), 1));
@@ -36,6 +36,17 @@ Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, fl
     J << (c.source - centre).cross(c.normal).cast<double>(), c.normal.cast<double>();
     H += w * J * J.transpose();
     g += w * J * r;
+    if (point_weight > 0.0f) {
+      const Eigen::Vector3d a = (c.source - centre).cast<double>();
+      const Eigen::Vector3d d = (c.source - c.target).cast<double>();
+      const double wd = point_weight * (d.norm() <= huber ? 1.0 : huber / d.norm());
+      Eigen::Matrix<double, 3, 6> J3;
+      J3 << 0.0, a.z(), -a.y(), 1, 0, 0,  //
+          -a.z(), 0.0, a.x(), 0, 1, 0,    //
+          a.y(), -a.x(), 0.0, 0, 0, 1;
+      H += wd * J3.transpose() * J3;
+      g += wd * J3.transpose() * d;
+    }
   }
   constexpr double kRelativeDamping = 1e-3;
   H.diagonal().array() += kRelativeDamping * H.trace() / 6.0 + 1e-12;
@@ -61,29 +72,36 @@ void IcpParams::validate() const {
   positive(initial_max_distance_ratio, "initial_max_distance_ratio");
   positive(final_max_distance_ratio, "final_max_distance_ratio");
   positive(huber_ratio, "huber_ratio");
+  if (!(point_weight >= 0.0f && point_weight <= 10.0f)) throw core::Error("icp params: point_weight must be in [0, 10]");
   positive(convergence_translation_ratio, "convergence_translation_ratio");
   positive(convergence_rotation_deg, "convergence_rotation_deg");
   positive(fit_distance_ratio, "fit_distance_ratio");
 }
 
 std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen::Isometry3f& pose) {
+  return visibleSurfacePoints(model.points, model.normals, model.step, model.centre, pose);
+}
+
+std::vector<uint32_t> visibleSurfacePoints(const std::vector<Eigen::Vector3f>& points,
+                                           const std::vector<Eigen::Vector3f>& normals, float step,
+                                           const Eigen::Vector3f& centre, const Eigen::Isometry3f& pose) {
   // Back faces first, then a z-buffer over viewing directions with cells about one step wide at
   // the part's distance: a point more than a step behind the nearest in its cell is hidden. The
   // part spans a few dozen cells each way, so the buffer is a small dense grid over its bounds.
-  const float depth = std::max((pose * model.centre).z(), model.step);
-  const float cell = model.step / depth;
+  const float depth = std::max((pose * centre).z(), step);
+  const float cell = step / depth;
   struct Facing {
     uint32_t index;
     float z;
     int64_t u, v;
   };
   std::vector<Facing> facing;
-  facing.reserve(model.size());
+  facing.reserve(points.size());
   int64_t u_low = std::numeric_limits<int64_t>::max(), v_low = u_low, u_high = std::numeric_limits<int64_t>::min(),
           v_high = u_high;
-  for (uint32_t k = 0; k < model.size(); ++k) {
-    const Eigen::Vector3f p = pose * model.points[k];
-    if (!(p.z() > 0.0f) || (pose.linear() * model.normals[k]).dot(p) >= 0.0f) continue;
+  for (uint32_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector3f p = pose * points[k];
+    if (!(p.z() > 0.0f) || (pose.linear() * normals[k]).dot(p) >= 0.0f) continue;
     const auto u = static_cast<int64_t>(std::floor(p.x() / p.z() / cell));
     const auto v = static_cast<int64_t>(std::floor(p.y() / p.z() / cell));
     facing.push_back({k, p.z(), u, v});
@@ -101,7 +119,7 @@ std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen
   for (const Facing& f : facing) nearest[at(f)] = std::min(nearest[at(f)], f.z);
   visible.reserve(facing.size());
   for (const Facing& f : facing) {
-    if (f.z <= nearest[at(f)] + model.step) visible.push_back(f.index);
+    if (f.z <= nearest[at(f)] + step) visible.push_back(f.index);
   }
   return visible;
 }
@@ -169,7 +187,7 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
       pairs.push_back({p, scene_.points[s], scene_.normals[s]});
     }
     if (pairs.size() < 6) break;
-    const Eigen::Isometry3f delta = solvePointToPlane(pairs, huber);
+    const Eigen::Isometry3f delta = solvePointToPlane(pairs, huber, params_.point_weight);
     result.T_camera_model = delta * result.T_camera_model;
     result.iterations = it + 1;
     const float turn = Eigen::AngleAxisf(delta.linear()).angle();

@@ -108,6 +108,11 @@ PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams&
                       " points after subsampling is too many for the pair table; raise sampling_ratio");
   }
   model.centre /= static_cast<float>(model.points.size());
+  for (uint32_t i : voxelSubsample(dense.points, &dense_normals, 0.5f * model.step,
+                                   params.normal_cluster_angle_deg * kDegToRad)) {
+    model.fine_points.push_back(dense.points[i]);
+    model.fine_normals.push_back(dense_normals[i]);
+  }
   model.table = PpfHashTable(model.points, model.normals, model.quantizer(), params.max_pairs_per_feature);
   return model;
 }

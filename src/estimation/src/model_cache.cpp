@@ -120,16 +120,22 @@ bool sameParams(const ModelParams& a, const ModelParams& b) {
          a.max_pairs_per_feature == b.max_pairs_per_feature && a.seed == b.seed;
 }
 
+void checkPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                 const std::string& what, Reader& r) {
+  if (points.size() != normals.size() || points.size() < 4) r.fail("has inconsistent " + what + " counts");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite() || std::abs(normals[i].norm() - 1.0f) > 1e-3f) {
+      r.fail("has an invalid " + what + " at index " + std::to_string(i));
+    }
+  }
+}
+
 void checkGeometry(const PreparedModel& m, Reader& r) {
-  if (m.points.size() != m.normals.size() || m.points.size() < 4) r.fail("has inconsistent point and normal counts");
+  checkPoints(m.points, m.normals, "point and normal", r);
+  checkPoints(m.fine_points, m.fine_normals, "fine point and normal", r);
   if (!(m.diameter > 0.0f) || !std::isfinite(m.diameter) ||
       std::abs(m.step - m.params.sampling_ratio * m.diameter) > 1e-5f * m.diameter || !m.centre.allFinite()) {
     r.fail("has an invalid diameter, step or centre");
-  }
-  for (std::size_t i = 0; i < m.points.size(); ++i) {
-    if (!m.points[i].allFinite() || std::abs(m.normals[i].norm() - 1.0f) > 1e-3f) {
-      r.fail("has an invalid point or normal at index " + std::to_string(i));
-    }
   }
 }
 
@@ -144,6 +150,8 @@ void saveModelCache(const PreparedModel& model, uint64_t source_fingerprint, con
   w.put(model.centre);
   w.putArray(model.points);
   w.putArray(model.normals);
+  w.putArray(model.fine_points);
+  w.putArray(model.fine_normals);
   w.putArray(model.table.offsets());
   w.putArray(model.table.entries());
   const uint64_t checksum = fnv1a(w.bytes.data(), w.bytes.size());
@@ -191,6 +199,8 @@ CachedModel loadModelCache(const std::string& path) {
   m.centre = r.get<Eigen::Vector3f>("centre");
   m.points = r.getArray<Eigen::Vector3f>("points");
   m.normals = r.getArray<Eigen::Vector3f>("normals");
+  m.fine_points = r.getArray<Eigen::Vector3f>("fine points");
+  m.fine_normals = r.getArray<Eigen::Vector3f>("fine normals");
   checkGeometry(m, r);
   auto offsets = r.getArray<uint32_t>("table offsets");
   auto entries = r.getArray<PairEntry>("table entries");

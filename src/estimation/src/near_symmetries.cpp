@@ -1,6 +1,8 @@
 #include "near_symmetries.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <array>
 #include <Eigen/Geometry>
 
 #include "kdtree.hpp"
@@ -38,6 +40,23 @@ float registerOntoItself(const PreparedModel& model, const KdTree& tree, Eigen::
   return static_cast<float>(overlapping) / static_cast<float>(model.size());
 }
 
+// The 23 turns that map a box onto itself but for the identity: quarter and half turns about its
+// axes, half turns about the diagonals of its faces, third turns about its body diagonals. A part
+// on one face may pass for itself turned by any of them when two of its sides are alike in size
+// (a 60 x 30 x 35 housing shows a 60 x 30 or a 60 x 35 rectangle).
+std::vector<Eigen::Matrix3f> boxRotations() {
+  std::vector<Eigen::Matrix3f> rotations;
+  std::array<int, 3> order{0, 1, 2};
+  do {
+    for (int signs = 0; signs < 8; ++signs) {
+      Eigen::Matrix3f r = Eigen::Matrix3f::Zero();
+      for (int row = 0; row < 3; ++row) r(row, order[row]) = (signs >> row & 1) ? -1.0f : 1.0f;
+      if (r.determinant() > 0.0f && !r.isIdentity()) rotations.push_back(r);
+    }
+  } while (std::next_permutation(order.begin(), order.end()));
+  return rotations;
+}
+
 }  // namespace
 
 std::vector<Eigen::Isometry3f> nearSymmetries(const PreparedModel& model) {
@@ -48,14 +67,12 @@ std::vector<Eigen::Isometry3f> nearSymmetries(const PreparedModel& model) {
   const KdTree tree(model.points);
 
   std::vector<Eigen::Isometry3f> turns;
-  for (int a = 0; a < 3; ++a) {
-    for (int quarters = 1; quarters <= 3; ++quarters) {
-      Eigen::Isometry3f turn = Eigen::Isometry3f::Identity();
-      turn.linear() = Eigen::AngleAxisf(static_cast<float>(quarters * M_PI / 2.0), axes.col(a)).toRotationMatrix();
-      turn.translation() = model.centre - turn.linear() * model.centre;  // about the centroid
-      const float overlap = registerOntoItself(model, tree, turn);
-      if (overlap >= kMinOverlap && overlap < kSymmetricOverlap) turns.push_back(turn);
-    }
+  for (const Eigen::Matrix3f& rotation : boxRotations()) {
+    Eigen::Isometry3f turn = Eigen::Isometry3f::Identity();
+    turn.linear() = axes * rotation * axes.transpose();                   // in the principal frame
+    turn.translation() = model.centre - turn.linear() * model.centre;  // about the centroid
+    const float overlap = registerOntoItself(model, tree, turn);
+    if (overlap >= kMinOverlap && overlap < kSymmetricOverlap) turns.push_back(turn);
   }
   return turns;
 }

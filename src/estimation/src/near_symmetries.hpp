@@ -12,8 +12,9 @@
 namespace binpick::estimation {
 
 // Rigid transforms S of the model frame (pose * S is the turned pose) under which the model
-// overlaps itself for the most part but not wholly: the quarter and half turns about its three
-// principal axes, each registered onto the model (ICP of the model onto itself) so that the turned
+// overlaps itself for the most part but not wholly: the turns that map its principal box onto
+// itself (quarter and half turns about the axes, half turns about face diagonals, third turns about
+// body diagonals), each registered onto the model (ICP of the model onto itself) so that the turned
 // outline lands on the original one. Turns under which the part is truly symmetric are left out:
 // they cannot change what a pose explains.
 std::vector<Eigen::Isometry3f> nearSymmetries(const PreparedModel& model);

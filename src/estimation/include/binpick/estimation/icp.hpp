@@ -18,6 +18,8 @@ struct IcpParams {
   float initial_max_distance_ratio = 2.0f;      // correspondence gate in steps, first iterations
   float final_max_distance_ratio = 0.75f;       // gate in steps once the pose has settled
   float huber_ratio = 0.25f;                    // Huber threshold on the plane residual, in steps
+  float point_weight = 0.1f;                    // weight of the point-to-point distance beside the
+                                                // plane residual (0: point-to-plane only)
   float convergence_translation_ratio = 1e-2f;  // stop when a step moves less (in steps: 0.04 mm
                                                 // for a 100 mm part) ...
   float convergence_rotation_deg = 0.05f;       // ... and turns less than this
@@ -54,6 +56,11 @@ struct IcpResult {
 // Indices of model points seen by a camera at the origin when the model is at `pose`: facing the
 // camera and nearest in their line of sight (a coarse z-buffer on the part itself).
 std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen::Isometry3f& pose);
+// The same for any sampling of the part's surface `step` apart (e.g. the model's fine surface);
+// `centre` (model frame) sets the z-buffer's cell size.
+std::vector<uint32_t> visibleSurfacePoints(const std::vector<Eigen::Vector3f>& points,
+                                           const std::vector<Eigen::Vector3f>& normals, float step,
+                                           const Eigen::Vector3f& centre, const Eigen::Isometry3f& pose);
 
 class PoseRefiner {
  public:

@@ -43,8 +43,13 @@ class LineOfSightMap {
   // the part's silhouette, over whatever is behind it, even at the true pose.
   static constexpr float kMaxMeasuredAngleDeg = 75.0f;
   bool seenThrough(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float tolerance) const {
+    return measurable(p, n) && seenThrough(p, tolerance);
+  }
+  // Whether the camera would measure a surface point at `p` with outward normal `n`: it faces the
+  // camera within kMaxMeasuredAngleDeg.
+  static bool measurable(const Eigen::Vector3f& p, const Eigen::Vector3f& n) {
     const float min_facing = 0.258819f;  // cos(kMaxMeasuredAngleDeg)
-    return -n.dot(p) >= min_facing * p.norm() && seenThrough(p, tolerance);
+    return -n.dot(p) >= min_facing * p.norm();
   }
 
   bool empty() const { return depth_.empty(); }

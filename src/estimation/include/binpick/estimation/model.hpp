@@ -31,6 +31,8 @@ struct PreparedModel {
   float diameter = 0.0f;                             // diam(M), model units
   float step = 0.0f;                                 // d_dist = tau_d * diam(M)
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // centroid of `points`
+  std::vector<Eigen::Vector3f> fine_points;          // the surface at half the step, for judging a
+  std::vector<Eigen::Vector3f> fine_normals;         // refined pose point by point (range_agreement.hpp)
   ModelParams params;
   PpfHashTable table;
 

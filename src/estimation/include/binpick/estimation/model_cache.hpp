@@ -10,7 +10,7 @@
 
 namespace binpick::estimation {
 
-constexpr uint32_t kModelCacheVersion = 2;  // 2: max_pairs_per_feature
+constexpr uint32_t kModelCacheVersion = 3;  // 2: max_pairs_per_feature; 3: the fine surface
 
 // `source_fingerprint` identifies what the model was built from (see fingerprintFile): a cache is
 // only reused for the same source and parameters.
