@@ -212,7 +212,7 @@ void benchPart(const std::string& part_name, const Options& o) {
     if (o.explain) {
       const estimation::PreparedScene prepared = estimation::prepareScene(scene.cloud, model, params.scene);
       const float tolerance = params.verification.refined_tolerance_ratio * model.step;
-      const estimation::PoseRefiner refiner(prepared, model.step, params.icp, tolerance);
+      const estimation::PoseRefiner refiner(prepared, model.step, params.icp);
       explain(result, score, scene, part, {model, prepared, refiner, tolerance});
     }
   }

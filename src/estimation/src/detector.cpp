@@ -21,7 +21,7 @@ bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector
   return false;
 }
 
-// A refined pose and its fit (seen-through points counted at the refiner's tolerance).
+// A refined pose and its fit.
 struct Refined {
   Detection detection;
   PoseFit fit;
@@ -42,7 +42,13 @@ Refined refined(const PoseRefiner& refiner, const PreparedModel& model, const Ei
 // A pose with the range's judgement of it (range_agreement.hpp).
 struct Judged {
   Refined pose;
-  int consistency = std::numeric_limits<int>::min();  // lowest: not judged
+  RangeAgreement agreement;
+  bool judged = false;
+  int consistency() const { return judged ? agreement.consistency() : std::numeric_limits<int>::min(); }
+  float seenThroughShare() const {
+    return agreement.visible == 0 ? 0.0f
+                                  : static_cast<float>(agreement.seen_through) / static_cast<float>(agreement.visible);
+  }
 };
 
 // A turned twin, refined; or where it started when ICP made it agree less with the range (ICP can
@@ -51,16 +57,17 @@ struct Judged {
 Judged judgedTwin(const PoseRefiner& refiner, const PreparedModel& model, const LineOfSightMap& map,
                   const Eigen::Isometry3f& turned, float tolerance, int max_iterations, int floor) {
   Judged twin;
-  const int start = rangeAgreement(model, turned, map, tolerance).consistency();
-  if (start < floor) return twin;
+  const RangeAgreement start = rangeAgreement(model, turned, map, tolerance);
+  if (start.consistency() < floor) return twin;
+  twin.judged = true;
   twin.pose = refined(refiner, model, turned, max_iterations);
-  twin.consistency = rangeAgreement(model, twin.pose.detection.T_camera_model, map, tolerance).consistency();
-  if (start > twin.consistency) {
-    twin.pose.fit = refiner.assess(model, turned, tolerance);
+  twin.agreement = rangeAgreement(model, twin.pose.detection.T_camera_model, map, tolerance);
+  if (start.consistency() > twin.agreement.consistency()) {
+    twin.pose.fit = refiner.assess(model, turned);
     twin.pose.detection.T_camera_model = turned;
     twin.pose.detection.coverage = twin.pose.fit.coverage();
     twin.pose.detection.icp_rmse = twin.pose.fit.rmse;
-    twin.consistency = start;
+    twin.agreement = start;
   }
   return twin;
 }
@@ -69,31 +76,26 @@ Judged judgedTwin(const PoseRefiner& refiner, const PreparedModel& model, const 
 // part shows a single face: each twin that agrees nearly as well with the measured range is
 // refined too, and the pose whose fine surface the range explains most, less what the camera saw
 // through (range_agreement.hpp), is kept. A twin must win by a margin, so that noise does not swap
-// poses that are equally good.
+// poses that are equally good. The chosen pose's seen-through share is its range's.
 Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, const LineOfSightMap& map,
                          const Refined& pick, const std::vector<Eigen::Isometry3f>& near_symmetries, float tolerance,
                          int max_iterations, int threads) {
-  if (near_symmetries.empty()) {
-    Detection chosen = pick.detection;
-    chosen.seen_through = pick.fit.seenThroughShare();
-    return chosen;
-  }
-  const RangeAgreement agreement = rangeAgreement(model, pick.detection.T_camera_model, map, tolerance);
+  Judged judged_pick{pick, rangeAgreement(model, pick.detection.T_camera_model, map, tolerance), true};
   std::vector<Judged> twins(near_symmetries.size());
   // The twins are independent: judged side by side (refine() is const and thread-safe), with a
   // third of the iterations: registered onto the model, each starts within millimetres of its fit.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (std::size_t t = 0; t < near_symmetries.size(); ++t) {
     twins[t] = judgedTwin(refiner, model, map, pick.detection.T_camera_model * near_symmetries[t], tolerance,
-                          max_iterations / 3, agreement.consistency() * 4 / 5);
+                          max_iterations / 3, judged_pick.consistency() * 4 / 5);
   }
-  const Refined* best = &pick;
-  int best_consistency = agreement.consistency() + std::max(3, agreement.visible / 50);
+  const Judged* best = &judged_pick;
+  int to_beat = judged_pick.consistency() + std::max(3, judged_pick.agreement.visible / 50);
   for (const Judged& twin : twins) {
-    if (twin.consistency > best_consistency) best = &twin.pose, best_consistency = twin.consistency;
+    if (twin.consistency() > to_beat) best = &twin, to_beat = twin.consistency();
   }
-  Detection chosen = best->detection;
-  chosen.seen_through = best->fit.seenThroughShare();
+  Detection chosen = best->pose.detection;
+  chosen.seen_through = best->seenThroughShare();
   return chosen;
 }
 
@@ -108,7 +110,7 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   result.timing_ms.verification = clock.lapMs();
 
   const float refined_tolerance = p.verification.refined_tolerance_ratio * model.step;
-  const PoseRefiner refiner(scene, model.step, p.icp, refined_tolerance);
+  const PoseRefiner refiner(scene, model.step, p.icp);
   // Scene-consistent verification: a candidate's free-space penalty is computed when Algorithm 1
   // first refreshes it (most candidates never are).
   const int threads = core::resolveThreadCount(p.threads);

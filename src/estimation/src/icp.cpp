@@ -129,11 +129,10 @@ struct PoseRefiner::Index {
   KdTree tree;
 };
 
-PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams params, float see_through_tolerance)
+PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams params)
     : scene_(scene),
       step_(step),
       params_(params),
-      see_through_tolerance_(see_through_tolerance),
       index_(std::make_unique<Index>(scene.points)) {
   params_.validate();
 }
@@ -202,27 +201,21 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
   result.T_camera_model.linear() = q.normalized().toRotationMatrix();
 
   // Final fit: residual and how much of what the camera should see of the part is there.
-  result.fit = assess(model, result.T_camera_model, see_through_tolerance_);
+  result.fit = assess(model, result.T_camera_model);
   result.visible_points = result.fit.visible;
   result.coverage = result.fit.coverage();
   result.rmse = result.fit.rmse;
   return result;
 }
 
-PoseFit PoseRefiner::assess(const PreparedModel& model, const Eigen::Isometry3f& pose,
-                            float see_through_tolerance) const {
+PoseFit PoseRefiner::assess(const PreparedModel& model, const Eigen::Isometry3f& pose) const {
   const std::vector<uint32_t> visible = visibleModelPoints(model, pose);
   const float fit_distance = params_.fit_distance_ratio * step_;
-  const bool check_free_space = std::isfinite(see_through_tolerance) && !scene_.line_of_sight.empty();
   PoseFit fit;
   fit.visible = static_cast<int>(visible.size());
   double squared = 0.0;
   for (uint32_t k : visible) {
     const Eigen::Vector3f p = pose * model.points[k];
-    if (check_free_space &&
-        scene_.line_of_sight.seenThrough(p, pose.linear() * model.normals[k], see_through_tolerance)) {
-      ++fit.seen_through;
-    }
     const auto [s, distance_sq] = index_->tree.nearest(p);
     if (s < 0 || distance_sq > fit_distance * fit_distance) continue;
     const float r = (p - scene_.points[s]).dot(scene_.normals[s]);

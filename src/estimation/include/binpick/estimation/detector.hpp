@@ -49,7 +49,7 @@ struct Detection {
                           // Drost: cluster votes / max votes
   float coverage = 0.0f;  // after ICP: share of the model points the camera should see that fit
   float icp_rmse = 0.0f;  // model units
-  float seen_through = 0.0f;  // after ICP: share of the visible model points in front of the
+  float seen_through = 0.0f;  // after ICP: share of the visible fine model points in front of the
                               // measured surface (free space the camera saw through)
   uint32_t votes = 0;
   int icp_iterations = 0;

@@ -29,18 +29,13 @@ struct IcpParams {
   void validate() const;                        // throws core::Error naming the field
 };
 
-// How well a pose explains what the camera saw: its visible model points, those with a scene point
-// within the fit distance, and those the camera saw through (line_of_sight.hpp).
+// How well a pose explains what the camera saw: its visible model points and those with a scene
+// point within the fit distance. (What it contradicts: range_agreement.hpp.)
 struct PoseFit {
   int visible = 0;
   int fitted = 0;
-  int seen_through = 0;
   float rmse = 0.0f;  // of the fitted points' plane residuals
   float coverage() const { return visible == 0 ? 0.0f : static_cast<float>(fitted) / static_cast<float>(visible); }
-  float seenThroughShare() const {
-    return visible == 0 ? 0.0f : static_cast<float>(seen_through) / static_cast<float>(visible);
-  }
-  int consistency() const { return fitted - seen_through; }  // explained less contradicted
 };
 
 struct IcpResult {
@@ -50,7 +45,7 @@ struct IcpResult {
   float rmse = 0.0f;      // of the plane residuals of the final correspondences
   float coverage = 0.0f;  // fitted visible model points / visible model points, in [0, 1]
   int visible_points = 0;
-  PoseFit fit;  // the final fit, points seen through counted at the refiner's tolerance
+  PoseFit fit;  // the final fit
 };
 
 // Indices of model points seen by a camera at the origin when the model is at `pose`: facing the
@@ -64,10 +59,7 @@ std::vector<uint32_t> visibleSurfacePoints(const std::vector<Eigen::Vector3f>& p
 
 class PoseRefiner {
  public:
-  // `see_through_tolerance`: how far in front of the measured surface a visible model point counts
-  // as seen through in the final fit (infinite: none counted).
-  PoseRefiner(const PreparedScene& scene, float step, IcpParams params,
-              float see_through_tolerance = std::numeric_limits<float>::infinity());
+  PoseRefiner(const PreparedScene& scene, float step, IcpParams params);
   ~PoseRefiner();
   PoseRefiner(const PoseRefiner&) = delete;
   PoseRefiner& operator=(const PoseRefiner&) = delete;
@@ -75,9 +67,8 @@ class PoseRefiner {
   IcpResult refine(const PreparedModel& model, const Eigen::Isometry3f& initial) const;
   // The same with at most `max_iterations` (a start already close to its answer).
   IcpResult refine(const PreparedModel& model, const Eigen::Isometry3f& initial, int max_iterations) const;
-  // The fit of `pose`; a visible model point is seen through when it lies more than
-  // `see_through_tolerance` in front of the measured surface.
-  PoseFit assess(const PreparedModel& model, const Eigen::Isometry3f& pose, float see_through_tolerance) const;
+  // The fit of `pose`.
+  PoseFit assess(const PreparedModel& model, const Eigen::Isometry3f& pose) const;
   // Scene points within `radius` of any model point at `pose` (each once, ascending).
   std::vector<uint32_t> scenePointsNear(const PreparedModel& model, const Eigen::Isometry3f& pose, float radius) const;
 
@@ -86,7 +77,6 @@ class PoseRefiner {
   const PreparedScene& scene_;
   float step_;
   IcpParams params_;
-  float see_through_tolerance_;
   std::unique_ptr<Index> index_;
 };
 

@@ -32,9 +32,10 @@ struct VerificationParams {
                                             // poses are as coarse as an alpha bin)
   float free_space_penalty = 1.0f;          // score points per seen-through model point (0: off,
                                             // the paper's eq. 4)
-  float refined_tolerance_ratio = 1.0f;     // the same test after ICP, in steps ...
+  float refined_tolerance_ratio = 1.0f;     // the same test after ICP, in steps, on the model's
+                                            // fine surface (range_agreement.hpp) ...
   float max_refined_seen_through = 0.15f;   // ... rejects a refined pose when more than this share
-                                            // of its visible model points is seen through (1: off)
+                                            // of its visible fine points is seen through (1: off)
   bool compare_turned = true;               // each pick turned by the model's near-symmetries (a
                                             // part turned over) is refined too; the pose that
                                             // contradicts less of what the camera saw is kept
