@@ -9,6 +9,7 @@
 #include "capture_light_check.hpp"
 #include "capture_order_check.hpp"
 #include "decode_plan.hpp"
+#include "neighbour_unwrap.hpp"
 #include "row_decoder.hpp"
 #include "sensor_noise_estimate.hpp"
 
@@ -46,21 +47,30 @@ io::Capture withContinuousImages(const io::Capture& capture) {
 }
 
 // Tiles are independent: the result does not depend on the thread count.
+// Returns the pixels whose Gray code was too uncertain, for unwrapFromNeighbours (when
+// `collect_candidates`), in no particular order.
 template <typename Pixel>
-void decodeTiles(const io::Capture& capture, const detail::DecodePlan& plan, int threads, DecodedCapture& decoded) {
+std::vector<detail::UnwrapCandidate> decodeTiles(const io::Capture& capture, const detail::DecodePlan& plan,
+                                                 int threads, bool collect_candidates, DecodedCapture& decoded) {
   const std::size_t pixels = static_cast<std::size_t>(plan.layout.width) * static_cast<std::size_t>(plan.layout.height);
   const auto tiles = static_cast<long>((pixels + detail::kTilePixels - 1) / detail::kTilePixels);
-  const detail::RowOutput out = outputOf(decoded);
+  std::vector<detail::UnwrapCandidate> candidates;
 #pragma omp parallel num_threads(threads)
   {
     detail::RowScratch<detail::WorkType<Pixel>> scratch;
+    std::vector<detail::UnwrapCandidate> found;
+    detail::RowOutput out = outputOf(decoded);
+    if (collect_candidates) out.candidates = &found;
 #pragma omp for schedule(static, 4)
     for (long tile = 0; tile < tiles; ++tile) {
       const std::size_t offset = static_cast<std::size_t>(tile) * detail::kTilePixels;
       const int count = static_cast<int>(std::min<std::size_t>(detail::kTilePixels, pixels - offset));
       detail::decodeTile<Pixel>(capture, plan, offset, count, scratch, out);
     }
+#pragma omp critical(binpick_unwrap_candidates)
+    candidates.insert(candidates.end(), found.begin(), found.end());
   }
+  return candidates;
 }
 
 // The bit margin's noise term: k^2 var(p - q) = k^2 (2 read + gain (p + q)), with p + q = white +
@@ -85,11 +95,11 @@ DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& par
   DecodedCapture decoded = allocate(plan.layout);
   const int threads = core::resolveThreadCount(params.threads);
   const io::Capture continuous = withContinuousImages(capture);
-  if (plan.layout.bit_depth == 8) {
-    decodeTiles<uint8_t>(continuous, plan, threads, decoded);
-  } else {
-    decodeTiles<uint16_t>(continuous, plan, threads, decoded);
-  }
+  const bool unwrap = params.min_unwrap_neighbours > 0 && plan.layout.columns.hasPhase();
+  const std::vector<detail::UnwrapCandidate> candidates =
+      plan.layout.bit_depth == 8 ? decodeTiles<uint8_t>(continuous, plan, threads, unwrap, decoded)
+                                 : decodeTiles<uint16_t>(continuous, plan, threads, unwrap, decoded);
+  if (unwrap) detail::unwrapFromNeighbours(candidates, plan, params.min_unwrap_neighbours, threads, decoded);
   return decoded;
 }
 
@@ -132,6 +142,8 @@ void DecodeParams::validate() const {
       "max_saturated_fraction", "in [0, 1]", max_saturated_fraction);
   core::requireField(std::isfinite(max_pair_sum_error) && max_pair_sum_error > 0.0, owner, "max_pair_sum_error",
                      "positive", max_pair_sum_error);
+  core::requireField(min_unwrap_neighbours >= 0 && min_unwrap_neighbours <= 8, owner, "min_unwrap_neighbours",
+                     "in [0, 8]", min_unwrap_neighbours);
   core::requireField(threads >= 0, owner, "threads", ">= 0", threads);
 }
 

@@ -24,6 +24,7 @@ void readDecode(core::YamlSection s, DecodeParams& p) {
   s.read("min_phase_amplitude", p.min_phase_amplitude);
   s.read("max_phase_gray_disagreement", p.max_phase_gray_disagreement);
   s.read("keep_column_without_row", p.keep_column_without_row);
+  s.read("min_unwrap_neighbours", p.min_unwrap_neighbours);
   s.read("max_saturated_fraction", p.max_saturated_fraction);
   s.read("max_pair_sum_error", p.max_pair_sum_error);
   s.finish();

@@ -186,6 +186,24 @@ AxisVerdict verdictWithClipping(const io::Capture& capture, const DecodePlan& pl
   return resolveAxis(sample, axis, plan.thresholds);
 }
 
+// A phase that can be unwrapped by other means than the Gray code: measured, strong enough and
+// unclipped.
+bool usablePhase(const AxisLayout& axis, const AxisRow& row, int x, const DecodeThresholds& t) {
+  return axis.hasPhase() && row.phase_clipped[x] == 0 && row.phase_amplitude[x] >= t.min_phase_amplitude;
+}
+
+UnwrapCandidate unwrapCandidate(const AxisRow& columns, int x, std::size_t tile_offset, const AxisVerdict& row,
+                                bool rows_present) {
+  UnwrapCandidate c;
+  c.pixel = tile_offset + static_cast<std::size_t>(x);
+  c.phase_offset = columns.phase_offset[x];
+  c.code = columns.code[x];
+  c.uncertain = columns.uncertain[x];
+  c.row = row.position;
+  c.row_status = rows_present ? row.status : PixelStatus::Valid;
+  return c;
+}
+
 // A code the sensor clipped is reported as Saturated rather than merely uncertain.
 PixelStatus blame(PixelStatus status, bool white_clipped) {
   return status == PixelStatus::UncertainCode && white_clipped ? PixelStatus::Saturated : status;
@@ -207,10 +225,13 @@ void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile&
       continue;
     }
     const AxisVerdict column = verdictWithClipping<Pixel>(capture, plan, tile, s.columns, x, columns);
+    const bool candidate = out.candidates != nullptr && column.status == PixelStatus::UncertainCode &&
+                           s.white_clipped[x] == 0 && usablePhase(columns, s.columns, x, plan.thresholds);
     AxisVerdict row = column;
-    if (column.status == PixelStatus::Valid && rows.present) {
+    if ((column.status == PixelStatus::Valid || candidate) && rows.present) {
       row = verdictWithClipping<Pixel>(capture, plan, tile, s.rows, x, rows);
     }
+    if (candidate) out.candidates->push_back(unwrapCandidate(s.columns, x, tile.offset, row, rows.present));
     const bool column_alone = row.status != PixelStatus::Valid && plan.thresholds.keep_column_without_row;
     const PixelStatus status = column.status != PixelStatus::Valid ? column.status
                                : column_alone                      ? PixelStatus::Valid

@@ -9,6 +9,7 @@
 
 #include "binpick/io/capture.hpp"
 #include "decode_plan.hpp"
+#include "neighbour_unwrap.hpp"
 
 namespace binpick::reconstruction::detail {
 
@@ -54,6 +55,9 @@ struct RowOutput {  // pixel 0 of each output image
   float* row = nullptr;  // null when the capture has no row codes
   uint8_t* status = nullptr;
   float* intensity = nullptr;
+  // Where the tile adds its UncertainCode pixels with a usable phase, for unwrapFromNeighbours;
+  // null: not collected.
+  std::vector<UnwrapCandidate>* candidates = nullptr;
 };
 
 // Decodes pixels [offset, offset + count) (row-major, count <= kTilePixels). Pixel is uint8_t or
