@@ -93,6 +93,7 @@ void unwrapFromNeighbours(const std::vector<UnwrapCandidate>& candidates, const 
     decoded.status.ptr<uint8_t>(0)[c.pixel] = static_cast<uint8_t>(status);
     if (status != PixelStatus::Valid) continue;
     decoded.column.ptr<float>(0)[c.pixel] = resolved[i];
+    if (!decoded.column_noise.empty()) decoded.column_noise.ptr<float>(0)[c.pixel] = c.noise;
     if (rows && row_valid) decoded.row.ptr<float>(0)[c.pixel] = c.row;
   }
 }

@@ -21,6 +21,7 @@ struct UnwrapCandidate {
   float phase_offset = 0.0f;  // projector pixels within one period
   uint16_t code = 0;          // column Gray code as read, and its uncertain bits
   uint16_t uncertain = 0;
+  float noise = 0.0f;  // DecodedCapture::column_noise, when estimated
   float row = 0.0f;  // the row's verdict, as resolveAxis gave it (rows present)
   PixelStatus row_status = PixelStatus::Valid;
 };

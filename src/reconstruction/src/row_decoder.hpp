@@ -29,6 +29,7 @@ struct AxisRow {
   std::vector<float> phase_offset;  // projector pixels, the position within one period
   std::vector<float> phase_amplitude;
   std::vector<uint8_t> phase_clipped;
+  std::vector<float> position_noise;  // projector pixels (columns, when estimated)
   std::vector<float> position;  // resolveSimpleCodes' results
   std::vector<uint8_t> verdict;
 };
@@ -55,6 +56,7 @@ struct RowOutput {  // pixel 0 of each output image
   float* row = nullptr;  // null when the capture has no row codes
   uint8_t* status = nullptr;
   float* intensity = nullptr;
+  float* column_noise = nullptr;  // null when not estimated
   // Where the tile adds its UncertainCode pixels with a usable phase, for unwrapFromNeighbours;
   // null: not collected.
   std::vector<UnwrapCandidate>* candidates = nullptr;

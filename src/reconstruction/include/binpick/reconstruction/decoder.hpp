@@ -85,6 +85,13 @@ struct DecodedCapture {
   cv::Mat row;
   // CV_8UC1 PixelStatus per pixel.
   cv::Mat status;
+  // CV_32FC1: the standard deviation of `column` the sensor's noise gives it (projector pixels),
+  // from the noise measured on the capture and the pixel's phase amplitude:
+  // sqrt(2 / N) sigma_I / B * period / (2 pi) for N steps of amplitude B, sigma_I^2 the
+  // variance of one image at the steps' mean. NaN where status is not Valid. Empty when the
+  // capture has no phase-shift images or its noise could not be measured. Where the sensor
+  // clipped phase steps it is that of the clipped sinusoid (an approximation).
+  cv::Mat column_noise;
   // CV_32FC1: the white image scaled to [0, 1] (the sensor's full scale), for display.
   cv::Mat intensity;
   bool has_phase = false;  // the capture had phase-shift images (sub-pixel coordinates)
