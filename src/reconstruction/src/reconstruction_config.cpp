@@ -52,6 +52,8 @@ void readFilter(core::YamlSection s, CloudFilterParams& p) {
   s.read("median_reach", p.median_reach);
   s.read("median_max_pull", p.median_max_pull);
   s.read("median_max_intensity", p.median_max_intensity);
+  s.read("median_min_noise", p.median_min_noise);
+  s.read("median_lone_max_noise", p.median_lone_max_noise);
   s.read("edge_max_jump", p.edge_max_jump);
   s.read("edge_min_neighbours", p.edge_min_neighbours);
   s.read("edge_min_support", p.edge_min_support);
