@@ -350,8 +350,8 @@ TEST(CloudFilter, NoiseRemovalTakesAPointOffItsNeighboursSurface) {
   expectRemovedExactly(before, after, PixelStatus::DepthEdge, [](const Eigen::Vector3f& p) { return p.z() > 0.851f; });
 }
 
-// At a depth edge 20 mm high and along a slope of 2 mm per pixel (75 degrees from the view), the median is of the point's
-// own surface: nothing moves across the edge and nothing is removed.
+// At a depth edge 20 mm high and along a slope of 2 mm per pixel (75 degrees from the view), the median is of the
+// point's own surface: nothing moves across the edge and nothing is removed.
 TEST(CloudFilter, NoiseRemovalKeepsDepthEdgesAndSlopes) {
   const Grid step = pinholeCloud(100, 80, [](int x, int) { return x < 50 ? 0.83f : 0.85f; });
   const Grid slope = pinholeCloud(100, 80, [](int x, int) { return 0.8f + 0.002f * static_cast<float>(x); });
@@ -399,7 +399,7 @@ TEST(CloudFilter, NoiseRemovalKeepsTheFootOfASteepFaceOffTheFloor) {
   filterCloud(after.cloud, after.status, medianOnly());
   for (int y = 1; y < 79; ++y) {
     EXPECT_NEAR(after.at(49, y).z(), 0.848f, 1e-6f) << y;  // the foot
-    EXPECT_LE(after.at(50, y).z(), 0.85f + 1e-6f) << y;  // the floor beside it
+    EXPECT_LE(after.at(50, y).z(), 0.85f + 1e-6f) << y;    // the floor beside it
     EXPECT_GE(after.at(50, y).z(), 0.849f - 1e-6f) << y;
     EXPECT_NEAR(after.at(51, y).z(), 0.85f, 1e-6f) << y;
   }

@@ -72,10 +72,9 @@ void applySurfaceMedian(io::PointCloud& cloud, cv::Mat& status, const CloudFilte
   gate.noise = noise.empty() ? nullptr : noise.ptr<float>(0);
   gate.min_noise = static_cast<float>(params.median_min_noise);
   gate.lone_max_noise = static_cast<float>(params.median_lone_max_noise);
-  const std::vector<uint8_t> outlier =
-      detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
-                                    static_cast<float>(params.median_max_pull), gate,
-                                    core::resolveThreadCount(params.threads));
+  const std::vector<uint8_t> outlier = detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
+                                                                     static_cast<float>(params.median_max_pull), gate,
+                                                                     core::resolveThreadCount(params.threads));
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
@@ -137,8 +136,7 @@ void CloudFilterParams::validate() const {
   require(threads >= 0, "threads", ">= 0", threads);
 }
 
-void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params,
-                 const cv::Mat& column_noise) {
+void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params, const cv::Mat& column_noise) {
   params.validate();
   checkInputs(cloud, status, column_noise);
   // Triangulated points lie in front of the camera: the default range and no crop remove nothing.

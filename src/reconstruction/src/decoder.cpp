@@ -48,9 +48,9 @@ io::Capture withContinuousImages(const io::Capture& capture) {
   return continuous;
 }
 
-// Tiles are independent: the result does not depend on the thread count.
-// Returns the pixels whose Gray code was too uncertain, for unwrapFromNeighbours (when
-// `collect_candidates`), in no particular order.
+// Tiles are independent: the result does not depend on the thread count. Returns the pixels whose
+// Gray code was too uncertain, for unwrapFromNeighbours (when `collect_candidates`), in no
+// particular order.
 template <typename Pixel>
 std::vector<detail::UnwrapCandidate> decodeTiles(const io::Capture& capture, const detail::DecodePlan& plan,
                                                  int threads, bool collect_candidates, DecodedCapture& decoded) {
@@ -85,7 +85,7 @@ void capMarginsByNoise(const detail::SensorNoise& noise, double sigmas, detail::
 
 // The column's noise from N phase steps I_k = A + B cos(phi - 2 pi k / N), each with variance
 // read + gain A, A = (white + black) / 2: var(phi) = 2 var(I) / (N B^2), times (period / 2 pi)^2.
-void estimateColumnNoise(const detail::SensorNoise& noise, const detail::AxisLayout& columns,
+void setColumnNoiseModel(const detail::SensorNoise& noise, const detail::AxisLayout& columns,
                          detail::DecodeThresholds& t) {
   const double steps = static_cast<double>(columns.phase_images.size());
   const double to_pixels = columns.phase_period / (2.0 * M_PI);
@@ -106,8 +106,9 @@ DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& par
   if (params.bit_noise_sigmas > 0.0 || has_phase) {
     noise = detail::estimateSensorNoise(capture, plan.layout, plan.thresholds.saturation, plan.thresholds.min_contrast);
   }
-  if (noise.measured && params.bit_noise_sigmas > 0.0) capMarginsByNoise(noise, params.bit_noise_sigmas, plan.thresholds);
-  if (noise.measured && has_phase) estimateColumnNoise(noise, plan.layout.columns, plan.thresholds);
+  if (noise.measured && params.bit_noise_sigmas > 0.0)
+    capMarginsByNoise(noise, params.bit_noise_sigmas, plan.thresholds);
+  if (noise.measured && has_phase) setColumnNoiseModel(noise, plan.layout.columns, plan.thresholds);
   DecodedCapture decoded = allocate(plan.layout, noise.measured && has_phase);
   const int threads = core::resolveThreadCount(params.threads);
   const io::Capture continuous = withContinuousImages(capture);

@@ -70,7 +70,8 @@ float columnFromNeighbours(const UnwrapCandidate& candidate, const DecodedCaptur
   const float median = found[count / 2];
   const float x = candidate.phase_offset + period * std::round((median - candidate.phase_offset) / period);
   // As far from the neighbours as the phase may lie outside a Gray-code run of one column.
-  if (std::fabs(x - median) > 0.5f + t.phase_tolerance || x < -0.5f || x > static_cast<float>(columns.size) - 0.5f) return nan;
+  if (std::fabs(x - median) > 0.5f + t.phase_tolerance || x < -0.5f || x > static_cast<float>(columns.size) - 0.5f)
+    return nan;
   const auto column = static_cast<unsigned>(std::lround(x));
   if (!certainBitsAgree(candidate.code, candidate.uncertain, column, x, columns.bits(), t.phase_tolerance)) return nan;
   return x;

@@ -22,7 +22,7 @@ struct UnwrapCandidate {
   uint16_t code = 0;          // column Gray code as read, and its uncertain bits
   uint16_t uncertain = 0;
   float noise = 0.0f;  // DecodedCapture::column_noise, when estimated
-  float row = 0.0f;  // the row's verdict, as resolveAxis gave it (rows present)
+  float row = 0.0f;    // the row's verdict, as resolveAxis gave it (rows present)
   PixelStatus row_status = PixelStatus::Valid;
 };
 

@@ -98,9 +98,9 @@ void measurePhase(const io::Capture& capture, const DecodePlan& plan, const Axis
 template <typename Pixel>
 void estimateColumnNoise(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, AxisRow& row) {
   const DecodeThresholds& t = plan.thresholds;
-  phaseNoise<Pixel>(imageRow<Pixel>(capture, plan.layout.white, tile), imageRow<Pixel>(capture, plan.layout.black, tile),
-                    row.phase_amplitude.data(), t.column_noise_read, t.column_noise_gain, row.position_noise.data(),
-                    tile.width);
+  phaseNoise<Pixel>(imageRow<Pixel>(capture, plan.layout.white, tile),
+                    imageRow<Pixel>(capture, plan.layout.black, tile), row.phase_amplitude.data(), t.column_noise_read,
+                    t.column_noise_gain, row.position_noise.data(), tile.width);
 }
 
 template <typename Pixel, typename Work>

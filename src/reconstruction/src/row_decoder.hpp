@@ -30,7 +30,7 @@ struct AxisRow {
   std::vector<float> phase_amplitude;
   std::vector<uint8_t> phase_clipped;
   std::vector<float> position_noise;  // projector pixels (columns, when estimated)
-  std::vector<float> position;  // resolveSimpleCodes' results
+  std::vector<float> position;        // resolveSimpleCodes' results
   std::vector<uint8_t> verdict;
 };
 
