@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace binpick::reconstruction::detail {
 namespace {
@@ -47,16 +48,18 @@ std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, f
   const bool gated = cloud.hasIntensities();
   const int width = cloud.width, height = cloud.height;
   std::vector<uint8_t> outlier(cloud.points.size(), 0);
-  // Each point is decided on the depths as they came: the new ones wait here (0: unchanged).
-  std::vector<float> scale(cloud.points.size(), 0.0f);
+  // Each point is decided on the depths as they came: the moves wait here, per band of rows.
+  std::vector<std::vector<std::pair<std::size_t, float>>> moves(static_cast<std::size_t>(height));
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (int y = 1; y < height - 1; ++y) {
     float depths[5];
     for (int x = 1; x < width - 1; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * width + x;
-      const float z = cloud.points[i].z();
-      if (!std::isfinite(z) || (gated && !(cloud.intensities[i] <= gate.max_intensity))) continue;
+      // The noise first: it is NaN wherever there is no point, and most points are quiet.
       if (gate.noise != nullptr && !(gate.noise[i] >= gate.min_noise)) continue;
+      if (gated && !(cloud.intensities[i] <= gate.max_intensity)) continue;
+      const float z = cloud.points[i].z();
+      if (!std::isfinite(z)) continue;
       const int count = surfaceDepths(cloud, x, y, z, reach, depths);
       const float median = medianOf(depths, count);
       // A noisy point on no line of its neighbourhood's surface has nothing to be smoothed or
@@ -64,14 +67,14 @@ std::vector<uint8_t> smoothToSurfaceMedian(io::PointCloud& cloud, float reach, f
       const bool lone = count == 1 && gate.noise != nullptr && gate.noise[i] > gate.lone_max_noise;
       if (lone || std::fabs(median - z) > max_pull) {
         outlier[i] = 1;
-      } else {
-        scale[i] = median / z;
+      } else if (median != z) {
+        moves[static_cast<std::size_t>(y)].emplace_back(i, median / z);
       }
     }
   }
 #pragma omp parallel for schedule(static) num_threads(threads)
-  for (long i = 0; i < static_cast<long>(scale.size()); ++i) {
-    if (scale[i] != 0.0f) cloud.points[i] *= scale[i];
+  for (int y = 1; y < height - 1; ++y) {
+    for (const auto& [i, scale] : moves[static_cast<std::size_t>(y)]) cloud.points[i] *= scale;
   }
   return outlier;
 }
