@@ -239,8 +239,9 @@ TEST(Decoder, UnwrapsUncertainCodesOnDarkSurfacesFromTheirNeighbours) {
 }
 
 // The column's noise predicted from the sensor noise measured on the capture and each pixel's
-// phase amplitude is the spread of the decoded columns about the truth: a few hundredths of a
-// projector pixel on the bright clean parts, tenths on the dark parts under harsh light.
+// phase amplitude is the spread of the decoded columns about the truth (their rms within 15% of
+// each other): a few hundredths of a projector pixel on the bright clean parts, tenths on the
+// dark parts under harsh light.
 TEST(Decoder, PredictsTheNoiseOfEachColumn) {
   CaptureOptions clean_options;
   clean_options.camera_scale = 0.5;
@@ -266,12 +267,12 @@ TEST(Decoder, PredictsTheNoiseOfEachColumn) {
     SCOPED_TRACE(options.lighting + ": median predicted " + std::to_string(percentile(predicted, 0.5)) +
                  " px, rms error / rms predicted " + std::to_string(ratio));
     if (options.lighting == "clean") {
-      EXPECT_LT(percentile(predicted, 0.5), 0.1);
+      EXPECT_LT(percentile(predicted, 0.5), 0.1);  // 0.045 measured
     } else {
-      EXPECT_GT(percentile(predicted, 0.5), 0.3);
-      EXPECT_GT(ratio, 0.7);  // the noise dominates the error: the prediction is its size
-      EXPECT_LT(ratio, 1.4);
+      EXPECT_GT(percentile(predicted, 0.5), 0.3);  // 0.38 measured
     }
+    EXPECT_GT(ratio, 0.85);  // 1.01 (clean) and 1.00 (harsh) measured
+    EXPECT_LT(ratio, 1.15);
   }
 }
 
