@@ -9,6 +9,8 @@
 //                        [--lighting clean|harsh] [--settings FILE]
 // --settings reads the `reconstruction:` section of a settings file (defaults otherwise).
 // --lighting picks the virtual cell's photometry preset (lighting_presets.hpp) for every capture.
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -150,7 +152,21 @@ reconstruction::ReconstructionParams reconstructionParams(const Options& o) {
 struct Timing {
   double median = std::numeric_limits<double>::quiet_NaN();
   double min = std::numeric_limits<double>::quiet_NaN();
+  // The process's CPU time per run (all threads): on a machine shared with other work the wall
+  // time varies by 2x and more, the CPU time far less.
+  double cpu_median = std::numeric_limits<double>::quiet_NaN();
+  double cpu_min = std::numeric_limits<double>::quiet_NaN();
 };
+
+// User + system CPU time of the whole process so far, milliseconds.
+double processCpuMs() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto ms = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_usec) / 1e3;
+  };
+  return ms(usage.ru_utime) + ms(usage.ru_stime);
+}
 
 // One untimed warm-up (first-touch allocations, OpenMP pool start-up), then `repeats` timed runs;
 // `setup` runs before each and is not timed (e.g. a fresh copy for a stage that works in place).
@@ -158,15 +174,18 @@ template <typename Setup, typename Run>
 Timing timeRuns(int repeats, Setup setup, Run run) {
   setup();
   run();
-  std::vector<double> ms;
+  std::vector<double> ms, cpu;
   for (int i = 0; i < repeats; ++i) {
     setup();
+    const double cpu_start = processCpuMs();
     const core::Stopwatch stopwatch;
     run();
     ms.push_back(stopwatch.elapsedMs());
+    cpu.push_back(processCpuMs() - cpu_start);
   }
   std::sort(ms.begin(), ms.end());
-  return {ms[ms.size() / 2], ms.front()};
+  std::sort(cpu.begin(), cpu.end());
+  return {ms[ms.size() / 2], ms.front(), cpu[cpu.size() / 2], cpu.front()};
 }
 
 template <typename Run>
@@ -231,6 +250,9 @@ void printSpeed(const std::vector<SpeedResult>& results, const Options& o) {
   }
   std::printf("\n");
   printTimingRow("reconstruct (whole)", results, &SpeedResult::reconstruct);
+  std::printf("  %-28s", "reconstruct, CPU (threads)");
+  for (const SpeedResult& r : results) std::printf(" %9.1f %9.1f", r.reconstruct.cpu_median, r.reconstruct.cpu_min);
+  std::printf("\n");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -299,9 +299,11 @@ TEST(CloudFilter, DepthEdgeRemovalTakesLoneMisdecodedPoints) {
 }
 
 // Noise removal alone.
+// Noise removal alone, on every dark point (these clouds come without the decoder's column noise).
 CloudFilterParams medianOnly() {
   CloudFilterParams params = noSpeckle();
   params.median_reach = 0.0045;
+  params.median_min_noise = 0.0;
   return params;
 }
 
@@ -348,8 +350,8 @@ TEST(CloudFilter, NoiseRemovalTakesAPointOffItsNeighboursSurface) {
   expectRemovedExactly(before, after, PixelStatus::DepthEdge, [](const Eigen::Vector3f& p) { return p.z() > 0.851f; });
 }
 
-// At a depth edge 20 mm high and along a slope of 2 mm per pixel (75 degrees from the view), the median is of the point's
-// own surface: nothing moves across the edge and nothing is removed.
+// At a depth edge 20 mm high and along a slope of 2 mm per pixel (75 degrees from the view), the median is of the
+// point's own surface: nothing moves across the edge and nothing is removed.
 TEST(CloudFilter, NoiseRemovalKeepsDepthEdgesAndSlopes) {
   const Grid step = pinholeCloud(100, 80, [](int x, int) { return x < 50 ? 0.83f : 0.85f; });
   const Grid slope = pinholeCloud(100, 80, [](int x, int) { return 0.8f + 0.002f * static_cast<float>(x); });
@@ -382,6 +384,79 @@ TEST(CloudFilter, NoiseRemovalLeavesBrightPointsAsTheyAre) {
     }
   }
   EXPECT_GT(dark_moved, 80u * 118u / 2u);
+}
+
+// The foot of a steep face (5 mm per pixel, beyond the 4.5 mm reach up the slope) 2 mm above the
+// floor: the floor lies within reach on one side only. The mean of opposite neighbours is the
+// face's own depth (along its level line), so the foot stays where it is; a median of the
+// neighbours within reach would have pulled it 2 mm onto the floor. The floor beside it, whose
+// lines across the 2 mm step are within reach, moves at most half the step towards it: a step
+// lower than median_reach is rounded, never crossed.
+TEST(CloudFilter, NoiseRemovalKeepsTheFootOfASteepFaceOffTheFloor) {
+  const auto depth = [](int x, int) { return x < 50 ? 0.848f - 0.005f * static_cast<float>(49 - x) : 0.85f; };
+  const Grid before = pinholeCloud(100, 80, depth);
+  Grid after = before;
+  filterCloud(after.cloud, after.status, medianOnly());
+  for (int y = 1; y < 79; ++y) {
+    EXPECT_NEAR(after.at(49, y).z(), 0.848f, 1e-6f) << y;  // the foot
+    EXPECT_LE(after.at(50, y).z(), 0.85f + 1e-6f) << y;    // the floor beside it
+    EXPECT_GE(after.at(50, y).z(), 0.849f - 1e-6f) << y;
+    EXPECT_NEAR(after.at(51, y).z(), 0.85f, 1e-6f) << y;
+  }
+}
+
+// Given the decoder's column noise, only the noisy points are smoothed: a surface measured to
+// 0.1 projector pixel keeps its points as measured, however dark; without the noise, a cloud is
+// not smoothed unless median_min_noise is 0.
+TEST(CloudFilter, NoiseRemovalSmoothsOnlyThePointsTheDecoderMeasuredNoisily) {
+  std::mt19937 random(8);
+  std::normal_distribution<float> noise(0.0f, 0.001f);
+  const Grid before = pinholeCloud(160, 120, [&](int, int) { return 0.85f + noise(random); });
+  cv::Mat column_noise(120, 160, CV_32FC1);
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 160; ++x) column_noise.at<float>(y, x) = x < 80 ? 0.5f : 0.1f;
+  }
+  CloudFilterParams params = noSpeckle();
+  params.median_reach = 0.0045;  // median_min_noise as by default: 0.3 px
+  Grid after = before;
+  filterCloud(after.cloud, after.status, params, column_noise);
+  std::size_t noisy_moved = 0;
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * 160 + x;
+      if (x >= 80) {
+        EXPECT_TRUE(after.cloud.points[i] == before.cloud.points[i]) << x << "," << y;
+      } else {
+        noisy_moved += after.cloud.points[i] == before.cloud.points[i] ? 0 : 1;
+      }
+    }
+  }
+  EXPECT_GT(noisy_moved, 80u * 118u / 2u);
+  Grid unknown = before;
+  filterCloud(unknown.cloud, unknown.status, params);
+  for (std::size_t i = 0; i < before.cloud.size(); ++i) EXPECT_TRUE(unknown.cloud.points[i] == before.cloud.points[i]);
+}
+
+// A noisy point on no line of its neighbourhood's surface (the points beside it on every line are
+// missing) has nothing to be checked with: it is removed when its column noise exceeds
+// median_lone_max_noise, kept otherwise.
+TEST(CloudFilter, NoiseRemovalTakesLoneNoisyPoints) {
+  Grid before = pinholeCloud(40, 30, [](int, int) { return 0.85f; });
+  for (const auto& [x, y] : {std::pair{10, 10}, std::pair{30, 20}}) {
+    // The left column of the neighbourhood and the point above: every line has an end missing.
+    for (int dy = -1; dy <= 1; ++dy) before.at(x - 1, y + dy) = Eigen::Vector3f::Constant(kNaN);
+    before.at(x, y - 1) = Eigen::Vector3f::Constant(kNaN);
+  }
+  cv::Mat column_noise(30, 40, CV_32FC1, cv::Scalar(0.5f));
+  column_noise.at<float>(10, 10) = 0.8f;  // above median_lone_max_noise (0.6)
+  CloudFilterParams params = noSpeckle();
+  params.median_reach = 0.0045;
+  Grid after = before;
+  filterCloud(after.cloud, after.status, params, column_noise);
+  EXPECT_EQ(after.statusAt(10, 10), static_cast<uint8_t>(PixelStatus::DepthEdge));
+  EXPECT_FALSE(after.at(10, 10).allFinite());
+  EXPECT_EQ(after.statusAt(30, 20), kValid);
+  EXPECT_TRUE(after.at(30, 20) == before.at(30, 20));
 }
 
 TEST(CloudFilter, NoiseRemovalDoesNotDependOnTheThreadCount) {
@@ -424,6 +499,8 @@ TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {
   io::PointCloud unorganized = g.cloud;
   unorganized.width = unorganized.height = 0;
   EXPECT_THROW(filterCloud(unorganized, g.status, CloudFilterParams{}), core::Error);
+  const cv::Mat small_noise(10, 10, CV_32FC1, cv::Scalar(0.5f));
+  EXPECT_THROW(filterCloud(g.cloud, g.status, CloudFilterParams{}, small_noise), core::Error);
 }
 
 std::string paramsError(const CloudFilterParams& params) {
@@ -455,6 +532,12 @@ TEST(CloudFilter, RefusesBadParamsNamingTheField) {
   params = {};
   params.median_max_intensity = -0.1;
   EXPECT_NE(paramsError(params).find("median_max_intensity"), std::string::npos);
+  params = {};
+  params.median_min_noise = std::nan("");
+  EXPECT_NE(paramsError(params).find("median_min_noise"), std::string::npos);
+  params = {};
+  params.median_lone_max_noise = -0.5;
+  EXPECT_NE(paramsError(params).find("median_lone_max_noise"), std::string::npos);
   params = {};
   params.max_depth = std::numeric_limits<double>::infinity();  // keeps everything: allowed
   EXPECT_EQ(paramsError(params), "");

@@ -202,6 +202,78 @@ TEST(Decoder, GivesTheSameResultOnAnyNumberOfThreads) {
   EXPECT_EQ(cv::norm(a.status, b.status, cv::NORM_INF), 0.0);
   EXPECT_EQ(0, std::memcmp(a.column.data, b.column.data, a.column.total() * sizeof(float)));
   EXPECT_EQ(cv::norm(a.intensity, b.intensity, cv::NORM_INF), 0.0);
+  ASSERT_FALSE(a.column_noise.empty());
+  EXPECT_EQ(0, std::memcmp(a.column_noise.data, b.column_noise.data, a.column_noise.total() * sizeof(float)));
+}
+
+CaptureOptions harshOptions() {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  options.lighting = "harsh";
+  return options;
+}
+
+// Under harsh light the sensor noise leaves coarse Gray bits of the dark parts undecided; their
+// neighbours name the phase's period. More pixels decode, and those the neighbours resolved are
+// as close to the true column as the phase is.
+TEST(Decoder, UnwrapsUncertainCodesOnDarkSurfacesFromTheirNeighbours) {
+  const VirtualCapture& v = virtualCapture(harshOptions());
+  DecodeParams alone;
+  alone.min_unwrap_neighbours = 0;
+  const DecodedCapture before = decodeCapture(v.capture, alone);
+  const DecodedCapture after = decodeCapture(v.capture);
+  std::size_t resolved = 0, off = 0;
+  for (std::size_t i = 0; i < v.pixelCount(); ++i) {
+    if (isValid(before, i)) {
+      EXPECT_EQ(before.column.ptr<float>(0)[i], after.column.ptr<float>(0)[i]) << i;  // the first pass stands
+      continue;
+    }
+    if (!isValid(after, i)) continue;
+    ++resolved;
+    EXPECT_EQ(before.status.ptr<uint8_t>(0)[i], static_cast<uint8_t>(PixelStatus::UncertainCode)) << i;
+    const double error = std::fabs(after.column.ptr<float>(0)[i] - v.trueProjectorPixel(i).x());
+    off += error <= 2.0 ? 0 : 1;  // NaN truth: off
+  }
+  EXPECT_GT(resolved, 500u);  // 677 measured
+  EXPECT_LE(off, resolved / 100) << resolved;
+}
+
+// The column's noise predicted from the sensor noise measured on the capture and each pixel's
+// phase amplitude is the spread of the decoded columns about the truth (their rms within 15% of
+// each other): a few hundredths of a projector pixel on the bright clean parts, tenths on the
+// dark parts under harsh light.
+TEST(Decoder, PredictsTheNoiseOfEachColumn) {
+  CaptureOptions clean_options;
+  clean_options.camera_scale = 0.5;
+  for (const CaptureOptions& options : {clean_options, harshOptions()}) {
+    const VirtualCapture& v = virtualCapture(options);
+    const DecodedCapture decoded = decodeCapture(v.capture);
+    ASSERT_FALSE(decoded.column_noise.empty());
+    std::vector<double> predicted;
+    double squared_error = 0.0, squared_prediction = 0.0;
+    for (std::size_t i = 0; i < v.pixelCount(); ++i) {
+      const float sigma = decoded.column_noise.ptr<float>(0)[i];
+      if (!isValid(decoded, i)) {
+        EXPECT_TRUE(std::isnan(sigma)) << i;
+        continue;
+      }
+      const double error = decoded.column.ptr<float>(0)[i] - v.trueProjectorPixel(i).x();
+      if (!v.measurable(i) || v.scene.instance[i] < 0 || !(std::fabs(error) < 2.0)) continue;  // the parts' faces
+      predicted.push_back(sigma);
+      squared_error += error * error;
+      squared_prediction += static_cast<double>(sigma) * sigma;
+    }
+    const double ratio = std::sqrt(squared_error / squared_prediction);
+    SCOPED_TRACE(options.lighting + ": median predicted " + std::to_string(percentile(predicted, 0.5)) +
+                 " px, rms error / rms predicted " + std::to_string(ratio));
+    if (options.lighting == "clean") {
+      EXPECT_LT(percentile(predicted, 0.5), 0.1);  // 0.045 measured
+    } else {
+      EXPECT_GT(percentile(predicted, 0.5), 0.3);  // 0.38 measured
+    }
+    EXPECT_GT(ratio, 0.85);  // 1.01 (clean) and 1.00 (harsh) measured
+    EXPECT_LT(ratio, 1.15);
+  }
 }
 
 TEST(Decoder, IntensityIsTheWhiteImageOnTheSensorsScale) {

@@ -36,6 +36,7 @@ TEST(ReconstructionConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(s.max_phase_gray_disagreement, d.max_phase_gray_disagreement);
   EXPECT_EQ(s.max_saturated_fraction, d.max_saturated_fraction);
   EXPECT_EQ(s.max_pair_sum_error, d.max_pair_sum_error);
+  EXPECT_EQ(s.min_unwrap_neighbours, d.min_unwrap_neighbours);
   EXPECT_EQ(shipped.triangulation.max_epipolar_error, defaults.triangulation.max_epipolar_error);
   EXPECT_EQ(shipped.triangulation.threads, defaults.triangulation.threads);
   EXPECT_EQ(shipped.triangulation.column_when_row_inconsistent, defaults.triangulation.column_when_row_inconsistent);
@@ -44,6 +45,11 @@ TEST(ReconstructionConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_TRUE(shipped.filter.crop.isEmpty());
   EXPECT_EQ(shipped.filter.speckle_max_step, defaults.filter.speckle_max_step);
   EXPECT_EQ(shipped.filter.speckle_min_pixels, defaults.filter.speckle_min_pixels);
+  EXPECT_EQ(shipped.filter.median_reach, defaults.filter.median_reach);
+  EXPECT_EQ(shipped.filter.median_max_pull, defaults.filter.median_max_pull);
+  EXPECT_EQ(shipped.filter.median_max_intensity, defaults.filter.median_max_intensity);
+  EXPECT_EQ(shipped.filter.median_min_noise, defaults.filter.median_min_noise);
+  EXPECT_EQ(shipped.filter.median_lone_max_noise, defaults.filter.median_lone_max_noise);
   EXPECT_EQ(shipped.filter.edge_max_jump, defaults.filter.edge_max_jump);
   EXPECT_EQ(shipped.filter.edge_min_support, defaults.filter.edge_min_support);
   EXPECT_EQ(shipped.filter.edge_min_neighbours, defaults.filter.edge_min_neighbours);
@@ -52,18 +58,24 @@ TEST(ReconstructionConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
 TEST(ReconstructionConfig, ReadsTheHarshLightSettingsAndNamesBadOnes) {
   const ReconstructionParams p = parseReconstructionParams(
       "reconstruction:\n"
-      "  decode: {bit_noise_sigmas: 2.5, keep_column_without_row: false}\n"
+      "  decode: {bit_noise_sigmas: 2.5, keep_column_without_row: false, min_unwrap_neighbours: 6}\n"
       "  triangulation: {column_when_row_inconsistent: false}\n"
       "  filter: {edge_max_jump: 6, edge_min_support: 2, edge_min_neighbours: 4}\n",
       "cell.yaml");
   EXPECT_EQ(p.decode.bit_noise_sigmas, 2.5);
   EXPECT_FALSE(p.decode.keep_column_without_row);
+  EXPECT_EQ(p.decode.min_unwrap_neighbours, 6);
   EXPECT_FALSE(p.triangulation.column_when_row_inconsistent);
   EXPECT_EQ(p.filter.edge_max_jump, 6.0);
   EXPECT_EQ(p.filter.edge_min_support, 2);
   EXPECT_EQ(p.filter.edge_min_neighbours, 4);
   EXPECT_NE(parseError("reconstruction: {decode: {bit_noise_sigmas: -1}}").find("bit_noise_sigmas"), std::string::npos);
   EXPECT_NE(parseError("reconstruction: {filter: {edge_min_support: 0}}").find("edge_min_support"), std::string::npos);
+  EXPECT_NE(parseError("reconstruction: {decode: {min_unwrap_neighbours: 9}}").find("min_unwrap_neighbours"),
+            std::string::npos);
+  EXPECT_NE(parseError("reconstruction: {filter: {median_min_noise: -1}}").find("median_min_noise"), std::string::npos);
+  EXPECT_NE(parseError("reconstruction: {filter: {median_lone_max_noise: -1}}").find("median_lone_max_noise"),
+            std::string::npos);
   EXPECT_NE(parseError("reconstruction: {decode: {keep_column_without_row: 3}}")
                 .find("reconstruction.decode.keep_column_without_row has the wrong type"),
             std::string::npos);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -70,10 +71,11 @@ bool nearDepthEdge(const VirtualCapture& v, std::size_t pixel) {
   return false;
 }
 
-// The share of the parts' pixels the harsh-light test expects to keep: 82.5% measured on this
-// small pile (70% on the full-resolution bench pile before column-only triangulation, clipped
-// phase recovery and the noise-capped margin).
-constexpr double kHarshCoverage = 0.80;
+// The share of the parts' pixels the harsh-light test expects to keep with the default settings:
+// 85.6% measured on this small pile (82.5% without noise removal; 70% on the full-resolution
+// bench pile before column-only triangulation, clipped phase recovery, the noise-capped margin,
+// neighbour unwrapping and default noise removal).
+constexpr double kHarshCoverage = 0.85;
 
 TEST(Reconstruction, MeasuresTheLitSurfacesToATenthOfAMillimetre) {
   const VirtualCapture& v = virtualCapture({});
@@ -106,6 +108,7 @@ TEST(Reconstruction, ReportsEveryPixelOnceWithItsIntensity) {
 struct PartCoverage {
   double covered = 0.0;  // share of the parts' pixels an ideal sensor measures that get a point
   std::size_t wrong_off_edges = 0;
+  double worst_mm = 0.0;  // the largest |z - true z| of any point (infinite where nothing is)
 };
 
 PartCoverage partCoverage(const VirtualCapture& v, const io::PointCloud& cloud) {
@@ -119,6 +122,7 @@ PartCoverage partCoverage(const VirtualCapture& v, const io::PointCloud& cloud) 
     }
     if (!has_point) continue;
     const double error_mm = 1000.0 * std::fabs(cloud.points[i].z() - v.scene.depth[i]);
+    c.worst_mm = std::isnan(error_mm) ? std::numeric_limits<double>::infinity() : std::max(c.worst_mm, error_mm);
     if (!(error_mm <= 5.0) && !nearDepthEdge(v, i)) ++c.wrong_off_edges;
   }
   EXPECT_GT(part_pixels, 10000u);
@@ -134,25 +138,24 @@ const VirtualCapture& harshCapture() {
 }
 
 // Dark glossy parts under 35% indirect light and 3 counts of read noise (the virtual cell's harsh
-// preset), half-resolution camera: most of the parts' pixels get a point, none far off except
-// within 2 pixels of a depth edge.
+// preset), half-resolution camera, default settings: at least 85% of the parts' pixels get a
+// point, and no point anywhere is more than 5 mm off (4.1 mm measured), depth edges included.
 TEST(Reconstruction, KeepsMostOfThePartsUnderHarshLightWithoutWrongPoints) {
   const VirtualCapture& v = harshCapture();
   const PartCoverage c = partCoverage(v, Reconstructor(v.scene.rig).reconstruct(v.capture).cloud);
   EXPECT_GT(c.covered, kHarshCoverage);
-  EXPECT_EQ(c.wrong_off_edges, 0u);
+  EXPECT_LE(c.worst_mm, 5.0);
 }
 
-// The opt-in noise removal on the same pile: the dark parts' surfaces hold together (82.0% to
-// 85.9% measured) and no point far off comes with them.
+// Noise removal (on by default) is what holds the dark parts' surfaces together: without it the
+// same pile keeps 3 points less of the parts' pixels in 100, and a point 5 mm off survives.
 TEST(Reconstruction, NoiseRemovalKeepsMoreOfTheDarkPartsWithoutWrongPoints) {
   const VirtualCapture& v = harshCapture();
-  ReconstructionParams params;
-  params.filter.median_reach = 0.0045;
-  const PartCoverage without = partCoverage(v, Reconstructor(v.scene.rig).reconstruct(v.capture).cloud);
-  const PartCoverage with = partCoverage(v, Reconstructor(v.scene.rig, params).reconstruct(v.capture).cloud);
+  ReconstructionParams without_params;
+  without_params.filter.median_reach = 0.0;
+  const PartCoverage without = partCoverage(v, Reconstructor(v.scene.rig, without_params).reconstruct(v.capture).cloud);
+  const PartCoverage with = partCoverage(v, Reconstructor(v.scene.rig).reconstruct(v.capture).cloud);
   EXPECT_GT(with.covered, without.covered + 0.02);
-  EXPECT_GT(with.covered, 0.85);
   EXPECT_EQ(with.wrong_off_edges, 0u);
 }
 
@@ -191,9 +194,18 @@ TEST(Reconstruction, RefusesACaptureOfAnotherCamera) {
   }
 }
 
+// Wrong detections among the first `count` (a detection matching no part, or one matched before).
+int wrongAmongFirst(const evaluation::Score& score, int count) {
+  const auto first = std::min<std::size_t>(static_cast<std::size_t>(count), score.matched_object.size());
+  return static_cast<int>(std::count(score.matched_object.begin(), score.matched_object.begin() + first, -1));
+}
+
 // Images to poses: the detector finds as many parts in the reconstructed cloud as in the cloud an
-// ideal sensor measures (the benchmark compares them over more scenes and parts). A small bin, so
-// that the parts pile up in layers as in a cell.
+// ideal sensor measures (the benchmark compares them over more scenes and parts), and ranks no
+// wrong detection among as many first ones as the ideal sensor's cloud finds parts. The tail of
+// the ranking (detections scoring a tenth of the first ones) changes with any change of the
+// cloud, as does whether a tail detection comes tenth. A small bin, so that the parts pile up in
+// layers as in a cell.
 TEST(Reconstruction, DetectionOnTheReconstructedCloudMatchesTheIdealSensor) {
   CaptureOptions options;
   options.part = "l_bracket";
@@ -218,7 +230,7 @@ TEST(Reconstruction, DetectionOnTheReconstructedCloudMatchesTheIdealSensor) {
                ", reconstructed: found " + std::to_string(measured.found));
   ASSERT_GE(ideal.found, 3);
   EXPECT_GE(measured.found, ideal.found - 1);
-  EXPECT_LE(measured.wrong_in_first_10, ideal.wrong_in_first_10);
+  EXPECT_LE(wrongAmongFirst(measured, ideal.found), wrongAmongFirst(ideal, ideal.found));
 }
 
 }  // namespace

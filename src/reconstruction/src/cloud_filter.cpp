@@ -21,7 +21,14 @@ void require(bool ok, const char* field, const char* rule, double value) {
 
 bool hasNaN(const Eigen::Vector3d& v) { return v.array().isNaN().any(); }
 
-void checkInputs(const io::PointCloud& cloud, const cv::Mat& status) {
+void checkInputs(const io::PointCloud& cloud, const cv::Mat& status, const cv::Mat& column_noise) {
+  if (!column_noise.empty() &&
+      (column_noise.type() != CV_32FC1 || column_noise.cols != cloud.width || column_noise.rows != cloud.height)) {
+    throw core::Error("filterCloud: the column noise image must be empty or CV_32FC1 of the cloud's size " +
+                      std::to_string(cloud.width) + "x" + std::to_string(cloud.height) + " (got " +
+                      std::to_string(column_noise.cols) + "x" + std::to_string(column_noise.rows) + " of type " +
+                      std::to_string(column_noise.type()) + ")");
+  }
   if (!cloud.isOrganized()) {
     throw core::Error("filterCloud: the cloud must be organized (got " + std::to_string(cloud.width) + "x" +
                       std::to_string(cloud.height) + " for " + std::to_string(cloud.size()) + " points)");
@@ -57,11 +64,17 @@ void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
   }
 }
 
-void applySurfaceMedian(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
-  const std::vector<uint8_t> outlier =
-      detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
-                                    static_cast<float>(params.median_max_pull),
-                                    static_cast<float>(params.median_max_intensity), core::resolveThreadCount(params.threads));
+void applySurfaceMedian(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params,
+                        const cv::Mat& column_noise) {
+  const cv::Mat noise = column_noise.empty() || column_noise.isContinuous() ? column_noise : column_noise.clone();
+  detail::MedianGate gate;
+  gate.max_intensity = static_cast<float>(params.median_max_intensity);
+  gate.noise = noise.empty() ? nullptr : noise.ptr<float>(0);
+  gate.min_noise = static_cast<float>(params.median_min_noise);
+  gate.lone_max_noise = static_cast<float>(params.median_lone_max_noise);
+  const std::vector<uint8_t> outlier = detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
+                                                                     static_cast<float>(params.median_max_pull), gate,
+                                                                     core::resolveThreadCount(params.threads));
   for (int y = 0; y < cloud.height; ++y) {
     uint8_t* row_status = status.ptr<uint8_t>(y);
     for (int x = 0; x < cloud.width; ++x) {
@@ -113,6 +126,9 @@ void CloudFilterParams::validate() const {
           median_max_pull);
   require(!std::isnan(median_max_intensity) && median_max_intensity >= 0.0, "median_max_intensity", ">= 0",
           median_max_intensity);
+  require(!std::isnan(median_min_noise) && median_min_noise >= 0.0, "median_min_noise", ">= 0", median_min_noise);
+  require(!std::isnan(median_lone_max_noise) && median_lone_max_noise >= 0.0, "median_lone_max_noise", ">= 0",
+          median_lone_max_noise);
   require(std::isfinite(edge_max_jump) && edge_max_jump >= 0.0, "edge_max_jump", "finite and >= 0", edge_max_jump);
   require(edge_min_neighbours >= 1 && edge_min_neighbours <= 8, "edge_min_neighbours", "in [1, 8]",
           edge_min_neighbours);
@@ -120,14 +136,17 @@ void CloudFilterParams::validate() const {
   require(threads >= 0, "threads", ">= 0", threads);
 }
 
-void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params, const cv::Mat& column_noise) {
   params.validate();
-  checkInputs(cloud, status);
+  checkInputs(cloud, status, column_noise);
   // Triangulated points lie in front of the camera: the default range and no crop remove nothing.
   const CloudFilterParams defaults;
   const bool limits_depth = params.min_depth > defaults.min_depth || params.max_depth < defaults.max_depth;
   if (limits_depth || !params.crop.isEmpty()) applyDepthAndCrop(cloud, status, params);
-  if (params.median_reach > 0.0) applySurfaceMedian(cloud, status, params);
+  // Without the decoder's noise, which points are noisy is unknown: only median_min_noise = 0
+  // (every dark point) smooths such a cloud.
+  const bool noise_known = !column_noise.empty() || params.median_min_noise == 0.0;
+  if (params.median_reach > 0.0 && noise_known) applySurfaceMedian(cloud, status, params, column_noise);
   if (params.edge_max_jump > 0.0) applyDepthEdges(cloud, status, params);
   if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
 }

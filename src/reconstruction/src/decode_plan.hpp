@@ -22,6 +22,10 @@ struct DecodeThresholds {
   // noise was measured.
   float noise_floor = std::numeric_limits<float>::infinity();
   float noise_slope = 0.0f;
+  // The column's noise: sqrt(column_noise_read + column_noise_gain * (white + black)) over the
+  // phase amplitude, in projector pixels (DecodedCapture::column_noise). NaN: not estimated.
+  float column_noise_read = std::numeric_limits<float>::quiet_NaN();
+  float column_noise_gain = 0.0f;
   float min_phase_amplitude = 0.0f;
   float phase_tolerance = 0.0f;  // projector pixels
   float saturation = 0.0f;       // a value at or above it was clipped by the sensor

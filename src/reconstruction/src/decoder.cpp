@@ -9,19 +9,21 @@
 #include "capture_light_check.hpp"
 #include "capture_order_check.hpp"
 #include "decode_plan.hpp"
+#include "neighbour_unwrap.hpp"
 #include "row_decoder.hpp"
 #include "sensor_noise_estimate.hpp"
 
 namespace binpick::reconstruction {
 namespace {
 
-DecodedCapture allocate(const detail::CaptureLayout& layout) {
+DecodedCapture allocate(const detail::CaptureLayout& layout, bool column_noise) {
   DecodedCapture decoded;
   decoded.width = layout.width;
   decoded.height = layout.height;
   decoded.column.create(layout.height, layout.width, CV_32FC1);
   if (layout.rows.present) decoded.row.create(layout.height, layout.width, CV_32FC1);
   decoded.status.create(layout.height, layout.width, CV_8UC1);
+  if (column_noise) decoded.column_noise.create(layout.height, layout.width, CV_32FC1);
   decoded.intensity.create(layout.height, layout.width, CV_32FC1);
   decoded.has_phase = layout.columns.hasPhase();
   return decoded;
@@ -29,6 +31,7 @@ DecodedCapture allocate(const detail::CaptureLayout& layout) {
 
 detail::RowOutput outputOf(DecodedCapture& decoded) {
   detail::RowOutput out;
+  out.column_noise = decoded.column_noise.empty() ? nullptr : decoded.column_noise.ptr<float>(0);
   out.column = decoded.column.ptr<float>(0);
   out.row = decoded.row.empty() ? nullptr : decoded.row.ptr<float>(0);
   out.status = decoded.status.ptr<uint8_t>(0);
@@ -45,33 +48,50 @@ io::Capture withContinuousImages(const io::Capture& capture) {
   return continuous;
 }
 
-// Tiles are independent: the result does not depend on the thread count.
+// Tiles are independent: the result does not depend on the thread count. Returns the pixels whose
+// Gray code was too uncertain, for unwrapFromNeighbours (when `collect_candidates`), in no
+// particular order.
 template <typename Pixel>
-void decodeTiles(const io::Capture& capture, const detail::DecodePlan& plan, int threads, DecodedCapture& decoded) {
+std::vector<detail::UnwrapCandidate> decodeTiles(const io::Capture& capture, const detail::DecodePlan& plan,
+                                                 int threads, bool collect_candidates, DecodedCapture& decoded) {
   const std::size_t pixels = static_cast<std::size_t>(plan.layout.width) * static_cast<std::size_t>(plan.layout.height);
   const auto tiles = static_cast<long>((pixels + detail::kTilePixels - 1) / detail::kTilePixels);
-  const detail::RowOutput out = outputOf(decoded);
+  std::vector<detail::UnwrapCandidate> candidates;
 #pragma omp parallel num_threads(threads)
   {
     detail::RowScratch<detail::WorkType<Pixel>> scratch;
+    std::vector<detail::UnwrapCandidate> found;
+    detail::RowOutput out = outputOf(decoded);
+    if (collect_candidates) out.candidates = &found;
 #pragma omp for schedule(static, 4)
     for (long tile = 0; tile < tiles; ++tile) {
       const std::size_t offset = static_cast<std::size_t>(tile) * detail::kTilePixels;
       const int count = static_cast<int>(std::min<std::size_t>(detail::kTilePixels, pixels - offset));
       detail::decodeTile<Pixel>(capture, plan, offset, count, scratch, out);
     }
+#pragma omp critical(binpick_unwrap_candidates)
+    candidates.insert(candidates.end(), found.begin(), found.end());
   }
+  return candidates;
 }
 
 // The bit margin's noise term: k^2 var(p - q) = k^2 (2 read + gain (p + q)), with p + q = white +
 // black.
-void useMeasuredNoise(const io::Capture& capture, double sigmas, detail::DecodePlan& plan) {
-  detail::DecodeThresholds& t = plan.thresholds;
-  const detail::SensorNoise noise = detail::estimateSensorNoise(capture, plan.layout, t.saturation, t.min_contrast);
-  if (!noise.measured) return;
+void capMarginsByNoise(const detail::SensorNoise& noise, double sigmas, detail::DecodeThresholds& t) {
   const auto k2 = static_cast<float>(sigmas * sigmas);
   t.noise_floor = k2 * 2.0f * noise.read;
   t.noise_slope = k2 * noise.gain;
+}
+
+// The column's noise from N phase steps I_k = A + B cos(phi - 2 pi k / N), each with variance
+// read + gain A, A = (white + black) / 2: var(phi) = 2 var(I) / (N B^2), times (period / 2 pi)^2.
+void setColumnNoiseModel(const detail::SensorNoise& noise, const detail::AxisLayout& columns,
+                         detail::DecodeThresholds& t) {
+  const double steps = static_cast<double>(columns.phase_images.size());
+  const double to_pixels = columns.phase_period / (2.0 * M_PI);
+  const double scale2 = 2.0 / steps * to_pixels * to_pixels;
+  t.column_noise_read = static_cast<float>(scale2 * noise.read);
+  t.column_noise_gain = static_cast<float>(scale2 * noise.gain * 0.5);
 }
 
 }  // namespace
@@ -81,15 +101,22 @@ DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& par
   detail::DecodePlan plan = detail::makeDecodePlan(detail::captureLayout(capture), params);
   detail::checkCaptureLight(capture, plan, params);
   detail::checkCaptureOrder(capture, plan);
-  if (params.bit_noise_sigmas > 0.0) useMeasuredNoise(capture, params.bit_noise_sigmas, plan);
-  DecodedCapture decoded = allocate(plan.layout);
+  const bool has_phase = plan.layout.columns.hasPhase();
+  detail::SensorNoise noise;
+  if (params.bit_noise_sigmas > 0.0 || has_phase) {
+    noise = detail::estimateSensorNoise(capture, plan.layout, plan.thresholds.saturation, plan.thresholds.min_contrast);
+  }
+  if (noise.measured && params.bit_noise_sigmas > 0.0)
+    capMarginsByNoise(noise, params.bit_noise_sigmas, plan.thresholds);
+  if (noise.measured && has_phase) setColumnNoiseModel(noise, plan.layout.columns, plan.thresholds);
+  DecodedCapture decoded = allocate(plan.layout, noise.measured && has_phase);
   const int threads = core::resolveThreadCount(params.threads);
   const io::Capture continuous = withContinuousImages(capture);
-  if (plan.layout.bit_depth == 8) {
-    decodeTiles<uint8_t>(continuous, plan, threads, decoded);
-  } else {
-    decodeTiles<uint16_t>(continuous, plan, threads, decoded);
-  }
+  const bool unwrap = params.min_unwrap_neighbours > 0 && has_phase;
+  const std::vector<detail::UnwrapCandidate> candidates =
+      plan.layout.bit_depth == 8 ? decodeTiles<uint8_t>(continuous, plan, threads, unwrap, decoded)
+                                 : decodeTiles<uint16_t>(continuous, plan, threads, unwrap, decoded);
+  if (unwrap) detail::unwrapFromNeighbours(candidates, plan, params.min_unwrap_neighbours, threads, decoded);
   return decoded;
 }
 
@@ -132,6 +159,8 @@ void DecodeParams::validate() const {
       "max_saturated_fraction", "in [0, 1]", max_saturated_fraction);
   core::requireField(std::isfinite(max_pair_sum_error) && max_pair_sum_error > 0.0, owner, "max_pair_sum_error",
                      "positive", max_pair_sum_error);
+  core::requireField(min_unwrap_neighbours >= 0 && min_unwrap_neighbours <= 8, owner, "min_unwrap_neighbours",
+                     "in [0, 8]", min_unwrap_neighbours);
   core::requireField(threads >= 0, owner, "threads", ">= 0", threads);
 }
 

@@ -99,7 +99,7 @@ Reconstruction Reconstructor::reconstruct(const io::Capture& capture, const core
   result.timings.triangulate = stage.lapMs();
   core::throwIfCancelled(cancel, "before filtering");
   triangulated.cloud.intensities = intensitiesOf(decoded.intensity);  // the noise filter reads them
-  filterCloud(triangulated.cloud, triangulated.status, params_.filter);
+  filterCloud(triangulated.cloud, triangulated.status, params_.filter, decoded.column_noise);
   result.timings.filter = stage.lapMs();
   // The three stages end to end; the copying into the result below is not part of it.
   result.timings.total = result.timings.decode + result.timings.triangulate + result.timings.filter;

@@ -24,6 +24,7 @@ void readDecode(core::YamlSection s, DecodeParams& p) {
   s.read("min_phase_amplitude", p.min_phase_amplitude);
   s.read("max_phase_gray_disagreement", p.max_phase_gray_disagreement);
   s.read("keep_column_without_row", p.keep_column_without_row);
+  s.read("min_unwrap_neighbours", p.min_unwrap_neighbours);
   s.read("max_saturated_fraction", p.max_saturated_fraction);
   s.read("max_pair_sum_error", p.max_pair_sum_error);
   s.finish();
@@ -51,6 +52,8 @@ void readFilter(core::YamlSection s, CloudFilterParams& p) {
   s.read("median_reach", p.median_reach);
   s.read("median_max_pull", p.median_max_pull);
   s.read("median_max_intensity", p.median_max_intensity);
+  s.read("median_min_noise", p.median_min_noise);
+  s.read("median_lone_max_noise", p.median_lone_max_noise);
   s.read("edge_max_jump", p.edge_max_jump);
   s.read("edge_min_neighbours", p.edge_min_neighbours);
   s.read("edge_min_support", p.edge_min_support);

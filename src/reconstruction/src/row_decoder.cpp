@@ -94,6 +94,15 @@ void measurePhase(const io::Capture& capture, const DecodePlan& plan, const Axis
                 row.phase_clipped.data(), width);
 }
 
+// DecodedCapture::column_noise of the tile's pixels, from the amplitudes measurePhase left.
+template <typename Pixel>
+void estimateColumnNoise(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, AxisRow& row) {
+  const DecodeThresholds& t = plan.thresholds;
+  phaseNoise<Pixel>(imageRow<Pixel>(capture, plan.layout.white, tile),
+                    imageRow<Pixel>(capture, plan.layout.black, tile), row.phase_amplitude.data(), t.column_noise_read,
+                    t.column_noise_gain, row.position_noise.data(), tile.width);
+}
+
 template <typename Pixel, typename Work>
 void readAxis(const io::Capture& capture, const DecodePlan& plan, const AxisLayout& axis, const Tile& tile,
               RowScratch<Work>& s, AxisRow& row) {
@@ -186,6 +195,25 @@ AxisVerdict verdictWithClipping(const io::Capture& capture, const DecodePlan& pl
   return resolveAxis(sample, axis, plan.thresholds);
 }
 
+// A phase that can be unwrapped by other means than the Gray code: measured, strong enough and
+// unclipped.
+bool usablePhase(const AxisLayout& axis, const AxisRow& row, int x, const DecodeThresholds& t) {
+  return axis.hasPhase() && row.phase_clipped[x] == 0 && row.phase_amplitude[x] >= t.min_phase_amplitude;
+}
+
+UnwrapCandidate unwrapCandidate(const AxisRow& columns, int x, std::size_t tile_offset, const AxisVerdict& row,
+                                bool rows_present) {
+  UnwrapCandidate c;
+  c.pixel = tile_offset + static_cast<std::size_t>(x);
+  c.phase_offset = columns.phase_offset[x];
+  c.code = columns.code[x];
+  c.uncertain = columns.uncertain[x];
+  c.noise = columns.position_noise[x];
+  c.row = row.position;
+  c.row_status = rows_present ? row.status : PixelStatus::Valid;
+  return c;
+}
+
 // A code the sensor clipped is reported as Saturated rather than merely uncertain.
 PixelStatus blame(PixelStatus status, bool white_clipped) {
   return status == PixelStatus::UncertainCode && white_clipped ? PixelStatus::Saturated : status;
@@ -202,15 +230,19 @@ void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile&
   for (int x = 0; x < tile.width; ++x) {
     out.column[x] = nan;
     if (rows.present) out.row[x] = nan;
+    if (out.column_noise != nullptr) out.column_noise[x] = nan;
     if (!s.lit[x]) {
       out.status[x] = static_cast<uint8_t>(PixelStatus::Unlit);
       continue;
     }
     const AxisVerdict column = verdictWithClipping<Pixel>(capture, plan, tile, s.columns, x, columns);
+    const bool candidate = out.candidates != nullptr && column.status == PixelStatus::UncertainCode &&
+                           s.white_clipped[x] == 0 && usablePhase(columns, s.columns, x, plan.thresholds);
     AxisVerdict row = column;
-    if (column.status == PixelStatus::Valid && rows.present) {
+    if ((column.status == PixelStatus::Valid || candidate) && rows.present) {
       row = verdictWithClipping<Pixel>(capture, plan, tile, s.rows, x, rows);
     }
+    if (candidate) out.candidates->push_back(unwrapCandidate(s.columns, x, tile.offset, row, rows.present));
     const bool column_alone = row.status != PixelStatus::Valid && plan.thresholds.keep_column_without_row;
     const PixelStatus status = column.status != PixelStatus::Valid ? column.status
                                : column_alone                      ? PixelStatus::Valid
@@ -218,6 +250,7 @@ void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile&
     out.status[x] = static_cast<uint8_t>(blame(status, s.white_clipped[x] != 0));
     if (status != PixelStatus::Valid) continue;
     out.column[x] = column.position;
+    if (out.column_noise != nullptr) out.column_noise[x] = s.columns.position_noise[x];
     if (rows.present && row.status == PixelStatus::Valid) out.row[x] = row.position;
   }
 }
@@ -228,6 +261,7 @@ void resizeAxis(AxisRow& row, int width) {
   row.phase_offset.resize(width);
   row.phase_amplitude.resize(width);
   row.phase_clipped.resize(width);
+  row.position_noise.resize(width);
   row.position.resize(width);
   row.verdict.resize(width);
 }
@@ -254,10 +288,12 @@ void decodeTile(const io::Capture& capture, const DecodePlan& plan, std::size_t 
   RowOutput tile_out = out;
   tile_out.column += offset;
   if (tile_out.row != nullptr) tile_out.row += offset;
+  if (tile_out.column_noise != nullptr) tile_out.column_noise += offset;
   tile_out.status += offset;
   tile_out.intensity += offset;
   estimateLight<Pixel, Work>(capture, plan, tile, scratch, tile_out);
   readAxis<Pixel, Work>(capture, plan, plan.layout.columns, tile, scratch, scratch.columns);
+  if (out.column_noise != nullptr) estimateColumnNoise<Pixel>(capture, plan, tile, scratch.columns);
   if (plan.layout.rows.present) readAxis<Pixel, Work>(capture, plan, plan.layout.rows, tile, scratch, scratch.rows);
   resolveTile<Pixel, Work>(capture, plan, tile, scratch, tile_out);
 }

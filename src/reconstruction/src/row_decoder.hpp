@@ -9,6 +9,7 @@
 
 #include "binpick/io/capture.hpp"
 #include "decode_plan.hpp"
+#include "neighbour_unwrap.hpp"
 
 namespace binpick::reconstruction::detail {
 
@@ -28,7 +29,8 @@ struct AxisRow {
   std::vector<float> phase_offset;  // projector pixels, the position within one period
   std::vector<float> phase_amplitude;
   std::vector<uint8_t> phase_clipped;
-  std::vector<float> position;  // resolveSimpleCodes' results
+  std::vector<float> position_noise;  // projector pixels (columns, when estimated)
+  std::vector<float> position;        // resolveSimpleCodes' results
   std::vector<uint8_t> verdict;
 };
 
@@ -54,6 +56,10 @@ struct RowOutput {  // pixel 0 of each output image
   float* row = nullptr;  // null when the capture has no row codes
   uint8_t* status = nullptr;
   float* intensity = nullptr;
+  float* column_noise = nullptr;  // null when not estimated
+  // Where the tile adds its UncertainCode pixels with a usable phase, for unwrapFromNeighbours;
+  // null: not collected.
+  std::vector<UnwrapCandidate>* candidates = nullptr;
 };
 
 // Decodes pixels [offset, offset + count) (row-major, count <= kTilePixels). Pixel is uint8_t or

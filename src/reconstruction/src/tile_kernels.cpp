@@ -130,6 +130,16 @@ BINPICK_SIMD_PASS void accumulatePhase(const Pixel* __restrict values, float sin
   }
 }
 
+template <typename Pixel>
+BINPICK_SIMD_PASS void phaseNoise(const Pixel* __restrict white, const Pixel* __restrict black,
+                                  const float* __restrict amplitude, float read, float gain, float* __restrict noise,
+                                  int width) {
+  for (int x = 0; x < width; ++x) {
+    const float signal = static_cast<float>(white[x]) + static_cast<float>(black[x]);
+    noise[x] = std::sqrt(read + gain * signal) / amplitude[x];
+  }
+}
+
 BINPICK_SIMD_PASS void phaseFromSums(const float* __restrict brightest, float clip, float to_amplitude, float to_pixels,
                                      float* __restrict sine_sum, float* __restrict cosine_sum,
                                      uint8_t* __restrict clipped, int width) {
@@ -166,6 +176,8 @@ template void classifyDirectBit<uint8_t, int16_t>(const uint8_t*, const uint8_t*
                                                   int);
 template void classifyDirectBit<uint16_t, float>(const uint16_t*, const uint16_t*, const float*, uint16_t*, uint16_t*,
                                                  int);
+template void phaseNoise<uint8_t>(const uint8_t*, const uint8_t*, const float*, float, float, float*, int);
+template void phaseNoise<uint16_t>(const uint16_t*, const uint16_t*, const float*, float, float, float*, int);
 template void accumulatePhase<uint8_t>(const uint8_t*, float, float, float*, float*, float*, int);
 template void accumulatePhase<uint16_t>(const uint16_t*, float, float, float*, float*, float*, int);
 }  // namespace binpick::reconstruction::detail

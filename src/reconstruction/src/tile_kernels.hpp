@@ -80,6 +80,11 @@ void classifyDirectBit(const Pixel* __restrict pattern, const Pixel* __restrict 
 template <typename Pixel>
 void accumulatePhase(const Pixel* __restrict values, float sine, float cosine, float* __restrict sine_sum,
                      float* __restrict cosine_sum, float* __restrict brightest, int width);
+// The standard deviation of the phase's position (projector pixels): sqrt(read + gain * (white +
+// black)) / amplitude, the two constants folding in the steps and the period.
+template <typename Pixel>
+void phaseNoise(const Pixel* __restrict white, const Pixel* __restrict black, const float* __restrict amplitude,
+                float read, float gain, float* __restrict noise, int width);
 void phaseFromSums(const float* __restrict brightest, float clip, float to_amplitude, float to_pixels,
                    float* __restrict sine_sum, float* __restrict cosine_sum, uint8_t* __restrict clipped, int width);
 

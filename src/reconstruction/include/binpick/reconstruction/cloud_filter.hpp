@@ -1,7 +1,7 @@
 #pragma once
 // Optional clean-up of an organized cloud after triangulation, in this order: a depth range, a
-// crop box, depth noise removal (off by default: dark points onto the median of their 3x3
-// neighbourhood's surface, those far from it removed), the removal of points that stand off their
+// crop box, depth noise removal (the points the decoder measured noisily onto the median of their
+// 3x3 neighbourhood's surface, those far from it removed), the removal of points that stand off their
 // neighbours' surface (depth edges: mixed pixels that see a near and a far surface at once, and
 // lone misdecoded points), and the removal
 // of small isolated patches (speckle: stray points from misdecoded pixels, usually at depth edges
@@ -20,23 +20,36 @@ struct CloudFilterParams {
   double max_depth = 1e9;
   // Axis-aligned box in the camera frame, metres; an empty box (the default) keeps everything.
   Eigen::AlignedBox3d crop;
-  // Noise removal: each point moves along its ray to the median camera z of itself and its
-  // 8-neighbours within median_reach of it (the others lie across a depth edge); a point farther
-  // than median_max_pull from that median does not lie on its neighbours' surface and is removed
-  // (a noise or decoding outlier; status DepthEdge). Halves the depth noise of dark and glossy
-  // surfaces, which then hold together as patches for the speckle filter. Metres, not pixel
-  // footprints: a point moves by less than median_max_pull whatever the resolution, and a step
-  // higher than median_reach is never smoothed across. median_reach = 0 (the default) turns it
-  // off: under harsh light 0.0045 keeps 85% of the parts' pixels with no point 5 mm off (81%
-  // without), but on the clean test piles it left a point 5 mm off, cost coverage at half
-  // resolution and detections (docs/reconstruction.md).
-  double median_reach = 0.0;        // metres (0.0045 under harsh light)
+  // Noise removal: each noisy point moves along its ray to the median camera z of itself and, for
+  // each line of its 3x3 neighbourhood through it (row, column, diagonals) whose two ends lie
+  // within median_reach of it, the mean of the two ends (the surface's depth at the point where
+  // it is locally a plane, however steep; a line with an end across a depth edge takes no part).
+  // A point farther than median_max_pull from that median does not lie on its neighbours'
+  // surface and is removed (a noise or decoding outlier; status DepthEdge). Halves the depth noise
+  // of dark and glossy surfaces, which then hold together as patches for the speckle filter, and
+  // takes the tail of that noise away. Metres, not pixel footprints: a point moves by less than
+  // median_max_pull whatever the resolution, and a step higher than median_reach is never
+  // smoothed across. median_reach = 0 turns it off. Under harsh light it keeps 86% of the parts'
+  // pixels with no point 5 mm off (82% without); clean captures keep their points as measured
+  // (median_min_noise; docs/reconstruction.md).
+  double median_reach = 0.0045;     // metres
   double median_max_pull = 0.0032;  // metres
   // Only points at most this bright (cloud.intensities, the white image on [0, 1]; every point of
   // a cloud without intensities) are smoothed or removed: the noise is the dark surfaces', and
   // bright ones keep their points as measured (the dark parts of the harsh preset are at 0.07 to
   // 0.15, the clean parts at 0.2 to 0.8).
   double median_max_intensity = 0.2;
+  // ... and only points whose column the sensor noise leaves at least this uncertain (the
+  // decoder's DecodedCapture::column_noise given to filterCloud; standard deviation, projector
+  // pixels, 0.3 px is about 0.7 mm of depth at 0.9 m on the virtual rig): clean captures (below
+  // 0.3 but for a few hundred dark points) keep their points as measured. A cloud filtered
+  // without the column noise is smoothed only with median_min_noise = 0 (every dark point).
+  double median_min_noise = 0.3;
+  // A point this noisy or more (projector pixels) on no line of its neighbourhood's surface has
+  // nothing to be smoothed or checked with, and is removed (status DepthEdge): one sigma of 0.6 px
+  // is about 1.5 mm of depth, and alone such a point is 5 mm off once in a few hundred. Needs the
+  // column noise.
+  double median_lone_max_noise = 0.6;
   // Depth-edge removal: a point with fewer than edge_min_support of its 8-neighbours within
   // edge_max_jump pixel footprints of its camera z (a footprint: z over the focal length in
   // pixels, measured on the cloud; 8 footprints are 4.5 mm at 0.9 m for a 1600 px lens) is removed: mixed pixels at
@@ -57,6 +70,10 @@ struct CloudFilterParams {
 };
 
 // `cloud` must be organized and `status` CV_8UC1 of its size (throws core::Error otherwise).
-void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params);
+// `column_noise`: empty, or the decoder's DecodedCapture::column_noise (CV_32FC1 of the cloud's
+// size), which limits noise removal to the noisy points (CloudFilterParams::median_min_noise;
+// without it, noise removal runs only with median_min_noise = 0).
+void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params,
+                 const cv::Mat& column_noise = cv::Mat());
 
 }  // namespace binpick::reconstruction

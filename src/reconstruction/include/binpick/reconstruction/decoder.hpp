@@ -58,6 +58,13 @@ struct DecodeParams {
   // intersects the camera ray with the column's light alone. With a horizontal baseline the row
   // carries almost no depth, so little is lost; false: such pixels take the row's status.
   bool keep_column_without_row = true;
+  // A pixel whose column Gray code leaves too long a run (noise on a dark surface undecides
+  // coarse bits far from their stripe edges) but whose phase is usable takes the period named by
+  // its neighbours when at least this many of its 8 neighbours decoded within a quarter of a
+  // period of each other, the instance chosen lies within 0.5 + max_phase_gray_disagreement of
+  // their median, and the certain bits agree with it (neighbour_unwrap.hpp). Fewer than 5 let
+  // pixels beside depth edges through. 0: off (such pixels stay UncertainCode).
+  int min_unwrap_neighbours = 5;
   // Capture-level checks (throw): the share of pixels the white image may saturate, and how far
   // a Gray pair's sum may drift from white + black (a missing or shuffled frame) before the
   // capture is refused.
@@ -78,6 +85,13 @@ struct DecodedCapture {
   cv::Mat row;
   // CV_8UC1 PixelStatus per pixel.
   cv::Mat status;
+  // CV_32FC1: the standard deviation of `column` the sensor's noise gives it (projector pixels),
+  // from the noise measured on the capture and the pixel's phase amplitude:
+  // sqrt(2 / N) sigma_I / B * period / (2 pi) for N steps of amplitude B, sigma_I^2 the
+  // variance of one image at the steps' mean. NaN where status is not Valid. Empty when the
+  // capture has no phase-shift images or its noise could not be measured. Where the sensor
+  // clipped phase steps it is that of the clipped sinusoid (an approximation).
+  cv::Mat column_noise;
   // CV_32FC1: the white image scaled to [0, 1] (the sensor's full scale), for display.
   cv::Mat intensity;
   bool has_phase = false;  // the capture had phase-shift images (sub-pixel coordinates)
