@@ -6,9 +6,13 @@
 //
 //   bench_reconstruction [--part l_bracket] [--parts l_bracket,clamp,gear,ring_magnet]
 //                        [--scenes 3] [--repeats 15] [--threads 0] [--skip-large] [--skip-detection]
-//                        [--lighting clean|harsh] [--settings FILE]
+//                        [--lighting clean|harsh] [--mixed-pixels K] [--camera-blur SIGMA]
+//                        [--settings FILE]
 // --settings reads the `reconstruction:` section of a settings file (defaults otherwise).
 // --lighting picks the virtual cell's photometry preset (lighting_presets.hpp) for every capture.
+// --mixed-pixels sets its mixed_pixel_samples (K x K rays over each pixel at depth edges; 1: one
+// ray per pixel, no mixed pixels; default: the preset's), --camera-blur its camera_blur_sigma
+// (pixels).
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -51,10 +55,27 @@ struct Options {
   bool skip_large = false;
   bool skip_detection = false;
   std::string lighting = "clean";
+  int mixed_pixels = 0;      // 0: the preset's mixed_pixel_samples
+  double camera_blur = NAN;  // NaN: the preset's camera_blur_sigma
   std::string settings;  // empty: reconstruction defaults
 };
 
 using bench::splitCommas;
+
+// The photometry preset with the options' overrides.
+simulation::PhotometryParams photometryFor(const Options& o) {
+  simulation::PhotometryParams p = simulation::photometryPreset(o.lighting);
+  if (o.mixed_pixels > 0) p.mixed_pixel_samples = o.mixed_pixels;
+  if (!std::isnan(o.camera_blur)) p.camera_blur_sigma = o.camera_blur;
+  p.validate();
+  return p;
+}
+
+int positiveCount(const std::string& flag, const std::string& value) {
+  const int n = std::stoi(value);
+  if (n < 1) throw core::Error("bench_reconstruction: " + flag + " must be >= 1 (got " + value + ")");
+  return n;
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -82,6 +103,10 @@ Options parse(int argc, char** argv) {
       o.threads = std::stoi(value);
     else if (flag == "--lighting")
       o.lighting = value;
+    else if (flag == "--mixed-pixels")
+      o.mixed_pixels = positiveCount(flag, value);
+    else if (flag == "--camera-blur")
+      o.camera_blur = std::stod(value);
     else if (flag == "--settings")
       o.settings = value;
     else
@@ -89,7 +114,7 @@ Options parse(int argc, char** argv) {
   }
   if (o.scenes < 1 || o.repeats < 1) throw core::Error("bench_reconstruction: --scenes and --repeats must be >= 1");
   if (o.threads < 0) throw core::Error("bench_reconstruction: --threads must be >= 0");
-  simulation::photometryPreset(o.lighting);  // an unknown name fails here, before any rendering
+  photometryFor(o);  // an unknown preset or a bad override fails here, before any rendering
   return o;
 }
 
@@ -124,13 +149,13 @@ io::PatternSetSpec defaultPatterns(const io::RigCalibration& rig) {
 }
 
 RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& rig, uint64_t seed,
-                        const std::string& lighting) {
+                        const Options& o) {
   RenderedPile r;
   r.params.objects = kObjects;
   r.params.seed = seed;
   r.params.rig = rig;
   const io::PatternSetSpec patterns = defaultPatterns(rig);
-  simulation::PhotometryParams photometry = simulation::photometryPreset(lighting);
+  simulation::PhotometryParams photometry = photometryFor(o);
   photometry.seed = seed;
   simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, r.params, patterns, photometry);
   r.scene = std::move(pile.scene);
@@ -318,6 +343,10 @@ ExtraKind extraKind(const simulation::PileScene& scene, const simulation::PilePa
 
 struct Accuracy {
   std::string name;
+  // Valid points farther than kWrongMm from every surface point the camera sees (flying points:
+  // mixed pixels at depth edges, misdecoded points), and of those, where the pixel's own ray sees
+  // a surface the projector does not light (projector shadow), or nothing.
+  std::size_t off_surfaces = 0, off_surfaces_unlit = 0, off_surfaces_nothing = 0;
   std::size_t ideal = 0;        // pixels where scene.cloud is finite
   std::size_t valid_ideal = 0;  // of those, valid in the reconstruction
   ErrorStats all;               // every valid pixel with a true depth
@@ -345,6 +374,39 @@ void countWrongNearEdges(const simulation::PileScene& scene, const io::PointClou
     const int x = static_cast<int>(i % static_cast<std::size_t>(cloud.width));
     const int y = static_cast<int>(i / static_cast<std::size_t>(cloud.width));
     a.wrong_near_edge += nearDepthEdge(scene, x, y) ? 1 : 0;
+  }
+}
+
+// Whether `p` (seen through pixel `i`) lies farther than kWrongMm from every surface point the
+// camera sees (scene.exact_cloud, one per pixel centre). A surface point that close projects
+// within f * kWrongMm / (z - kWrongMm) pixels of pixel i: only those are looked at.
+bool offEverySurface(const simulation::PileScene& scene, std::size_t i, const Eigen::Vector3f& p) {
+  const io::PointCloud& exact = scene.exact_cloud;
+  const float reach = static_cast<float>(kWrongMm / 1000.0);
+  if ((exact.points[i] - p).norm() <= reach) return false;  // the common case: its own surface
+  if (!(p.z() > 2.0f * reach)) return true;
+  const int radius = static_cast<int>(std::ceil(scene.rig.camera.fx * reach / (p.z() - reach))) + 1;
+  const int x = static_cast<int>(i % static_cast<std::size_t>(exact.width));
+  const int y = static_cast<int>(i / static_cast<std::size_t>(exact.width));
+  for (int v = std::max(0, y - radius); v <= std::min(exact.height - 1, y + radius); ++v) {
+    for (int u = std::max(0, x - radius); u <= std::min(exact.width - 1, x + radius); ++u) {
+      const Eigen::Vector3f& q = exact.points[static_cast<std::size_t>(v) * exact.width + u];
+      if (q.allFinite() && (q - p).norm() <= reach) return false;
+    }
+  }
+  return true;
+}
+
+void countOffSurfaces(const RenderedPile& pile, const io::PointCloud& cloud, Accuracy& a) {
+  const simulation::PileScene& scene = pile.scene;
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    const Eigen::Vector3f p = cloud.points[i];
+    if (!p.allFinite() || !offEverySurface(scene, i, p)) continue;
+    ++a.off_surfaces;
+    if (scene.cloud.points[i].allFinite()) continue;  // the ideal sensor measures the pixel
+    const ExtraKind kind = extraKind(scene, pile.params, i);
+    a.off_surfaces_nothing += kind == ExtraKind::NothingSeen ? 1 : 0;
+    a.off_surfaces_unlit += kind == ExtraKind::Unlit ? 1 : 0;
   }
 }
 
@@ -384,13 +446,14 @@ Accuracy measureAccuracy(const std::string& name, const RenderedPile& pile, cons
   a.extra = errorStats(std::move(extra));
   a.ideal_sensor = errorStats(std::move(ideal));
   countWrongNearEdges(scene, r.cloud, a);
+  countOffSurfaces(pile, r.cloud, a);
   return a;
 }
 
 template <typename Format>
 void printAccuracyRow(const char* label, const std::vector<Accuracy>& results, Format format) {
   std::printf("  %-44s", label);
-  for (const Accuracy& a : results) std::printf(" %16s", format(a).c_str());
+  for (const Accuracy& a : results) std::printf(" %26s", format(a).c_str());
   std::printf("\n");
 }
 
@@ -451,6 +514,12 @@ void printAccuracy(const std::vector<Accuracy>& r, const std::string& part, cons
   printAccuracyRow("  on the bin (not on parts)", r, [](const Accuracy& a) { return countText(a.extra_on_bin); });
   printAccuracyRow("  |dz| median / p90 / p99, mm", r, [](const Accuracy& a) { return triple(a.extra); });
   printAccuracyRow("  wrong (|dz| > 5 mm)", r, [](const Accuracy& a) { return countText(a.extra.wrong); });
+  printAccuracyRow("flying: > 5 mm from every surface seen", r,
+                   [](const Accuracy& a) { return countText(a.off_surfaces); });
+  printAccuracyRow("  where the pixel sees an unlit surface", r,
+                   [](const Accuracy& a) { return countText(a.off_surfaces_unlit); });
+  printAccuracyRow("  where the pixel sees nothing", r,
+                   [](const Accuracy& a) { return countText(a.off_surfaces_nothing); });
   printAccuracyRow("valid where nothing is seen (no truth)", r,
                    [](const Accuracy& a) { return countText(a.extra_nothing); });
   printAccuracyRow("ideal sensor itself: |dz| med / p90 / p99", r,
@@ -502,7 +571,7 @@ void benchDetectionPart(const std::string& part_name, const reconstruction::Reco
   params.threads = o.threads;
   CloudTotals reconstructed, ideal, exact;
   for (int s = 1; s <= o.scenes; ++s) {
-    const RenderedPile pile = renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s), o.lighting);
+    const RenderedPile pile = renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s), o);
     params.scene.crop = evaluation::binInterior(pile.scene, pile.params);
     const estimation::Detector detector(model, params);
     detectInto(detector, reconstructor.reconstruct(pile.capture).cloud, pile.scene, part, reconstructed);
@@ -530,6 +599,24 @@ void benchDetection(const Options& o) {
 
 // ---------------------------------------------------------------------------------------------
 
+// What tracing mixed pixels costs: the pile's images rendered again (rays cast again too) with
+// one ray per pixel and with the options' mixed pixels, each timed once.
+void printMixedPixelCost(const simulation::Part& part, const RenderedPile& pile, const Options& o) {
+  simulation::PhotometryParams mixed = photometryFor(o);
+  if (mixed.mixed_pixel_samples <= 1) return;
+  simulation::PhotometryParams one_ray = mixed;
+  one_ray.mixed_pixel_samples = 1;
+  const io::PatternSetSpec patterns = pile.capture.metadata.pattern_set;
+  double seconds[2];
+  for (const auto* photometry : {&one_ray, &mixed}) {
+    const core::Stopwatch images;
+    simulation::renderPileImages(part.mesh, pile.scene, pile.params, patterns, *photometry);
+    seconds[photometry == &mixed] = images.elapsedMs() / 1000.0;
+  }
+  std::printf("  images alone: %.2f s with one ray per pixel, %.2f s with %dx%d rays at edge pixels\n", seconds[0],
+              seconds[1], mixed.mixed_pixel_samples, mixed.mixed_pixel_samples);
+}
+
 void benchReconstruction(const Options& o) {
   const simulation::Part part = simulation::makePart(o.part);
   std::vector<io::RigCalibration> rigs{simulation::makeVirtualRig()};
@@ -538,13 +625,21 @@ void benchReconstruction(const Options& o) {
   std::vector<Accuracy> accuracy;
   for (const io::RigCalibration& rig : rigs) {
     const core::Stopwatch render;
-    const RenderedPile pile = renderPile(part, rig, 1, o.lighting);
+    const RenderedPile pile = renderPile(part, rig, 1, o);
     std::printf("rendered %dx%d: %zu images of %s x %d in %.1f s\n", rig.camera.width, rig.camera.height,
                 pile.capture.images.size(), o.part.c_str(), kObjects, render.elapsedMs() / 1000.0);
+    printMixedPixelCost(part, pile, o);
     std::fflush(stdout);
     reconstruction::Reconstruction result;
     speed.push_back(measureSpeed(rig, pile.capture, o, result));
     accuracy.push_back(measureAccuracy(speed.back().name, pile, result));
+    // The same capture without the depth-edge filter (both its tests): what it removes.
+    reconstruction::ReconstructionParams edges_kept = reconstructionParams(o);
+    if (edges_kept.filter.edge_max_jump == 0.0 && edges_kept.filter.edge_side_reach == 0) continue;
+    edges_kept.filter.edge_max_jump = 0.0;
+    edges_kept.filter.edge_side_reach = 0;
+    accuracy.push_back(measureAccuracy(speed.back().name + " edge filter off", pile,
+                                       reconstruction::Reconstructor(rig, edges_kept).reconstruct(pile.capture)));
   }
   printSpeed(speed, o);
   printAccuracy(accuracy, o.part, o.lighting);
@@ -555,10 +650,13 @@ void benchReconstruction(const Options& o) {
 int main(int argc, char** argv) {
   try {
     const Options options = parse(argc, argv);
+    const simulation::PhotometryParams photometry = photometryFor(options);
     std::printf(
         "bench_reconstruction: %d threads (--threads %d), default pattern set (Gray columns + "
-        "rows, 4 phase steps), %s lighting, reconstruction settings: %s\n",
+        "rows, 4 phase steps), %s lighting, mixed pixels %dx%d rays with %.2f px camera blur, reconstruction "
+        "settings: %s\n",
         core::resolveThreadCount(options.threads), options.threads, options.lighting.c_str(),
+        photometry.mixed_pixel_samples, photometry.mixed_pixel_samples, photometry.camera_blur_sigma,
         options.settings.empty() ? "defaults" : options.settings.c_str());
     benchReconstruction(options);
     if (!options.skip_detection) benchDetection(options);

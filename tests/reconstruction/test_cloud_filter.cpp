@@ -267,6 +267,64 @@ TEST(CloudFilter, DepthEdgeRemovalTakesMixedPixelsBesideAShadow) {
   EXPECT_EQ(finite, 60 * 90);  // the near surface, whole
 }
 
+// A near surface (0.80 m, white image 0.6) whose projector shadow falls on the right (unlit,
+// 0.02): its columns up to 59 see it, the last with 80% of its area (0.49); column 60's centre
+// sees the shadow, but its area and blur take in 35% of the lit edge (0.22): it decoded the
+// edge's light and has its point on the surface's extension. Column 60 goes, 59 stays.
+// `brightness` gives the white image per column (intensities of the pixels without a point too).
+Grid litEdgeBesideAShadow(const std::function<float(int)>& brightness) {
+  Grid g = pinholeCloud(120, 90, [](int x, int) { return x <= 60 ? 0.80f + 0.0001f * x : kNaN; });
+  for (int y = 0; y < 90; ++y) {
+    for (int x = 0; x < 120; ++x) {
+      g.cloud.intensities.push_back(brightness(x));
+      if (x > 60) g.status.at<uint8_t>(y, x) = static_cast<uint8_t>(PixelStatus::Unlit);
+    }
+  }
+  return g;
+}
+
+float blurredEdge(int x) { return x < 59 ? 0.6f : x == 59 ? 0.49f : x == 60 ? 0.22f : 0.02f; }
+
+// A copy that owns its status image (cv::Mat copies share their pixels).
+Grid copyOf(const Grid& g) {
+  Grid copy = g;
+  copy.status = g.status.clone();
+  return copy;
+}
+
+TEST(CloudFilter, DepthEdgeRemovalTakesEdgePixelsThatSeeTheShadow) {
+  const Grid before = litEdgeBesideAShadow(blurredEdge);
+  Grid after = copyOf(before);
+  filterCloud(after.cloud, after.status, CloudFilterParams{});
+  expectRemovedExactly(before, after, PixelStatus::DepthEdge, [](const Eigen::Vector3f& p) { return p.z() > 0.80595f; });
+  EXPECT_EQ(count(after, PixelStatus::DepthEdge), 90u);
+  // Off, or without the white image to judge by, the pixels stay (the depth-step test alone keeps
+  // them: they continue the surface).
+  Grid off = copyOf(before);
+  CloudFilterParams params;
+  params.edge_side_reach = 0;
+  filterCloud(off.cloud, off.status, params);
+  EXPECT_EQ(count(off, PixelStatus::DepthEdge), 0u);
+  Grid dark = copyOf(before);
+  dark.cloud.intensities.clear();
+  filterCloud(dark.cloud, dark.status, CloudFilterParams{});
+  EXPECT_EQ(count(dark, PixelStatus::DepthEdge), 0u);
+}
+
+// Beside the same shadow, a dimmer face beyond a crease (3 columns at 0.25 next to 0.6, as a
+// steep side face is) and a sharp edge (no blur: the last column as bright as the rest) keep
+// every point.
+TEST(CloudFilter, DepthEdgeRemovalKeepsADimFaceBesideAShadow) {
+  for (const auto& brightness : std::vector<std::function<float(int)>>{
+           [](int x) { return x < 58 ? 0.6f : x <= 60 ? 0.25f : 0.02f; },
+           [](int x) { return x <= 60 ? 0.6f : 0.02f; }}) {
+    Grid g = litEdgeBesideAShadow(brightness);
+    filterCloud(g.cloud, g.status, CloudFilterParams{});
+    EXPECT_EQ(count(g, PixelStatus::DepthEdge), 0u);
+    EXPECT_EQ(count(g, PixelStatus::Valid), 61u * 90u);
+  }
+}
+
 // A plane seen 75 degrees from its normal (2 mm between neighbours along the slope), with
 // 0.3 mm noise, and a gently curved one: nothing is removed.
 TEST(CloudFilter, DepthEdgeRemovalKeepsSlantedAndCurvedSurfaces) {
@@ -488,6 +546,12 @@ TEST(CloudFilter, DepthEdgeParamsAreChecked) {
   params = CloudFilterParams{};
   params.edge_min_neighbours = 0;
   EXPECT_TRUE(test::throwsNaming([&] { params.validate(); }, "edge_min_neighbours"));
+  params = CloudFilterParams{};
+  params.edge_side_reach = -1;
+  EXPECT_TRUE(test::throwsNaming([&] { params.validate(); }, "edge_side_reach"));
+  params = CloudFilterParams{};
+  params.edge_side_min_contrast = std::nan("");
+  EXPECT_TRUE(test::throwsNaming([&] { params.validate(); }, "edge_side_min_contrast"));
 }
 
 TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {

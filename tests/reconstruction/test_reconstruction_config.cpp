@@ -53,6 +53,8 @@ TEST(ReconstructionConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(shipped.filter.edge_max_jump, defaults.filter.edge_max_jump);
   EXPECT_EQ(shipped.filter.edge_min_support, defaults.filter.edge_min_support);
   EXPECT_EQ(shipped.filter.edge_min_neighbours, defaults.filter.edge_min_neighbours);
+  EXPECT_EQ(shipped.filter.edge_side_reach, defaults.filter.edge_side_reach);
+  EXPECT_EQ(shipped.filter.edge_side_min_contrast, defaults.filter.edge_side_min_contrast);
 }
 
 TEST(ReconstructionConfig, ReadsTheHarshLightSettingsAndNamesBadOnes) {
@@ -60,7 +62,8 @@ TEST(ReconstructionConfig, ReadsTheHarshLightSettingsAndNamesBadOnes) {
       "reconstruction:\n"
       "  decode: {bit_noise_sigmas: 2.5, keep_column_without_row: false, min_unwrap_neighbours: 6}\n"
       "  triangulation: {column_when_row_inconsistent: false}\n"
-      "  filter: {edge_max_jump: 6, edge_min_support: 2, edge_min_neighbours: 4}\n",
+      "  filter: {edge_max_jump: 6, edge_min_support: 2, edge_min_neighbours: 4, edge_side_reach: 2,\n"
+      "           edge_side_min_contrast: 0.05}\n",
       "cell.yaml");
   EXPECT_EQ(p.decode.bit_noise_sigmas, 2.5);
   EXPECT_FALSE(p.decode.keep_column_without_row);
@@ -69,6 +72,8 @@ TEST(ReconstructionConfig, ReadsTheHarshLightSettingsAndNamesBadOnes) {
   EXPECT_EQ(p.filter.edge_max_jump, 6.0);
   EXPECT_EQ(p.filter.edge_min_support, 2);
   EXPECT_EQ(p.filter.edge_min_neighbours, 4);
+  EXPECT_EQ(p.filter.edge_side_reach, 2);
+  EXPECT_EQ(p.filter.edge_side_min_contrast, 0.05);
   EXPECT_NE(parseError("reconstruction: {decode: {bit_noise_sigmas: -1}}").find("bit_noise_sigmas"), std::string::npos);
   EXPECT_NE(parseError("reconstruction: {filter: {edge_min_support: 0}}").find("edge_min_support"), std::string::npos);
   EXPECT_NE(parseError("reconstruction: {decode: {min_unwrap_neighbours: 9}}").find("min_unwrap_neighbours"),
@@ -76,6 +81,7 @@ TEST(ReconstructionConfig, ReadsTheHarshLightSettingsAndNamesBadOnes) {
   EXPECT_NE(parseError("reconstruction: {filter: {median_min_noise: -1}}").find("median_min_noise"), std::string::npos);
   EXPECT_NE(parseError("reconstruction: {filter: {median_lone_max_noise: -1}}").find("median_lone_max_noise"),
             std::string::npos);
+  EXPECT_NE(parseError("reconstruction: {filter: {edge_side_reach: -2}}").find("edge_side_reach"), std::string::npos);
   EXPECT_NE(parseError("reconstruction: {decode: {keep_column_without_row: 3}}")
                 .find("reconstruction.decode.keep_column_without_row has the wrong type"),
             std::string::npos);

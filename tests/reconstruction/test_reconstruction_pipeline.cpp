@@ -77,6 +77,15 @@ bool nearDepthEdge(const VirtualCapture& v, std::size_t pixel) {
 // neighbour unwrapping and default noise removal).
 constexpr double kHarshCoverage = 0.85;
 
+// The mixed-pixel capture (clamp, 12 parts, seed 7, half resolution, 3 x 3 rays with half a pixel
+// of lens blur): points more than 5 mm off the surface their pixel sees, 1209 measured without
+// the depth-edge filter and 165 with it; the parts' pixels that keep a point, 94.3% and 94.1%
+// (the edge pixels the decoder cannot read cost the rest).
+constexpr std::size_t kMixedPixelsOffWithoutFilter = 600;
+constexpr std::size_t kMixedPixelsOffWithFilter = 300;
+constexpr double kMixedPixelPartCoverage = 0.93;
+constexpr double kMixedPixelCoverageCost = 0.005;  // share of the parts' pixels the filter may take
+
 TEST(Reconstruction, MeasuresTheLitSurfacesToATenthOfAMillimetre) {
   const VirtualCapture& v = virtualCapture({});
   const Reconstruction r = Reconstructor(v.scene.rig).reconstruct(v.capture);
@@ -157,6 +166,37 @@ TEST(Reconstruction, NoiseRemovalKeepsMoreOfTheDarkPartsWithoutWrongPoints) {
   const PartCoverage with = partCoverage(v, Reconstructor(v.scene.rig).reconstruct(v.capture).cloud);
   EXPECT_GT(with.covered, without.covered + 0.02);
   EXPECT_EQ(with.wrong_off_edges, 0u);
+}
+
+// A pile whose camera gathers light over each pixel's area and a lens blur of half a pixel
+// (3 x 3 rays at the pixels beside depth edges), half resolution. Without the depth-edge filter
+// the pixels beside the parts' edges that see the shadow (or the floor, or nothing) take the
+// edge's code: their points lie on the part's extension, centimetres off the surface their pixel
+// sees. The filter takes most of them and keeps the parts.
+const VirtualCapture& mixedPixelCapture() {
+  CaptureOptions options;
+  options.camera_scale = 0.5;
+  options.mixed_pixel_samples = 3;
+  return virtualCapture(options);
+}
+
+TEST(Reconstruction, DepthEdgeFilterTakesMixedPixelsOffTheirPixelsSurfaceAndKeepsTheParts) {
+  const VirtualCapture& v = mixedPixelCapture();
+  ReconstructionParams unfiltered;
+  unfiltered.filter.edge_max_jump = 0.0;
+  unfiltered.filter.edge_side_reach = 0;
+  const io::PointCloud before = Reconstructor(v.scene.rig, unfiltered).reconstruct(v.capture).cloud;
+  const io::PointCloud after = Reconstructor(v.scene.rig).reconstruct(v.capture).cloud;
+  const DepthScore without = scoreDepth(v, before), with = scoreDepth(v, after);
+  const PartCoverage parts_without = partCoverage(v, before), parts_with = partCoverage(v, after);
+  SCOPED_TRACE("points more than 5 mm off: " + std::to_string(without.wrong) + " without the filter, " +
+               std::to_string(with.wrong) + " with; parts' coverage " + std::to_string(parts_without.covered) +
+               " and " + std::to_string(parts_with.covered));
+  EXPECT_GT(without.wrong, kMixedPixelsOffWithoutFilter);  // the capture has mixed pixels
+  EXPECT_LT(with.wrong, kMixedPixelsOffWithFilter);
+  EXPECT_GT(parts_with.covered, kMixedPixelPartCoverage);
+  EXPECT_GT(parts_with.covered, parts_without.covered - kMixedPixelCoverageCost);
+  EXPECT_LT(with.median_mm, 0.2);
 }
 
 TEST(Reconstruction, ColumnCodesAloneGiveTheSameSurface) {

@@ -20,10 +20,10 @@ double key(double value) { return std::isnan(value) ? -1e300 : value; }
 
 bool CaptureOptions::operator<(const CaptureOptions& o) const {
   return std::make_tuple(part, objects, seed, camera_scale, bin_length, bin_width, row_codes, phase_steps, bit_depth,
-                         lighting, key(global_light), key(ambient), key(projector_blur)) <
+                         lighting, key(global_light), key(ambient), key(projector_blur), mixed_pixel_samples) <
          std::make_tuple(o.part, o.objects, o.seed, o.camera_scale, o.bin_length, o.bin_width, o.row_codes,
                          o.phase_steps, o.bit_depth, o.lighting, key(o.global_light), key(o.ambient),
-                         key(o.projector_blur));
+                         key(o.projector_blur), o.mixed_pixel_samples);
 }
 
 namespace {
@@ -46,6 +46,7 @@ VirtualCapture render(const CaptureOptions& options) {
   if (!std::isnan(options.global_light)) photometry.global_light = options.global_light;
   if (!std::isnan(options.ambient)) photometry.ambient = options.ambient;
   if (!std::isnan(options.projector_blur)) photometry.min_blur_sigma = options.projector_blur;
+  photometry.mixed_pixel_samples = options.mixed_pixel_samples;
   simulation::PileCapture pile =
       simulation::generatePileCapture(simulation::makePart(options.part).mesh, v.params, patterns, photometry);
   v.scene = std::move(pile.scene);

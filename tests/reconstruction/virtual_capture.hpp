@@ -27,6 +27,7 @@ struct CaptureOptions {
   double global_light = std::numeric_limits<double>::quiet_NaN();
   double ambient = std::numeric_limits<double>::quiet_NaN();
   double projector_blur = std::numeric_limits<double>::quiet_NaN();  // min_blur_sigma
+  int mixed_pixel_samples = 1;  // PhotometryParams::mixed_pixel_samples: 1, one ray per pixel
   bool operator<(const CaptureOptions& other) const;
 };
 

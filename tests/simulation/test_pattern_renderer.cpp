@@ -308,6 +308,52 @@ TEST(PatternRenderer, CodedPatternsDoNotReachPointsOutsideTheProjectorImage) {
   }
 }
 
+// A pixel that sees two surfaces gathers each by its share: under every pattern it reads the mean
+// of the two as seen alone, whatever its own entry says.
+TEST(PatternRenderer, MixedPixelGathersEachSurfaceByItsShare) {
+  const io::PatternSetSpec spec;
+  const PixelLighting near = lit(100.0f, 37.0f, 0.5f, 160.0f, 6.0f, 4.0f);
+  const PixelLighting far = lit(900.0f, 600.0f, 1.5f, 60.0f, 3.0f, 2.0f);
+  const std::vector<PixelLighting> pixels{near, far, lit(500.0f, 400.0f, kSharp, 250.0f, 20.0f)};
+  MixedPixels mixed;
+  mixed.pixel = {2};
+  mixed.first = {0, 2};
+  mixed.surfaces = {{near, 0.5f}, {far, 0.5f}};
+  const std::vector<cv::Mat> images = renderPatternImages(pixels, 3, 1, spec, noiseless(), mixed);
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    const double mean = 0.5 * (images[k].at<uchar>(0, 0) + images[k].at<uchar>(0, 1));
+    EXPECT_NEAR(images[k].at<uchar>(0, 2), mean, 1.0) << "image " << k;
+  }
+  // A share of what the pixel gathers sees nothing: the white image reads less.
+  mixed.surfaces = {{near, 0.25f}};
+  mixed.first = {0, 1};
+  const cv::Mat white = renderPatternImages(pixels, 3, 1, spec, noiseless(), mixed)[indexOf(spec, "white")];
+  EXPECT_NEAR(white.at<uchar>(0, 2), 0.25 * white.at<uchar>(0, 0), 1.0);
+}
+
+TEST(PatternRenderer, BadMixedPixelsAreNamed) {
+  const io::PatternSetSpec spec;
+  const std::vector<PixelLighting> pixels(4, lit(10.0f, 10.0f, kSharp, 100.0f, 5.0f));
+  const auto message = [&](const MixedPixels& mixed) {
+    return test::thrownMessage([&] { renderPatternImages(pixels, 2, 2, spec, noiseless(), mixed); });
+  };
+  MixedPixels mixed;
+  mixed.pixel = {4};
+  mixed.first = {0, 1};
+  mixed.surfaces = {{pixels[0], 1.0f}};
+  EXPECT_NE(message(mixed).find("mixed pixel 4 is outside the image"), std::string::npos) << message(mixed);
+  mixed.pixel = {1, 1};
+  mixed.first = {0, 1, 1};
+  EXPECT_NE(message(mixed).find("mixed pixel 1 is listed twice"), std::string::npos) << message(mixed);
+  mixed.pixel = {1};
+  mixed.first = {0, 2};
+  EXPECT_NE(message(mixed).find("does not split their 1 surfaces among 1 pixels"), std::string::npos)
+      << message(mixed);
+  mixed.first = {0, 1};
+  mixed.surfaces[0].share = 1.5f;
+  EXPECT_NE(message(mixed).find("share 1.5"), std::string::npos) << message(mixed);
+}
+
 TEST(PatternRenderer, WrongPixelCountIsNamed) {
   const io::PatternSetSpec spec;
   const std::vector<PixelLighting> pixels(5);
@@ -334,6 +380,12 @@ TEST(PatternRenderer, BadParamsAreNamed) {
   params = noiseless();
   params.threads = -1;
   EXPECT_TRUE(throwsNaming(pixels, 1, 1, spec, params, "PhotometryParams.threads"));
+  params = noiseless();
+  params.mixed_pixel_samples = 0;
+  EXPECT_TRUE(throwsNaming(pixels, 1, 1, spec, params, "PhotometryParams.mixed_pixel_samples"));
+  params = noiseless();
+  params.camera_blur_sigma = -0.5;
+  EXPECT_TRUE(throwsNaming(pixels, 1, 1, spec, params, "PhotometryParams.camera_blur_sigma"));
   io::PatternSetSpec bad_spec;
   bad_spec.phase_period = 2;
   EXPECT_TRUE(throwsNaming(pixels, 1, 1, bad_spec, noiseless(), "PatternSetSpec.phase_period"));

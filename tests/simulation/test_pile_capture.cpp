@@ -2,6 +2,7 @@
 // cannot reach, and Gray-code bits that spell the projector column the exact point projects to.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "binpick/reconstruction/pattern_set.hpp"
@@ -110,6 +111,50 @@ TEST(PileCapture, SameSeedSameImages) {
   for (std::size_t k = 0; k < again.size(); ++k) {
     EXPECT_EQ(cv::norm(again[k], p.images[k], cv::NORM_INF), 0.0) << "image " << k;
   }
+}
+
+// Whether the truth has a depth edge (another object, or depths 3 mm apart) within `reach` pixels.
+bool nearDepthEdge(const PileScene& scene, int x, int y, int reach) {
+  const int w = scene.rig.camera.width, h = scene.rig.camera.height;
+  const auto at = [&](int u, int v) { return static_cast<std::size_t>(v) * w + u; };
+  for (int v = std::max(0, y - reach); v <= std::min(h - 2, y + reach); ++v) {
+    for (int u = std::max(0, x - reach); u <= std::min(w - 2, x + reach); ++u) {
+      for (const std::size_t j : {at(u + 1, v), at(u, v + 1)}) {
+        const std::size_t i = at(u, v);
+        if (scene.instance[i] != scene.instance[j] || !(std::fabs(scene.depth[i] - scene.depth[j]) <= 0.003f)) {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+// Several rays over the pixels at depth edges against one per pixel: the images differ there, at
+// many pixels (shadowed ones beside a lit edge get some of its light), and nowhere else (the
+// noise is keyed by pixel, so the rest is the same to the bit).
+TEST(PileCapture, MixedPixelsChangeTheImagesAtDepthEdgesOnly) {
+  const RenderedPile& p = renderedPile();
+  PhotometryParams photometry;
+  photometry.seed = 5;
+  photometry.mixed_pixel_samples = 3;
+  const cv::Mat mixed = renderPileImages(makePart("clamp").mesh, p.scene, p.params, p.patterns, photometry)[0];
+  const cv::Mat& one_ray = p.images[0];  // white
+  int changed = 0, changed_off_edges = 0, shadowed_brighter = 0;
+  for (int y = 0; y < mixed.rows; ++y) {
+    for (int x = 0; x < mixed.cols; ++x) {
+      const int difference = mixed.at<uint8_t>(y, x) - one_ray.at<uint8_t>(y, x);
+      if (difference == 0) continue;
+      ++changed;
+      changed_off_edges += nearDepthEdge(p.scene, x, y, 2) ? 0 : 1;
+      const std::size_t i = static_cast<std::size_t>(y) * mixed.cols + x;
+      shadowed_brighter += p.scene.exact_cloud.points[i].allFinite() && !p.scene.cloud.points[i].allFinite() &&
+                           difference > 20;
+    }
+  }
+  EXPECT_GT(changed, 500);
+  EXPECT_GT(shadowed_brighter, 50);
+  EXPECT_EQ(changed_off_edges, 0);
 }
 
 }  // namespace

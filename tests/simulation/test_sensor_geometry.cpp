@@ -11,6 +11,7 @@
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
 #include "render_test_utils.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::simulation {
 namespace {
@@ -301,6 +302,37 @@ TEST(ObjectVisibility, AloneCountsMatchRenderingEachObjectAloneInAHeap) {
     if (visibility[i].visible_fraction < 0.99) ++partly_hidden;
   }
   EXPECT_GT(partly_hidden, 2);
+}
+
+// Sub-pixel samples through the pixel centres see what the image's own rays see.
+TEST(SensorGeometry, SamplesAtPixelCentresSeeWhatThePixelsSee) {
+  const io::RigCalibration rig = test::distortingRig();
+  const Part part = makePart("l_bracket");
+  const Floor floor;
+  const RayCaster scene({{&part.mesh, partPose(), 3}, floor.at(0.6)});
+  const SensorGeometry image = computeSensorGeometry(rig, scene);
+  std::vector<Eigen::Vector2d> centres;
+  for (int v = 0; v < rig.camera.height; v += 3) {
+    for (int u = 0; u < rig.camera.width; ++u) centres.emplace_back(u, v);
+  }
+  const SensorGeometry samples = computeSensorGeometryAt(rig, scene, centres, rig.camera.width);
+  ASSERT_EQ(samples.width, rig.camera.width);
+  ASSERT_EQ(samples.height, (rig.camera.height + 2) / 3);
+  int on_part = 0;
+  for (int row = 0; row < samples.height; ++row) {
+    for (int u = 0; u < samples.width; ++u) {
+      const std::size_t s = samples.index(u, row), i = image.index(u, 3 * row);
+      ASSERT_EQ(samples.object_id[s], image.object_id[i]) << u << ", " << 3 * row;
+      if (image.object_id[i] < 0) continue;
+      EXPECT_NEAR(samples.depth[s], image.depth[i], 1e-6f);
+      EXPECT_EQ(samples.lit[s], image.lit[i]) << u << ", " << 3 * row;
+      on_part += image.object_id[i] == 3;
+    }
+  }
+  EXPECT_GT(on_part, 100);
+  EXPECT_NE(binpick::test::thrownMessage([&] { computeSensorGeometryAt(rig, scene, centres, 7); })
+                .find("do not make rows of 7"),
+            std::string::npos);
 }
 
 TEST(SensorGeometry, EmptySceneGivesEmptyBuffers) {

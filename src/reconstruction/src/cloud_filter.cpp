@@ -9,6 +9,7 @@
 #include "binpick/core/thread_count.hpp"
 #include "binpick/reconstruction/pixel_status.hpp"
 #include "depth_edges.hpp"
+#include "edge_coverage.hpp"
 #include "speckle.hpp"
 #include "surface_median.hpp"
 
@@ -46,6 +47,16 @@ void removePoint(io::PointCloud& cloud, std::size_t i, uint8_t& status, PixelSta
   status = static_cast<uint8_t>(reason);
 }
 
+void removeFlagged(io::PointCloud& cloud, cv::Mat& status, const std::vector<uint8_t>& flagged, PixelStatus reason) {
+  for (int y = 0; y < cloud.height; ++y) {
+    uint8_t* row_status = status.ptr<uint8_t>(y);
+    for (int x = 0; x < cloud.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
+      if (flagged[i]) removePoint(cloud, i, row_status[x], reason);
+    }
+  }
+}
+
 void applyDepthAndCrop(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
   const bool crop = !params.crop.isEmpty();
   const double min_depth = params.min_depth, max_depth = params.max_depth;
@@ -72,42 +83,36 @@ void applySurfaceMedian(io::PointCloud& cloud, cv::Mat& status, const CloudFilte
   gate.noise = noise.empty() ? nullptr : noise.ptr<float>(0);
   gate.min_noise = static_cast<float>(params.median_min_noise);
   gate.lone_max_noise = static_cast<float>(params.median_lone_max_noise);
-  const std::vector<uint8_t> outlier = detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
-                                                                     static_cast<float>(params.median_max_pull), gate,
-                                                                     core::resolveThreadCount(params.threads));
-  for (int y = 0; y < cloud.height; ++y) {
-    uint8_t* row_status = status.ptr<uint8_t>(y);
-    for (int x = 0; x < cloud.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
-      if (outlier[i]) removePoint(cloud, i, row_status[x], PixelStatus::DepthEdge);
-    }
-  }
+  removeFlagged(cloud, status,
+                detail::smoothToSurfaceMedian(cloud, static_cast<float>(params.median_reach),
+                                              static_cast<float>(params.median_max_pull), gate,
+                                              core::resolveThreadCount(params.threads)),
+                PixelStatus::DepthEdge);
 }
 
 void applyDepthEdges(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
-  const std::vector<uint8_t> outlier =
-      detail::findDepthEdgeOutliers(cloud, static_cast<float>(params.edge_max_jump), params.edge_min_neighbours,
-                                    params.edge_min_support, core::resolveThreadCount(params.threads));
-  for (int y = 0; y < cloud.height; ++y) {
-    uint8_t* row_status = status.ptr<uint8_t>(y);
-    for (int x = 0; x < cloud.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
-      if (outlier[i]) removePoint(cloud, i, row_status[x], PixelStatus::DepthEdge);
-    }
-  }
+  removeFlagged(cloud, status,
+                detail::findDepthEdgeOutliers(cloud, static_cast<float>(params.edge_max_jump),
+                                              params.edge_min_neighbours, params.edge_min_support,
+                                              core::resolveThreadCount(params.threads)),
+                PixelStatus::DepthEdge);
+}
+
+void applyEdgeCoverage(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+  detail::EdgeCoverageTest test;
+  test.reach = params.edge_side_reach;
+  test.max_step = static_cast<float>(params.edge_max_jump);
+  test.min_contrast = static_cast<float>(params.edge_side_min_contrast);
+  removeFlagged(cloud, status,
+                detail::findDarkSideEdgePixels(cloud, status, test, core::resolveThreadCount(params.threads)),
+                PixelStatus::DepthEdge);
 }
 
 void applySpeckle(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
-  const std::vector<uint8_t> speckle =
-      detail::findSpeckles(cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels,
-                           core::resolveThreadCount(params.threads));
-  for (int y = 0; y < cloud.height; ++y) {
-    uint8_t* row_status = status.ptr<uint8_t>(y);
-    for (int x = 0; x < cloud.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * cloud.width + x;
-      if (speckle[i]) removePoint(cloud, i, row_status[x], PixelStatus::Speckle);
-    }
-  }
+  removeFlagged(cloud, status,
+                detail::findSpeckles(cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels,
+                                     core::resolveThreadCount(params.threads)),
+                PixelStatus::Speckle);
 }
 
 }  // namespace
@@ -133,6 +138,9 @@ void CloudFilterParams::validate() const {
   require(edge_min_neighbours >= 1 && edge_min_neighbours <= 8, "edge_min_neighbours", "in [1, 8]",
           edge_min_neighbours);
   require(edge_min_support >= 1 && edge_min_support <= 8, "edge_min_support", "in [1, 8]", edge_min_support);
+  require(edge_side_reach >= 0 && edge_side_reach <= 16, "edge_side_reach", "in [0, 16] pixels", edge_side_reach);
+  require(std::isfinite(edge_side_min_contrast) && edge_side_min_contrast >= 0.0 && edge_side_min_contrast <= 1.0,
+          "edge_side_min_contrast", "in [0, 1]", edge_side_min_contrast);
   require(threads >= 0, "threads", ">= 0", threads);
 }
 
@@ -148,6 +156,7 @@ void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams
   const bool noise_known = !column_noise.empty() || params.median_min_noise == 0.0;
   if (params.median_reach > 0.0 && noise_known) applySurfaceMedian(cloud, status, params, column_noise);
   if (params.edge_max_jump > 0.0) applyDepthEdges(cloud, status, params);
+  if (params.edge_max_jump > 0.0 && params.edge_side_reach > 0) applyEdgeCoverage(cloud, status, params);
   if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
 }
 

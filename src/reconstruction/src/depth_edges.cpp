@@ -30,9 +30,8 @@ int support(const float* depths, int count, float z, float reach) {
   return near;
 }
 
-// The angle between the rays of horizontally adjacent pixels (1 / f for a pinhole), from the
-// cloud itself: the median of |x/z - x'/z'| over adjacent points of every 8th row. 0 when the
-// cloud has no adjacent points.
+}  // namespace
+
 float rayPitch(const io::PointCloud& cloud) {
   std::vector<float> pitches;
   for (int y = 0; y < cloud.height; y += 8) {
@@ -46,8 +45,6 @@ float rayPitch(const io::PointCloud& cloud) {
   std::nth_element(pitches.begin(), pitches.begin() + static_cast<long>(pitches.size() / 2), pitches.end());
   return pitches[pitches.size() / 2];
 }
-
-}  // namespace
 
 std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
                                            int min_support, int threads) {

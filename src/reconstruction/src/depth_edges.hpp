@@ -22,4 +22,9 @@ namespace binpick::reconstruction::detail {
 std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
                                            int min_support, int threads);
 
+// The angle between the rays of horizontally adjacent pixels (1 / f for a pinhole), from the
+// cloud itself: the median of |x/z - x'/z'| over adjacent points of every 8th row. 0 when the
+// cloud has no adjacent points. A pixel's footprint at depth z is z times this.
+float rayPitch(const io::PointCloud& cloud);
+
 }  // namespace binpick::reconstruction::detail

@@ -57,6 +57,8 @@ void readFilter(core::YamlSection s, CloudFilterParams& p) {
   s.read("edge_max_jump", p.edge_max_jump);
   s.read("edge_min_neighbours", p.edge_min_neighbours);
   s.read("edge_min_support", p.edge_min_support);
+  s.read("edge_side_reach", p.edge_side_reach);
+  s.read("edge_side_min_contrast", p.edge_side_min_contrast);
   s.finish();
 }
 

@@ -10,6 +10,7 @@
 #include "binpick/simulation/object_visibility.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "pile_view.hpp"
+#include "sensor/mixed_pixels.hpp"
 #include "sensor_noise.hpp"
 
 namespace binpick::simulation {
@@ -50,18 +51,24 @@ void recordTruth(PileScene& scene, const SensorGeometry& geometry, const std::ve
   scene.exact_cloud = detail::exactCloud(geometry);
 }
 
-// The pile as the rig sees it: what every camera pixel hits, lit or not.
-SensorGeometry castRays(const io::TriangleMesh& part, const PileScene& scene, const PileParams& params,
-                        std::vector<ObjectVisibility>* visibility = nullptr) {
+// The pile as the rig sees it: the scene, and what every camera pixel's centre ray hits, lit or
+// not. The images trace the scene again at the pixels that straddle a depth edge.
+struct PileView {
+  RayCaster caster{std::vector<RenderObject>{}};
+  SensorGeometry geometry;
+};
+
+PileView castRays(const io::TriangleMesh& part, const PileScene& scene, const PileParams& params,
+                  std::vector<ObjectVisibility>* visibility = nullptr) {
   const io::TriangleMesh bin_mesh = detail::makeBinMesh(params.bin_length, params.bin_width, params.bin_wall_height);
-  const RayCaster caster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin));
-  SensorGeometry geometry = computeSensorGeometry(scene.rig, caster, geometryParams(params));
+  PileView view{RayCaster(detail::pileObjects(part, bin_mesh, partPoses(scene), scene.T_camera_bin)), {}};
+  view.geometry = computeSensorGeometry(scene.rig, view.caster, geometryParams(params));
   if (visibility) {
     std::vector<int> parts(scene.objects.size());
     for (std::size_t i = 0; i < parts.size(); ++i) parts[i] = static_cast<int>(i);  // bin: last
-    *visibility = computeObjectVisibilityOf(scene.rig, caster, geometry, parts, geometryParams(params));
+    *visibility = computeObjectVisibilityOf(scene.rig, view.caster, view.geometry, parts, geometryParams(params));
   }
-  return geometry;
+  return view;
 }
 
 void requireValidPart(const io::TriangleMesh& part, const char* caller) {
@@ -69,10 +76,10 @@ void requireValidPart(const io::TriangleMesh& part, const char* caller) {
   io::validateMesh(part, std::string(caller) + " part");
 }
 
-// The scene at the given poses, handing out the sensor geometry it cast so that images need not
-// cast it again. Inputs already validated.
+// The scene at the given poses, handing out the view it cast so that images need not cast it
+// again. Inputs already validated.
 PileScene sceneAt(const io::TriangleMesh& part, const PileParams& params,
-                  const std::vector<Eigen::Isometry3d>& T_bin_objects, SensorGeometry& geometry) {
+                  const std::vector<Eigen::Isometry3d>& T_bin_objects, PileView& view) {
   PileScene scene;
   scene.rig = params.rig;
   scene.T_camera_bin = cameraAboveBin(params.camera_height);
@@ -80,46 +87,49 @@ PileScene sceneAt(const io::TriangleMesh& part, const PileParams& params,
     scene.objects.push_back({scene.T_camera_bin * T_bin_object, 0, 0, 0.0});
   }
   std::vector<ObjectVisibility> visibility;
-  geometry = castRays(part, scene, params, &visibility);
-  recordTruth(scene, geometry, visibility);
-  scene.cloud = detail::measurableCloud(geometry, params.max_view_angle_deg);
+  view = castRays(part, scene, params, &visibility);
+  recordTruth(scene, view.geometry, visibility);
+  scene.cloud = detail::measurableCloud(view.geometry, params.max_view_angle_deg);
   detail::applySensorNoise(scene.cloud, params.depth_noise, params.dropout, params.seed, kSensorStream);
   return scene;
 }
 
 // generatePile: the physics, then the view of the poses it gives.
-PileScene generatePileWithGeometry(const io::TriangleMesh& part, const PileParams& params, SensorGeometry& geometry) {
+PileScene generatePileWithView(const io::TriangleMesh& part, const PileParams& params, PileView& view) {
   params.validate();
   requireValidPart(part, "generatePile");
   const BinInterior bin{params.bin_length, params.bin_width, params.bin_wall_height};
   PhysicsPile physics = simulatePile(part, params.objects, bin, params.physics, params.seed);
-  PileScene scene = sceneAt(part, params, physics.T_bin_object, geometry);
+  PileScene scene = sceneAt(part, params, physics.T_bin_object, view);
   scene.physics = std::move(physics);
   return scene;
 }
 
-PileScene viewPileWithGeometry(const io::TriangleMesh& part, const PileParams& params,
-                               const std::vector<Eigen::Isometry3d>& T_bin_objects, SensorGeometry& geometry) {
+PileScene viewPileWithView(const io::TriangleMesh& part, const PileParams& params,
+                           const std::vector<Eigen::Isometry3d>& T_bin_objects, PileView& view) {
   params.validate();
   requireValidPart(part, "viewPile");
-  PileScene scene = sceneAt(part, params, T_bin_objects, geometry);
+  PileScene scene = sceneAt(part, params, T_bin_objects, view);
   scene.physics.T_bin_object = T_bin_objects;
   scene.physics.settled = true;
   return scene;
 }
 
-std::vector<cv::Mat> imagesOf(const SensorGeometry& geometry, const PileScene& scene, const PileParams& params,
+std::vector<cv::Mat> imagesOf(const PileView& view, const PileScene& scene, const PileParams& params,
                               const io::PatternSetSpec& patterns, const PhotometryParams& photometry) {
-  const std::vector<PixelLighting> lighting =
-      computePixelLighting(geometry, scene.rig, photometry, detail::pileAlbedo(params));
-  return renderPatternImages(lighting, geometry.width, geometry.height, patterns, photometry);
+  const AlbedoFunction albedo = detail::pileAlbedo(params);
+  const SensorGeometry& geometry = view.geometry;
+  const std::vector<PixelLighting> lighting = computePixelLighting(geometry, scene.rig, photometry, albedo);
+  const MixedPixels mixed =
+      detail::computeMixedPixels(scene.rig, view.caster, geometry, photometry, albedo, geometryParams(params));
+  return renderPatternImages(lighting, geometry.width, geometry.height, patterns, photometry, mixed);
 }
 
 }  // namespace
 
 PileScene generatePile(const io::TriangleMesh& part, const PileParams& params) {
-  SensorGeometry geometry;
-  return generatePileWithGeometry(part, params, geometry);
+  PileView view;
+  return generatePileWithView(part, params, view);
 }
 
 std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileScene& scene, const PileParams& params,
@@ -130,26 +140,26 @@ std::vector<cv::Mat> renderPileImages(const io::TriangleMesh& part, const PileSc
 
 PileCapture generatePileCapture(const io::TriangleMesh& part, const PileParams& params,
                                 const io::PatternSetSpec& patterns, const PhotometryParams& photometry) {
-  SensorGeometry geometry;
+  PileView view;
   PileCapture capture;
-  capture.scene = generatePileWithGeometry(part, params, geometry);
-  capture.images = imagesOf(geometry, capture.scene, params, patterns, photometry);
+  capture.scene = generatePileWithView(part, params, view);
+  capture.images = imagesOf(view, capture.scene, params, patterns, photometry);
   return capture;
 }
 
 PileScene viewPile(const io::TriangleMesh& part, const PileParams& params,
                    const std::vector<Eigen::Isometry3d>& T_bin_objects) {
-  SensorGeometry geometry;
-  return viewPileWithGeometry(part, params, T_bin_objects, geometry);
+  PileView view;
+  return viewPileWithView(part, params, T_bin_objects, view);
 }
 
 PileCapture renderPileCaptureAt(const io::TriangleMesh& part, const PileParams& params,
                                 const std::vector<Eigen::Isometry3d>& T_bin_objects, const io::PatternSetSpec& patterns,
                                 const PhotometryParams& photometry) {
-  SensorGeometry geometry;
+  PileView view;
   PileCapture capture;
-  capture.scene = viewPileWithGeometry(part, params, T_bin_objects, geometry);
-  capture.images = imagesOf(geometry, capture.scene, params, patterns, photometry);
+  capture.scene = viewPileWithView(part, params, T_bin_objects, view);
+  capture.images = imagesOf(view, capture.scene, params, patterns, photometry);
   return capture;
 }
 

@@ -1,8 +1,11 @@
 // computeSensorGeometry: one camera ray per pixel, then the projector's view of the point hit.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/thread_count.hpp"
@@ -58,23 +61,25 @@ void storeProjectorSample(const detail::ProjectorSample& s, std::size_t i, Senso
   g.lit[i] = s.lit ? 1 : 0;
 }
 
-// One image row: its rays, and then the shadow rays of its lit-able points, each as one batch
-// (neighbouring rays are alike, which Embree's packets exploit).
-void renderRow(const io::LensIntrinsics& camera, const detail::ProjectorView& projector, const RayCaster& scene,
-               double shadow_ray_offset, int v, SensorGeometry& g) {
-  std::vector<Ray> rays(camera.width);
-  for (int u = 0; u < camera.width; ++u) {
-    rays[u].direction = camera.rayThroughPixel(Eigen::Vector2d(u, v));
-  }
+// `count` consecutive entries of the result from `first` on: the rays through their image points,
+// and then the shadow rays of their lit-able points, each as one batch (neighbouring rays are
+// alike, which Embree's packets exploit).
+void renderSpan(const io::LensIntrinsics& camera, const detail::ProjectorView& projector, const RayCaster& scene,
+                double shadow_ray_offset, const Eigen::Vector2d* image_points, std::size_t first, std::size_t count,
+                SensorGeometry& g) {
+  std::vector<Ray> rays(count);
+  for (std::size_t k = 0; k < count; ++k) rays[k].direction = camera.rayThroughPixel(image_points[k]);
   const std::vector<RayHit> hits = scene.closestHits(rays);
   const std::vector<detail::ProjectorSample> samples = detail::lightHits(projector, hits, scene, -1, shadow_ray_offset);
-  for (int u = 0; u < camera.width; ++u) {
-    if (!hits[u].hit()) continue;
-    const std::size_t i = g.index(u, v);
-    storeHit(hits[u], rays[u].direction, i, g);
-    storeProjectorSample(samples[u], i, g);
+  for (std::size_t k = 0; k < count; ++k) {
+    if (!hits[k].hit()) continue;
+    storeHit(hits[k], rays[k].direction, first + k, g);
+    storeProjectorSample(samples[k], first + k, g);
   }
 }
+
+// Sub-pixel samples go to the caster in spans of this many: a few rows' worth.
+constexpr std::size_t kSampleSpan = 1024;
 
 }  // namespace
 
@@ -89,7 +94,32 @@ SensorGeometry computeSensorGeometry(const io::RigCalibration& rig, const RayCas
   // cannot change the result; dynamic scheduling evens out rows that miss everything.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 2)
   for (int v = 0; v < rig.camera.height; ++v) {
-    renderRow(rig.camera, projector, scene, params.shadow_ray_offset, v, g);
+    std::vector<Eigen::Vector2d> centres(rig.camera.width);
+    for (int u = 0; u < rig.camera.width; ++u) centres[u] = Eigen::Vector2d(u, v);
+    renderSpan(rig.camera, projector, scene, params.shadow_ray_offset, centres.data(), g.index(0, v), centres.size(), g);
+  }
+  return g;
+}
+
+SensorGeometry computeSensorGeometryAt(const io::RigCalibration& rig, const RayCaster& scene,
+                                       const std::vector<Eigen::Vector2d>& image_points, int width,
+                                       const SensorGeometryParams& params) {
+  rig.validate();
+  params.validate();
+  if (width <= 0 || image_points.size() % static_cast<std::size_t>(width) != 0) {
+    throw core::Error("computeSensorGeometryAt: " + std::to_string(image_points.size()) +
+                      " image points do not make rows of " + std::to_string(width));
+  }
+  const int threads = core::resolveThreadCount(params.threads);
+  const int height = static_cast<int>(image_points.size() / static_cast<std::size_t>(width));
+  SensorGeometry g = emptyGeometry(width, height, threads);
+  const detail::ProjectorView projector(rig);
+  const auto spans = static_cast<std::ptrdiff_t>((image_points.size() + kSampleSpan - 1) / kSampleSpan);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (std::ptrdiff_t s = 0; s < spans; ++s) {
+    const std::size_t first = static_cast<std::size_t>(s) * kSampleSpan;
+    const std::size_t count = std::min(kSampleSpan, image_points.size() - first);
+    renderSpan(rig.camera, projector, scene, params.shadow_ray_offset, &image_points[first], first, count, g);
   }
   return g;
 }

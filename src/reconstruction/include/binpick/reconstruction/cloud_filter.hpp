@@ -3,7 +3,7 @@
 // crop box, depth noise removal (the points the decoder measured noisily onto the median of their
 // 3x3 neighbourhood's surface, those far from it removed), the removal of points that stand off their
 // neighbours' surface (depth edges: mixed pixels that see a near and a far surface at once, and
-// lone misdecoded points), and the removal
+// lone misdecoded points, and edge pixels that see the shadow beside a lit edge), and the removal
 // of small isolated patches (speckle: stray points from misdecoded pixels, usually at depth edges
 // and on dark or glossy spots). Removed points become NaN and their pixels get the status that
 // removed them. Stateless: thread-safe.
@@ -60,6 +60,20 @@ struct CloudFilterParams {
   double edge_max_jump = 8.0;  // pixel footprints
   int edge_min_neighbours = 3;
   int edge_min_support = 3;
+  // Edge pixels on the dark side (part of the depth-edge removal, after the test above): a pixel
+  // gathers light over its area and its lens's blur, so beside a lit surface's edge where its
+  // projector shadow falls (or where nothing is seen) a pixel whose centre sees the dark side
+  // still decodes the edge's light; its point lands beside the edge on the lit surface's
+  // extension, centimetres off the shadowed surface the pixel sees (the surface looks a pixel or
+  // more wider), and the test above keeps it. Along any of the 8 neighbour directions, a point
+  // with a pixel in projector shadow (status unlit) within edge_side_reach pixels behind it and
+  // its own surface next ahead (within 2 pixels, a depth step of at most edge_max_jump footprints
+  // a pixel) is removed (depth_edge) when its brightness (white image, cloud.intensities) is less
+  // than halfway from the dark pixel's to that neighbour's: its centre sees the dark side. Sides
+  // less than edge_side_min_contrast apart in brightness are not judged. Clouds without
+  // intensities skip it; edge_side_reach = 0 (or edge_max_jump = 0) turns it off.
+  int edge_side_reach = 3;               // pixels
+  double edge_side_min_contrast = 0.02;  // white image, [0, 1]
   // Speckle removal: 4-connected neighbours belong to one patch when their camera z differs by
   // at most speckle_max_step; patches of fewer than speckle_min_pixels points are removed.
   // speckle_min_pixels = 0 turns it off.

@@ -68,4 +68,12 @@ struct SensorGeometry {
 SensorGeometry computeSensorGeometry(const io::RigCalibration& rig, const RayCaster& scene,
                                      const SensorGeometryParams& params = {});
 
+// The same for any points of the camera image (pixel centres at integers, lens distortion
+// included), one ray each: sub-pixel samples. The result holds them row-major as given, `width`
+// per row (points.size() must be a multiple of it). Throws core::Error on an invalid rig or
+// params, or a width that does not divide the points.
+SensorGeometry computeSensorGeometryAt(const io::RigCalibration& rig, const RayCaster& scene,
+                                       const std::vector<Eigen::Vector2d>& image_points, int width,
+                                       const SensorGeometryParams& params = {});
+
 }  // namespace binpick::simulation
