@@ -285,6 +285,13 @@ Grid litEdgeBesideAShadow(const std::function<float(int)>& brightness) {
 
 float blurredEdge(int x) { return x < 59 ? 0.6f : x == 59 ? 0.49f : x == 60 ? 0.22f : 0.02f; }
 
+// The edge-side test is off by default (for cameras without mixed pixels); these tests turn it on.
+CloudFilterParams withEdgeSides() {
+  CloudFilterParams params;
+  params.edge_side_reach = 3;
+  return params;
+}
+
 // A copy that owns its status image (cv::Mat copies share their pixels).
 Grid copyOf(const Grid& g) {
   Grid copy = g;
@@ -295,7 +302,7 @@ Grid copyOf(const Grid& g) {
 TEST(CloudFilter, DepthEdgeRemovalTakesEdgePixelsThatSeeTheShadow) {
   const Grid before = litEdgeBesideAShadow(blurredEdge);
   Grid after = copyOf(before);
-  filterCloud(after.cloud, after.status, CloudFilterParams{});
+  filterCloud(after.cloud, after.status, withEdgeSides());
   expectRemovedExactly(before, after, PixelStatus::DepthEdge, [](const Eigen::Vector3f& p) { return p.z() > 0.80595f; });
   EXPECT_EQ(count(after, PixelStatus::DepthEdge), 90u);
   // Off, or without the white image to judge by, the pixels stay (the depth-step test alone keeps
@@ -307,7 +314,7 @@ TEST(CloudFilter, DepthEdgeRemovalTakesEdgePixelsThatSeeTheShadow) {
   EXPECT_EQ(count(off, PixelStatus::DepthEdge), 0u);
   Grid dark = copyOf(before);
   dark.cloud.intensities.clear();
-  filterCloud(dark.cloud, dark.status, CloudFilterParams{});
+  filterCloud(dark.cloud, dark.status, withEdgeSides());
   EXPECT_EQ(count(dark, PixelStatus::DepthEdge), 0u);
 }
 
@@ -319,7 +326,7 @@ TEST(CloudFilter, DepthEdgeRemovalKeepsADimFaceBesideAShadow) {
            [](int x) { return x < 58 ? 0.6f : x <= 60 ? 0.25f : 0.02f; },
            [](int x) { return x <= 60 ? 0.6f : 0.02f; }}) {
     Grid g = litEdgeBesideAShadow(brightness);
-    filterCloud(g.cloud, g.status, CloudFilterParams{});
+    filterCloud(g.cloud, g.status, withEdgeSides());
     EXPECT_EQ(count(g, PixelStatus::DepthEdge), 0u);
     EXPECT_EQ(count(g, PixelStatus::Valid), 61u * 90u);
   }
