@@ -1,9 +1,9 @@
 #include "near_symmetries.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
-#include <Eigen/Geometry>
 
 #include "kdtree.hpp"
 

@@ -45,16 +45,6 @@ int decodedNeighbours(const DecodedCapture& decoded, std::size_t pixel, float* c
   return count;
 }
 
-// Insertion sort of at most eight values.
-void sortFew(float* values, int count) {
-  for (int i = 1; i < count; ++i) {
-    const float value = values[i];
-    int j = i;
-    for (; j > 0 && values[j - 1] > value; --j) values[j] = values[j - 1];
-    values[j] = value;
-  }
-}
-
 }  // namespace
 
 float columnFromNeighbours(const UnwrapCandidate& candidate, const DecodedCapture& decoded, const AxisLayout& columns,
@@ -63,7 +53,7 @@ float columnFromNeighbours(const UnwrapCandidate& candidate, const DecodedCaptur
   float found[8] = {};
   const int count = decodedNeighbours(decoded, candidate.pixel, found);
   if (count < std::max(1, min_neighbours)) return nan;
-  sortFew(found, count);
+  std::sort(found, found + count);  // at most eight: an insertion sort inside
   const auto period = static_cast<float>(columns.phase_period);
   const float quarter = 0.25f * period;
   if (found[count - 1] - found[0] > quarter) return nan;  // not one smooth surface
