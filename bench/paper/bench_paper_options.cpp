@@ -61,7 +61,10 @@ const char* paperBenchUsage() {
          "  --scaling-part NAME   the part of the scaling runs (default l_bracket)\n"
          "  --scaling-scenes N    scenes per scaling setting (default 2)\n"
          "  --out DIR             results.md, outcomes.csv and the PNG plots (default docs/benchmark)\n"
-         "  --settings FILE       binpick's detector settings, a detection.yaml (default: the defaults)\n";
+         "  --settings FILE       binpick's detector settings, a detection.yaml (default: the defaults)\n"
+         "  --reconstruction-settings FILE\n"
+         "                        the reconstructed input's settings, a file with a `reconstruction:`\n"
+         "                        section (default: the defaults)\n";
 }
 
 bool PaperBenchOptions::has(const std::string& section) const { return contains(sections, section); }
@@ -110,6 +113,8 @@ PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
         o.out = value;
       else if (flag == "--settings")
         o.settings = value;
+      else if (flag == "--reconstruction-settings")
+        o.reconstruction_settings = value;
       else
         throw core::Error("unknown option " + flag);
     } catch (const std::logic_error&) {  // std::stoi and friends

@@ -23,8 +23,9 @@ struct PaperBenchOptions {
   std::string scaling_part = "l_bracket";
   int scaling_scenes = 2;
   std::string out = "docs/benchmark";
-  std::string settings;  // binpick's detector settings (a detection.yaml); empty: the defaults
-  bool help = false;  // --help: print paperBenchUsage() and run nothing
+  std::string settings;                 // binpick's detector settings (a detection.yaml); empty: the defaults
+  std::string reconstruction_settings;  // a file with a `reconstruction:` section; empty: the defaults
+  bool help = false;                    // --help: print paperBenchUsage() and run nothing
   bool has(const std::string& section) const;
   bool runsPeersOn(const std::string& part) const;
 };

@@ -11,6 +11,7 @@
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/thread_count.hpp"
+#include "binpick/reconstruction/reconstruction_config.hpp"
 #include "binpick_method.hpp"
 #include "experiment.hpp"
 #include "opencv_ppf_method.hpp"
@@ -111,8 +112,12 @@ void runPart(const PaperBenchOptions& o, const std::string& part_name, std::ofst
   }
   const bool reconstruct =
       o.has("paper") && std::find(o.inputs.begin(), o.inputs.end(), CloudInput::Reconstructed) != o.inputs.end();
+  const reconstruction::ReconstructionParams reconstruction_params =
+      o.reconstruction_settings.empty() ? reconstruction::ReconstructionParams{}
+                                        : reconstruction::loadReconstructionParams(o.reconstruction_settings);
   for (int s = 0; s < o.scenes; ++s) {
     SceneRequest request;
+    request.reconstruction = reconstruction_params;
     request.objects = o.objects;
     request.seed = o.seed + static_cast<uint64_t>(s);
     request.reconstruct = reconstruct;

@@ -52,7 +52,7 @@ BenchScene makeBenchScene(const simulation::Part& part, const SceneRequest& requ
     s.truth = std::move(pile.scene);
     const io::Capture capture =
         simulation::recordedCapture(std::move(pile.images), s.params, patterns, photometry, "bench_paper " + part.name);
-    reconstruction::ReconstructionParams params;
+    reconstruction::ReconstructionParams params = request.reconstruction;
     params.setThreads(request.threads);
     const reconstruction::Reconstructor reconstructor(request.rig, params);
     const core::Stopwatch stopwatch;

@@ -8,6 +8,7 @@
 
 #include "binpick/estimation/scene.hpp"
 #include "binpick/io/point_cloud.hpp"
+#include "binpick/reconstruction/reconstruction.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 
@@ -21,7 +22,8 @@ struct SceneRequest {
   uint64_t seed = 1;
   bool reconstruct = true;  // also render the patterns and reconstruct
   io::RigCalibration rig = simulation::makeVirtualRig();
-  int threads = 0;  // rendering and reconstruction; 0: all
+  int threads = 0;                                      // rendering and reconstruction; 0: all
+  reconstruction::ReconstructionParams reconstruction;  // its threads are set from `threads`
 };
 
 struct BenchScene {

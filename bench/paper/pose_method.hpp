@@ -17,8 +17,8 @@ struct MethodSetup {
   // binpick's prepared model (tau_d = 0.04): subsampled points and outward normals in the model
   // frame, diam(M) and the subsampling step d_dist. Peers train on these same points.
   const estimation::PreparedModel* model = nullptr;
-  int max_objects = 20;  // detections wanted per scene
-  int threads = 0;       // 0: all hardware threads (where the library lets us choose)
+  int max_objects = 20;          // detections wanted per scene
+  int threads = 0;               // 0: all hardware threads (where the library lets us choose)
   std::string binpick_settings;  // a detection.yaml for the `binpick` method; empty: the defaults
 };
 

@@ -285,13 +285,6 @@ Grid litEdgeBesideAShadow(const std::function<float(int)>& brightness) {
 
 float blurredEdge(int x) { return x < 59 ? 0.6f : x == 59 ? 0.49f : x == 60 ? 0.22f : 0.02f; }
 
-// The edge-side test is off by default (for cameras without mixed pixels); these tests turn it on.
-CloudFilterParams withEdgeSides() {
-  CloudFilterParams params;
-  params.edge_side_reach = 3;
-  return params;
-}
-
 // A copy that owns its status image (cv::Mat copies share their pixels).
 Grid copyOf(const Grid& g) {
   Grid copy = g;
@@ -302,8 +295,9 @@ Grid copyOf(const Grid& g) {
 TEST(CloudFilter, DepthEdgeRemovalTakesEdgePixelsThatSeeTheShadow) {
   const Grid before = litEdgeBesideAShadow(blurredEdge);
   Grid after = copyOf(before);
-  filterCloud(after.cloud, after.status, withEdgeSides());
-  expectRemovedExactly(before, after, PixelStatus::DepthEdge, [](const Eigen::Vector3f& p) { return p.z() > 0.80595f; });
+  filterCloud(after.cloud, after.status, CloudFilterParams{});
+  expectRemovedExactly(before, after, PixelStatus::DepthEdge,
+                       [](const Eigen::Vector3f& p) { return p.z() > 0.80595f; });
   EXPECT_EQ(count(after, PixelStatus::DepthEdge), 90u);
   // Off, or without the white image to judge by, the pixels stay (the depth-step test alone keeps
   // them: they continue the surface).
@@ -314,7 +308,7 @@ TEST(CloudFilter, DepthEdgeRemovalTakesEdgePixelsThatSeeTheShadow) {
   EXPECT_EQ(count(off, PixelStatus::DepthEdge), 0u);
   Grid dark = copyOf(before);
   dark.cloud.intensities.clear();
-  filterCloud(dark.cloud, dark.status, withEdgeSides());
+  filterCloud(dark.cloud, dark.status, CloudFilterParams{});
   EXPECT_EQ(count(dark, PixelStatus::DepthEdge), 0u);
 }
 
@@ -322,11 +316,12 @@ TEST(CloudFilter, DepthEdgeRemovalTakesEdgePixelsThatSeeTheShadow) {
 // steep side face is) and a sharp edge (no blur: the last column as bright as the rest) keep
 // every point.
 TEST(CloudFilter, DepthEdgeRemovalKeepsADimFaceBesideAShadow) {
-  for (const auto& brightness : std::vector<std::function<float(int)>>{
-           [](int x) { return x < 58 ? 0.6f : x <= 60 ? 0.25f : 0.02f; },
-           [](int x) { return x <= 60 ? 0.6f : 0.02f; }}) {
+  for (const auto& brightness : std::vector<std::function<float(int)>>{[](int x) {
+                                                                         return x < 58 ? 0.6f : x <= 60 ? 0.25f : 0.02f;
+                                                                       },
+                                                                       [](int x) { return x <= 60 ? 0.6f : 0.02f; }}) {
     Grid g = litEdgeBesideAShadow(brightness);
-    filterCloud(g.cloud, g.status, withEdgeSides());
+    filterCloud(g.cloud, g.status, CloudFilterParams{});
     EXPECT_EQ(count(g, PixelStatus::DepthEdge), 0u);
     EXPECT_EQ(count(g, PixelStatus::Valid), 61u * 90u);
   }

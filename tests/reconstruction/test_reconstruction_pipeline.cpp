@@ -187,7 +187,6 @@ TEST(Reconstruction, DepthEdgeFilterTakesMixedPixelsOffTheirPixelsSurfaceAndKeep
   unfiltered.filter.edge_side_reach = 0;
   const io::PointCloud before = Reconstructor(v.scene.rig, unfiltered).reconstruct(v.capture).cloud;
   ReconstructionParams filtered;
-  filtered.filter.edge_side_reach = 3;  // off by default (docs/reconstruction.md)
   const io::PointCloud after = Reconstructor(v.scene.rig, filtered).reconstruct(v.capture).cloud;
   const DepthScore without = scoreDepth(v, before), with = scoreDepth(v, after);
   const PartCoverage parts_without = partCoverage(v, before), parts_with = partCoverage(v, after);

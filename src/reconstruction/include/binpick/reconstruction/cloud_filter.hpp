@@ -72,8 +72,7 @@ struct CloudFilterParams {
   // than halfway from the dark pixel's to that neighbour's: its centre sees the dark side. Sides
   // less than edge_side_min_contrast apart in brightness are not judged. Clouds without
   // intensities skip it; edge_side_reach = 0 (or edge_max_jump = 0) turns it off.
-  int edge_side_reach = 0;               // pixels (3 for a camera with mixed pixels: off by default,
-                                         // it cost detection on the benchmark's captures)
+  int edge_side_reach = 3;               // pixels
   double edge_side_min_contrast = 0.02;  // white image, [0, 1]
   // Speckle removal: 4-connected neighbours belong to one patch when their camera z differs by
   // at most speckle_max_step; patches of fewer than speckle_min_pixels points are removed.
