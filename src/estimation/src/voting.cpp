@@ -30,22 +30,35 @@ class Accumulator {
     ++votes_[static_cast<std::size_t>(model_point) * alpha_bins_ + alpha_bin];
   }
 
-  // The `count` local coordinates with most votes, best first (ties: lower index first).
+  // The `count` local coordinates with most votes, best first (ties: lower index first). Most
+  // cells hold a few votes and cannot enter once `count` are kept: blocks whose most-voted cell
+  // does not beat the last kept are passed over in one comparison (a vectorised maximum).
   std::vector<LocalCoordinate> top(int count) const {
     std::vector<LocalCoordinate> best;
-    for (std::size_t cell = 0; cell < votes_.size(); ++cell) {
-      const uint32_t v = votes_[cell];
-      if (v == 0 || (static_cast<int>(best.size()) == count && v <= best.back().votes)) continue;
-      LocalCoordinate lc{v, static_cast<uint32_t>(cell / alpha_bins_), static_cast<int>(cell % alpha_bins_)};
-      auto at = std::upper_bound(best.begin(), best.end(), lc,
-                                 [](const LocalCoordinate& a, const LocalCoordinate& b) { return a.votes > b.votes; });
-      best.insert(at, lc);
-      if (static_cast<int>(best.size()) > count) best.pop_back();
+    uint32_t floor = 0;  // a cell must have more votes than this to enter
+    const std::size_t cells = votes_.size();
+    for (std::size_t block = 0; block < cells; block += kBlock) {
+      const std::size_t end = std::min(cells, block + kBlock);
+      uint32_t most = 0;
+      for (std::size_t cell = block; cell < end; ++cell) most = std::max(most, votes_[cell]);
+      if (most <= floor) continue;
+      for (std::size_t cell = block; cell < end; ++cell) {
+        const uint32_t v = votes_[cell];
+        if (v <= floor) continue;
+        LocalCoordinate lc{v, static_cast<uint32_t>(cell / alpha_bins_), static_cast<int>(cell % alpha_bins_)};
+        auto at =
+            std::upper_bound(best.begin(), best.end(), lc,
+                             [](const LocalCoordinate& a, const LocalCoordinate& b) { return a.votes > b.votes; });
+        best.insert(at, lc);
+        if (static_cast<int>(best.size()) > count) best.pop_back();
+        if (static_cast<int>(best.size()) == count) floor = best.back().votes;
+      }
     }
     return best;
   }
 
  private:
+  static constexpr std::size_t kBlock = 32;
   int alpha_bins_;
   std::vector<uint32_t> votes_;
 };
