@@ -327,6 +327,29 @@ TEST(CloudFilter, DepthEdgeRemovalKeepsADimFaceBesideAShadow) {
   }
 }
 
+// The same near surface over a lit floor 60 mm further (white image 0.15) instead of a shadow:
+// column 60's centre sees the floor, but it gathers enough of the edge (0.25) to decode the
+// edge's light, and its point hangs on the near surface's extension 60 mm above the floor. It
+// goes; column 59, the floor and, with a sharp edge, every point stay.
+TEST(CloudFilter, DepthEdgeRemovalTakesEdgePixelsThatSeeALitSurfaceBehind) {
+  const auto overALitFloor = [](const std::function<float(int)>& brightness) {
+    Grid g = pinholeCloud(120, 90, [](int x, int) { return x <= 60 ? 0.80f + 0.0001f * x : 0.86f; });
+    for (int y = 0; y < 90; ++y) {
+      for (int x = 0; x < 120; ++x) g.cloud.intensities.push_back(brightness(x));
+    }
+    return g;
+  };
+  const Grid before = overALitFloor([](int x) { return x < 59 ? 0.6f : x == 59 ? 0.49f : x == 60 ? 0.25f : 0.15f; });
+  Grid after = copyOf(before);
+  filterCloud(after.cloud, after.status, CloudFilterParams{});
+  expectRemovedExactly(before, after, PixelStatus::DepthEdge,
+                       [](const Eigen::Vector3f& p) { return p.z() > 0.80595f && p.z() < 0.85f; });
+  EXPECT_EQ(count(after, PixelStatus::DepthEdge), 90u);
+  Grid sharp = overALitFloor([](int x) { return x <= 60 ? 0.6f : 0.15f; });
+  filterCloud(sharp.cloud, sharp.status, CloudFilterParams{});
+  EXPECT_EQ(count(sharp, PixelStatus::DepthEdge), 0u);
+}
+
 // A plane seen 75 degrees from its normal (2 mm between neighbours along the slope), with
 // 0.3 mm noise, and a gently curved one: nothing is removed.
 TEST(CloudFilter, DepthEdgeRemovalKeepsSlantedAndCurvedSurfaces) {

@@ -104,7 +104,7 @@ void applyEdgeCoverage(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
   test.max_step = static_cast<float>(params.edge_max_jump);
   test.min_contrast = static_cast<float>(params.edge_side_min_contrast);
   removeFlagged(cloud, status,
-                detail::findDarkSideEdgePixels(cloud, status, test, core::resolveThreadCount(params.threads)),
+                detail::findOtherSideEdgePixels(cloud, status, test, core::resolveThreadCount(params.threads)),
                 PixelStatus::DepthEdge);
 }
 

@@ -1,4 +1,4 @@
-// Edge pixels on the dark side: brightness against the dark pixel behind and the lit one ahead.
+// Edge pixels on the other side: brightness against the other side behind and the surface ahead.
 #include "edge_coverage.hpp"
 
 #include <array>
@@ -15,8 +15,7 @@ struct Step {
   int dy = 0;
 };
 
-constexpr std::array<Step, 8> kSteps = {
-    {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}}};
+constexpr std::array<Step, 8> kSteps = {{{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}}};
 
 // How far ahead a point's own surface is looked for: its next pixel may have lost its point.
 constexpr int kSurfaceReach = 2;
@@ -30,13 +29,13 @@ struct Neighbourhood {
   std::size_t at(int x, int y) const { return static_cast<std::size_t>(y) * cloud.width + x; }
 };
 
-// The brightness of the dark side behind (x, y) against `step`, or NaN: the first pixel within
-// `reach` in projector shadow or seeing nothing (status Unlit), past other points of the surface
-// at depth z (edge pixels that gather its light too; a depth step up to max_step footprints a
-// pixel) and pixels without a point. A point off that surface ends the search: what lies behind
-// is another lit surface, whose brightness says less (see edge_coverage.hpp).
-float darkBehind(const Neighbourhood& n, int x, int y, float z, float brightness, Step step, int reach,
-                 float min_contrast) {
+// The brightness of the other side behind (x, y) against `step`, or NaN: the first pixel within
+// `reach` in projector shadow or seeing nothing (status Unlit), or the first point off the
+// surface at depth z (another lit surface, nearer or further), past other points of that surface
+// (edge pixels that gather its light too; a depth step up to max_step footprints a pixel) and
+// pixels without a point (see edge_coverage.hpp).
+float otherSideBehind(const Neighbourhood& n, int x, int y, float z, float brightness, Step step, int reach,
+                      float min_contrast) {
   float last = z;  // the depth of the surface's last point met, and how many pixels back it was
   int gap = 0;
   for (int k = 1; k <= reach; ++k) {
@@ -47,7 +46,7 @@ float darkBehind(const Neighbourhood& n, int x, int y, float z, float brightness
     if (n.status.at<uint8_t>(v, u) == static_cast<uint8_t>(PixelStatus::Unlit)) return n.cloud.intensities[j];
     const float other = n.cloud.points[j].z();
     if (!std::isfinite(other)) continue;
-    if (std::fabs(other - last) > n.step_per_metre * last * static_cast<float>(gap)) break;
+    if (std::fabs(other - last) > n.step_per_metre * last * static_cast<float>(gap)) return n.cloud.intensities[j];
     // Across a blurred edge the light falls towards the dark side; a point behind as bright as
     // this one is more of its surface (a dim face beyond a crease), not a blurred edge.
     if (n.cloud.intensities[j] > brightness - min_contrast) break;
@@ -72,30 +71,32 @@ float surfaceAhead(const Neighbourhood& n, int x, int y, float z, Step step) {
   return std::nanf("");
 }
 
-bool seesTheDarkSide(const Neighbourhood& n, int x, int y, const EdgeCoverageTest& test) {
+bool seesTheOtherSide(const Neighbourhood& n, int x, int y, const EdgeCoverageTest& test) {
   const std::size_t i = n.at(x, y);
   const float z = n.cloud.points[i].z(), here = n.cloud.intensities[i];
   for (const Step step : kSteps) {
-    const float dark = darkBehind(n, x, y, z, here, step, test.reach, test.min_contrast);
-    if (std::isnan(dark)) continue;
-    const float lit = surfaceAhead(n, x, y, z, step);
-    if (!(lit - dark >= test.min_contrast)) continue;
-    if (here - dark < test.max_share * (lit - dark)) return true;
+    // here = w * own + (1 - w) * other, w the share of the pixel's light from its own surface
+    // (which its point is on): judged only where its own surface is the brighter.
+    const float other = otherSideBehind(n, x, y, z, here, step, test.reach, test.min_contrast);
+    if (std::isnan(other)) continue;
+    const float own = surfaceAhead(n, x, y, z, step);
+    if (!(own - other >= test.min_contrast)) continue;
+    if (here - other < test.max_share * (own - other)) return true;
   }
   return false;
 }
 
 }  // namespace
 
-std::vector<uint8_t> findDarkSideEdgePixels(const io::PointCloud& cloud, const cv::Mat& status,
-                                            const EdgeCoverageTest& test, int threads) {
+std::vector<uint8_t> findOtherSideEdgePixels(const io::PointCloud& cloud, const cv::Mat& status,
+                                             const EdgeCoverageTest& test, int threads) {
   std::vector<uint8_t> flagged(cloud.points.size(), 0);
   const Neighbourhood n{cloud, status, test.max_step * rayPitch(cloud)};
   if (!cloud.hasIntensities() || test.reach < 1 || !(n.step_per_metre > 0.0f)) return flagged;
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (int y = 0; y < cloud.height; ++y) {
     for (int x = 0; x < cloud.width; ++x) {
-      if (cloud.points[n.at(x, y)].allFinite()) flagged[n.at(x, y)] = seesTheDarkSide(n, x, y, test) ? 1 : 0;
+      if (cloud.points[n.at(x, y)].allFinite()) flagged[n.at(x, y)] = seesTheOtherSide(n, x, y, test) ? 1 : 0;
     }
   }
   return flagged;

@@ -60,18 +60,19 @@ struct CloudFilterParams {
   double edge_max_jump = 8.0;  // pixel footprints
   int edge_min_neighbours = 3;
   int edge_min_support = 3;
-  // Edge pixels on the dark side (part of the depth-edge removal, after the test above): a pixel
+  // Edge pixels on the other side (part of the depth-edge removal, after the test above): a pixel
   // gathers light over its area and its lens's blur, so beside a lit surface's edge where its
-  // projector shadow falls (or where nothing is seen) a pixel whose centre sees the dark side
-  // still decodes the edge's light; its point lands beside the edge on the lit surface's
-  // extension, centimetres off the shadowed surface the pixel sees (the surface looks a pixel or
-  // more wider), and the test above keeps it. Along any of the 8 neighbour directions, a point
-  // with a pixel in projector shadow (status unlit) within edge_side_reach pixels behind it and
-  // its own surface next ahead (within 2 pixels, a depth step of at most edge_max_jump footprints
-  // a pixel) is removed (depth_edge) when its brightness (white image, cloud.intensities) is less
-  // than halfway from the dark pixel's to that neighbour's: its centre sees the dark side. Sides
-  // less than edge_side_min_contrast apart in brightness are not judged. Clouds without
-  // intensities skip it; edge_side_reach = 0 (or edge_max_jump = 0) turns it off.
+  // projector shadow falls (or nothing is seen, or a dimmer surface lies at another depth) a
+  // pixel whose centre sees that other side can still decode the edge's light; its point lands
+  // beside the edge on the lit surface's extension, centimetres off the surface the pixel sees
+  // (the surface looks a pixel or more wider), and the test above keeps it. Along any of the 8
+  // neighbour directions, a point with the other side (a pixel in projector shadow, status unlit,
+  // or a point off its depth by more than edge_max_jump footprints a pixel) within
+  // edge_side_reach pixels behind it and its own surface next ahead (within 2 pixels) is removed
+  // (depth_edge) when its brightness (white image, cloud.intensities) is less than halfway from
+  // the other side's to that neighbour's: its centre sees the other side. Sides less than
+  // edge_side_min_contrast apart in brightness are not judged. Clouds without intensities skip
+  // it; edge_side_reach = 0 (or edge_max_jump = 0) turns it off.
   int edge_side_reach = 3;               // pixels
   double edge_side_min_contrast = 0.02;  // white image, [0, 1]
   // Speckle removal: 4-connected neighbours belong to one patch when their camera z differs by
