@@ -3,6 +3,7 @@
 // on a pile: long brackets standing on their L profile, whose one visible face is a 6 mm strip.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "binpick/estimation/boundary.hpp"
