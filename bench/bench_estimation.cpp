@@ -157,8 +157,8 @@ void explainWrong(const Eigen::Isometry3f& detected, const Eigen::Isometry3f& tr
 // recognition rate.
 void explain(const estimation::DetectionResult& result, const evaluation::Score& score,
              const simulation::PileScene& scene, const simulation::Part& part, const Judge& judge) {
-  std::printf("  %zu candidates, %zu refined picks refused (seen through)\n", result.candidates,
-              result.seen_through_rejected);
+  std::printf("  %zu candidates, %zu refined picks refused (seen through), %zu scene boundary points\n",
+              result.candidates, result.seen_through_rejected, result.scene_boundary_points);
   for (std::size_t k = 0; k < result.detections.size(); ++k) {
     const estimation::Detection& d = result.detections[k];
     const Nearest n = nearestObject(d.T_camera_model, scene, part);
@@ -186,8 +186,9 @@ void explain(const estimation::DetectionResult& result, const evaluation::Score&
     const Eigen::Vector3d towards_camera = -object.T_camera_object.translation().normalized();
     const double z_angle =
         std::acos(std::min(1.0, std::abs(object.T_camera_object.linear().col(2).dot(towards_camera)))) * 180.0 / M_PI;
-    std::printf("    missed part %2zu (%.0f%% visible, z axis %2.0f deg from the view): nearest detection %.1f mm %.1f deg\n",
-                j, 100.0 * object.visible_fraction, z_angle, nearest.translation * 1000.0, nearest.rotation_deg);
+    std::printf(
+        "    missed part %2zu (%.0f%% visible, z axis %2.0f deg from the view): nearest detection %.1f mm %.1f deg\n",
+        j, 100.0 * object.visible_fraction, z_angle, nearest.translation * 1000.0, nearest.rotation_deg);
   }
 }
 

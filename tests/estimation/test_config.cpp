@@ -25,6 +25,10 @@ TEST(EstimationConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(s.voting.reference_fraction, d.voting.reference_fraction);
   EXPECT_EQ(s.voting.referred_fraction, d.voting.referred_fraction);
   EXPECT_EQ(s.voting.poses_per_reference, d.voting.poses_per_reference);
+  EXPECT_EQ(s.boundary.enabled, d.boundary.enabled);
+  EXPECT_EQ(s.boundary.depth_jump_ratio, d.boundary.depth_jump_ratio);
+  EXPECT_EQ(s.boundary.crease_angle_deg, d.boundary.crease_angle_deg);
+  EXPECT_EQ(s.boundary.min_linearity, d.boundary.min_linearity);
   EXPECT_EQ(s.verification.voxel_size_ratio, d.verification.voxel_size_ratio);
   EXPECT_EQ(s.verification.max_normal_angle_deg, d.verification.max_normal_angle_deg);
   EXPECT_EQ(s.selection.max_objects, d.selection.max_objects);
@@ -39,9 +43,14 @@ TEST(EstimationConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
 TEST(EstimationConfig, ReadsCropBoxAndOverrides) {
   const EstimationConfig c = parseEstimationConfig(
       "detection:\n  method: drost\n  selection: {max_objects: 7}\n"
-      "  scene:\n    crop: {centre: [0, 0, 0.5], half_extents: [0.2, 0.1, 0.3], rotation_rpy_deg: [0, 0, 90]}\n",
+      "  scene:\n    crop: {centre: [0, 0, 0.5], half_extents: [0.2, 0.1, 0.3], rotation_rpy_deg: [0, 0, 90]}\n"
+      "  boundary: {enabled: false, depth_jump_ratio: 2, crease_angle_deg: 45, min_linearity: 5}\n",
       "test.yaml");
   EXPECT_EQ(c.detector.method, Method::Drost);
+  EXPECT_FALSE(c.detector.boundary.enabled);
+  EXPECT_EQ(c.detector.boundary.depth_jump_ratio, 2.0f);
+  EXPECT_EQ(c.detector.boundary.crease_angle_deg, 45.0f);
+  EXPECT_EQ(c.detector.boundary.min_linearity, 5.0f);
   EXPECT_EQ(c.detector.selection.max_objects, 7);
   ASSERT_TRUE(c.detector.scene.crop.has_value());
   // A 90-degree yaw swaps the box's x and y extents in the camera frame.
@@ -64,6 +73,7 @@ TEST(EstimationConfig, ErrorsNameTheFileAndTheKey) {
   EXPECT_NE(message("detection:\n  scene:\n    crop: {centre: [0, 0], half_extents: [1, 1, 1]}\n")
                 .find("centre needs three numbers"),
             std::string::npos);
+  EXPECT_NE(message("detection:\n  boundary:\n    crease_angle_deg: 0\n").find("crease_angle_deg"), std::string::npos);
   EXPECT_NE(message("detection: [1, 2\n").find("not valid YAML"), std::string::npos);
   EXPECT_NE(message("detection:\n  method: magic\n").find("method 'magic' is unknown"), std::string::npos);
   EXPECT_NE(binpick::estimation::testing::errorMessage([] {

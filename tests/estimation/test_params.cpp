@@ -79,6 +79,17 @@ TEST(Params, VotingParamsNameTheField) {
   EXPECT_NE(errorMessage([&] { vote(smallModel(), scene, bad); }).find("reference_fraction"), std::string::npos);
 }
 
+TEST(Params, BoundaryParamsNameTheField) {
+  using P = BoundaryParams;
+  expectRejected<P>("depth_jump_ratio", [](P& p) { p.depth_jump_ratio = 0.0f; });
+  expectRejected<P>("depth_jump_ratio", [](P& p) { p.depth_jump_ratio = kNaN; });
+  expectRejected<P>("crease_angle_deg", [](P& p) { p.crease_angle_deg = 180.0f; });
+  expectRejected<P>("crease_angle_deg", [](P& p) { p.crease_angle_deg = kNaN; });
+  expectRejected<P>("min_linearity", [](P& p) { p.min_linearity = 0.5f; });
+  expectRejected<P>("min_linearity", [](P& p) { p.min_linearity = kInf; });
+  expectRejected<P>("threads", [](P& p) { p.threads = -1; });
+}
+
 TEST(Params, VerificationSelectionIcpClusteringNameTheField) {
   expectRejected<VerificationParams>("voxel_size_ratio", [](auto& p) { p.voxel_size_ratio = 0.0f; });
   expectRejected<VerificationParams>("voxel_size_ratio", [](auto& p) { p.voxel_size_ratio = kNaN; });

@@ -62,6 +62,12 @@ void readDetector(Section s, DetectorParams& p) {
   voting.read("min_relative_votes", p.voting.min_relative_votes);
   voting.read("seed", p.voting.seed);
   voting.finish();
+  Section boundary = s.child("boundary");
+  boundary.read("enabled", p.boundary.enabled);
+  boundary.read("depth_jump_ratio", p.boundary.depth_jump_ratio);
+  boundary.read("crease_angle_deg", p.boundary.crease_angle_deg);
+  boundary.read("min_linearity", p.boundary.min_linearity);
+  boundary.finish();
   Section verification = s.child("verification");
   verification.read("voxel_size_ratio", p.verification.voxel_size_ratio);
   verification.read("max_normal_angle_deg", p.verification.max_normal_angle_deg);

@@ -116,8 +116,7 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
   const int threads = core::resolveThreadCount(p.threads);
   MultipleSelection selection(
       verified, scene.size(),
-      [&](uint32_t c) { return freeSpacePenalty(model, scene, verified[c].T_camera_model, p.verification); },
-      threads);
+      [&](uint32_t c) { return freeSpacePenalty(model, scene, verified[c].T_camera_model, p.verification); }, threads);
   const float removal_radius = 1.5f * grid.voxelSize();
   const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
@@ -209,6 +208,7 @@ DetectorParams DetectorParams::drost(float reference_fraction) {
   p.voting.referred_fraction = 1.0f;
   p.voting.poses_per_reference = 3;
   p.voting.min_relative_votes = 0.9f;
+  p.boundary.enabled = false;  // Drost's surface pairs only
   return p;
 }
 
@@ -216,6 +216,7 @@ void DetectorParams::validate() const {
   if (threads < 0) throw core::Error("detector params: threads must be >= 0");
   scene.validate();
   voting.validate();
+  boundary.validate();
   verification.validate();
   selection.validate();
   icp.validate();
@@ -224,9 +225,11 @@ void DetectorParams::validate() const {
 
 Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::move(model)), params_(params) {
   params_.validate();
-  params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.threads;
+  params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.boundary.threads =
+      params_.threads;
   if (model_.size() == 0) throw core::Error("detector: the model has no points");
   if (params_.verification.compare_turned) near_symmetries_ = nearSymmetries(model_);
+  if (params_.boundary.enabled) boundary_model_ = prepareBoundaryModel(model_, params_.boundary);
 }
 
 DetectionResult Detector::detect(const io::PointCloud& scene_cloud) const {
@@ -242,12 +245,18 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::o
   SceneParams scene_params = params_.scene;
   scene_params.crop = crop;
   const PreparedScene scene = prepareScene(scene_cloud, model_, scene_params);
+  BoundaryPoints scene_boundary;
+  if (boundary_model_) scene_boundary = sceneBoundaryPoints(scene_cloud, crop, model_, params_.boundary);
   result.scene_points = scene.size();
+  result.scene_boundary_points = scene_boundary.size();
   result.scene_points_without_normal = scene.without_normal;
   result.timing_ms.prepare_scene = clock.lapMs();
   core::throwIfCancelled(cancel, "after scene preparation");
 
-  const std::vector<PoseCandidate> candidates = vote(model_, scene, params_.voting, cancel);
+  std::optional<BoundaryVotes> boundary_votes;
+  if (boundary_model_) boundary_votes.emplace(BoundaryVotes{*boundary_model_, scene_boundary});
+  const std::vector<PoseCandidate> candidates =
+      vote(model_, scene, params_.voting, cancel, boundary_votes ? &*boundary_votes : nullptr);
   result.candidates = candidates.size();
   result.timing_ms.voting = clock.lapMs();
   if (!candidates.empty()) {

@@ -6,21 +6,20 @@
 
 namespace binpick::estimation {
 
-PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
-                           const PpfQuantizer& quantizer, uint32_t max_pairs_per_key) {
-  const std::size_t n = points.size();
+template <class PairKey>
+void PpfHashTable::build(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                         const std::vector<Eigen::Vector3f>& referred, const PpfQuantizer& quantizer,
+                         uint32_t max_pairs_per_key, PairKey&& pairKey) {
+  const std::size_t n = points.size(), m = referred.size();
   std::vector<Eigen::Isometry3f> frames(n);
   for (std::size_t i = 0; i < n; ++i) frames[i] = referenceFrame(points[i], normals[i]);
 
   // Two passes (count, then fill) build the flat layout without a temporary per-key vector;
   // features are computed twice rather than stored, so memory stays O(keys + pairs).
-  const auto pairKey = [&](std::size_t i, std::size_t j) {
-    return quantizer.key(computeFeature(points[i], normals[i], points[j], normals[j]));
-  };
   std::vector<uint32_t> counts(static_cast<std::size_t>(quantizer.keyCount()), 0);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) {
-      const int64_t key = i == j ? -1 : pairKey(i, j);
+    for (std::size_t j = 0; j < m; ++j) {
+      const int64_t key = pairKey(i, j);
       if (key >= 0) ++counts[key];
     }
   }
@@ -32,15 +31,34 @@ PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std
   entries_.resize(offsets_.back());
   std::vector<uint32_t> seen(counts.size(), 0);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j) {
-      const int64_t key = i == j ? -1 : pairKey(i, j);
+    for (std::size_t j = 0; j < m; ++j) {
+      const int64_t key = pairKey(i, j);
       if (key < 0) continue;
       // The a-th of `count` arrivals is kept when it starts a new one of `kept` even strides.
       const uint64_t a = seen[key]++, count = counts[key], kept = keptOf(counts[key]);
       if ((a + 1) * kept / count == a * kept / count) continue;
-      entries_[offsets_[key] + a * kept / count] = {static_cast<uint32_t>(i), planarAngle(frames[i] * points[j])};
+      entries_[offsets_[key] + a * kept / count] = {static_cast<uint32_t>(i), planarAngle(frames[i] * referred[j])};
     }
   }
+}
+
+PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                           const PpfQuantizer& quantizer, uint32_t max_pairs_per_key) {
+  build(points, normals, points, quantizer, max_pairs_per_key, [&](std::size_t i, std::size_t j) -> int64_t {
+    return i == j ? -1 : quantizer.key(computeFeature(points[i], normals[i], points[j], normals[j]));
+  });
+}
+
+PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+                           const std::vector<Eigen::Vector3f>& boundary_points,
+                           const std::vector<Eigen::Vector3f>& boundary_directions, const PpfQuantizer& quantizer,
+                           uint32_t max_pairs_per_key) {
+  if (boundary_points.size() != boundary_directions.size()) {
+    throw core::Error("PPF table: boundary points and directions differ in count");
+  }
+  build(points, normals, boundary_points, quantizer, max_pairs_per_key, [&](std::size_t i, std::size_t j) {
+    return quantizer.key(computeBoundaryFeature(points[i], normals[i], boundary_points[j], boundary_directions[j]));
+  });
 }
 
 PpfHashTable::PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries, uint32_t point_count)

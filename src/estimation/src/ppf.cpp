@@ -1,5 +1,6 @@
 #include "binpick/estimation/ppf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -28,6 +29,19 @@ PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3
   f.angle_ni_d = angleBetween(n_i, d);
   f.angle_nj_d = angleBetween(n_j, d);
   f.angle_ni_nj = angleBetween(n_i, n_j);
+  return f;
+}
+
+PointPairFeature computeBoundaryFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i,
+                                        const Eigen::Vector3f& b_j, const Eigen::Vector3f& l_j) {
+  constexpr float kPi = static_cast<float>(M_PI);
+  const auto folded = [&](float angle) { return std::min(angle, kPi - angle); };
+  const Eigen::Vector3f d = b_j - p_i;
+  PointPairFeature f;
+  f.distance = d.norm();
+  f.angle_ni_d = angleBetween(n_i, d);
+  f.angle_nj_d = folded(angleBetween(l_j, d));
+  f.angle_ni_nj = folded(angleBetween(n_i, l_j));
   return f;
 }
 

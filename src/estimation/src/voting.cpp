@@ -93,7 +93,7 @@ std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t 
 }
 
 std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params,
-                                const core::CancelFlag* cancel) {
+                                const core::CancelFlag* cancel, const BoundaryVotes* boundary) {
   params.validate();
   if (scene.size() < 2 || model.size() == 0) return {};
   const PpfQuantizer quantizer = model.quantizer();
@@ -101,6 +101,14 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
   const std::vector<uint32_t> referred =
       sampleIndices(scene.size(), params.referred_fraction, params.seed ^ 0x9e3779b97f4a7c15ULL);
   const NeighbourGrid grid(scene.points, referred, model.diameter);
+  const bool with_boundary = boundary != nullptr && boundary->scene.size() > 0;
+  std::vector<uint32_t> all_boundary_points;
+  if (with_boundary) {
+    all_boundary_points.resize(boundary->scene.size());
+    std::iota(all_boundary_points.begin(), all_boundary_points.end(), 0u);
+  }
+  const NeighbourGrid boundary_grid(with_boundary ? boundary->scene.points : scene.points, all_boundary_points,
+                                    model.diameter);
 
   // Model reference frames T_m, computed once.
   std::vector<Eigen::Isometry3f> model_frames(model.size());
@@ -134,6 +142,21 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
           accumulator.add(e->reference, quantizer.alphaBinOfDifference(scene_angle, e->reference_angle));
         }
       });
+      if (with_boundary) {
+        // Surface-to-boundary pairs (Choi et al. 2012): the same reference frame and alpha, the
+        // boundary point's line direction in place of a normal.
+        boundary_grid.forEachNear(p_r, [&](uint32_t b) {
+          const Eigen::Vector3f& p_b = boundary->scene.points[b];
+          if ((p_b - p_r).squaredNorm() > max_distance_sq) return;
+          const int64_t key = quantizer.key(computeBoundaryFeature(p_r, n_r, p_b, boundary->scene.directions[b]));
+          const PpfHashTable::Range matches = boundary->model.table.lookup(key);
+          if (matches.begin == matches.end) return;
+          const float scene_angle = planarAngle(T_s * p_b);
+          for (const PairEntry* e = matches.begin; e != matches.end; ++e) {
+            accumulator.add(e->reference, quantizer.alphaBinOfDifference(scene_angle, e->reference_angle));
+          }
+        });
+      }
       const std::vector<LocalCoordinate> best = accumulator.top(np);
       int kept = 0;
       for (const LocalCoordinate& lc : best) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "binpick/estimation/boundary.hpp"
 #include "binpick/estimation/clustering.hpp"
 #include "binpick/estimation/icp.hpp"
 #include "binpick/estimation/model.hpp"
@@ -31,6 +32,7 @@ struct DetectorParams {
   Method method = Method::LiHashimoto;
   SceneParams scene;
   VotingParams voting;
+  BoundaryParams boundary;  // surface-to-boundary pairs in the voting (boundary.hpp)
   VerificationParams verification;
   SelectionParams selection;
   IcpParams icp;
@@ -38,17 +40,17 @@ struct DetectorParams {
   int threads = 0;              // every stage: 0 = all hardware threads
 
   // The paper's baselines (Table I): PPF1 = all references, PPF5 = 20% of references; both pair
-  // each reference with every scene point and cluster poses.
+  // each reference with every scene point and cluster poses, from surface pairs only (no outline votes).
   static DetectorParams drost(float reference_fraction);
   void validate() const;  // throws core::Error naming the field
 };
 
 struct Detection {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
-  float score = 0.0f;     // Score_New / N_m at selection (eq. 4, less the free-space penalty);
-                          // Drost: cluster votes / max votes
-  float coverage = 0.0f;  // after ICP: share of the model points the camera should see that fit
-  float icp_rmse = 0.0f;  // model units
+  float score = 0.0f;         // Score_New / N_m at selection (eq. 4, less the free-space penalty);
+                              // Drost: cluster votes / max votes
+  float coverage = 0.0f;      // after ICP: share of the model points the camera should see that fit
+  float icp_rmse = 0.0f;      // model units
   float seen_through = 0.0f;  // after ICP: share of the visible fine model points in front of the
                               // measured surface (free space the camera saw through)
   uint32_t votes = 0;
@@ -62,10 +64,11 @@ struct StageTimings {  // milliseconds
 struct DetectionResult {
   std::vector<Detection> detections;  // in selection order
   StageTimings timing_ms;
-  std::size_t scene_points = 0;  // after subsampling
+  std::size_t scene_points = 0;                 // after subsampling
   std::size_t scene_points_without_normal = 0;  // subsampled points dropped: too few neighbours
+  std::size_t scene_boundary_points = 0;        // boundary.enabled: subsampled outline points with a direction
   std::size_t candidates = 0;
-  std::size_t refreshes = 0;  // eq. 4 evaluations during Algorithm 1
+  std::size_t refreshes = 0;              // eq. 4 evaluations during Algorithm 1
   std::size_t seen_through_rejected = 0;  // refined picks refused: the camera saw through them
 };
 
@@ -91,6 +94,7 @@ class Detector {
   PreparedModel model_;
   DetectorParams params_;
   std::vector<Eigen::Isometry3f> near_symmetries_;  // verification.compare_turned: near_symmetries.hpp
+  std::optional<BoundaryModel> boundary_model_;     // boundary.enabled
 };
 
 }  // namespace binpick::estimation

@@ -23,6 +23,13 @@ class PpfHashTable {
   // with near-identical pairs, and every scene pair landing there votes for all of them).
   PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
                const PpfQuantizer& quantizer, uint32_t max_pairs_per_key = 0);
+  // Surface-to-boundary pairs (Choi et al. 2012): every model point with its normal as the
+  // reference, every boundary point with its line direction as the referred point
+  // (computeBoundaryFeature); the same cap.
+  PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+               const std::vector<Eigen::Vector3f>& boundary_points,
+               const std::vector<Eigen::Vector3f>& boundary_directions, const PpfQuantizer& quantizer,
+               uint32_t max_pairs_per_key = 0);
   // Adopts arrays read from a cache; validates their consistency (throws core::Error).
   PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries, uint32_t point_count);
 
@@ -41,6 +48,12 @@ class PpfHashTable {
   std::size_t pairCount() const { return entries_.size(); }
 
  private:
+  // Fills the table from every (reference, referred) pair that `pairKey` gives a key (-1: none).
+  template <class PairKey>
+  void build(const std::vector<Eigen::Vector3f>& points, const std::vector<Eigen::Vector3f>& normals,
+             const std::vector<Eigen::Vector3f>& referred, const PpfQuantizer& quantizer, uint32_t max_pairs_per_key,
+             PairKey&& pairKey);
+
   std::vector<uint32_t> offsets_;  // keyCount + 1 prefix sums
   std::vector<PairEntry> entries_;
 };

@@ -18,6 +18,12 @@ struct PointPairFeature {
 PointPairFeature computeFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i, const Eigen::Vector3f& p_j,
                                 const Eigen::Vector3f& n_j);
 
+// Surface-to-boundary feature (Choi et al. 2012, S2B): a surface point with its normal n_i paired
+// with a boundary point b_j whose line direction l_j has no sign. The same four components as
+// eq. 1 with l_j in place of n_j; the angles to l_j are folded into [0, pi/2].
+PointPairFeature computeBoundaryFeature(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i,
+                                        const Eigen::Vector3f& b_j, const Eigen::Vector3f& l_j);
+
 // Discretisation of features into hash keys and of the in-plane angle alpha into bins.
 class PpfQuantizer {
  public:

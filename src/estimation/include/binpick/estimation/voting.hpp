@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "binpick/core/cancellation.hpp"
+#include "binpick/estimation/boundary.hpp"
 #include "binpick/estimation/model.hpp"
 #include "binpick/estimation/scene.hpp"
 
@@ -31,10 +32,17 @@ struct PoseCandidate {
   uint32_t model_reference = 0;  // index into PreparedModel
 };
 
+// The outline's share of the votes (boundary.hpp): every scene boundary point within diam(M) of a
+// reference is paired with it, and its surface-to-boundary matches vote into the same accumulator.
+struct BoundaryVotes {
+  const BoundaryModel& model;
+  const BoundaryPoints& scene;
+};
+
 // Candidates ordered by reference point, then by votes (descending): the same for any thread count.
 // Throws core::Cancelled once `cancel` is set (checked per reference point).
 std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params,
-                                const core::CancelFlag* cancel = nullptr);
+                                const core::CancelFlag* cancel = nullptr, const BoundaryVotes* boundary = nullptr);
 
 // The indices a fraction selects: a seeded shuffle's prefix, sorted (exposed for tests).
 std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t seed);
