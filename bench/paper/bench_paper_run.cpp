@@ -90,8 +90,8 @@ void runScene(const std::vector<std::unique_ptr<PoseMethod>>& methods, const Ben
         writeOutcome(csv, outcome);
         csv.flush();
         data.tallies[{input, part.name, method->name()}].add(outcome);
-        std::fprintf(stderr, "%s: %d/%d correct, %d detections, %.0f ms\n", what.c_str(), outcome.correct,
-                     outcome.objects, outcome.detections, outcome.ms);
+        std::fprintf(stderr, "%s: %d/%d correct, %d detections (%d wrong in the first 10), %.0f ms\n", what.c_str(),
+                     outcome.correct, outcome.objects, outcome.detections, outcome.wrong_in_first_10, outcome.ms);
       } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: FAILED, left out of the tables: %s\n", what.c_str(), e.what());
       }
@@ -157,7 +157,10 @@ std::string experimentSections(const PaperBenchOptions& o, const ExperimentData&
         << reconstructionNote(input, data) << speedTable(data.tallies, layout) << "\n## Precision / recall, " << name
         << "\n\n"
         << "Precision: correct / detections. Recall: objects found / objects at least half visible.\n\n"
-        << precisionRecallTable(data.tallies, layout) << "\n## Stages in ms per object, " << name << "\n\n"
+        << precisionRecallTable(data.tallies, layout) << "\n## Wrong detections among the first 10, " << name
+        << "\n\n"
+        << "Wrong detections among each scene's first 10 (what a robot picks first), in how many scenes.\n\n"
+        << earlyWrongTable(data.tallies, layout) << "\n## Stages in ms per object, " << name << "\n\n"
         << stageTable(data.tallies, layout) << '\n';
   }
   return out.str();

@@ -41,6 +41,8 @@ void Tally::add(const SceneOutcome& o) {
   found += o.found;
   detections += o.detections;
   correct += o.correct;
+  wrong_in_first_10 += o.wrong_in_first_10;
+  if (o.wrong_in_first_10 > 0) ++scenes_wrong_in_first_10;
   ms += o.ms;
   if (o.stages) addStages(stages, *o.stages);
 }
@@ -77,17 +79,18 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   o.found = score.found;
   o.detections = static_cast<int>(poses.size());
   o.correct = score.correct;
+  o.wrong_in_first_10 = score.wrong_in_first_10;
   return o;
 }
 
 void writeOutcomeHeader(std::ostream& out) {
-  out << "part,method,input,seed,objects,findable,found,detections,correct,ms,input_points\n";
+  out << "part,method,input,seed,objects,findable,found,detections,correct,ms,input_points,wrong_in_first_10\n";
 }
 
 void writeOutcome(std::ostream& out, const SceneOutcome& o) {
   out << o.part << ',' << o.method << ',' << inputName(o.input) << ',' << o.seed << ',' << o.objects << ','
       << o.findable << ',' << o.found << ',' << o.detections << ',' << o.correct << ',' << o.ms << ',' << o.input_points
-      << '\n';
+      << ',' << o.wrong_in_first_10 << '\n';
 }
 
 }  // namespace binpick::bench

@@ -24,6 +24,7 @@ struct SceneOutcome {
   int found = 0;     // findable objects with a correct detection
   int detections = 0;
   int correct = 0;               // detections within diam/10 and 10 degrees of an object not claimed before
+  int wrong_in_first_10 = 0;     // what a robot acts on first
   double ms = 0.0;               // detect(): the whole process
   std::size_t input_points = 0;  // finite points inside the bin
   // binpick's methods only: the detector's own stage timings.
@@ -33,6 +34,7 @@ struct SceneOutcome {
 // Sums of outcomes, and the paper's figures from them.
 struct Tally {
   int scenes = 0, objects = 0, findable = 0, found = 0, detections = 0, correct = 0;
+  int wrong_in_first_10 = 0, scenes_wrong_in_first_10 = 0;
   double ms = 0.0;
   estimation::StageTimings stages;  // summed over the outcomes that had them
   void add(const SceneOutcome& outcome);

@@ -117,6 +117,15 @@ std::string precisionRecallTable(const Tallies& tallies, const TableLayout& layo
   return out.str();
 }
 
+std::string earlyWrongTable(const Tallies& tallies, const TableLayout& layout) {
+  std::ostringstream out;
+  partRows(out, tallies, layout, [](const Tally& t) {
+    return std::to_string(t.wrong_in_first_10) + " in " + std::to_string(t.scenes_wrong_in_first_10) + " of " +
+           std::to_string(t.scenes);
+  });
+  return out.str();
+}
+
 std::string stageTable(const Tallies& tallies, const TableLayout& layout) {
   std::ostringstream out;
   out << "| part | method | scene + normals | voting | verification | selection (Drost: clustering) | ICP | total |\n"

@@ -18,6 +18,8 @@ std::string recognitionTable(const Tallies& tallies, const TableLayout& layout);
 std::string speedTable(const Tallies& tallies, const TableLayout& layout);        // Table III
 // Precision (correct / detections) and recall (found / objects at least half visible), "P / R".
 std::string precisionRecallTable(const Tallies& tallies, const TableLayout& layout);
+// Wrong detections among each scene's first 10, "W in S of N scenes".
+std::string earlyWrongTable(const Tallies& tallies, const TableLayout& layout);
 // binpick's methods: ms per object of each stage.
 std::string stageTable(const Tallies& tallies, const TableLayout& layout);
 
