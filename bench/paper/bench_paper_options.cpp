@@ -64,7 +64,9 @@ const char* paperBenchUsage() {
          "  --settings FILE       binpick's detector settings, a detection.yaml (default: the defaults)\n"
          "  --reconstruction-settings FILE\n"
          "                        the reconstructed input's settings, a file with a `reconstruction:`\n"
-         "                        section (default: the defaults)\n";
+         "                        section (default: the defaults)\n"
+         "  --explain             binpick's detections, one line each: right or wrong, score, coverage,\n"
+         "                        seen-through share, twin margin (on stderr)\n";
 }
 
 bool PaperBenchOptions::has(const std::string& section) const { return contains(sections, section); }
@@ -80,6 +82,10 @@ PaperBenchOptions parsePaperBenchOptions(int argc, char** argv) {
     const std::string flag = argv[i];
     if (flag == "--help" || flag == "-h") {
       o.help = true;
+      continue;
+    }
+    if (flag == "--explain") {
+      o.explain = true;
       continue;
     }
     if (i + 1 >= argc) throw core::Error(flag + " needs a value");

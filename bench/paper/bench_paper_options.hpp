@@ -25,6 +25,7 @@ struct PaperBenchOptions {
   std::string out = "docs/benchmark";
   std::string settings;                 // binpick's detector settings (a detection.yaml); empty: the defaults
   std::string reconstruction_settings;  // a file with a `reconstruction:` section; empty: the defaults
+  bool explain = false;                 // --explain: binpick's detections one per line, right or wrong
   bool help = false;                    // --help: print paperBenchUsage() and run nothing
   bool has(const std::string& section) const;
   bool runsPeersOn(const std::string& part) const;

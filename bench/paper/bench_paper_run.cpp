@@ -92,6 +92,9 @@ void runScene(const std::vector<std::unique_ptr<PoseMethod>>& methods, const Ben
         data.tallies[{input, part.name, method->name()}].add(outcome);
         std::fprintf(stderr, "%s: %d/%d correct, %d detections (%d wrong in the first 10), %.0f ms\n", what.c_str(),
                      outcome.correct, outcome.objects, outcome.detections, outcome.wrong_in_first_10, outcome.ms);
+        if (o.explain) {
+          for (const std::string& line : outcome.explanation) std::fprintf(stderr, "  %s\n", line.c_str());
+        }
       } catch (const std::exception& e) {
         std::fprintf(stderr, "%s: FAILED, left out of the tables: %s\n", what.c_str(), e.what());
       }

@@ -1,5 +1,7 @@
 #include "experiment.hpp"
 
+#include <cstdio>
+
 #include "binpick/core/stopwatch.hpp"
 #include "binpick_method.hpp"
 
@@ -7,6 +9,20 @@ namespace binpick::bench {
 namespace {
 
 double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
+
+std::vector<std::string> explained(const std::vector<estimation::Detection>& detections,
+                                   const evaluation::Score& score) {
+  std::vector<std::string> lines;
+  for (std::size_t k = 0; k < detections.size(); ++k) {
+    const estimation::Detection& d = detections[k];
+    char line[160];
+    std::snprintf(line, sizeof line, "detection %2zu %s: score %.2f coverage %.2f seen through %.2f twin margin %.3f", k,
+                  score.matched_object[k] >= 0 ? "right" : "WRONG", d.score, d.coverage, d.seen_through,
+                  d.twin_margin);
+    lines.emplace_back(line);
+  }
+  return lines;
+}
 
 void addStages(estimation::StageTimings& sum, const estimation::StageTimings& t) {
   sum.prepare_scene += t.prepare_scene;
@@ -64,10 +80,12 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   o.input_points = scene.pointsInBin(input);
 
   std::vector<Eigen::Isometry3f> poses;
+  std::vector<estimation::Detection> details;
   const core::Stopwatch stopwatch;
   if (const auto* own = dynamic_cast<const BinpickMethod*>(&method)) {
     const estimation::DetectionResult result = own->detectWithDetails(method_input);
     o.stages = result.timing_ms;
+    details = result.detections;
     for (const estimation::Detection& d : result.detections) poses.push_back(d.T_camera_model);
   } else {
     poses = method.detect(method_input);
@@ -75,6 +93,7 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   o.ms = stopwatch.elapsedMs();
 
   const evaluation::Score score = scorePoses(poses, scene.truth.objects, part, diameter);
+  o.explanation = explained(details, score);
   o.findable = score.findable;
   o.found = score.found;
   o.detections = static_cast<int>(poses.size());

@@ -29,6 +29,7 @@ struct SceneOutcome {
   std::size_t input_points = 0;  // finite points inside the bin
   // binpick's methods only: the detector's own stage timings.
   std::optional<estimation::StageTimings> stages;
+  std::vector<std::string> explanation;  // binpick's methods: one line per detection
 };
 
 // Sums of outcomes, and the paper's figures from them.

@@ -34,6 +34,8 @@ TEST(EstimationConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(s.selection.max_objects, d.selection.max_objects);
   EXPECT_EQ(s.selection.min_score_fraction, d.selection.min_score_fraction);
   EXPECT_EQ(s.selection.min_centre_distance_ratio, d.selection.min_centre_distance_ratio);
+  EXPECT_EQ(s.selection.sure_twin_margin, d.selection.sure_twin_margin);
+  EXPECT_EQ(s.selection.sure_coverage, d.selection.sure_coverage);
   EXPECT_EQ(s.icp.max_iterations, d.icp.max_iterations);
   EXPECT_EQ(s.icp.final_max_distance_ratio, d.icp.final_max_distance_ratio);
   EXPECT_EQ(s.icp.fit_distance_ratio, d.icp.fit_distance_ratio);

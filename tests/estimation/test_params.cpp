@@ -101,6 +101,8 @@ TEST(Params, VerificationSelectionIcpClusteringNameTheField) {
   expectRejected<SelectionParams>("min_score_fraction", [](auto& p) { p.min_score_fraction = 1.5f; });
   expectRejected<SelectionParams>("min_score_fraction", [](auto& p) { p.min_score_fraction = kNaN; });
   expectRejected<SelectionParams>("min_centre_distance_ratio", [](auto& p) { p.min_centre_distance_ratio = -1.0f; });
+  expectRejected<SelectionParams>("sure_twin_margin", [](auto& p) { p.sure_twin_margin = kNaN; });
+  expectRejected<SelectionParams>("sure_coverage", [](auto& p) { p.sure_coverage = 1.5f; });
 
   expectRejected<IcpParams>("max_iterations", [](auto& p) { p.max_iterations = -1; });
   expectRejected<IcpParams>("initial_max_distance_ratio", [](auto& p) { p.initial_max_distance_ratio = 0.0f; });

@@ -82,6 +82,8 @@ void readDetector(Section s, DetectorParams& p) {
   selection.read("min_score_fraction", p.selection.min_score_fraction);
   selection.read("min_coverage", p.selection.min_coverage);
   selection.read("min_centre_distance_ratio", p.selection.min_centre_distance_ratio);
+  selection.read("sure_twin_margin", p.selection.sure_twin_margin);
+  selection.read("sure_coverage", p.selection.sure_coverage);
   selection.finish();
   Section icp = s.child("icp");
   icp.read("max_iterations", p.icp.max_iterations);

@@ -9,6 +9,7 @@
 #include "binpick/core/thread_count.hpp"
 #include "binpick/estimation/range_agreement.hpp"
 #include "near_symmetries.hpp"
+#include "point_ops.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -65,6 +66,7 @@ Judged judgedTwin(const PoseRefiner& refiner, const PreparedModel& model, const 
   if (start.consistency() > twin.agreement.consistency()) {
     twin.pose.fit = refiner.assess(model, turned);
     twin.pose.detection.T_camera_model = turned;
+    orthonormalise(twin.pose.detection.T_camera_model);
     twin.pose.detection.coverage = twin.pose.fit.coverage();
     twin.pose.detection.icp_rmse = twin.pose.fit.rmse;
     twin.agreement = start;
@@ -94,8 +96,16 @@ Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model,
   for (const Judged& twin : twins) {
     if (twin.consistency() > to_beat) best = &twin, to_beat = twin.consistency();
   }
+  int runner_up = best == &judged_pick ? std::numeric_limits<int>::min() : judged_pick.consistency();
+  for (const Judged& twin : twins) {
+    if (&twin != best) runner_up = std::max(runner_up, twin.consistency());
+  }
   Detection chosen = best->pose.detection;
   chosen.seen_through = best->seenThroughShare();
+  if (runner_up != std::numeric_limits<int>::min()) {
+    chosen.twin_margin = std::min(1.0f, static_cast<float>(best->consistency() - runner_up) /
+                                            static_cast<float>(std::max(1, best->agreement.visible)));
+  }
   return chosen;
 }
 
@@ -157,6 +167,13 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
     selection.removeExplained(refiner.scenePointsNear(model, d.T_camera_model, removal_radius));
     result.detections.push_back(d);
   }
+  // What a robot acts on first should be what the range is sure of: a pose it cannot tell from the
+  // part turned over, or one that explains little of what the camera should see, goes last.
+  for (Detection& d : result.detections) {
+    const bool told_apart = p.selection.sure_twin_margin == 0.0f || d.twin_margin >= p.selection.sure_twin_margin;
+    d.sure = told_apart && d.coverage >= p.selection.sure_coverage;
+  }
+  std::stable_partition(result.detections.begin(), result.detections.end(), [](const Detection& d) { return d.sure; });
   result.refreshes = selection.refreshCount();
   result.timing_ms.icp = icp_ms;
   result.timing_ms.selection = clock.lapMs() - icp_ms;

@@ -7,6 +7,7 @@
 
 #include "binpick/core/error.hpp"
 #include "kdtree.hpp"
+#include "point_ops.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -196,9 +197,7 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
       break;
     }
   }
-  // Orthonormalise: float composition drifts over iterations.
-  const Eigen::Quaternionf q(result.T_camera_model.linear());
-  result.T_camera_model.linear() = q.normalized().toRotationMatrix();
+  orthonormalise(result.T_camera_model);
 
   // Final fit: residual and how much of what the camera should see of the part is there.
   result.fit = assess(model, result.T_camera_model);

@@ -6,6 +6,7 @@
 #include <array>
 
 #include "kdtree.hpp"
+#include "point_ops.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -72,6 +73,7 @@ std::vector<Eigen::Isometry3f> nearSymmetries(const PreparedModel& model) {
     turn.linear() = axes * rotation * axes.transpose();                   // in the principal frame
     turn.translation() = model.centre - turn.linear() * model.centre;  // about the centroid
     const float overlap = registerOntoItself(model, tree, turn);
+    orthonormalise(turn);
     if (overlap >= kMinOverlap && overlap < kSymmetricOverlap) turns.push_back(turn);
   }
   return turns;

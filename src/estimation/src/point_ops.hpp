@@ -1,6 +1,7 @@
 #pragma once
 // Internal point-cloud operations shared by model and scene preparation.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -17,6 +18,12 @@ struct SurfaceSamples {
 };
 SurfaceSamples sampleSurface(const io::TriangleMesh& mesh, std::size_t count, uint64_t seed);
 double surfaceArea(const io::TriangleMesh& mesh);
+
+// The pose with its rotation made orthonormal again: float compositions (ICP steps, a pose times a
+// near-symmetry) drift by 1e-5 after a few dozen, more than a pose read back from JSON may have.
+inline void orthonormalise(Eigen::Isometry3f& pose) {
+  pose.linear() = Eigen::Quaternionf(pose.linear()).normalized().toRotationMatrix();
+}
 
 // Largest distance between two points, exact up to ~1% (a coarse grid keeps it O(n) for large
 // clouds before the pairwise search).

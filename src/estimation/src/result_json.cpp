@@ -11,6 +11,8 @@ nlohmann::json toJson(const DetectionResult& result) {
                           {"coverage", d.coverage},
                           {"icp_rmse", d.icp_rmse},
                           {"seen_through", d.seen_through},
+                          {"twin_margin", d.twin_margin},
+                          {"sure", d.sure},
                           {"votes", d.votes}});
   }
   const StageTimings& t = result.timing_ms;

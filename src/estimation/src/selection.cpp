@@ -17,6 +17,12 @@ void SelectionParams::validate() const {
   if (!(min_centre_distance_ratio >= 0.0f && min_centre_distance_ratio <= 10.0f)) {
     throw core::Error("selection params: min_centre_distance_ratio must be in [0, 10]");
   }
+  if (!(sure_twin_margin >= 0.0f && sure_twin_margin <= 1.0f)) {
+    throw core::Error("selection params: sure_twin_margin must be in [0, 1]");
+  }
+  if (!(sure_coverage >= 0.0f && sure_coverage <= 1.0f)) {
+    throw core::Error("selection params: sure_coverage must be in [0, 1]");
+  }
 }
 
 MultipleSelection::MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points,

@@ -53,6 +53,11 @@ struct Detection {
   float icp_rmse = 0.0f;      // model units
   float seen_through = 0.0f;  // after ICP: share of the visible fine model points in front of the
                               // measured surface (free space the camera saw through)
+  float twin_margin = 1.0f;   // after ICP: how much more of the range this pose explains than its
+                              // best turned twin, a share of its visible fine points (1: no twin
+                              // came close); near 0 the range cannot tell the part from it turned
+  bool sure = true;           // twin_margin and coverage at least SelectionParams' sure_*: the
+                              // sure detections come first
   uint32_t votes = 0;
   int icp_iterations = 0;
 };

@@ -1,6 +1,7 @@
 #pragma once
 // The detection result as JSON, the schema scripts rely on (docs/detect-output.md):
-// {"detections": [{"pose": 4x4 rows, "score", "coverage", "icp_rmse", "votes"}...],
+// {"detections": [{"pose": 4x4 rows, "score", "coverage", "icp_rmse", "seen_through", "twin_margin",
+//                  "sure", "votes"}...],
 //  "timing_ms": {"prepare_scene", "voting", "verification", "selection", "icp", "total"},
 //  "counts": {"scene_points", "candidates", "refreshes"}}
 // Poses are T_camera_model in the input's units. Thread-safe.

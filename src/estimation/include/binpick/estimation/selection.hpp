@@ -20,6 +20,10 @@ struct SelectionParams {
                                            // refused: ICP found nothing there (0: keep every pick)
   float min_centre_distance_ratio = 0.1f;  // a pose whose model centre lies closer than this
                                            // (times diam(M)) to an accepted one is a repeat
+  // A robot acts first on what the range is sure of: detections below either of these come after
+  // the others (Detection::sure false), each group in selection order (0 and 0: selection order).
+  float sure_twin_margin = 0.04f;  // Detection::twin_margin: the range tells the part from it turned
+  float sure_coverage = 0.6f;      // Detection::coverage: the fit explains most of what should be seen
   void validate() const;                   // throws core::Error naming the field
 };
 
