@@ -61,6 +61,11 @@ int run(const Arguments& args) {
   const estimation::EstimationConfig config = configFrom(args);
   const estimation::Detector detector(modelFrom(args, config.model), config.detector);
   const io::PointCloud scene = sceneFrom(args);
+  if (!config.detector.scene.crop) {
+    // Planar faces of the parts fit the bin's floor and walls anywhere: a bin needs its inside.
+    std::cerr << "binpick detect: note: no crop box (detection.scene.crop in --config): the bin's floor and walls "
+                 "are matched too; config/virtual-cell.yaml has the virtual cell's bin\n";
+  }
   const estimation::DetectionResult result = detector.detect(scene);
   const std::string warning = estimation::sceneWarning(result);
   if (!warning.empty()) std::cerr << "binpick detect: warning: " << warning << "\n";

@@ -28,7 +28,11 @@ run_detect() {
   "$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" \
     --config "$config_dir/virtual-cell.yaml" --model-cache "$work/model.cache" --max-objects 8 --out "$1"
 }
-run_detect "$work/first.json" || fail "detect exited $?"
+run_detect "$work/first.json" 2>"$work/detect.err" || fail "detect exited $?"
+grep -q "no crop box" "$work/detect.err" && fail "detect with the virtual cell's crop box says it has none"
+"$binpick" detect --model "$work/pile/truth/part.ply" --scene "$work/pile/cloud.ply" --model-cache "$work/model.cache" \
+  --max-objects 2 --out "$work/uncropped.json" 2>"$work/detect.err" || fail "detect without a config exited $?"
+grep -q "no crop box" "$work/detect.err" || fail "detect without a crop box gives no note: $(cat "$work/detect.err")"
 [ -s "$work/model.cache" ] || fail "detect wrote no model cache"
 run_detect "$work/second.json" || fail "detect with a cache exited $?"
 grep -q '"detections"' "$work/first.json" || fail "result has no detections key"
