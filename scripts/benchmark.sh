@@ -3,7 +3,7 @@
 # results.md (the paper's Tables II and III for every method, on the exact and the reconstructed
 # cloud; Figure 5; scaling), outcomes.csv (one row per method, scene and input) and the PNG plots.
 #   bash scripts/benchmark.sh            quick: 2 scenes per part; OpenCV's and PCL's matchers, which
-#                                        take minutes per scene, on one l_bracket scene (30 minutes
+#                                        take minutes per scene, on one l_bracket scene (15 minutes
 #                                        on 2 cores)
 #   bash scripts/benchmark.sh --full     the paper's 50 scenes per part, the peers on 5 of every
 #                                        part (days on 2 cores: mostly PCL)
