@@ -162,10 +162,11 @@ void explain(const estimation::DetectionResult& result, const evaluation::Score&
   for (std::size_t k = 0; k < result.detections.size(); ++k) {
     const estimation::Detection& d = result.detections[k];
     const Nearest n = nearestObject(d.T_camera_model, scene, part);
-    std::printf("    detection %2zu %-5s part %2d: %6.1f mm %5.1f deg; score %.2f coverage %.2f seen through %.2f twin margin %.3f\n",
-                k,
-                score.matched_object[k] >= 0 ? "right" : "WRONG", n.object, n.error.translation * 1000.0,
-                n.error.rotation_deg, d.score, d.coverage, d.seen_through, d.twin_margin);
+    std::printf(
+        "    detection %2zu %-5s part %2d: %6.1f mm %5.1f deg; score %.2f coverage %.2f seen through %.2f"
+        " twin margin %.3f\n",
+        k, score.matched_object[k] >= 0 ? "right" : "WRONG", n.object, n.error.translation * 1000.0,
+        n.error.rotation_deg, d.score, d.coverage, d.seen_through, d.twin_margin);
     if (score.matched_object[k] < 0 && n.object >= 0) {
       explainWrong(d.T_camera_model, scene.objects[static_cast<std::size_t>(n.object)].T_camera_object.cast<float>(),
                    judge);

@@ -160,8 +160,7 @@ std::string experimentSections(const PaperBenchOptions& o, const ExperimentData&
         << reconstructionNote(input, data) << speedTable(data.tallies, layout) << "\n## Precision / recall, " << name
         << "\n\n"
         << "Precision: correct / detections. Recall: objects found / objects at least half visible.\n\n"
-        << precisionRecallTable(data.tallies, layout) << "\n## Wrong detections among the first 10, " << name
-        << "\n\n"
+        << precisionRecallTable(data.tallies, layout) << "\n## Wrong detections among the first 10, " << name << "\n\n"
         << "Wrong detections among each scene's first 10 (what a robot picks first), in how many scenes.\n\n"
         << earlyWrongTable(data.tallies, layout) << "\n## Stages in ms per object, " << name << "\n\n"
         << stageTable(data.tallies, layout) << '\n';

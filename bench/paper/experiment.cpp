@@ -16,8 +16,8 @@ std::vector<std::string> explained(const std::vector<estimation::Detection>& det
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const estimation::Detection& d = detections[k];
     char line[160];
-    std::snprintf(line, sizeof line, "detection %2zu %s: score %.2f coverage %.2f seen through %.2f twin margin %.3f", k,
-                  score.matched_object[k] >= 0 ? "right" : "WRONG", d.score, d.coverage, d.seen_through,
+    std::snprintf(line, sizeof line, "detection %2zu %s: score %.2f coverage %.2f seen through %.2f twin margin %.3f",
+                  k, score.matched_object[k] >= 0 ? "right" : "WRONG", d.score, d.coverage, d.seen_through,
                   d.twin_margin);
     lines.emplace_back(line);
   }

@@ -127,15 +127,17 @@ TEST(DetectorTurnedTwins, DetectionsTheRangeIsNotSureOfComeLast) {
     DetectorParams params;
     params.scene.crop = pile.crop;
     const DetectionResult result = Detector(model, params).detect(pile.truth.cloud);
-    const evaluation::Score score = evaluation::scoreDetections(result.detections, pile.truth.objects, part.symmetry,
-                                                                {0.1 * model.diameter, 10.0});
+    const evaluation::Score score =
+        evaluation::scoreDetections(result.detections, pile.truth.objects, part.symmetry, {0.1 * model.diameter, 10.0});
     for (std::size_t k = 0; k < result.detections.size(); ++k) {
       const Detection& d = result.detections[k];
       if (k > 0) EXPECT_FALSE(d.sure && !result.detections[k - 1].sure) << "a sure detection after an unsure one";
-      EXPECT_EQ(d.sure, d.twin_margin >= params.selection.sure_twin_margin && d.coverage >= params.selection.sure_coverage);
+      EXPECT_EQ(d.sure,
+                d.twin_margin >= params.selection.sure_twin_margin && d.coverage >= params.selection.sure_coverage);
       // Poses leave the detector orthonormal: what reads them back (JSON, the robot) checks.
-      EXPECT_LT((d.T_camera_model.linear() * d.T_camera_model.linear().transpose() - Eigen::Matrix3f::Identity()).norm(),
-                1e-5f);
+      EXPECT_LT(
+          (d.T_camera_model.linear() * d.T_camera_model.linear().transpose() - Eigen::Matrix3f::Identity()).norm(),
+          1e-5f);
       const bool right = score.matched_object[k] >= 0;
       wrong_sure += !right && d.sure ? 1 : 0;
       wrong_unsure += !right && !d.sure ? 1 : 0;

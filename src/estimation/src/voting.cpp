@@ -131,16 +131,20 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
       const Eigen::Vector3f& n_r = scene.normals[s_r];
       const Eigen::Isometry3f T_s = referenceFrame(p_r, n_r);
       accumulator.clear();
-      grid.forEachNear(p_r, [&](uint32_t s_j) {
-        if (s_j == s_r || (scene.points[s_j] - p_r).squaredNorm() > max_distance_sq) return;
-        const int64_t key = quantizer.key(computeFeature(p_r, n_r, scene.points[s_j], scene.normals[s_j]));
-        const PpfHashTable::Range matches = model.table.lookup(key);
+      // Every model pair under the scene pair's key votes for its local coordinate (model
+      // reference, alpha): alpha = alpha_s - alpha_m rotates the model pair onto the scene pair (eq. 2).
+      const auto castVotes = [&](const PpfHashTable& table, int64_t key, const Eigen::Vector3f& referred_point) {
+        const PpfHashTable::Range matches = table.lookup(key);
         if (matches.begin == matches.end) return;
-        const float scene_angle = planarAngle(T_s * scene.points[s_j]);
+        const float scene_angle = planarAngle(T_s * referred_point);
         for (const PairEntry* e = matches.begin; e != matches.end; ++e) {
-          // alpha = alpha_s - alpha_m rotates the model pair onto the scene pair (eq. 2).
           accumulator.add(e->reference, quantizer.alphaBinOfDifference(scene_angle, e->reference_angle));
         }
+      };
+      grid.forEachNear(p_r, [&](uint32_t s_j) {
+        const Eigen::Vector3f& p_j = scene.points[s_j];
+        if (s_j == s_r || (p_j - p_r).squaredNorm() > max_distance_sq) return;
+        castVotes(model.table, quantizer.key(computeFeature(p_r, n_r, p_j, scene.normals[s_j])), p_j);
       });
       if (with_boundary) {
         // Surface-to-boundary pairs (Choi et al. 2012): the same reference frame and alpha, the
@@ -148,13 +152,8 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
         boundary_grid.forEachNear(p_r, [&](uint32_t b) {
           const Eigen::Vector3f& p_b = boundary->scene.points[b];
           if ((p_b - p_r).squaredNorm() > max_distance_sq) return;
-          const int64_t key = quantizer.key(computeBoundaryFeature(p_r, n_r, p_b, boundary->scene.directions[b]));
-          const PpfHashTable::Range matches = boundary->model.table.lookup(key);
-          if (matches.begin == matches.end) return;
-          const float scene_angle = planarAngle(T_s * p_b);
-          for (const PairEntry* e = matches.begin; e != matches.end; ++e) {
-            accumulator.add(e->reference, quantizer.alphaBinOfDifference(scene_angle, e->reference_angle));
-          }
+          castVotes(boundary->model.table,
+                    quantizer.key(computeBoundaryFeature(p_r, n_r, p_b, boundary->scene.directions[b])), p_b);
         });
       }
       const std::vector<LocalCoordinate> best = accumulator.top(np);
