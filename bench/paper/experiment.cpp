@@ -1,5 +1,6 @@
 #include "experiment.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "binpick/core/stopwatch.hpp"
@@ -10,16 +11,46 @@ namespace {
 
 double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 
+// For a wrong detection: the object whose centre lies nearest, the offset of the detection from
+// it in the part's frame (mm) and the angle between them (degrees; no symmetry folded).
+std::string nearestObject(const estimation::Detection& d, const std::vector<simulation::ObjectTruth>& truth,
+                          const evaluation::Score& score) {
+  int nearest = -1;
+  double best = 1e9;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const double distance =
+        (truth[i].T_camera_object.translation() - d.T_camera_model.translation().cast<double>()).norm();
+    if (distance < best) best = distance, nearest = static_cast<int>(i);
+  }
+  if (nearest < 0) return "";
+  const simulation::ObjectTruth& o = truth[nearest];
+  const Eigen::Isometry3d offset = o.T_camera_object.inverse() * d.T_camera_model.cast<double>();
+  const Eigen::Vector3d mm = offset.translation() * 1000.0;
+  const auto found_by = std::find(score.matched_object.begin(), score.matched_object.end(), nearest);
+  const std::string found = found_by == score.matched_object.end()
+                                ? "not found"
+                                : "found by " + std::to_string(found_by - score.matched_object.begin());
+  const Eigen::AngleAxisd turn(offset.linear());
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "; nearest object %d (%.0f%% visible, %s): offset (%.1f, %.1f, %.1f) mm, %.0f deg about (%.2f, %.2f, "
+                "%.2f)",
+                nearest, 100.0 * o.visible_fraction, found.c_str(), mm.x(), mm.y(), mm.z(), turn.angle() * 180.0 / M_PI,
+                turn.axis().x(), turn.axis().y(), turn.axis().z());
+  return text;
+}
+
 std::vector<std::string> explained(const std::vector<estimation::Detection>& detections,
-                                   const evaluation::Score& score) {
+                                   const std::vector<simulation::ObjectTruth>& truth, const evaluation::Score& score) {
   std::vector<std::string> lines;
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const estimation::Detection& d = detections[k];
+    const bool right = score.matched_object[k] >= 0;
     char line[160];
-    std::snprintf(line, sizeof line, "detection %2zu %s: score %.2f coverage %.2f seen through %.2f twin margin %.3f",
-                  k, score.matched_object[k] >= 0 ? "right" : "WRONG", d.score, d.coverage, d.seen_through,
-                  d.twin_margin);
-    lines.emplace_back(line);
+    std::snprintf(line, sizeof line, "detection %2zu %s: score %.2f coverage %.2f seen through %.2f twin margin %.3f%s",
+                  k, right ? "right" : "WRONG", d.score, d.coverage, d.seen_through, d.twin_margin,
+                  d.sure ? " sure" : "");
+    lines.emplace_back(std::string(line) + (right ? "" : nearestObject(d, truth, score)));
   }
   return lines;
 }
@@ -93,7 +124,7 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   o.ms = stopwatch.elapsedMs();
 
   const evaluation::Score score = scorePoses(poses, scene.truth.objects, part, diameter);
-  o.explanation = explained(details, score);
+  o.explanation = explained(details, scene.truth.objects, score);
   o.findable = score.findable;
   o.found = score.found;
   o.detections = static_cast<int>(poses.size());
