@@ -7,8 +7,8 @@
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/core/thread_count.hpp"
+#include "binpick/estimation/near_symmetries.hpp"
 #include "binpick/estimation/range_agreement.hpp"
-#include "near_symmetries.hpp"
 #include "point_ops.hpp"
 
 namespace binpick::estimation {
@@ -78,23 +78,26 @@ Judged judgedTwin(const PoseRefiner& refiner, const PreparedModel& model, const 
 // part shows a single face: each twin that agrees nearly as well with the measured range is
 // refined too, and the pose whose fine surface the range explains most, less what the camera saw
 // through (range_agreement.hpp), is kept. A twin must win by a margin, so that noise does not swap
-// poses that are equally good. The chosen pose's seen-through share is its range's.
+// poses that are equally good; only a `turned` twin may win, a `slid` one weighs on the margin.
+// The chosen pose's seen-through share is its range's.
 Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, const LineOfSightMap& map,
-                         const Refined& pick, const std::vector<Eigen::Isometry3f>& near_symmetries, float tolerance,
+                         const Refined& pick, const NearSymmetries& near_symmetries, float tolerance,
                          int max_iterations, int threads) {
   Judged judged_pick{pick, rangeAgreement(model, pick.detection.T_camera_model, map, tolerance), true};
-  std::vector<Judged> twins(near_symmetries.size());
+  std::vector<Eigen::Isometry3f> turns = near_symmetries.turned;
+  turns.insert(turns.end(), near_symmetries.slid.begin(), near_symmetries.slid.end());
+  std::vector<Judged> twins(turns.size());
   // The twins are independent: judged side by side (refine() is const and thread-safe), with a
   // third of the iterations: registered onto the model, each starts within millimetres of its fit.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (std::size_t t = 0; t < near_symmetries.size(); ++t) {
-    twins[t] = judgedTwin(refiner, model, map, pick.detection.T_camera_model * near_symmetries[t], tolerance,
-                          max_iterations / 3, judged_pick.consistency() * 4 / 5);
+  for (std::size_t t = 0; t < turns.size(); ++t) {
+    twins[t] = judgedTwin(refiner, model, map, pick.detection.T_camera_model * turns[t], tolerance, max_iterations / 3,
+                          judged_pick.consistency() * 4 / 5);
   }
   const Judged* best = &judged_pick;
   int to_beat = judged_pick.consistency() + std::max(3, judged_pick.agreement.visible / 50);
-  for (const Judged& twin : twins) {
-    if (twin.consistency() > to_beat) best = &twin, to_beat = twin.consistency();
+  for (std::size_t t = 0; t < near_symmetries.turned.size(); ++t) {
+    if (twins[t].consistency() > to_beat) best = &twins[t], to_beat = twins[t].consistency();
   }
   int runner_up = best == &judged_pick ? std::numeric_limits<int>::min() : judged_pick.consistency();
   for (const Judged& twin : twins) {
@@ -113,7 +116,7 @@ Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model,
 // refined by ICP before its scene points stop existing, so that a coarse candidate does not leave
 // half of its object behind for a repeat detection.
 void selectVerified(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                    const std::vector<Eigen::Isometry3f>& near_symmetries, const std::vector<PoseCandidate>& candidates,
+                    const NearSymmetries& near_symmetries, const std::vector<PoseCandidate>& candidates,
                     DetectionResult& result, core::Stopwatch& clock, const core::CancelFlag* cancel) {
   const SceneVoxelGrid grid(scene.points, p.verification.voxel_size_ratio * model.step);
   const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification, cancel);

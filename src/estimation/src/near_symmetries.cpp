@@ -1,10 +1,13 @@
-#include "near_symmetries.hpp"
+#include "binpick/estimation/near_symmetries.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
+#include "binpick/estimation/voxel_grid.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
 
@@ -15,6 +18,10 @@ constexpr int kRegistrationIterations = 30;
 constexpr float kMatchDistanceInSteps = 1.0f;  // a turned point overlaps the model within this
 constexpr float kMinOverlap = 0.5f;            // less: another outline, not worth a refinement
 constexpr float kSymmetricOverlap = 0.98f;     // more: a true symmetry, nothing to decide
+constexpr int kSlideSamples = 256;             // model points that score a slide
+constexpr float kSlideStepInSteps = 2.0f;      // the slide search's grid, in d_dist
+constexpr float kMinNormalCosine = 0.5f;       // a point on the other face of a plate does not count
+constexpr float kSameTurnDeg = 5.0f;           // closer than this and a step: the same twin
 
 // Point-to-point ICP of the model onto itself from `start`; the share of turned points that end up
 // within a step of a model point.
@@ -58,25 +65,92 @@ std::vector<Eigen::Matrix3f> boxRotations() {
   return rotations;
 }
 
+// The model's extent along each of its principal axes (the columns of `axes`).
+Eigen::Vector3f principalExtents(const PreparedModel& model, const Eigen::Matrix3f& axes) {
+  Eigen::Vector3f low = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), high = -low;
+  for (const Eigen::Vector3f& p : model.points) {
+    const Eigen::Vector3f q = axes.transpose() * (p - model.centre);
+    low = low.cwiseMin(q);
+    high = high.cwiseMax(q);
+  }
+  return high - low;
+}
+
+// Slides `turn` over a grid of offsets along the principal axes, as far as the model reaches, to
+// where most of a sample of turned points land on a model point facing the same way (ties: the
+// shortest slide). The model's voxel grid answers "a model point near here" in O(1).
+void slideToMostOverlap(const PreparedModel& model, const SceneVoxelGrid& grid, const Eigen::Matrix3f& axes,
+                        Eigen::Isometry3f& turn) {
+  const std::size_t stride = std::max<std::size_t>(1, model.size() / kSlideSamples);
+  std::vector<Eigen::Vector3f> points, normals;
+  for (std::size_t k = 0; k < model.size(); k += stride) {
+    points.push_back(turn * model.points[k]);
+    normals.push_back(turn.linear() * model.normals[k]);
+  }
+  const float spacing = kSlideStepInSteps * model.step;
+  const Eigen::Vector3i reach = (principalExtents(model, axes) / (2.0f * spacing)).array().ceil().cast<int>();
+  int most = -1;
+  Eigen::Vector3f best = Eigen::Vector3f::Zero();
+  for (int i = -reach.x(); i <= reach.x(); ++i) {
+    for (int j = -reach.y(); j <= reach.y(); ++j) {
+      for (int k = -reach.z(); k <= reach.z(); ++k) {
+        const Eigen::Vector3f slide = axes * (spacing * Eigen::Vector3f(i, j, k));
+        int overlap = 0;
+        for (std::size_t n = 0; n < points.size(); ++n) {
+          const int32_t m = grid.at(points[n] + slide);
+          overlap += m != SceneVoxelGrid::kEmpty && normals[n].dot(model.normals[m]) >= kMinNormalCosine;
+        }
+        if (overlap > most || (overlap == most && slide.norm() < best.norm())) most = overlap, best = slide;
+      }
+    }
+  }
+  turn.pretranslate(best);
+}
+
+bool sameTwin(const Eigen::Isometry3f& a, const Eigen::Isometry3f& b, const PreparedModel& model) {
+  const float angle = Eigen::AngleAxisf(a.linear().transpose() * b.linear()).angle();
+  return angle < kSameTurnDeg * static_cast<float>(M_PI / 180.0) &&
+         (a * model.centre - b * model.centre).norm() < model.step;
+}
+
+// Registers `turn` onto the model; true when the result is a near-symmetry (not another outline,
+// not a true symmetry).
+bool registeredNearSymmetry(const PreparedModel& model, const KdTree& tree, Eigen::Isometry3f& turn) {
+  const float overlap = registerOntoItself(model, tree, turn);
+  orthonormalise(turn);
+  return overlap >= kMinOverlap && overlap < kSymmetricOverlap;
+}
+
 }  // namespace
 
-std::vector<Eigen::Isometry3f> nearSymmetries(const PreparedModel& model) {
+NearSymmetries nearSymmetries(const PreparedModel& model) {
   if (model.size() < 3) return {};
   Eigen::Matrix3f scatter = Eigen::Matrix3f::Zero();
   for (const Eigen::Vector3f& p : model.points) scatter += (p - model.centre) * (p - model.centre).transpose();
   const Eigen::Matrix3f axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f>(scatter).eigenvectors();
   const KdTree tree(model.points);
 
-  std::vector<Eigen::Isometry3f> turns;
+  const SceneVoxelGrid grid(model.points, model.step);
+
+  NearSymmetries twins;
+  std::vector<Eigen::Isometry3f> slid;
   for (const Eigen::Matrix3f& rotation : boxRotations()) {
     Eigen::Isometry3f turn = Eigen::Isometry3f::Identity();
-    turn.linear() = axes * rotation * axes.transpose();                   // in the principal frame
+    turn.linear() = axes * rotation * axes.transpose();                // in the principal frame
     turn.translation() = model.centre - turn.linear() * model.centre;  // about the centroid
-    const float overlap = registerOntoItself(model, tree, turn);
-    orthonormalise(turn);
-    if (overlap >= kMinOverlap && overlap < kSymmetricOverlap) turns.push_back(turn);
+    Eigen::Isometry3f slid_turn = turn;
+    slideToMostOverlap(model, grid, axes, slid_turn);
+    if (registeredNearSymmetry(model, tree, turn)) twins.turned.push_back(turn);
+    if (registeredNearSymmetry(model, tree, slid_turn)) slid.push_back(slid_turn);
   }
-  return turns;
+  for (const Eigen::Isometry3f& turn : slid) {
+    const auto same = [&](const Eigen::Isometry3f& kept) { return sameTwin(kept, turn, model); };
+    if (std::none_of(twins.turned.begin(), twins.turned.end(), same) &&
+        std::none_of(twins.slid.begin(), twins.slid.end(), same)) {
+      twins.slid.push_back(turn);
+    }
+  }
+  return twins;
 }
 
 }  // namespace binpick::estimation

@@ -14,6 +14,7 @@
 #include "binpick/estimation/clustering.hpp"
 #include "binpick/estimation/icp.hpp"
 #include "binpick/estimation/model.hpp"
+#include "binpick/estimation/near_symmetries.hpp"
 #include "binpick/estimation/scene.hpp"
 #include "binpick/estimation/selection.hpp"
 #include "binpick/estimation/verification.hpp"
@@ -98,8 +99,8 @@ class Detector {
  private:
   PreparedModel model_;
   DetectorParams params_;
-  std::vector<Eigen::Isometry3f> near_symmetries_;  // verification.compare_turned: near_symmetries.hpp
-  std::optional<BoundaryModel> boundary_model_;     // boundary.enabled
+  NearSymmetries near_symmetries_;               // verification.compare_turned
+  std::optional<BoundaryModel> boundary_model_;  // boundary.enabled
 };
 
 }  // namespace binpick::estimation
