@@ -131,7 +131,9 @@ TEST(DetectorTurnedTwins, DetectionsTheRangeIsNotSureOfComeLast) {
         evaluation::scoreDetections(result.detections, pile.truth.objects, part.symmetry, {0.1 * model.diameter, 10.0});
     for (std::size_t k = 0; k < result.detections.size(); ++k) {
       const Detection& d = result.detections[k];
-      if (k > 0) EXPECT_FALSE(d.sure && !result.detections[k - 1].sure) << "a sure detection after an unsure one";
+      if (k > 0) {
+        EXPECT_FALSE(d.sure && !result.detections[k - 1].sure) << "a sure detection after an unsure one";
+      }
       EXPECT_EQ(d.sure,
                 d.twin_margin >= params.selection.sure_twin_margin && d.coverage >= params.selection.sure_coverage);
       // Poses leave the detector orthonormal: what reads them back (JSON, the robot) checks.
