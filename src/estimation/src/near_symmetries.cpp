@@ -19,7 +19,8 @@ constexpr float kMatchDistanceInSteps = 1.0f;  // a turned point overlaps the mo
 constexpr float kMinOverlap = 0.5f;            // less: another outline, not worth a refinement
 constexpr float kSymmetricOverlap = 0.98f;     // more: a true symmetry, nothing to decide
 constexpr int kSlideSamples = 256;             // model points that score a slide
-constexpr float kSlideStepInSteps = 2.0f;      // the slide search's grid, in d_dist
+constexpr float kSlideStepInSteps = 2.0f;      // the slide search's grid, in d_dist ...
+constexpr int kMaxSlidesEachWay = 8;           // ... coarser when a fine sampling would need more
 constexpr float kMinNormalCosine = 0.5f;       // a point on the other face of a plate does not count
 constexpr float kSameTurnDeg = 5.0f;           // closer than this and a step: the same twin
 
@@ -76,19 +77,26 @@ Eigen::Vector3f principalExtents(const PreparedModel& model, const Eigen::Matrix
   return high - low;
 }
 
+// The spacing of the slide search's grid: 2 d_dist, or coarser where the model spans more than
+// kMaxSlidesEachWay of those each way from its centre (a fine sampling_ratio), so that the
+// search stays at most 17^3 slides.
+float slideSpacing(const PreparedModel& model, const Eigen::Vector3f& extents) {
+  return std::max(kSlideStepInSteps * model.step, extents.maxCoeff() / (2.0f * kMaxSlidesEachWay));
+}
+
 // Slides `turn` over a grid of offsets along the principal axes, as far as the model reaches, to
 // where most of a sample of turned points land on a model point facing the same way (ties: the
-// shortest slide). The model's voxel grid answers "a model point near here" in O(1).
+// shortest slide). `grid` (voxels of half the spacing) answers "a model point near here" in O(1).
 void slideToMostOverlap(const PreparedModel& model, const SceneVoxelGrid& grid, const Eigen::Matrix3f& axes,
-                        Eigen::Isometry3f& turn) {
+                        const Eigen::Vector3f& extents, Eigen::Isometry3f& turn) {
   const std::size_t stride = std::max<std::size_t>(1, model.size() / kSlideSamples);
   std::vector<Eigen::Vector3f> points, normals;
   for (std::size_t k = 0; k < model.size(); k += stride) {
     points.push_back(turn * model.points[k]);
     normals.push_back(turn.linear() * model.normals[k]);
   }
-  const float spacing = kSlideStepInSteps * model.step;
-  const Eigen::Vector3i reach = (principalExtents(model, axes) / (2.0f * spacing)).array().ceil().cast<int>();
+  const float spacing = slideSpacing(model, extents);
+  const Eigen::Vector3i reach = (extents / (2.0f * spacing)).array().ceil().cast<int>();
   int most = -1;
   Eigen::Vector3f best = Eigen::Vector3f::Zero();
   for (int i = -reach.x(); i <= reach.x(); ++i) {
@@ -130,7 +138,8 @@ NearSymmetries nearSymmetries(const PreparedModel& model) {
   const Eigen::Matrix3f axes = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f>(scatter).eigenvectors();
   const KdTree tree(model.points);
 
-  const SceneVoxelGrid grid(model.points, model.step);
+  const Eigen::Vector3f extents = principalExtents(model, axes);
+  const SceneVoxelGrid grid(model.points, 0.5f * slideSpacing(model, extents));
 
   NearSymmetries twins;
   std::vector<Eigen::Isometry3f> slid;
@@ -139,7 +148,7 @@ NearSymmetries nearSymmetries(const PreparedModel& model) {
     turn.linear() = axes * rotation * axes.transpose();                // in the principal frame
     turn.translation() = model.centre - turn.linear() * model.centre;  // about the centroid
     Eigen::Isometry3f slid_turn = turn;
-    slideToMostOverlap(model, grid, axes, slid_turn);
+    slideToMostOverlap(model, grid, axes, extents, slid_turn);
     if (registeredNearSymmetry(model, tree, turn)) twins.turned.push_back(turn);
     if (registeredNearSymmetry(model, tree, slid_turn)) slid.push_back(slid_turn);
   }
