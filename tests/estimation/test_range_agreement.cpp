@@ -115,32 +115,47 @@ TEST(DetectorTurnedTwins, FewSwitchesLyingOnTheirProfileAreReturnedTurnedOver) {
   EXPECT_LE(turned_over, 3);
 }
 
+// Each of the first `piles` piles of a part, detected with the default settings, and its score.
+struct ScoredPile {
+  DetectionResult result;
+  evaluation::Score score;
+};
+
+std::vector<ScoredPile> detectedPiles(const std::string& part_name, uint64_t piles) {
+  const simulation::Part part = simulation::makePart(part_name);
+  const PreparedModel& model = cachedModel(part_name);
+  std::vector<ScoredPile> scored;
+  for (uint64_t seed = 1; seed <= piles; ++seed) {
+    const Pile pile = pileOf(part_name, seed);
+    DetectorParams params;
+    params.scene.crop = pile.crop;
+    ScoredPile s{Detector(model, params).detect(pile.truth.cloud), {}};
+    s.score = evaluation::scoreDetections(s.result.detections, pile.truth.objects, part.symmetry,
+                                          {0.1 * model.diameter, 10.0});
+    scored.push_back(std::move(s));
+  }
+  return scored;
+}
+
 // What the range cannot tell apart comes last: a detection whose turned twin explains the range
 // about as well, or whose fit covers little of what the camera should see, is not `sure` and is
 // returned after the sure ones. On these switch piles the wrong detections are such.
 TEST(DetectorTurnedTwins, DetectionsTheRangeIsNotSureOfComeLast) {
-  const simulation::Part part = simulation::makePart("switch");
-  const PreparedModel& model = cachedModel("switch");
+  const SelectionParams defaults;
   int wrong_sure = 0, wrong_unsure = 0, right_sure = 0;
-  for (uint64_t seed = 1; seed <= 6; ++seed) {
-    const Pile pile = pileOf("switch", seed);
-    DetectorParams params;
-    params.scene.crop = pile.crop;
-    const DetectionResult result = Detector(model, params).detect(pile.truth.cloud);
-    const evaluation::Score score =
-        evaluation::scoreDetections(result.detections, pile.truth.objects, part.symmetry, {0.1 * model.diameter, 10.0});
-    for (std::size_t k = 0; k < result.detections.size(); ++k) {
-      const Detection& d = result.detections[k];
+  for (const ScoredPile& pile : detectedPiles("switch", 6)) {
+    const std::vector<Detection>& detections = pile.result.detections;
+    for (std::size_t k = 0; k < detections.size(); ++k) {
+      const Detection& d = detections[k];
       if (k > 0) {
-        EXPECT_FALSE(d.sure && !result.detections[k - 1].sure) << "a sure detection after an unsure one";
+        EXPECT_FALSE(d.sure && !detections[k - 1].sure) << "a sure detection after an unsure one";
       }
-      EXPECT_EQ(d.sure,
-                d.twin_margin >= params.selection.sure_twin_margin && d.coverage >= params.selection.sure_coverage);
+      EXPECT_EQ(d.sure, d.twin_margin >= defaults.sure_twin_margin && d.coverage >= defaults.sure_coverage);
       // Poses leave the detector orthonormal: what reads them back (JSON, the robot) checks.
       EXPECT_LT(
           (d.T_camera_model.linear() * d.T_camera_model.linear().transpose() - Eigen::Matrix3f::Identity()).norm(),
           1e-5f);
-      const bool right = score.matched_object[k] >= 0;
+      const bool right = pile.score.matched_object[k] >= 0;
       wrong_sure += !right && d.sure ? 1 : 0;
       wrong_unsure += !right && !d.sure ? 1 : 0;
       right_sure += right && d.sure ? 1 : 0;
@@ -158,21 +173,13 @@ TEST(DetectorTurnedTwins, DetectionsTheRangeIsNotSureOfComeLast) {
 // millimetres; only its short leg, at the other end, tells the two apart. Such a pose must not
 // come out sure: its slid twin explains the range about as well or better.
 TEST(DetectorTurnedTwins, ALongBracketTurnedEndForEndIsNotSure) {
-  const simulation::Part part = simulation::makePart("l_bracket_long");
-  const PreparedModel& model = cachedModel("l_bracket_long");
   int wrong_sure = 0, right_sure = 0, right = 0;
-  for (uint64_t seed = 1; seed <= 14; ++seed) {
-    const Pile pile = pileOf("l_bracket_long", seed);
-    DetectorParams params;
-    params.scene.crop = pile.crop;
-    const DetectionResult result = Detector(model, params).detect(pile.truth.cloud);
-    const evaluation::Score score =
-        evaluation::scoreDetections(result.detections, pile.truth.objects, part.symmetry, {0.1 * model.diameter, 10.0});
-    for (std::size_t k = 0; k < result.detections.size(); ++k) {
-      const bool is_right = score.matched_object[k] >= 0;
+  for (const ScoredPile& pile : detectedPiles("l_bracket_long", 14)) {
+    for (std::size_t k = 0; k < pile.result.detections.size(); ++k) {
+      const bool is_right = pile.score.matched_object[k] >= 0;
       right += is_right ? 1 : 0;
-      wrong_sure += !is_right && result.detections[k].sure ? 1 : 0;
-      right_sure += is_right && result.detections[k].sure ? 1 : 0;
+      wrong_sure += !is_right && pile.result.detections[k].sure ? 1 : 0;
+      right_sure += is_right && pile.result.detections[k].sure ? 1 : 0;
     }
   }
   const std::string counts = std::to_string(right_sure) + " of " + std::to_string(right) + " right detections and " +
