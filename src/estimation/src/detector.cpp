@@ -84,19 +84,21 @@ Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model,
                          const Refined& pick, const NearSymmetries& near_symmetries, float tolerance,
                          int max_iterations, int threads) {
   Judged judged_pick{pick, rangeAgreement(model, pick.detection.T_camera_model, map, tolerance), true};
-  std::vector<Eigen::Isometry3f> turns = near_symmetries.turned;
-  turns.insert(turns.end(), near_symmetries.slid.begin(), near_symmetries.slid.end());
-  std::vector<Judged> twins(turns.size());
+  const std::size_t turned = near_symmetries.turned.size();
+  const auto turn = [&](std::size_t t) -> const Eigen::Isometry3f& {
+    return t < turned ? near_symmetries.turned[t] : near_symmetries.slid[t - turned];
+  };
+  std::vector<Judged> twins(turned + near_symmetries.slid.size());
   // The twins are independent: judged side by side (refine() is const and thread-safe), with a
   // third of the iterations: registered onto the model, each starts within millimetres of its fit.
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (std::size_t t = 0; t < turns.size(); ++t) {
-    twins[t] = judgedTwin(refiner, model, map, pick.detection.T_camera_model * turns[t], tolerance, max_iterations / 3,
+  for (std::size_t t = 0; t < twins.size(); ++t) {
+    twins[t] = judgedTwin(refiner, model, map, pick.detection.T_camera_model * turn(t), tolerance, max_iterations / 3,
                           judged_pick.consistency() * 4 / 5);
   }
   const Judged* best = &judged_pick;
   int to_beat = judged_pick.consistency() + std::max(3, judged_pick.agreement.visible / 50);
-  for (std::size_t t = 0; t < near_symmetries.turned.size(); ++t) {
+  for (std::size_t t = 0; t < turned; ++t) {
     if (twins[t].consistency() > to_beat) best = &twins[t], to_beat = twins[t].consistency();
   }
   int runner_up = best == &judged_pick ? std::numeric_limits<int>::min() : judged_pick.consistency();
