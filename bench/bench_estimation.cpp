@@ -42,6 +42,8 @@ struct Options {
   bool explain = false;
 };
 
+using bench::Nearest;
+using bench::nearestObject;
 using bench::splitCommas;
 
 Options parse(int argc, char** argv) {
@@ -117,20 +119,6 @@ std::size_t validPoints(const io::PointCloud& cloud) {
   return n;
 }
 
-// The nearest part to a pose and the error against it.
-struct Nearest {
-  int object = -1;
-  simulation::PoseError error{1e9, 0.0};
-};
-Nearest nearestObject(const Eigen::Isometry3f& pose, const simulation::PileScene& scene, const simulation::Part& part) {
-  Nearest nearest;
-  for (std::size_t j = 0; j < scene.objects.size(); ++j) {
-    const auto e = simulation::poseError(pose.cast<double>(), scene.objects[j].T_camera_object, part.symmetry);
-    if (e.translation < nearest.error.translation) nearest = {static_cast<int>(j), e};
-  }
-  return nearest;
-}
-
 // The detector's own measure of a pose (range_agreement.hpp), for a wrong detection and for the
 // part's true pose, before and after ICP: tells a search failure (the truth agrees better) from a
 // scoring one (it does not), and shows ICP drifting off the truth.
@@ -161,7 +149,7 @@ void explain(const estimation::DetectionResult& result, const evaluation::Score&
               result.candidates, result.seen_through_rejected, result.scene_boundary_points);
   for (std::size_t k = 0; k < result.detections.size(); ++k) {
     const estimation::Detection& d = result.detections[k];
-    const Nearest n = nearestObject(d.T_camera_model, scene, part);
+    const Nearest n = nearestObject(d.T_camera_model, scene.objects, part.symmetry);
     std::printf(
         "    detection %2zu %-5s part %2d: %6.1f mm %5.1f deg; score %.2f coverage %.2f seen through %.2f"
         " twin margin %.3f\n",

@@ -1,8 +1,12 @@
 #pragma once
 // Small helpers shared by the benchmark executables.
+#include <Eigen/Geometry>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "binpick/simulation/parts.hpp"
+#include "binpick/simulation/pile.hpp"
 
 namespace binpick::bench {
 
@@ -14,6 +18,23 @@ inline std::vector<std::string> splitCommas(const std::string& text) {
     if (!item.empty()) out.push_back(item);
   }
   return out;
+}
+
+// The part whose pose lies nearest a detected one (by the distance of their origins) and the
+// error against it, symmetry folded: what a wrong detection was near.
+struct Nearest {
+  int object = -1;
+  simulation::PoseError error{1e9, 0.0};
+};
+
+inline Nearest nearestObject(const Eigen::Isometry3f& pose, const std::vector<simulation::ObjectTruth>& objects,
+                             const simulation::Symmetry& symmetry) {
+  Nearest nearest;
+  for (std::size_t j = 0; j < objects.size(); ++j) {
+    const auto e = simulation::poseError(pose.cast<double>(), objects[j].T_camera_object, symmetry);
+    if (e.translation < nearest.error.translation) nearest = {static_cast<int>(j), e};
+  }
+  return nearest;
 }
 
 }  // namespace binpick::bench

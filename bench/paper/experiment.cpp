@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "bench_support.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick_method.hpp"
 
@@ -11,22 +12,16 @@ namespace {
 
 double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 
-// For a wrong detection: the object whose centre lies nearest, the offset of the detection from
-// it in the part's frame (mm) and the angle between them (degrees; no symmetry folded).
-std::string nearestObject(const estimation::Detection& d, const std::vector<simulation::ObjectTruth>& truth,
-                          const evaluation::Score& score) {
-  int nearest = -1;
-  double best = 1e9;
-  for (std::size_t i = 0; i < truth.size(); ++i) {
-    const double distance =
-        (truth[i].T_camera_object.translation() - d.T_camera_model.translation().cast<double>()).norm();
-    if (distance < best) best = distance, nearest = static_cast<int>(i);
-  }
-  if (nearest < 0) return "";
-  const simulation::ObjectTruth& o = truth[nearest];
+// For a wrong detection: the nearest part, whether another detection found it, and the offset
+// of the detection from it in the part's frame (mm) and the turn between them (no symmetry folded).
+std::string nearestPart(const estimation::Detection& d, const std::vector<simulation::ObjectTruth>& truth,
+                        const simulation::Part& part, const evaluation::Score& score) {
+  const Nearest nearest = nearestObject(d.T_camera_model, truth, part.symmetry);
+  if (nearest.object < 0) return "";
+  const simulation::ObjectTruth& o = truth[static_cast<std::size_t>(nearest.object)];
   const Eigen::Isometry3d offset = o.T_camera_object.inverse() * d.T_camera_model.cast<double>();
   const Eigen::Vector3d mm = offset.translation() * 1000.0;
-  const auto found_by = std::find(score.matched_object.begin(), score.matched_object.end(), nearest);
+  const auto found_by = std::find(score.matched_object.begin(), score.matched_object.end(), nearest.object);
   const std::string found = found_by == score.matched_object.end()
                                 ? "not found"
                                 : "found by " + std::to_string(found_by - score.matched_object.begin());
@@ -35,13 +30,14 @@ std::string nearestObject(const estimation::Detection& d, const std::vector<simu
   std::snprintf(text, sizeof text,
                 "; nearest object %d (%.0f%% visible, %s): offset (%.1f, %.1f, %.1f) mm, %.0f deg about (%.2f, %.2f, "
                 "%.2f)",
-                nearest, 100.0 * o.visible_fraction, found.c_str(), mm.x(), mm.y(), mm.z(), turn.angle() * 180.0 / M_PI,
-                turn.axis().x(), turn.axis().y(), turn.axis().z());
+                nearest.object, 100.0 * o.visible_fraction, found.c_str(), mm.x(), mm.y(), mm.z(),
+                turn.angle() * 180.0 / M_PI, turn.axis().x(), turn.axis().y(), turn.axis().z());
   return text;
 }
 
 std::vector<std::string> explained(const std::vector<estimation::Detection>& detections,
-                                   const std::vector<simulation::ObjectTruth>& truth, const evaluation::Score& score) {
+                                   const std::vector<simulation::ObjectTruth>& truth, const simulation::Part& part,
+                                   const evaluation::Score& score) {
   std::vector<std::string> lines;
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const estimation::Detection& d = detections[k];
@@ -50,7 +46,7 @@ std::vector<std::string> explained(const std::vector<estimation::Detection>& det
     std::snprintf(line, sizeof line, "detection %2zu %s: score %.2f coverage %.2f seen through %.2f twin margin %.3f%s",
                   k, right ? "right" : "WRONG", d.score, d.coverage, d.seen_through, d.twin_margin,
                   d.sure ? " sure" : "");
-    lines.emplace_back(std::string(line) + (right ? "" : nearestObject(d, truth, score)));
+    lines.emplace_back(std::string(line) + (right ? "" : nearestPart(d, truth, part, score)));
   }
   return lines;
 }
@@ -124,7 +120,7 @@ SceneOutcome runMethod(const PoseMethod& method, const BenchScene& scene, CloudI
   o.ms = stopwatch.elapsedMs();
 
   const evaluation::Score score = scorePoses(poses, scene.truth.objects, part, diameter);
-  o.explanation = explained(details, scene.truth.objects, score);
+  o.explanation = explained(details, scene.truth.objects, part, score);
   o.findable = score.findable;
   o.found = score.found;
   o.detections = static_cast<int>(poses.size());
