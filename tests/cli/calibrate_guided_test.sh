@@ -74,8 +74,9 @@ exec 3>&-
 # The second is taken of the bin without the board.
 "$binpick" robot-client --port "$port" --orientation euler_zyx --send "$(pose 1);$(pose 1)" \
   >>"$work/robot1.log" 2>&1 || fail "robot-client exited $?: $(cat "$work/robot1.log")"
-expect_lines "$work/robot1.log" "PING ok" "STATUS ok 0 0 5" "POSE ok 1 5" "POSE ok 2 5" \
-  "POSE board_not_found 2 5"
+expect_lines "$work/robot1.log" "PING ok" "STATUS ok: state waiting, 0 views accepted, 5 wanted" \
+  "POSE ok: 1 views accepted, 5 wanted" "POSE ok: 2 views accepted, 5 wanted" \
+  "POSE board_not_found: 2 views accepted, 5 wanted"
 kill -TERM "$session"
 wait "$session"
 code=$?
@@ -115,7 +116,8 @@ start_session "$work/camera2" "$work/session2.log" --framing binary --byte-order
 "$binpick" robot-client --port "$port" --orientation euler_zyx --framing binary --byte-order little \
   --send "STATUS;$(pose 2);$(pose 3);$(pose 4)" >"$work/robot2.log" 2>&1 ||
   fail "robot-client exited $?: $(cat "$work/robot2.log")"
-expect_lines "$work/robot2.log" "STATUS ok 0 2 5" "POSE ok 3 5" "POSE ok 4 5" "POSE ok 5 5"
+expect_lines "$work/robot2.log" "STATUS ok: state waiting, 2 views accepted, 5 wanted" \
+  "POSE ok: 3 views accepted, 5 wanted" "POSE ok: 4 views accepted, 5 wanted" "POSE ok: 5 views accepted, 5 wanted"
 wait "$session"
 code=$?
 session=""

@@ -27,13 +27,15 @@ port=$(cat "$work/port" 2>/dev/null)
 
 "$binpick" robot-client --port "$port" --cycles 2 --orientation euler_zyx >"$work/client.log" 2>&1 ||
   fail "robot-client exited $?: $(cat "$work/client.log")"
-grep -q "^cycle 1: TRIGGER ok 1" "$work/client.log" || fail "no first cycle: $(cat "$work/client.log")"
+grep -q "^cycle 1: TRIGGER ok: cycle 1 (" "$work/client.log" || fail "no first cycle: $(cat "$work/client.log")"
 grep -q "^cycle 2: [1-9][0-9]* picks" "$work/client.log" || fail "no picks in cycle 2: $(cat "$work/client.log")"
-grep -q "NEXT ok 0 .* mm, euler_zyx" "$work/client.log" || fail "no last pick with its pose"
+pick="NEXT ok: 0 remaining, object [0-9]*, grasp [0-9]*, at x [-0-9.]* y [-0-9.]* z [-0-9.]* mm, euler_zyx"
+grep -q "$pick A [-0-9.]* B [-0-9.]* C [-0-9.]* (" "$work/client.log" || fail "no last pick with its pose"
 
 "$binpick" robot-client --port "$port" --send "PING;STATUS;MODEL,l_bracket;MODEL,nut;FAILED" >"$work/send.log" 2>&1 ||
   fail "robot-client --send exited $?"
-for expected in "PING ok" "STATUS ok 0 0 2" "MODEL ok 0" "MODEL unknown_model" "FAILED ok"; do
+for expected in "PING ok (" "STATUS ok: state idle, model 0, 2 cycles done (" "MODEL ok: model 0 (" \
+  "MODEL unknown_model: model 0 (" "FAILED ok: object [0-9]* ("; do
   grep -q "^$expected" "$work/send.log" || fail "--send: no '$expected' in $(cat "$work/send.log")"
 done
 

@@ -150,6 +150,12 @@ std::string encodeAsciiRequest(const Request& request, const CodecParams& params
 
 namespace {
 
+// NEXT's integers: picks remaining, object id, grasp id (docs/robot-protocol.md, "Reply shapes").
+// A robot finds the pick's pose after them, so a pick always has all three.
+constexpr std::size_t kPickIntegers = 3;
+
+bool carriesPick(const Reply& reply) { return reply.command == Command::NextPick && reply.status == Status::Ok; }
+
 // How many decimals a reply gives up, in turn, when it is too long at full precision: the
 // orientation first (a quaternion's fifth decimal moves a point 200 mm from the flange by
 // ~2 um, a position's second decimal by 10 um), and never more than these.
@@ -205,9 +211,44 @@ Eigen::Isometry3d parsePose(std::string_view line, const std::vector<std::string
   return *T_base_tool;
 }
 
+std::vector<int32_t> parseIntegers(std::string_view line, const std::vector<std::string_view>& fields) {
+  std::vector<int32_t> integers;
+  for (std::string_view field : fields) {
+    const std::optional<int32_t> integer = parseNumber<int32_t>(field);
+    if (!integer) malformed(line, "an integer field is no int32");
+    integers.push_back(*integer);
+  }
+  return integers;
+}
+
+// A pick is NEXT's three integers, then x, y, z and the convention's values. The integers are
+// counted by the command, never from the line's length: a pick sent in a 3-value convention and
+// read in the 4-value one (or the other way round) would otherwise come out with every field
+// shifted by one, the grasp id read as x.
+void readPick(std::string_view line, const std::vector<std::string_view>& numbers, core::Orientation orientation,
+              Reply& reply) {
+  if (numbers.size() < kPickIntegers) {
+    malformed(line, "NEXT ok carries 3 integers (picks remaining, object id, grasp id) and the pose (got " +
+                        std::to_string(numbers.size()) + " numbers)");
+  }
+  const std::size_t poseValues = numbers.size() - kPickIntegers;
+  const std::size_t expected = 3 + static_cast<std::size_t>(core::orientationValueCount(orientation));
+  if (poseValues != expected) {
+    malformed(line, "NEXT carries " + std::to_string(poseValues) + " pose values after its 3 integers; the " +
+                        core::orientationName(orientation) + " convention has " + std::to_string(expected) +
+                        ": is --orientation the cell's robot.orientation?");
+  }
+  const auto poseStart = numbers.begin() + static_cast<std::ptrdiff_t>(kPickIntegers);
+  reply.integers = parseIntegers(line, {numbers.begin(), poseStart});
+  reply.T_base_tool = parsePose(line, {poseStart, numbers.end()}, orientation);
+}
+
 }  // namespace
 
 std::optional<std::string> encodeAsciiReply(const Reply& reply, const CodecParams& params) {
+  // A pick with fewer integers would put its x where a robot (and ReplyDecoder) reads the grasp
+  // id: the line cannot carry it, as one too long cannot.
+  if (reply.T_base_tool && reply.integers.size() != kPickIntegers) return std::nullopt;
   std::string head =
       std::string(commandKeyword(reply.command)) + "," + std::to_string(static_cast<int32_t>(reply.status));
   for (int32_t integer : reply.integers) head += "," + std::to_string(integer);
@@ -235,21 +276,16 @@ Reply decodeAsciiReplyLine(std::string_view line, const CodecParams& params) {
   const std::optional<Status> status = code ? statusFromCode(*code) : std::nullopt;
   if (!status) malformed(line, "the status is no status code");
   reply.status = *status;
-  const std::size_t numbers = fields.size() - 2;
-  const std::size_t poseValues = 3 + static_cast<std::size_t>(core::orientationValueCount(params.orientation));
-  const bool hasPose = numbers > kMaxReplyIntegers;
-  if (hasPose && (numbers < poseValues || numbers - poseValues > kMaxReplyIntegers)) {
-    malformed(line, "neither up to 3 integers nor up to 3 integers and a pose");
-  }
-  const std::size_t integers = hasPose ? numbers - poseValues : numbers;
-  for (std::size_t i = 0; i < integers; ++i) {
-    const std::optional<int32_t> integer = parseNumber<int32_t>(fields[2 + i]);
-    if (!integer) malformed(line, "an integer field is no int32");
-    reply.integers.push_back(*integer);
-  }
-  if (hasPose) {
-    reply.T_base_tool =
-        parsePose(line, {fields.begin() + 2 + static_cast<std::ptrdiff_t>(integers), fields.end()}, params.orientation);
+  const std::vector<std::string_view> numbers(fields.begin() + 2, fields.end());
+  if (carriesPick(reply)) {
+    readPick(line, numbers, params.orientation, reply);
+  } else {
+    if (numbers.size() > kMaxReplyIntegers) {
+      malformed(line, std::string(commandKeyword(reply.command)) + " " + statusName(reply.status) +
+                          " carries at most 3 integers and no pose (got " + std::to_string(numbers.size()) +
+                          " numbers)");
+    }
+    reply.integers = parseIntegers(line, numbers);
   }
   try {
     checkReply(reply);

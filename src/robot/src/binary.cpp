@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "binpick/core/error.hpp"
 #include "codec.hpp"
@@ -50,6 +51,38 @@ Decoded failure(Status error, Command command, int32_t rawCommand, std::string d
 }
 
 [[noreturn]] void malformed(const std::string& problem) { throw core::Error("malformed binary reply: " + problem); }
+
+constexpr const char* kWhichConvention = "is --orientation the cell's robot.orientation?";
+
+std::string fieldsText(const int32_t* fields, std::size_t count) {
+  std::string text;
+  for (std::size_t i = 0; i < count; ++i) text += (i == 0 ? "" : ", ") + std::to_string(fields[i]);
+  return text;
+}
+
+// The binary framing has room for 4 orientation values whatever the convention, so a pick sent
+// in another convention keeps its layout and only its values tell: a 3-value convention leaves
+// the fourth field 0, and a quaternion is of unit length up to its grid (each value within one
+// unit of 1 / orientation_scale, so the length within two). Either read in the other convention
+// is almost always caught here; a quaternion whose z is 0 can still pass for three angles.
+void requireOrientationOfConvention(const BinaryPoseFields& pose, const CodecParams& params) {
+  const int32_t* orientation = pose.data() + 3;
+  if (params.orientation != core::Orientation::Quaternion) {
+    if (orientation[3] == 0) return;
+    malformed("NEXT's fourth orientation field, unused in the " + core::orientationName(params.orientation) +
+              " convention (3 values), holds " + std::to_string(orientation[3]) + ": " + kWhichConvention);
+  }
+  Eigen::Vector4d units;
+  for (int k = 0; k < 4; ++k) units[k] = orientation[k];
+  const double length = units.norm() / params.orientation_scale;
+  if (length == 0.0) return;  // a zero quaternion: poseFromBinaryFields names it
+  const double tolerance = 2.0 / params.orientation_scale;
+  if (std::abs(length - 1.0) <= tolerance) return;
+  char measured[32];
+  std::snprintf(measured, sizeof(measured), "%.6g", length);
+  malformed("NEXT's quaternion (fields " + fieldsText(orientation, 4) + ") has length " + measured +
+            ", not 1: " + kWhichConvention);
+}
 
 }  // namespace
 
@@ -117,6 +150,7 @@ Reply decodeBinaryReply(const char* bytes, const CodecParams& params) {
   if (reply.command == Command::NextPick && reply.status == Status::Ok) {
     BinaryPoseFields pose{};
     std::copy(fields.begin() + kFirstPosition, fields.end(), pose.begin());
+    requireOrientationOfConvention(pose, params);
     std::string problem;
     reply.T_base_tool = poseFromBinaryFields(pose, params, problem);
     if (!reply.T_base_tool) malformed(problem);

@@ -50,10 +50,72 @@ TEST(ProtocolAsciiReply, KnownRepliesAreTheseExactLines) {
   const Eigen::Isometry3d turned = pose(0, 0, -0.000001, test::rotationZ(90));  // -0.001 mm
   EXPECT_EQ(encodeReply(pick(turned, {0, 3, 0}), withOrientation(core::Orientation::EulerZYX)),
             "NEXT,0,0,3,0,0.00,0.00,0.00,90.00000,0.00000,0.00000\r\n");  // no "-0.00"
-  EXPECT_EQ(encodeReply(pick(turned, {}), withOrientation(core::Orientation::FixedXYZ)),
-            "NEXT,0,0.00,0.00,0.00,0.00000,0.00000,90.00000\r\n");
-  EXPECT_EQ(encodeReply(pick(turned, {}), withOrientation(core::Orientation::RotationVector)),
-            "NEXT,0,0.00,0.00,0.00,0.00000,0.00000,1.57080\r\n");
+  EXPECT_EQ(encodeReply(pick(turned, {0, 4, 1}), withOrientation(core::Orientation::FixedXYZ)),
+            "NEXT,0,0,4,1,0.00,0.00,0.00,0.00000,0.00000,90.00000\r\n");
+  EXPECT_EQ(encodeReply(pick(turned, {0, 4, 1}), withOrientation(core::Orientation::RotationVector)),
+            "NEXT,0,0,4,1,0.00,0.00,0.00,0.00000,0.00000,1.57080\r\n");
+}
+
+// A robot reads a pick's pose after NEXT's three integers: a pick without all three would put
+// x where the grasp id belongs, so it is not sent as one.
+TEST(ProtocolAsciiReply, APickGoesOutWithItsThreeIntegersOrNotAtAll) {
+  const Eigen::Isometry3d T = pose(0.1, -0.2, 0.3, Eigen::Matrix3d::Identity());
+  for (const std::vector<int32_t>& integers : {std::vector<int32_t>{}, {2}, {2, 17}}) {
+    EXPECT_EQ(encodeReply(pick(T, integers), CodecParams{}), "NEXT,8\r\n");
+    EXPECT_FALSE(encodeReplyIfItFits(pick(T, integers), CodecParams{}));
+  }
+}
+
+// The report's line: a KUKA cell (euler_zyx) and a robot reading quaternions took the grasp id
+// for x. The fields are read by NEXT's shape, and a pose of the wrong length is refused.
+TEST(ProtocolAsciiReply, APickIsReadByNextsShapeNeverShifted) {
+  const std::string line = "NEXT,0,2,6,1,578.57,101.74,8.46,-96.93005,-0.00920,-179.89643\r\n";
+  const Reply kuka = decodeReply(line, withOrientation(core::Orientation::EulerZYX));
+  EXPECT_EQ(kuka.integers, (std::vector<int32_t>{2, 6, 1}));
+  ASSERT_TRUE(kuka.T_base_tool);
+  EXPECT_TRUE(kuka.T_base_tool->translation().isApprox(Eigen::Vector3d(0.57857, 0.10174, 0.00846), 1e-12));
+  const std::vector<double> abc = core::orientationValues(kuka.T_base_tool->linear(), core::Orientation::EulerZYX);
+  EXPECT_NEAR(abc[0], -96.93005, 1e-9);
+  EXPECT_NEAR(abc[1], -0.00920, 1e-9);
+  EXPECT_NEAR(abc[2], -179.89643, 1e-9);
+  const auto readAs = [&](core::Orientation orientation, const std::string& text) {
+    return [=] { decodeReply(text, withOrientation(orientation)); };
+  };
+  EXPECT_TRUE(test::throwsNaming(readAs(core::Orientation::Quaternion, line),
+                                 "NEXT carries 6 pose values after its 3 integers; the quaternion convention has 7: "
+                                 "is --orientation the cell's robot.orientation?"));
+  const std::string quaternionLine = "NEXT,0,2,6,1,578.57,101.74,8.46,0.04136,-0.47393,0.87939,0.00000\r\n";
+  for (core::Orientation threeValues : {core::Orientation::EulerZYX, core::Orientation::FixedXYZ,
+                                        core::Orientation::RotationVector, core::Orientation::EulerXYZ}) {
+    EXPECT_TRUE(test::throwsNaming(readAs(threeValues, quaternionLine),
+                                   "NEXT carries 7 pose values after its 3 integers; the " +
+                                       core::orientationName(threeValues) + " convention has 6"));
+  }
+  // Fewer than NEXT's integers, or a pick that lost one: never read with the integers guessed.
+  EXPECT_TRUE(
+      test::throwsNaming(readAs(core::Orientation::Quaternion, "NEXT,0,2,6\r\n"), "NEXT ok carries 3 integers"));
+  EXPECT_TRUE(test::throwsNaming(readAs(core::Orientation::Quaternion, "NEXT,0,2,6,578.57,101.74,8.46,1,0,0,0\r\n"),
+                                 "NEXT carries 6 pose values"));
+}
+
+// In every convention a pick sent in any other one with another value count is refused, and
+// one with the same count reads with the integers in place.
+TEST(ProtocolAsciiReply, EveryConventionRefusesPicksOfAnotherLength) {
+  std::mt19937 random(34);
+  for (core::Orientation sent : kAll) {
+    for (core::Orientation read : kAll) {
+      const Eigen::Isometry3d T = test::randomPose(random, 2.0);
+      const std::string line = encodeReply(pick(T, {4, 9, 2}), withOrientation(sent));
+      const bool sameLength = core::orientationValueCount(sent) == core::orientationValueCount(read);
+      if (sameLength) {
+        EXPECT_EQ(decodeReply(line, withOrientation(read)).integers, (std::vector<int32_t>{4, 9, 2})) << line;
+      } else {
+        EXPECT_TRUE(test::throwsNaming([&] { decodeReply(line, withOrientation(read)); },
+                                       "is --orientation the cell's robot.orientation?"))
+            << line;
+      }
+    }
+  }
 }
 
 TEST(ProtocolAsciiReply, RepliesComeBackFromTheirText) {
@@ -137,12 +199,13 @@ TEST(ProtocolAsciiReply, MalformedRepliesThrowNamingTheProblem) {
   EXPECT_TRUE(test::throwsNaming(decode("PONG,0\r\n"), "unknown keyword"));
   EXPECT_TRUE(test::throwsNaming(decode("PING\r\n"), "no status"));
   EXPECT_TRUE(test::throwsNaming(decode("PING,15\r\n"), "no status code"));
-  EXPECT_TRUE(test::throwsNaming(decode("PING,0,1,2,3,4\r\n"), "neither up to 3 integers"));
+  EXPECT_TRUE(test::throwsNaming(decode("PING,0,1,2,3,4\r\n"), "PING ok carries at most 3 integers and no pose"));
   EXPECT_TRUE(test::throwsNaming(decode("STATUS,0,1.5\r\n"), "no int32"));
-  EXPECT_TRUE(test::throwsNaming(decode("TRIGGER,0,1,0,0,0,1,0,0,0\r\n"), "T_base_tool must be empty"));
-  EXPECT_TRUE(test::throwsNaming(decode("NEXT,0\r\n"), "T_base_tool is missing"));
-  EXPECT_TRUE(test::throwsNaming(decode("NEXT,0,1,2,x,1,0,0,0\r\n"), "no finite number"));
-  EXPECT_TRUE(test::throwsNaming(decode("NEXT,0,1,2,3,0,0,0,0\r\n"), "zero quaternion"));
+  EXPECT_TRUE(test::throwsNaming(decode("TRIGGER,0,1,0,0,0,1,0,0,0\r\n"), "TRIGGER ok carries at most 3 integers"));
+  EXPECT_TRUE(test::throwsNaming(decode("NEXT,0\r\n"), "NEXT ok carries 3 integers"));
+  EXPECT_TRUE(test::throwsNaming(decode("NEXT,0,1,2,3,x,0,0,1,0,0,0\r\n"), "no finite number"));
+  EXPECT_TRUE(test::throwsNaming(decode("NEXT,0,1,2,x,0,0,0,1,0,0,0\r\n"), "no int32"));
+  EXPECT_TRUE(test::throwsNaming(decode("NEXT,0,1,2,3,0,0,0,0,0,0,0\r\n"), "zero quaternion"));
   EXPECT_TRUE(test::throwsNaming(decode("PING,0" + std::string(80, ' ') + "\r\n"), "longer than 80"));
   // A malformed line is consumed: the next one still decodes.
   ReplyDecoder decoder(params);

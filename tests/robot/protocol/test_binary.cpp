@@ -147,7 +147,36 @@ TEST(ProtocolBinary, MalformedRepliesThrowNamingTheProblem) {
   CodecParams euler = binary(ByteOrder::Big, core::Orientation::EulerZYX);
   std::string fourth = bytes({0, 0, 0, 4, 0, 0, 0, 0}) + std::string(40, '\0');
   fourth[kBinaryReplySize - 1] = 1;
-  EXPECT_TRUE(test::throwsNaming([&] { decodeReply(fourth, euler); }, "unused orientation field"));
+  EXPECT_TRUE(test::throwsNaming([&] { decodeReply(fourth, euler); }, "fourth orientation field"));
+}
+
+// Every convention fills the same fields, so a pick sent in another one is told by its values: a
+// fourth value set where three are read, a quaternion far from unit length where four are.
+TEST(ProtocolBinary, APickSentInAnotherConventionIsRefusedNamingIt) {
+  std::mt19937 random(42);
+  for (ByteOrder order : {ByteOrder::Little, ByteOrder::Big}) {
+    for (core::Orientation sent : kAll) {
+      for (core::Orientation read : kAll) {
+        if (core::orientationValueCount(sent) == core::orientationValueCount(read)) continue;
+        for (int i = 0; i < 100; ++i) {
+          const Eigen::Isometry3d T = test::randomPose(random, 2.0);
+          const std::string message =
+              encodeReply(Reply{Command::NextPick, Status::Ok, {4, 9, 2}, T}, binary(order, sent));
+          EXPECT_TRUE(test::throwsNaming([&] { decodeReply(message, binary(order, read)); },
+                                         "is --orientation the cell's robot.orientation?"))
+              << core::orientationName(sent) << " read as " << core::orientationName(read);
+        }
+      }
+    }
+  }
+  // A quaternion on the grid of its scale is unit to within two units: read as it was sent.
+  CodecParams coarse = binary(ByteOrder::Big);
+  coarse.orientation_scale = 100.0;
+  for (int i = 0; i < 1000; ++i) {
+    const std::string message =
+        encodeReply(Reply{Command::NextPick, Status::Ok, {4, 9, 2}, test::randomPose(random, 2.0)}, coarse);
+    EXPECT_NO_THROW(decodeReply(message, coarse));
+  }
 }
 
 TEST(ProtocolBinary, ParamsAreCheckedNamingTheField) {

@@ -179,13 +179,17 @@ class RequestDecoder {
 // worst case, three integers of 99999 and a pose at 99 m, fits with 0.1 mm and 1e-3
 // orientation units). A reply that still does not fit (or a binary value that overflows int32)
 // is sent as "KEYWORD,8" / status BadMessage without integers and pose: never a truncated line.
+// A pick (NEXT ok) goes out as NEXT's three integers and the pose; one with fewer integers
+// cannot be sent as ASCII (a robot would read its x as the grasp id): "NEXT,8" too. The binary
+// framing sends unused integers as 0.
 // Throws core::Error on invalid params or a malformed reply: more than kMaxReplyIntegers
 // integers, a pose other than on NEXT with status Ok (the binary framing could not tell it
 // from none), a NEXT Ok without a pose, or a non-finite pose. Stateless: thread-safe.
 std::string encodeReply(const Reply& reply, const CodecParams& params);
 // encodeReply without the bad_message stand-in: nothing when the reply does not fit the framing
-// (ASCII line too long at every allowed precision, binary value beyond int32). For a sender
-// that must know whether the robot would get what it was meant to (a pick handed out is used up).
+// (ASCII line too long at every allowed precision or a pick without its three integers, binary
+// value beyond int32). For a sender that must know whether the robot would get what it was
+// meant to (a pick handed out is used up).
 std::optional<std::string> encodeReplyIfItFits(const Reply& reply, const CodecParams& params);
 
 // The robot's side (binpick robot-client, tests): requests out, replies in. ASCII requests end
@@ -200,6 +204,13 @@ std::string encodeRequest(const Request& request, const CodecParams& params);
 // The inverse of encodeReply: pose rebuilt with rotationFromValues; "ERROR" comes back as
 // Unreadable, "UNKNOWN" and unknown binary ids as Decoded's non-enumerator commands (each only
 // with UnknownCommand or BadMessage).
+// Fields are read by the reply's command, never guessed from their count: a pick (NEXT ok) is
+// NEXT's three integers, then x, y, z and exactly the configured convention's values. A pick
+// sent in another convention throws naming both counts (ASCII: "NEXT carries 6 pose values
+// after its 3 integers; the quaternion convention has 7: ..."); in binary framing, where the
+// layout is the same for all, a set fourth orientation field in a 3-value convention, or a
+// quaternion far from unit length (beyond its grid's 2 / orientation_scale), throws the same
+// way. Other replies carry up to three integers as they come and no pose.
 // The binary framing always yields three integers (unused ones 0). A blank ASCII line is
 // skipped; a malformed message is consumed before the throw, so next() can go on with the
 // following one. Not thread-safe: one per connection.
