@@ -1,5 +1,5 @@
 // binpick calibrate hand-eye --listen --record DIR --count K (--camera ID ... | --replay DIR)
-//     [--port N] [--port-file F] [robot codec options] --calib calib.yaml --setup SETUP
+//     [--port N] [--port-file F] [--idle-timeout-s S] [robot codec options] --calib calib.yaml --setup SETUP
 //     [board options] [--method NAME] [--min-views N] [--refine] --out hand_eye.yaml
 // The guided hand-eye session: serves the robot protocol until K views are recorded in DIR (the
 // robot sends POSE at each taught pose), then runs the file mode on DIR. Ctrl-C or SIGTERM stops
@@ -62,6 +62,12 @@ GuidedServerOptions serverOptionsFrom(const Arguments& args) {
   GuidedServerOptions options;
   options.server.port = args.integer("--port").value_or(options.server.port);
   options.server.codec = codecFromArguments(args);
+  // A technician walking the robot through taught poses by hand pauses longer than a cycle does.
+  if (const auto idle_s = args.integer("--idle-timeout-s")) {
+    if (*idle_s < 0 || *idle_s > 86400)
+      throw core::Error("--idle-timeout-s must be in [0, 86400] (0: never), got " + std::to_string(*idle_s));
+    options.server.idle_timeout_ms = static_cast<int>(*idle_s * 1000);
+  }
   options.server.validate();
   options.port_file = args.value("--port-file").value_or("");
   return options;
@@ -78,9 +84,12 @@ void addGuidedSessionOptions(CLI::App& hand_eye, CLI::Option* listen) {
   CLI::Option* replay = addText(hand_eye, "--replay", "DIR", "Take the views from DIR's images, in name order");
   std::vector<CLI::Option*> guided = {
       addText(hand_eye, "--record", "DIR", "Record the views here (required; continues a session)"),
-      addInteger(hand_eye, "--count", "K", "Views to record (required, at least --min-views)"), replay,
+      addInteger(hand_eye, "--count", "K", "Views to record (required, at least --min-views)"),
+      replay,
       addInteger(hand_eye, "--port", "N", "Robot protocol port (default 50100; 0: any free port)"),
-      addText(hand_eye, "--port-file", "FILE", "Write the bound port here once listening")};
+      addText(hand_eye, "--port-file", "FILE", "Write the bound port here once listening"),
+      addInteger(hand_eye, "--idle-timeout-s", "S",
+                 "Disconnect a robot silent for this long between views (default 600; 0: never)")};
   CLI::Option_group& camera_group = addCameraOptions(hand_eye);
   CLI::Option* camera = camera_group.get_option("--camera");
   camera->excludes(replay);

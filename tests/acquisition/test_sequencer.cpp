@@ -223,6 +223,41 @@ TEST(CaptureSequencer, AfterAnAbortedCaptureTheProjectorIsBroughtBackToItsFirstP
   EXPECT_EQ(rig.state->shown_log.size(), 2 * rendered.images.size());
 }
 
+// The same projector, and the cycle's deadline passing while it shows pattern `cancel_at`.
+class DeadlineProjector : public SequenceProjector {
+ public:
+  DeadlineProjector(std::shared_ptr<FakeRigState> state, std::size_t sequence_length, int cancel_at,
+                    core::CancelFlag& cancel)
+      : SequenceProjector(std::move(state), sequence_length), cancel_at_(cancel_at), cancel_(cancel) {}
+  void showPattern(int index) override {
+    SequenceProjector::showPattern(index);
+    if (pulses_++ == cancel_at_) cancel_.cancel();
+  }
+
+ private:
+  int cancel_at_;
+  int pulses_ = 0;
+  core::CancelFlag& cancel_;
+};
+
+// A capture under way when its deadline passes (or the service stops) ends before the next
+// pattern, and the next capture first brings the projector back to its first pattern.
+TEST(CaptureSequencer, ACancelledCaptureStopsBeforeTheNextPatternAndTheNextOneResynchronises) {
+  Rig rig;
+  const auto& rendered = renderedPile();
+  core::CancelFlag cancel;
+  DeadlineProjector projector(rig.state, rendered.images.size(), 5, cancel);
+  CaptureSequencer sequencer(rig.camera, projector, rig.params);
+  EXPECT_THROW(sequencer.capture(rendered.patterns, nullptr, &cancel), core::Cancelled);
+  EXPECT_EQ(rig.state->shown_log.size(), 6u) << "patterns shown before the capture stopped";
+
+  const io::Capture capture = sequencer.capture(rendered.patterns);
+  ASSERT_EQ(capture.images.size(), rendered.images.size());
+  for (std::size_t i = 0; i < capture.images.size(); ++i) {
+    EXPECT_TRUE(identical(capture.images[i], rendered.images[i])) << "image " << i;
+  }
+}
+
 TEST(CaptureSequencer, RefusesAFrameOfAnotherSize) {
   Rig rig;
   rig.state->images[3] = cv::Mat(80, 100, CV_8UC1, cv::Scalar(7));

@@ -2,6 +2,7 @@
 // middle of a cycle, and refusal of bad settings.
 #include <signal.h>
 
+#include <filesystem>
 #include <fstream>
 #include <thread>
 
@@ -54,6 +55,34 @@ TEST_F(DaemonTest, ReloadsOnSighupDuringACycleWithoutDroppingTheRobot) {
   EXPECT_TRUE(notify_->waitFor("READY=1", 60s));
   EXPECT_EQ(robot.ask(request(Command::Ping)).status, Status::Ok);
   EXPECT_NE(daemonStderr().find("reload failed"), std::string::npos);
+}
+
+// A technician rewrites calib.yaml and the service is reloaded before the file is whole: the reload
+// is refused as a whole, the cell keeps its calibration and picks on, and the next reload, with the
+// file complete, is taken.
+TEST_F(DaemonTest, AReloadThatWouldLoseTheCalibrationIsRefusedAndTheCellPicksOn) {
+  const std::string calibration = pathOf("calib.yaml");
+  std::filesystem::copy_file(cellScene().calibration, calibration);
+  config_text_ = cellConfigYaml(cellScene());
+  config_text_.replace(config_text_.find(cellScene().calibration), cellScene().calibration.size(), calibration);
+  start();
+  ASSERT_TRUE(notify_->waitFor("READY=1", 60s));
+  RobotClient robot(port_);
+  ASSERT_EQ(robot.ask(request(Command::Trigger)).status, Status::Ok);
+  ASSERT_EQ(robot.ask(request(Command::NextPick)).status, Status::Ok);
+
+  std::ofstream(calibration, std::ios::trunc) << "camera: {width: 12";  // half written
+  daemon_->signal(SIGHUP);
+  EXPECT_TRUE(notify_->waitFor("READY=1", 60s));
+  EXPECT_NE(daemonStderr().find("would lose its rig calibration"), std::string::npos) << daemonStderr();
+  ASSERT_EQ(robot.ask(request(Command::Trigger)).status, Status::Ok) << "the running calibration was kept";
+  EXPECT_EQ(robot.ask(request(Command::NextPick)).status, Status::Ok);
+
+  std::filesystem::copy_file(cellScene().calibration, calibration, std::filesystem::copy_options::overwrite_existing);
+  daemon_->signal(SIGHUP);
+  EXPECT_TRUE(notify_->waitFor("READY=1", 60s));
+  EXPECT_NE(daemonStderr().find("reloaded"), std::string::npos);
+  EXPECT_EQ(robot.ask(request(Command::Trigger)).status, Status::Ok);
 }
 
 TEST_F(DaemonTest, StopsCleanlyOnSigtermInTheMiddleOfACycle) {

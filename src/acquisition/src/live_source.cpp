@@ -39,10 +39,13 @@ class LiveSource : public CaptureSource {
 
   ~LiveSource() override { shutDown(); }
 
-  io::Capture next() override {
+  std::string description() const override { return "live: " + cameraName() + ", " + projector_->description(); }
+
+ private:
+  io::Capture nextCapture(const core::CancelFlag* cancel) override {
     ensureStreaming();
     try {
-      return sequencer_.capture(params_.patterns);
+      return sequencer_.capture(params_.patterns, nullptr, cancel);
     } catch (const CaptureError& e) {
       // A lost camera is closed now and reopened by the next call; any other fault (a frame that
       // stayed lost) leaves it streaming.
@@ -55,9 +58,6 @@ class LiveSource : public CaptureSource {
     }
   }
 
-  std::string description() const override { return "live: " + cameraName() + ", " + projector_->description(); }
-
- private:
   static std::shared_ptr<spdlog::logger> log() { return detail::componentLogger("live source"); }
 
   std::string cameraName() const {

@@ -59,7 +59,14 @@ class ReplaySource : public CaptureSource {
                                             params_.loop ? ", looping" : "");
   }
 
-  io::Capture next() override {
+  std::string description() const override {
+    if (captures_.empty()) return "replay of " + params_.path + " (no capture yet)";
+    return "replay of " + params_.path + " (" + std::to_string(captures_.size()) + " capture(s))";
+  }
+
+ private:
+  io::Capture nextCapture(const core::CancelFlag* cancel) override {
+    core::throwIfCancelled(cancel, "before reading the recording");
     if (captures_.empty() && !findCaptures(params_.path)) throw core::Error("replay: " + missing_);
     if (next_ == captures_.size()) {
       if (!params_.loop) throw core::Error("replay: no more captures in " + params_.path);
@@ -71,12 +78,6 @@ class ReplaySource : public CaptureSource {
     return io::readCapture(directory, params_.threads);
   }
 
-  std::string description() const override {
-    if (captures_.empty()) return "replay of " + params_.path + " (no capture yet)";
-    return "replay of " + params_.path + " (" + std::to_string(captures_.size()) + " capture(s))";
-  }
-
- private:
   // Lists the captures; false (with missing_ saying why) when the path holds none yet.
   bool findCaptures(const std::string& path) {
     std::error_code error;

@@ -67,10 +67,12 @@ void dropLateFrames(Camera& camera) {
 
 // One whole frame of the pattern on show, re-triggering up to max_retries times. A lost
 // connection ends the capture at once: retrying cannot help until the camera is reopened.
-cv::Mat takeFrame(Camera& camera, const SequencerParams& params, const std::string& label, SequencerReport& report) {
+cv::Mat takeFrame(Camera& camera, const SequencerParams& params, const std::string& label, SequencerReport& report,
+                  const core::CancelFlag* cancel) {
   Frame frame;
   for (int attempt = 0; attempt <= params.max_retries; ++attempt) {
     if (attempt > 0) {
+      core::throwIfCancelled(cancel, "during the capture, before a retry");
       std::string reason = label + ": " + statusText(frame);
       detail::componentLogger("sequencer")->warn("retry {} of {}: {}", attempt, params.max_retries, reason);
       ++report.retries;
@@ -130,7 +132,8 @@ void CaptureSequencer::resynchroniseProjector() {
   dropLateFrames(camera_);  // a projector that triggers the camera made frames of them
 }
 
-io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, SequencerReport* report) {
+io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, SequencerReport* report,
+                                      const core::CancelFlag* cancel) {
   patterns.validate();
   resynchroniseProjector();
   const core::Stopwatch stopwatch;
@@ -145,12 +148,13 @@ io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, Sequen
   sequence_length_ = names.size();
   for (std::size_t k = 0; k < names.size(); ++k) {
     const std::string label = patternLabel(k, names[k]);
+    core::throwIfCancelled(cancel, "during the capture");  // the projector resynchronises next time
     showPattern(projector_, static_cast<int>(k), label);
     projector_position_ = k + 1;
     if (params_.order == TriggerOrder::ProjectorThenCamera && params_.settle_us > 0) {
       std::this_thread::sleep_for(std::chrono::microseconds(params_.settle_us));
     }
-    cv::Mat image = takeFrame(camera_, params_, label, out);
+    cv::Mat image = takeFrame(camera_, params_, label, out, cancel);
     checkFormat(image, capture.images.empty() ? image : capture.images.front(), label);
     capture.images.push_back(std::move(image));
     capture.metadata.frame_times_ms.push_back(stopwatch.elapsedMs());  // since the capture began, not per frame

@@ -24,10 +24,16 @@ struct CaptureAttempt {
 };
 
 // A camera fault, a lost frame, an unreadable recording: no image. The source stays usable.
-CaptureAttempt captureFrom(acquisition::CaptureSource& source) {
+// A capture cancelled at its deadline or by the stop is no image too: its robot was answered.
+CaptureAttempt captureFrom(acquisition::CaptureSource* source, const core::CancelFlag& cancel) {
   CaptureAttempt attempt;
+  if (!source) {
+    attempt.status = Status::NoImage;
+    attempt.detail = "no capture source is configured";
+    return attempt;
+  }
   try {
-    attempt.capture = source.next();
+    attempt.capture = source->next(&cancel);
   } catch (const std::exception& e) {
     attempt.status = Status::NoImage;
     attempt.detail = e.what();
@@ -90,12 +96,13 @@ void CellService::runCycles() {
   State& s = *state_;
   for (;;) {
     std::unique_lock lock(s.mutex);
-    s.cycle_wakeup.wait(lock, [&] { return s.trigger_requested || s.stopping; });
+    s.cycle_wakeup.wait(lock, [&] { return s.accepted_trigger || s.stopping; });
     if (s.stopping) return;
-    s.trigger_requested = false;
+    // The settings that accepted the TRIGGER, not whatever a reload swapped in since.
+    const std::shared_ptr<const CellSetup> setup = std::move(s.accepted_trigger->setup);
+    const int recipe_index = s.accepted_trigger->recipe;
+    s.accepted_trigger.reset();
     if (s.pending_source) s.source = std::move(s.pending_source);
-    const std::shared_ptr<const CellSetup> setup = s.setup;
-    const int recipe_index = s.recipe;
     const uint64_t cycle = s.cycles_started;  // numbered when its TRIGGER was accepted
     const auto cancel = std::make_shared<core::CancelFlag>();
     s.cycle_cancel = cancel;
@@ -106,7 +113,7 @@ void CellService::runCycles() {
     lock.unlock();
 
     const core::Stopwatch cycle_time;  // not lapped: the total includes the capture
-    CaptureAttempt attempt = captureFrom(*s.source);
+    CaptureAttempt attempt = captureFrom(s.source.get(), *cancel);
     const double capture_ms = cycle_time.elapsedMs();
 
     Outbox outbox;

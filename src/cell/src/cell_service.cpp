@@ -5,6 +5,8 @@
 
 #include <algorithm>
 
+#include "binpick/core/error.hpp"
+
 #include "service_logger.hpp"
 #include "service_state.hpp"
 
@@ -33,8 +35,10 @@ constexpr int kMaxDoublings = 6;         // avoided at most 64 x limits.avoid_cy
 // A part whose pick failed is avoided for limits.avoid_cycles cycles; each further failure at the
 // same place (within the recipe's avoid_radius of an earlier one) doubles that, so that a part the
 // robot cannot hold stops being offered instead of failing every few cycles.
+// Counted from the last cycle numbered: one whose TRIGGER was accepted has taken (or is about to
+// take) its avoid list, so the part is avoided from the cycle after it on.
 uint64_t CellService::State::avoidFailedPart(const Eigen::Vector3d& centre) {
-  const uint64_t now = latest->number;
+  const uint64_t now = cycles_started;
   const double radius = setup->recipes.at(static_cast<std::size_t>(recipe)).picking.avoid_radius;
   avoid.erase(std::remove_if(avoid.begin(), avoid.end(),
                              [&](const AvoidEntry& e) { return e.until_cycle + kForgetCycles < now; }),
@@ -52,11 +56,25 @@ uint64_t CellService::State::avoidFailedPart(const Eigen::Vector3d& centre) {
   return cycles;
 }
 
+// The cycle checked its picks against the codec of the settings it ran on; a reload since may
+// have changed the codec every robot now hears, so a pick is checked again as it is handed out.
 robot::Reply CellService::State::nextPick() {
   if (latest->status != Status::Ok) return nextReply(latest->status);
+  const robot::CodecParams& codec = setup->config.robot.codec;
+  const auto sendable = [&](std::size_t i) {
+    return robot::encodeReplyIfItFits(nextPickReply(latest->picks[i], latest->picks.size() - i - 1), codec);
+  };
+  while (latest->cursor < latest->picks.size() && !sendable(latest->cursor)) {
+    logger()->error("cycle {}: the pick of object {} cannot be sent with the reloaded robot codec: skipped",
+                    latest->number, latest->picks[latest->cursor].object);
+    ++latest->cursor;
+  }
   if (latest->cursor >= latest->picks.size()) return nextReply(Status::NoMorePicks);
   const picking::Pick& pick = latest->picks[latest->cursor++];
-  latest->last_object = pick.object;
+  if (!handed_out || handed_out->number != latest->number) {
+    handed_out = HandedOutCycle{latest->number, latest->T_base_objects};
+  }
+  handed_out->last_object = pick.object;
   return nextPickReply(pick, latest->picks.size() - latest->cursor);
 }
 
@@ -149,7 +167,7 @@ std::optional<robot::Reply> CellService::State::answer(robot::ClientId client, c
 
 std::optional<robot::Reply> CellService::State::trigger(robot::ClientId client, const robot::Request& request) {
   const int requested = request.argument ? setup->recipeIndex(*request.argument) : recipe;
-  if (stopping || cell_state != CellState::Idle || trigger_requested) return triggerReply(Status::Busy, 0);
+  if (stopping || cell_state != CellState::Idle || accepted_trigger) return triggerReply(Status::Busy, 0);
   if (!setup->reconstructor || !setup->config.T_base_camera) {
     logger()->warn("TRIGGER refused: {}",
                    setup->reconstructor ? "no hand-eye T_base_camera is configured" : setup->calibration_problem);
@@ -158,7 +176,7 @@ std::optional<robot::Reply> CellService::State::trigger(robot::ClientId client, 
   if (requested < 0) return triggerReply(Status::UnknownModel, 0);
   recipe = requested;
   ++cycles_started;  // numbered now: a stop before the capture begins still answers with its number
-  trigger_requested = true;
+  accepted_trigger = AcceptedTrigger{setup, recipe};
   trigger_client = client;
   cell_state = CellState::Capturing;
   stage_deadline = Clock::now() + std::chrono::milliseconds(setup->config.limits.capture_timeout_ms);
@@ -169,19 +187,34 @@ std::optional<robot::Reply> CellService::State::trigger(robot::ClientId client, 
   return std::nullopt;  // answered when the capture is done
 }
 
+// FAILED refers to the cycle whose pick the robot received last, whatever the cell does now: a
+// robot reports a failed pick when it has tried it, often while the next cycle already computes.
 robot::Reply CellService::State::pickFailed(const robot::Request& request) {
-  // The object the request names: its argument, else the last pick handed out (-1: none yet).
-  const std::optional<int32_t> named = request.argument ? parseObjectId(*request.argument)
-                                                        : std::optional<int32_t>(latest ? latest->last_object : kNoId);
+  std::optional<int32_t> named = kNoId;  // the argument, else the object of the last pick handed out
+  if (request.argument) {
+    named = parseObjectId(*request.argument);
+  } else if (handed_out) {
+    named = handed_out->last_object;
+  }
   if (!named) return refusedReply(Command::PickFailed, Status::BadMessage);
-  if (!latest) return failedReply(Status::NoCycle, *named);
-  if (*named < 0 || *named >= static_cast<int32_t>(latest->T_base_objects.size())) {
-    logger()->warn("FAILED names object {}, but the latest cycle ({}) detected {} objects", *named, latest->number,
-                   latest->T_base_objects.size());
+  if (!handed_out && last.cycles_done == 0) return failedReply(Status::NoCycle, *named);
+  // The detections an object id indexes: those of the cycle whose pick was handed out last, else
+  // (none handed out yet) the latest finished cycle's.
+  const uint64_t cycle = handed_out ? handed_out->number : last.cycles_done;
+  const std::vector<Eigen::Isometry3d>* objects = handed_out ? &handed_out->T_base_objects
+                                                  : latest   ? &latest->T_base_objects
+                                                             : nullptr;
+  if (!objects || *named < 0 || *named >= static_cast<int32_t>(objects->size())) {
+    if (!request.argument) {
+      logger()->warn("FAILED without an object, but no pick was handed out yet");
+    } else {
+      logger()->warn("FAILED names object {}, but cycle {} detected {} objects", *named, cycle,
+                     objects ? objects->size() : 0);
+    }
     return refusedReply(Command::PickFailed, Status::BadMessage);
   }
-  const uint64_t cycles = avoidFailedPart(latest->T_base_objects[static_cast<std::size_t>(*named)].translation());
-  logger()->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *named, latest->number, cycles);
+  const uint64_t cycles = avoidFailedPart((*objects)[static_cast<std::size_t>(*named)].translation());
+  logger()->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *named, cycle, cycles);
   return failedReply(Status::Ok, *named);
 }
 
@@ -197,6 +230,11 @@ void CellService::reconfigure(std::shared_ptr<const CellSetup> setup,
                               std::unique_ptr<acquisition::CaptureSource> source) {
   std::lock_guard lock(state_->mutex);
   State& s = *state_;
+  const std::string loss = calibrationLoss(*s.setup, *setup);
+  if (!loss.empty()) {
+    throw core::Error("the new settings are refused: " + loss +
+                      "; fix the file and reload again (a restart runs without it)");
+  }
   const std::string recipe_name = s.currentRecipe().name;
   s.setup = std::move(setup);
   s.recipe = std::max(0, s.setup->recipeIndex(recipe_name));  // keep the recipe if it still exists

@@ -103,6 +103,16 @@ std::shared_ptr<const CellSetup> prepareCell(CellConfig config) {
   return setup;
 }
 
+std::string calibrationLoss(const CellSetup& running, const CellSetup& next) {
+  if (running.reconstructor && !next.reconstructor) {
+    return "the cell would lose its rig calibration (" + next.calibration_problem + ")";
+  }
+  if (running.config.T_base_camera && !next.config.T_base_camera) {
+    return "the cell would lose its hand-eye calibration (hand_eye.T_base_camera is not set)";
+  }
+  return "";
+}
+
 std::unique_ptr<acquisition::CaptureSource> makeCaptureSource(const SourceConfig& source) {
   if (source.mode == SourceConfig::Mode::Replay) return acquisition::makeReplaySource(source.replay);
   const LiveSourceConfig& live = source.live;

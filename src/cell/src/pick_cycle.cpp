@@ -72,6 +72,13 @@ CycleOutcome processCapture(const CellSetup& setup, const Recipe& recipe, const 
     if (on_stage) on_stage(next);
   };
   CycleOutcome outcome;
+  if (!setup.reconstructor || !setup.config.T_base_camera || !recipe.detector) {
+    outcome.status = robot::Status::CalibrationMissing;
+    outcome.detail = setup.reconstructor ? (recipe.detector ? "no hand-eye T_base_camera is configured"
+                                                            : "recipe " + recipe.name + " has no prepared model")
+                                         : setup.calibration_problem;
+    return outcome;
+  }
   const Eigen::Isometry3d& T_base_camera = *setup.config.T_base_camera;
   core::Stopwatch stage;
   begin(CycleStage::Reconstructing);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -41,7 +42,22 @@ struct LatestCycle {
   std::vector<picking::Pick> picks;
   std::vector<Eigen::Isometry3d> T_base_objects;
   std::size_t cursor = 0;
+};
+
+// The cycle whose pick the robot received last: what FAILED refers to, whatever the cell does
+// meanwhile (a robot reports a failed pick while the next cycle computes).
+struct HandedOutCycle {
+  uint64_t number = 0;
+  std::vector<Eigen::Isometry3d> T_base_objects;
   int last_object = -1;  // the object of the last pick handed out (FAILED without argument)
+};
+
+// A TRIGGER the cell accepted: the cycle runs on exactly the settings and recipe that accepted
+// it (they were checked to hold a calibration and a hand-eye), whatever a reload swaps in before
+// the cycle thread takes it up.
+struct AcceptedTrigger {
+  std::shared_ptr<const CellSetup> setup;
+  int recipe = 0;
 };
 
 struct AvoidEntry {
@@ -62,17 +78,18 @@ struct CellService::State {
   int recipe = 0;
 
   CellState cell_state = CellState::Idle;
-  bool trigger_requested = false;
-  std::optional<robot::ClientId> trigger_client;  // answered when the capture is done
-  std::vector<robot::ClientId> next_waiters;      // NEXT requests waiting for the running cycle
+  std::optional<AcceptedTrigger> accepted_trigger;  // waiting for the cycle thread
+  std::optional<robot::ClientId> trigger_client;    // answered when the capture is done
+  std::vector<robot::ClientId> next_waiters;        // NEXT requests waiting for the running cycle
   Clock::time_point stage_deadline;
   bool stage_expired = false;  // the running stage's waiters got "timeout"
   // The running cycle's: set when its result is no longer wanted (deadline, stop), so that it
   // stops computing and the cell is idle again within a fraction of a second.
   std::shared_ptr<core::CancelFlag> cycle_cancel;
 
-  std::optional<LatestCycle> latest;
-  uint64_t cycles_started = 0;  // cycles numbered: each accepted TRIGGER takes the next number
+  std::optional<LatestCycle> latest;         // reset by TRIGGER: NEXT waits for the new cycle
+  std::optional<HandedOutCycle> handed_out;  // kept across cycles: FAILED's reference
+  uint64_t cycles_started = 0;               // cycles numbered: each accepted TRIGGER takes the next number
   std::vector<AvoidEntry> avoid;
   CellSnapshot last;  // for snapshot()
   ReportBoard board;  // for report(); has its own locks
@@ -96,7 +113,8 @@ struct CellService::State {
   void publish();
   // Publishes what comes from the settings: recipes, the robot's convention, calibration, source.
   void publishSetup(const acquisition::CaptureSource* new_source);
-  // FAILED: avoid the part at `centre` (base frame); returns for how many cycles.
+  // FAILED: avoid the part at `centre` (base frame) in the cycles not yet started; returns for
+  // how many.
   uint64_t avoidFailedPart(const Eigen::Vector3d& centre);
 };
 

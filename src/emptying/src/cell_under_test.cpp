@@ -22,14 +22,15 @@ class VirtualCamera : public acquisition::CaptureSource {
     std::lock_guard lock(mutex_);
     capture_ = std::move(capture);
   }
-  io::Capture next() override {
+  std::string description() const override { return "virtual cell camera"; }
+
+ private:
+  io::Capture nextCapture(const core::CancelFlag* /*cancel*/) override {
     std::lock_guard lock(mutex_);
     if (!capture_) throw core::Error("virtual camera: no capture rendered yet");
     return *capture_;  // images share their pixels: no copy
   }
-  std::string description() const override { return "virtual cell camera"; }
 
- private:
   std::mutex mutex_;
   std::optional<io::Capture> capture_;
 };

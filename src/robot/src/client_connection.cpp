@@ -58,6 +58,16 @@ void ClientConnection::receive() {
   }
 }
 
+void ClientConnection::switchCodec(const robot::CodecParams& codec) {
+  while (std::optional<robot::Decoded> decoded = decoder_.next()) backlog_.push_back(std::move(*decoded));
+  if (decoder_.buffered() > 0) {
+    serverLogger()->warn("client {} ({}): {} bytes of a request begun before the codec changed are dropped", id_, peer_,
+                         decoder_.buffered());
+  }
+  codec_ = codec;
+  decoder_ = robot::RequestDecoder(codec);
+}
+
 std::optional<robot::Decoded> ClientConnection::nextMessage() {
   if (!backlog_.empty()) {
     robot::Decoded front = std::move(backlog_.front());

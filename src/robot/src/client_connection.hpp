@@ -53,6 +53,9 @@ class ClientConnection {
   const std::optional<robot::Command>& outstandingCommand() const { return outstanding_; }
   // Answers the request with the handler; false (nothing sent) when none is.
   bool answer(const robot::Reply& reply);
+  // The codec from the next message on (a reload): messages already decoded keep their place,
+  // the bytes of one begun in the old codec are dropped (logged).
+  void switchCodec(const robot::CodecParams& codec);
   // Moves what the decoder holds into the queue of unanswered messages; marks closing when more
   // than max_queued_requests wait (the client pipelines instead of waiting for its replies).
   void checkBacklog();

@@ -1,5 +1,6 @@
 #include <arpa/inet.h>
 #include <exception>
+#include <tuple>
 
 #include "binpick/core/address_filter.hpp"
 #include "binpick/core/error.hpp"
@@ -20,6 +21,13 @@ detail::ClientLimits limitsOf(const RobotServerParams& params) {
   limits.idle_timeout = std::chrono::milliseconds(params.idle_timeout_ms);
   limits.bad_request_log_interval = std::chrono::milliseconds(params.bad_request_log_interval_ms);
   return limits;
+}
+
+bool sameCodec(const robot::CodecParams& a, const robot::CodecParams& b) {
+  return std::tie(a.framing, a.orientation, a.max_line_length, a.position_decimals, a.orientation_decimals,
+                  a.byte_order, a.position_scale, a.orientation_scale) ==
+         std::tie(b.framing, b.orientation, b.max_line_length, b.position_decimals, b.orientation_decimals,
+                  b.byte_order, b.position_scale, b.orientation_scale);
 }
 
 }  // namespace
@@ -95,14 +103,20 @@ std::vector<ConnectedClient> RobotServer::clients() const {
   return list;
 }
 
-void RobotServer::setCodec(const robot::CodecParams& codec) {
+std::size_t RobotServer::setCodec(const robot::CodecParams& codec) {
   codec.validate();
   core::requireField(codec.max_line_length <= impl_->limits.max_buffered_input &&
                          codec.max_line_length <= impl_->limits.max_buffered_output,
                      kOwner + ".codec", "max_line_length", "<= max_buffered_input and max_buffered_output",
                      codec.max_line_length);
-  const std::lock_guard<std::mutex> lock(impl_->mutex);
-  impl_->codec = codec;
+  {
+    const std::lock_guard<std::mutex> lock(impl_->mutex);
+    if (sameCodec(impl_->codec, codec)) return impl_->connected.size();
+    impl_->codec = codec;
+    ++impl_->codec_changes;
+  }
+  impl_->wake();
+  return clientCount();
 }
 
 void RobotServer::setAllowedClients(const std::vector<std::string>& allowed) {

@@ -43,6 +43,8 @@ struct RobotServer::Impl {
   void closeClosingClients();
   void closeClient(std::map<ClientId, std::unique_ptr<detail::ClientConnection>>::iterator entry);
   void closeAll(const char* reason);
+  // A setCodec() since the last call: every connected client switches now.
+  void applyCodecChange();
   // Applies the replies given so far and writes out what clients have not been sent, waiting for
   // slow sockets at most kStopFlushTime in all: a robot hears its internal_error before the close.
   void deliverRepliesBeforeClosing();
@@ -62,6 +64,7 @@ struct RobotServer::Impl {
   std::mutex mutex;
   std::vector<std::pair<ClientId, robot::Reply>> incoming_replies;
   robot::CodecParams codec;
+  uint64_t codec_changes = 0;  // setCodec() calls that changed it; the server thread applies them
   std::shared_ptr<const core::AddressFilter> allowed;
   std::map<ClientId, ConnectedClient> connected;  // what clients() lists, kept beside `clients`
 
@@ -72,6 +75,7 @@ struct RobotServer::Impl {
   std::map<ClientId, std::unique_ptr<detail::ClientConnection>> clients;
   std::deque<ClientId> ready;  // clients whose next request may be handed over
   ClientId next_id = 1;
+  uint64_t codec_changes_applied = 0;
   // Out of descriptors: accepting pauses, or the listener would wake poll() in a busy loop.
   std::chrono::steady_clock::time_point accept_paused_until{};
 };

@@ -43,6 +43,7 @@ void RobotServer::Impl::serve() {
       throw core::Error("robot server: poll failed: " + detail::errnoText(errno));
     }
     if (entries[kWakeEntry].revents != 0) detail::drainEventFd(wake_fd.get());
+    applyCodecChange();  // before this round's bytes are decoded
     const short listener_events = entries[kListenerEntry].revents;
     if (listener_events & POLLNVAL) throw core::Error("robot server: the listening socket is gone");
     if (listener_events & (POLLIN | POLLERR)) acceptClients();
@@ -59,6 +60,21 @@ void RobotServer::Impl::serve() {
     checkClientTimers();
     closeClosingClients();
   }
+}
+
+void RobotServer::Impl::applyCodecChange() {
+  robot::CodecParams codec_now;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (codec_changes == codec_changes_applied) return;
+    codec_changes_applied = codec_changes;
+    codec_now = codec;
+  }
+  for (auto& entry : clients) entry.second->switchCodec(codec_now);
+  detail::serverLogger()->info(
+      "robot codec now {} framing, {}: applied to the {} connected client(s) from their next request",
+      codec_now.framing == robot::Framing::Ascii ? "ascii" : "binary", core::orientationName(codec_now.orientation),
+      clients.size());
 }
 
 std::vector<pollfd> RobotServer::Impl::pollSet(std::vector<ClientId>& client_of_entry) const {

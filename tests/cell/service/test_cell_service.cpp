@@ -17,43 +17,14 @@ namespace {
 namespace fs = std::filesystem;
 using robot::Command;
 using robot::Status;
+using testing::Cell;
 using testing::cellConfigYaml;
 using testing::cellScene;
-using testing::ReplyCollector;
+using testing::kRobot;
 using testing::request;
-
-constexpr robot::ClientId kRobot = 1;
-
-std::shared_ptr<const CellSetup> setupFor(const std::string& yaml) {
-  return prepareCell(parseCellConfig(yaml, "cell.yaml", cellScene().directory));
-}
-
-struct Cell {
-  explicit Cell(const std::string& yaml) : Cell(setupFor(yaml)) {}
-  explicit Cell(std::shared_ptr<const CellSetup> prepared)
-      : setup(std::move(prepared)), service(setup, makeCaptureSource(setup->config.source), collector.sink()) {}
-  Cell(const std::string& yaml, std::unique_ptr<acquisition::CaptureSource> source)
-      : setup(setupFor(yaml)), service(setup, std::move(source), collector.sink()) {}
-
-  robot::Reply ask(const robot::Request& r, robot::ClientId client = kRobot) {
-    service.handle(client, r);
-    const auto reply = collector.next(client);
-    if (!reply) throw std::runtime_error("no reply");
-    return *reply;
-  }
-  std::vector<robot::Reply> allPicks() {
-    std::vector<robot::Reply> picks;
-    for (robot::Reply r = ask(request(Command::NextPick)); r.status == Status::Ok;
-         r = ask(request(Command::NextPick))) {
-      picks.push_back(r);
-    }
-    return picks;
-  }
-
-  ReplyCollector collector;
-  std::shared_ptr<const CellSetup> setup;
-  CellService service;
-};
+using testing::setupFor;
+using testing::SlowSource;
+using testing::withoutRigCalibration;
 
 // Whether `T_base_grasp` is one of the recipe's grasps on one of the true parts, within what a
 // suction gripper forgives (8 mm, 8 degrees; the paper counts a pose correct within diam/10,
@@ -165,9 +136,7 @@ TEST(CellService, WithoutCalibrationTriggerSaysSo) {
   EXPECT_EQ(refused.status, Status::CalibrationMissing);
   EXPECT_EQ(refused.integers, std::vector<int32_t>{0}) << "no cycle started";
 
-  std::string no_rig = cellConfigYaml(cellScene());
-  no_rig.replace(no_rig.find("calibration: "), 13, "calibration: /nonexistent/");
-  Cell other(no_rig);
+  Cell other(withoutRigCalibration(cellConfigYaml(cellScene())));
   EXPECT_FALSE(other.setup->calibration_problem.empty());
   EXPECT_EQ(other.ask(request(Command::Trigger)).status, Status::CalibrationMissing);
   EXPECT_EQ(other.ask(request(Command::Ping)).status, Status::Ok);  // the service still serves
@@ -187,20 +156,6 @@ TEST_F(CellServiceFiles, ACorruptRecordingIsNoImageAndTheNextCycleWorks) {
   EXPECT_EQ(cell.ask(request(Command::NextPick)).status, Status::NoImage);
   EXPECT_EQ(cell.ask(request(Command::Trigger)).status, Status::NoImage);  // still serving
 }
-
-// A camera that takes its time.
-class SlowSource : public acquisition::CaptureSource {
- public:
-  explicit SlowSource(std::chrono::milliseconds delay) : delay_(delay) {}
-  io::Capture next() override {
-    std::this_thread::sleep_for(delay_);
-    return io::readCapture(cellScene().capture);
-  }
-  std::string description() const override { return "slow"; }
-
- private:
-  std::chrono::milliseconds delay_;
-};
 
 TEST(CellService, ACaptureThatMissesItsDeadlineIsATimeout) {
   Cell cell(cellConfigYaml(cellScene(), "limits: {capture_timeout_ms: 100}\n"),

@@ -10,6 +10,7 @@
 #include "binpick/acquisition/camera.hpp"
 #include "binpick/acquisition/projector.hpp"
 #include "binpick/acquisition/sequencer.hpp"
+#include "binpick/core/cancellation.hpp"
 #include "binpick/io/capture.hpp"
 
 namespace binpick::acquisition {
@@ -17,10 +18,14 @@ namespace binpick::acquisition {
 class CaptureSource {
  public:
   virtual ~CaptureSource() = default;
-  // The next capture. Throws core::Error (CaptureError for camera faults) naming the reason;
-  // the source stays usable for the next call.
-  virtual io::Capture next() = 0;
+  // The next capture. Throws core::Error (CaptureError for camera faults) naming the reason, or
+  // core::Cancelled once `cancel` is set (a live capture stops before its next pattern); the
+  // source stays usable for the next call.
+  io::Capture next(const core::CancelFlag* cancel = nullptr) { return nextCapture(cancel); }
   virtual std::string description() const = 0;
+
+ private:
+  virtual io::Capture nextCapture(const core::CancelFlag* cancel) = 0;
 };
 
 struct ReplayParams {

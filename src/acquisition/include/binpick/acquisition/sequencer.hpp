@@ -10,6 +10,7 @@
 
 #include "binpick/acquisition/camera.hpp"
 #include "binpick/acquisition/projector.hpp"
+#include "binpick/core/cancellation.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/io/capture.hpp"
 
@@ -54,8 +55,12 @@ class CaptureSequencer {
   // gone; the images have the camera's size and depth, the metadata says what was projected.
   // When the previous capture stopped after k of its n patterns, the projector is first pulsed
   // n - k times so that it wraps back to its first pattern (frames these pulses trigger are
-  // dropped); a warning says so.
-  io::Capture capture(const io::PatternSetSpec& patterns, SequencerReport* report = nullptr);
+  // dropped); a warning says so. Once `cancel` is set (the cycle's deadline passed, the service
+  // stops) the capture ends before its next pattern, or its next retry, with core::Cancelled: at
+  // most one frame_timeout_ms later. The next capture then resynchronises the projector as after
+  // any capture that stopped part-way.
+  io::Capture capture(const io::PatternSetSpec& patterns, SequencerReport* report = nullptr,
+                      const core::CancelFlag* cancel = nullptr);
 
  private:
   void resynchroniseProjector();

@@ -48,8 +48,10 @@ class CellService : public robot::RequestHandler {
   void handle(robot::ClientId client, const robot::Request& request) override;
   void disconnected(robot::ClientId client) override;
 
-  // A reloaded configuration: the running cycle ends with the old one, the next uses the new.
-  // `source` null: keep the current capture source.
+  // A reloaded configuration: a cycle whose TRIGGER was accepted runs on the settings that
+  // accepted it, the next uses the new ones. `source` null: keep the current capture source.
+  // Throws core::Error, changing nothing, when the new settings would lose a rig calibration or a
+  // hand-eye the running ones have (calibrationLoss).
   void reconfigure(std::shared_ptr<const CellSetup> setup, std::unique_ptr<acquisition::CaptureSource> source);
   // Answers every waiting robot ("internal error": the service is stopping) through the sink, so
   // call it while the server still sends replies; cancels the running cycle (a capture under way

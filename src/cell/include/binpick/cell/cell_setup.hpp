@@ -39,6 +39,12 @@ struct CellSetup {
 // then prepared in memory at every start.
 std::shared_ptr<const CellSetup> prepareCell(CellConfig config);
 
+// What a cell running on `running` would lose by switching to `next`: its rig calibration (a file
+// now missing or unreadable, as while a technician recalibrates) or its hand-eye T_base_camera.
+// Empty when nothing is lost. CellService::reconfigure refuses such settings as a whole: the cell
+// keeps picking on what it has instead of answering "calibration missing" until someone notices.
+std::string calibrationLoss(const CellSetup& running, const CellSetup& next);
+
 // The capture source the settings describe. Live sources open the camera on the first capture.
 std::unique_ptr<acquisition::CaptureSource> makeCaptureSource(const SourceConfig& source);
 

@@ -32,8 +32,9 @@ struct CycleOutcome {
   CycleTimings timing_ms;
 };
 
-// `avoid`: base-frame centres of objects the robot failed to pick. Requires a reconstructor and
-// T_base_camera (the caller answers "calibration missing" otherwise). Picks whose NEXT reply the
+// `avoid`: base-frame centres of objects the robot failed to pick. A setup without a
+// reconstructor or T_base_camera (or a recipe without a detector) is a calibration_missing
+// outcome, never a dereference: the caller checks it at TRIGGER, this checks it again. Picks whose NEXT reply the
 // robot codec (setup.config.robot.codec) cannot encode are left out, each named in
 // `undeliverable`: the robot could not be told them. Throws core::Error only for a capture the
 // reconstruction refuses (a corrupt or mismatched capture), and core::Cancelled once `cancel` is

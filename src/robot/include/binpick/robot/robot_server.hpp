@@ -103,10 +103,14 @@ class RobotServer {
   std::size_t clientCount() const;
   // The clients connected now, in the order they connected.
   std::vector<ConnectedClient> clients() const;
-  // Takes new codec settings (SIGHUP reload) for connections opened from now on; connected
-  // clients keep theirs. Bind address and port changes need a restart. Throws core::Error
-  // naming the field for invalid settings and keeps the old ones.
-  void setCodec(const robot::CodecParams& codec);
+  // Takes new codec settings (SIGHUP reload) for every client: one codec at any moment, so that
+  // what the cell checks its picks against is what every robot hears. Connected clients switch
+  // between two messages: requests received before are answered as decoded, the replies after
+  // it are in the new codec, and the bytes of a request begun in the old codec are dropped (the
+  // log says so). Bind address and port changes need a restart. Returns the number of clients
+  // connected at the change; throws core::Error naming the field for invalid settings and keeps
+  // the old ones.
+  std::size_t setCodec(const robot::CodecParams& codec);
   // For connections opened from now on; throws core::Error naming a malformed entry.
   void setAllowedClients(const std::vector<std::string>& allowed);
 
