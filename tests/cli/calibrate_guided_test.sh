@@ -61,8 +61,8 @@ expect_lines() {  # FILE LINE...: each line starts a line of FILE
   for line in "$@"; do grep -q "^$line" "$file" || fail "no '$line' in: $(cat "$file")"; done
 }
 
-# --- first run: ASCII
-start_session "$work/camera1" "$work/session1.log"
+# --- first run: ASCII, and robots silent for a second disconnected
+start_session "$work/camera1" "$work/session1.log" --idle-timeout-s 1
 "$binpick" robot-client --port "$port" --orientation euler_zyx --send "PING;STATUS;$(pose 0)" \
   >"$work/robot1.log" 2>&1 || fail "robot-client exited $?: $(cat "$work/robot1.log")"
 # robot-client sends only well-formed requests: this one goes straight onto the socket.
@@ -71,6 +71,12 @@ printf 'POSE,600,0,nan,180,0,0\r\n' >&3
 IFS= read -r -t 60 malformed <&3
 exec 3>&-
 [ "${malformed%$'\r'}" = "POSE,8" ] || fail "a malformed POSE was answered '$malformed'"
+# A robot that says nothing: closed after --idle-timeout-s (read sees the end: 1, not a time-out).
+exec 3<>"/dev/tcp/127.0.0.1/$port"
+IFS= read -r -t 60 silent <&3
+idle_read=$?
+exec 3>&-
+[ "$idle_read" -eq 1 ] || fail "a silent robot was not disconnected after --idle-timeout-s 1 (read returned $idle_read)"
 # The second is taken of the bin without the board.
 "$binpick" robot-client --port "$port" --orientation euler_zyx --send "$(pose 1);$(pose 1)" \
   >>"$work/robot1.log" 2>&1 || fail "robot-client exited $?: $(cat "$work/robot1.log")"

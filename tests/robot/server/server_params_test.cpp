@@ -88,21 +88,6 @@ TEST(server_params, RuntimeChangesAreCheckedAndRefusalsKeepTheOldSettings) {
   EXPECT_EQ(client.roundTrip(request(robot::Command::Ping)).status, robot::Status::Ok);
 }
 
-// One codec at any moment: a reloaded codec reaches the robots already connected, from their
-// next request on, so that every robot hears what the cell checked its picks against.
-TEST(server_params, ANewCodecReachesTheConnectedRobotsAtTheirNextRequest) {
-  RunningServer running(loopbackParams());
-  TestClient ascii(running.port());
-  EXPECT_EQ(ascii.roundTrip(request(robot::Command::Ping)).status, robot::Status::Ok);
-  TestClient binary(running.port(), binaryCodec());  // its robot program was changed first
-  ASSERT_TRUE(running.waitForClientCount(2));
-  EXPECT_EQ(running.server().setCodec(binaryCodec()), 2u);
-  EXPECT_EQ(running.server().setCodec(binaryCodec()), 2u) << "the same codec again changes nothing";
-  EXPECT_EQ(binary.roundTrip(request(robot::Command::Ping)).status, robot::Status::Ok);
-  TestClient later(running.port(), binaryCodec());
-  EXPECT_EQ(later.roundTrip(request(robot::Command::Status)).status, robot::Status::Ok);
-}
-
 TEST(server_params, BindingAnAddressInUseNamesAddressAndPort) {
   TestHandler handler(Answer::Never);
   robot::RobotServer first(loopbackParams(), handler);

@@ -114,14 +114,19 @@ TEST(server_requests, PipelinedRequestsReachTheHandlerOneAtATime) {
   EXPECT_FALSE(running.handler().overlapped());
 }
 
-TEST(server_requests, NewCodecSettingsApplyToNewConnectionsOnly) {
+// One codec at any moment: a reloaded codec reaches the robots already connected, from their
+// next request on, so that every robot hears what the cell checked its picks against.
+TEST(server_requests, ANewCodecReachesTheConnectedRobotsAtTheirNextRequest) {
   RunningServer running(loopbackParams());
-  TestClient ascii_client(running.port());
-  EXPECT_EQ(ascii_client.roundTrip(request(Command::Ping)).status, Status::Ok);
-  running.server().setCodec(binaryCodec());
-  TestClient binary_client(running.port(), binaryCodec());
-  EXPECT_EQ(binary_client.roundTrip(request(Command::SelectModel, "5")).integers[0], 5);
-  EXPECT_EQ(ascii_client.roundTrip(request(Command::SelectModel, "6")).integers, std::vector<int32_t>{6});
+  TestClient ascii(running.port());
+  EXPECT_EQ(ascii.roundTrip(request(Command::Ping)).status, Status::Ok);
+  TestClient binary(running.port(), binaryCodec());  // its robot program was changed first
+  ASSERT_TRUE(running.waitForClientCount(2));
+  EXPECT_EQ(running.server().setCodec(binaryCodec()), 2u);
+  EXPECT_EQ(running.server().setCodec(binaryCodec()), 2u) << "the same codec again changes nothing";
+  EXPECT_EQ(binary.roundTrip(request(Command::SelectModel, "5")).integers[0], 5);
+  TestClient later(running.port(), binaryCodec());
+  EXPECT_EQ(later.roundTrip(request(Command::SelectModel, "6")).integers[0], 6);
 }
 
 TEST(server_requests, HandlerThatThrowsIsAnsweredWithInternalError) {
