@@ -24,6 +24,8 @@ std::vector<picking::Grasp> readGrasps(core::YamlSection& recipe, const std::str
   }
 }
 
+constexpr int kMaxSymmetryOrder = 360;
+
 // symmetry: {rotations: [[...rotation values...], ...], convention: NAME, continuous_axis: [x, y, z]}
 // or {order: N, axis: [x, y, z]}: N-fold about the axis.
 picking::PartSymmetry readSymmetry(core::YamlSection s) {
@@ -36,7 +38,11 @@ picking::PartSymmetry readSymmetry(core::YamlSection s) {
   s.readVector3("axis", axis);
   s.read("continuous", continuous);
   s.finish();
-  if (order < 1) s.fail("order", "must be >= 1");
+  // Each fold is a rotation kept, and every grasp is tried in each: a part looking the same
+  // after 360 turns is round, which `continuous: true` says without a list.
+  if (order < 1 || order > kMaxSymmetryOrder) {
+    s.fail("order", "must be in [1, " + std::to_string(kMaxSymmetryOrder) + "] (got " + std::to_string(order) + ")");
+  }
   if (!(axis.norm() > 1e-9) || !axis.allFinite()) s.fail("axis", "must be a non-zero direction");
   axis.normalize();
   if (continuous) symmetry.continuous_axis = axis;

@@ -1,9 +1,9 @@
 // YamlSection: typed reads with typo detection.
 #include "binpick/core/yaml_section.hpp"
 
-#include <fstream>
-#include <sstream>
 #include <vector>
+
+#include "binpick/core/file.hpp"
 
 namespace binpick::core {
 
@@ -31,7 +31,12 @@ YamlSection YamlSection::child(const char* key) {
 void YamlSection::finish() const {
   if (!node_ || !node_.IsMap()) return;
   for (const auto& entry : node_) {
-    const std::string key = entry.first.as<std::string>();
+    // A key may be any node in YAML (`[a, b]: 1`, `? {x: 1}`); none of ours is anything but text.
+    if (!entry.first.IsScalar()) {
+      const std::string where = path_.empty() ? "the top level" : path_.substr(0, path_.size() - 1);
+      throw Error(origin_ + ": " + where + " has a key that is not a name (a list, a mapping or empty)");
+    }
+    const std::string key = entry.first.Scalar();
     if (!used_.count(key)) fail(key, "is not a known setting");
   }
 }
@@ -49,11 +54,15 @@ YAML::Node parseYaml(const std::string& text, const std::string& origin) {
 }
 
 std::string readConfigFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the configuration file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  // Read as one regular file of known size, never streamed to its end: a settings file naming
+  // /dev/zero or a FIFO as a grasps or hand-eye file must be refused, not read forever.
+  try {
+    return readFile(path);
+  } catch (const Error& e) {
+    std::string reason = e.what();
+    if (reason.compare(0, path.size() + 2, path + ": ") == 0) reason.erase(0, path.size() + 2);
+    throw Error(path + ": cannot open the configuration file (" + reason + ")");
+  }
 }
 
 }  // namespace binpick::core

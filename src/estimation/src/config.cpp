@@ -47,7 +47,11 @@ void readCrop(Section s, SceneParams& p) {
 void readDetector(Section s, DetectorParams& p) {
   std::string method = methodName(p.method);
   s.read("method", method);
-  p.method = methodFromName(method);
+  try {
+    p.method = methodFromName(method);
+  } catch (const core::Error& e) {
+    s.fail("method", e.what());
+  }
   s.read("threads", p.threads);
   Section scene = s.child("scene");
   readCrop(scene.child("crop"), p.scene);

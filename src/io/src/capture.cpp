@@ -49,6 +49,11 @@ namespace {
 
 int expectedType(int bit_depth) { return bit_depth == 16 ? CV_16UC1 : CV_8UC1; }
 
+[[noreturn]] void failWrongSize(const std::string& path, const std::string& size, const CaptureMetadata& m) {
+  fail(path, "image is " + size + ", capture.json says " + std::to_string(m.image_width) + "x" +
+                 std::to_string(m.image_height));
+}
+
 cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   if (!fs::exists(path)) fail(path, "the image listed in capture.json is missing");
   // Decoded from memory: cv::imread logs its own warning for unreadable files, our error says it.
@@ -57,6 +62,11 @@ cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   const std::string bytes = core::readFile(path);
   const std::string defect = detail::pngStructureDefect(bytes);
   if (!defect.empty()) fail(path, "not a readable PNG image: " + defect);
+  // The size first: decoding allocates for the size the file claims, however little data follows.
+  const detail::PngSize size = detail::pngSize(bytes);
+  if (size.width != static_cast<uint32_t>(m.image_width) || size.height != static_cast<uint32_t>(m.image_height)) {
+    failWrongSize(path, std::to_string(size.width) + "x" + std::to_string(size.height), m);
+  }
   cv::Mat image;
   try {
     image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
@@ -66,8 +76,7 @@ cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   }
   if (image.empty()) fail(path, "not a readable PNG image");
   if (image.cols != m.image_width || image.rows != m.image_height) {
-    fail(path, "image is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) + ", capture.json says " +
-                   std::to_string(m.image_width) + "x" + std::to_string(m.image_height));
+    failWrongSize(path, std::to_string(image.cols) + "x" + std::to_string(image.rows), m);
   }
   if (image.type() != expectedType(m.bit_depth)) {
     fail(path, "image is not single-channel " + std::to_string(m.bit_depth) + "-bit as capture.json says");

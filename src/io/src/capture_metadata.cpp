@@ -1,6 +1,7 @@
 // capture.json: CaptureMetadata as JSON, every key required and type-checked on reading.
 
 #include <cmath>
+#include <cstdint>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
@@ -16,6 +17,7 @@ using detail::fail;
 using nlohmann::json;
 
 constexpr int kFormatVersion = 1;
+constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;  // 16384 x 16384
 
 void require(bool ok, const char* field, const char* rule, int value) {
   core::requireField(ok, "PatternSetSpec", field, rule, value);
@@ -47,6 +49,11 @@ json toJson(const PatternSetSpec& spec) {
 void checkConsistent(const CaptureMetadata& m, const std::string& path) {
   if (m.image_width <= 0 || m.image_height <= 0 || m.image_width > 65536 || m.image_height > 65536) {
     fail(path, "image_width and image_height must be in [1, 65536]");
+  }
+  // Each image is decoded whole: the size bounds what one allocation may take (512 MiB at 16 bits).
+  if (static_cast<std::int64_t>(m.image_width) * m.image_height > kMaxImagePixels) {
+    fail(path, "image_width x image_height must be at most " + std::to_string(kMaxImagePixels) + " pixels (got " +
+                   std::to_string(m.image_width) + "x" + std::to_string(m.image_height) + ")");
   }
   if (m.bit_depth != 8 && m.bit_depth != 16) fail(path, "bit_depth must be 8 or 16");
   if (m.patterns.empty()) fail(path, "'patterns' is empty");

@@ -9,6 +9,8 @@ namespace {
 
 constexpr std::string_view kSignature("\x89PNG\r\n\x1a\n", 8);
 constexpr std::size_t kChunkOverhead = 12;  // length, type, CRC: 4 bytes each
+constexpr uint32_t kHeaderLength = 13;      // IHDR: width, height, depth, colour, 3 methods
+constexpr std::size_t kWidthAt = 16;        // after the signature, IHDR's length and type
 
 // CRC-32 as PNG defines it (ISO 3309, polynomial 0xEDB88320, reflected), table-driven.
 std::array<uint32_t, 256> crcTable() {
@@ -54,6 +56,9 @@ std::string pngStructureDefect(std::string_view bytes) {
     const std::string type = printableType(bytes.substr(at + 4, 4));
     const std::string where = "chunk " + type + " at byte " + std::to_string(at);
     if (first && type != "IHDR") return "corrupt: the first chunk is " + type + ", not IHDR";
+    if (first && length != kHeaderLength) {
+      return "corrupt: the IHDR chunk holds " + std::to_string(length) + " bytes, not " + std::to_string(kHeaderLength);
+    }
     first = false;
     if (length > bytes.size() - at - kChunkOverhead) {
       return "truncated: " + where + " needs " + std::to_string(length + kChunkOverhead) +
@@ -64,6 +69,10 @@ std::string pngStructureDefect(std::string_view bytes) {
     at += kChunkOverhead + length;
     if (type == "IEND") return "";
   }
+}
+
+PngSize pngSize(std::string_view bytes) {
+  return {bigEndian32(bytes, kWidthAt), bigEndian32(bytes, kWidthAt + 4)};
 }
 
 }  // namespace binpick::io::detail

@@ -9,6 +9,9 @@
 #include <limits>
 #include <opencv2/core.hpp>
 #include <sstream>
+#include <vector>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/yaml.h>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
@@ -19,9 +22,29 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) { throw core::Error(path + ": " + what); }
 
+// The largest matrix side read: a 3x3 rotation or lens matrix, 4 or 5 distortion values.
+constexpr int kMaxMatrixSide = 16;
+
+// OpenCV sizes its allocation from a matrix's rows and cols (or sizes) before it looks at the
+// data, so a corrupt header claiming 10^5 x 10^5 would allocate gigabytes: the header is checked
+// first.
+void checkMatrixHeader(const cv::FileNode& node, const std::string& path, const std::string& key) {
+  if (!node.isMap() || !node["sizes"].empty() || !node["rows"].isInt() || !node["cols"].isInt() ||
+      !node["data"].isSeq()) {
+    fail(path, "'" + key + "' is not an OpenCV matrix (rows, cols, dt and data)");
+  }
+  const int rows = static_cast<int>(node["rows"]);
+  const int cols = static_cast<int>(node["cols"]);
+  if (rows < 1 || cols < 1 || rows > kMaxMatrixSide || cols > kMaxMatrixSide) {
+    fail(path, "'" + key + "' must be at most " + std::to_string(kMaxMatrixSide) + "x" +
+                   std::to_string(kMaxMatrixSide) + " (got " + std::to_string(rows) + "x" + std::to_string(cols) + ")");
+  }
+}
+
 cv::Mat readMatrix(const cv::FileStorage& fs, const std::string& path, const std::string& key) {
   const cv::FileNode node = fs[key];
   if (node.empty()) fail(path, "missing key '" + key + "'");
+  checkMatrixHeader(node, path, key);
   cv::Mat m;
   try {
     node >> m;
@@ -107,15 +130,81 @@ void writeRig(const std::string& path, const RigCalibration& rig, const RigCalib
   });
 }
 
+// The deepest nesting in calib.yaml: the root map, `quality`, its `views` list, a view's map.
+constexpr int kMaxCalibrationDepth = 4;
+
+// "" when `node` and what it holds nest at most `levels` deep with names for keys.
+std::string nestingDefect(const YAML::Node& node, int levels) {
+  if (!node.IsMap() && !node.IsSequence()) return "";
+  if (levels == 0) return "nested deeper than a calibration file";
+  for (const auto& entry : node) {
+    const YAML::Node& value = node.IsMap() ? entry.second : static_cast<const YAML::Node&>(entry);
+    if (node.IsMap() && !entry.first.IsScalar()) return "a key that is not a name";
+    const std::string defect = nestingDefect(value, levels - 1);
+    if (!defect.empty()) return defect;
+  }
+  return "";
+}
+
+// Follows a YAML document without building it: enough to tell whether there is another one.
+class IgnoredEvents : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// Whether the text holds a second document. Asked of yaml-cpp's parser once, not by
+// YAML::LoadAll, which (yaml-cpp 0.7) loops forever allocating on a stray ',' after a block.
+bool hasSecondDocument(const std::string& text) {
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  IgnoredEvents ignored;
+  parser.HandleNextDocument(ignored);
+  return parser.HandleNextDocument(ignored);
+}
+
+// OpenCV's FileStorage parser (4.6) loops forever on some malformed YAML (several documents
+// after an indented line) and reads out of bounds on others (an empty key), so only text that
+// yaml-cpp reads as one document holding a map of the calibration file's shape reaches it. ""
+// when the text passes, else what is wrong.
+std::string calibrationShapeDefect(const std::string& text) {
+  YAML::Node document;
+  try {
+    document = YAML::Load(text);
+    if (hasSecondDocument(text)) return "more than one YAML document";
+  } catch (const YAML::Exception& e) {
+    return "line " + std::to_string(e.mark.line + 1) + ": " + e.msg;
+  }
+  if (!document.IsMap()) return "no map of keys";
+  return nestingDefect(document, kMaxCalibrationDepth);
+}
+
 }  // namespace
 
 namespace detail {
 
 cv::FileStorage openForReading(const std::string& path) {
-  if (!std::ifstream(path)) fail(path, "cannot open the calibration file");
+  std::string text;
+  try {
+    text = core::readFile(path);
+  } catch (const core::Error& e) {
+    std::string reason = e.what();
+    if (reason.compare(0, path.size() + 2, path + ": ") == 0) reason.erase(0, path.size() + 2);
+    fail(path, "cannot open the calibration file (" + reason + ")");
+  }
+  const std::string defect = calibrationShapeDefect(text);
+  if (!defect.empty()) fail(path, "not an OpenCV FileStorage YAML file (" + defect + ")");
   cv::FileStorage fs;
   try {
-    fs.open(path, cv::FileStorage::READ | cv::FileStorage::FORMAT_YAML);
+    fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
   } catch (const cv::Exception&) {
     fail(path, "not an OpenCV FileStorage YAML file");
   }

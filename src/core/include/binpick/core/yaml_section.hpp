@@ -61,7 +61,8 @@ void validateSettings(const std::string& origin, const Check& check) {
 
 // Parses YAML text; throws "ORIGIN: not valid YAML (line N): ..." on a syntax error.
 YAML::Node parseYaml(const std::string& text, const std::string& origin);
-// The text of a settings file; throws "PATH: cannot open the configuration file".
+// The text of a settings file (a regular file); throws "PATH: cannot open the configuration file
+// (REASON)".
 std::string readConfigFile(const std::string& path);
 
 }  // namespace binpick::core

@@ -27,7 +27,7 @@ struct CaptureMetadata {
   int format_version = 1;
   std::string source;     // e.g. "virtual cell" or the camera's vendor, model and serial
   std::string timestamp;  // ISO 8601, UTC
-  int image_width = 0;    // pixels
+  int image_width = 0;    // pixels; each side in [1, 65536], at most 2^28 pixels in all
   int image_height = 0;
   int bit_depth = 8;  // 8 or 16 (16-bit images hold the sensor's value in the high bits)
   double exposure_us = 0.0;
