@@ -97,7 +97,8 @@ else
   compile "fuzz/${target}_fuzz.cpp" $(printf '%s\n' $readers | sort -u)
   # shellcheck disable=SC2086  # word splitting of the library lists is intended
   "$cxx" -fsanitize=fuzzer,address,undefined "$work"/*.o -Wl,--start-group $libraries -Wl,--end-group \
-    $(pkg-config --libs opencv4) -lyaml-cpp -lspdlog -lfmt -lgomp -lpthread -o "$work/fuzz_target"
+    -Wl,--as-needed $(pkg-config --libs opencv4) -lyaml-cpp -lspdlog -lfmt -laravis-0.8 -lgpiodcxx -lgio-2.0 \
+    -lgobject-2.0 -lglib-2.0 -lgomp -lpthread -o "$work/fuzz_target"
 fi
 
 # One fuzzer per job, each with its own seed and corpus so that a run can be repeated exactly

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "binpick/cell/cell_config.hpp"
+#include "binpick/estimation/config.hpp"
 #include "binpick/io/capture.hpp"
 #include "binpick/io/rig_calibration.hpp"
 #include "temp_directory_test.hpp"
@@ -39,6 +40,25 @@ TEST_F(FuzzFinding, CalibrationMatrixHeaderIsCheckedBeforeOpenCvAllocatesIt) {
                                "camera_matrix: !!opencv-nd-matrix\n   sizes: [ 100000, 100000, 100 ]\n   dt: d\n"
                                "   data: [ 1. ]\n");
   EXPECT_TRUE(throwsNaming([&] { io::readRigCalibration(nd); }, nd + ": 'camera_matrix' is not an OpenCV matrix"));
+}
+
+// OpenCV's FileStorage parser looped forever on this; yaml-cpp's LoadAll allocated without end on
+// the second. Neither reaches a parser that misbehaves.
+TEST_F(FuzzFinding, CalibrationFilesThatHangParsersAreRefused) {
+  const std::string hang = write("hang.yaml", "%YAML:1.0\n   data:0\n---\n- 1\n");
+  EXPECT_TRUE(throwsNaming([&] { io::readRigCalibration(hang); },
+                           hang + ": not an OpenCV FileStorage YAML file (more than one YAML document)"));
+  const std::string comma = write("comma.yaml", "%YAML:1.0\n---\n- 1\n, 3]\n");
+  EXPECT_TRUE(throwsNaming([&] { io::readRigCalibrationQuality(comma); }, comma + ": not an OpenCV FileStorage YAML"));
+  const std::string deep = write("deep.yaml", "a: {b: {c: {d: {e: 1}}}}\n");
+  EXPECT_TRUE(throwsNaming([&] { io::readRigCalibration(deep); }, deep + ": not an OpenCV FileStorage YAML file (nested"));
+}
+
+// The estimation settings named a wrong method without naming the file.
+TEST_F(FuzzFinding, UnknownDetectionMethodNamesTheFile) {
+  const std::string path = write("detection.yaml", "detection: {method: foo}\n");
+  EXPECT_TRUE(throwsNaming([&] { estimation::loadEstimationConfig(path); },
+                           path + ": detection.method detector params: method 'foo' is unknown"));
 }
 
 // yaml-cpp keys may be lists or mappings; converting one to a name threw a YAML exception.

@@ -3,6 +3,7 @@
 #include "binpick/io/rig_calibration.hpp"
 
 #include <Eigen/LU>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -133,13 +134,25 @@ void writeRig(const std::string& path, const RigCalibration& rig, const RigCalib
 // The deepest nesting in calib.yaml: the root map, `quality`, its `views` list, a view's map.
 constexpr int kMaxCalibrationDepth = 4;
 
+// A key as OpenCV writes them: a letter or '_', then letters, digits, '_' or '-'. OpenCV's parser
+// mishandles others (an empty key, or one starting with ':', makes it read before the key).
+bool isOpenCvName(const YAML::Node& key) {
+  if (!key.IsScalar() || key.Scalar().empty()) return false;
+  const std::string& name = key.Scalar();
+  if (!std::isalpha(static_cast<unsigned char>(name[0])) && name[0] != '_') return false;
+  for (const char c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') return false;
+  }
+  return true;
+}
+
 // "" when `node` and what it holds nest at most `levels` deep with names for keys.
 std::string nestingDefect(const YAML::Node& node, int levels) {
   if (!node.IsMap() && !node.IsSequence()) return "";
   if (levels == 0) return "nested deeper than a calibration file";
   for (const auto& entry : node) {
     const YAML::Node& value = node.IsMap() ? entry.second : static_cast<const YAML::Node&>(entry);
-    if (node.IsMap() && !entry.first.IsScalar()) return "a key that is not a name";
+    if (node.IsMap() && !isOpenCvName(entry.first)) return "a key that is not a name";
     const std::string defect = nestingDefect(value, levels - 1);
     if (!defect.empty()) return defect;
   }
@@ -205,7 +218,7 @@ cv::FileStorage openForReading(const std::string& path) {
   cv::FileStorage fs;
   try {
     fs.open(text, cv::FileStorage::READ | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
-  } catch (const cv::Exception&) {
+  } catch (const std::exception&) {  // cv::Exception, and what OpenCV's parser lets escape
     fail(path, "not an OpenCV FileStorage YAML file");
   }
   if (!fs.isOpened()) fail(path, "not an OpenCV FileStorage YAML file");

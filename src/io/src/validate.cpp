@@ -103,13 +103,13 @@ namespace detail {
 
 namespace {
 
-// Length of a normal that validateCloud accepted; throws when it has no direction.
-float directedLength(const PointCloud& cloud, std::size_t i, const std::string& path) {
-  float length = cloud.normals[i].norm();
-  // norm() squares first and overflows for huge but valid vectors.
-  if (std::isinf(length)) length = cloud.normals[i].stableNorm();
+// Length of a normal that validateCloud accepted; throws when it has no direction. In double:
+// squaring in float overflows for huge components and underflows into denormals for tiny ones
+// (a normal of 1e-20 would come out of the division nowhere near unit length).
+double directedLength(const PointCloud& cloud, std::size_t i, const std::string& path) {
+  const double length = cloud.normals[i].cast<double>().norm();
   // A zero normal has no direction; keeping it would poison every dot product downstream.
-  if (!(length > 0.0f)) {
+  if (!(length > 0.0)) {
     fail(path, "normal of point " + std::to_string(i) + " is zero " + describePoint(cloud.normals[i]));
   }
   return length;
@@ -120,11 +120,13 @@ float directedLength(const PointCloud& cloud, std::size_t i, const std::string& 
 void normaliseNormals(PointCloud& cloud, const std::string& path) {
   // Normals already unit to float precision are kept bit for bit, so binary files round-trip
   // exactly; dividing by a length of 0.99999994 would change their last bits for nothing.
-  constexpr float kUnitTolerance = 1e-6f;
+  constexpr double kUnitTolerance = 1e-6;
   for (std::size_t i = 0; i < cloud.normals.size(); ++i) {
     if (!cloud.points[i].allFinite()) continue;
-    const float length = directedLength(cloud, i, path);
-    if (std::abs(length - 1.0f) > kUnitTolerance) cloud.normals[i] /= length;
+    const double length = directedLength(cloud, i, path);
+    if (std::abs(length - 1.0) > kUnitTolerance) {
+      cloud.normals[i] = (cloud.normals[i].cast<double>() / length).cast<float>();
+    }
   }
 }
 
