@@ -20,21 +20,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 int nodeCount(double span) { return static_cast<int>(std::ceil(span / kStepPixels)) + 1; }
 
-LookupGrid<2> buildUndistortGrid(const io::LensIntrinsics& lens, int threads) {
-  LookupGrid<2> grid(-kMarginPixels, -kMarginPixels, kStepPixels, kStepPixels,
-                     nodeCount(lens.width - 1 + 2 * kMarginPixels), nodeCount(lens.height - 1 + 2 * kMarginPixels));
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int j = 0; j < grid.ny(); ++j) {
-    for (int i = 0; i < grid.nx(); ++i) {
-      const Eigen::Vector2d p =
-          lens.undistort({(grid.nodeX(i) - lens.cx) / lens.fx, (grid.nodeY(j) - lens.cy) / lens.fy});
-      grid.node(i, j)[0] = static_cast<float>(p.x());
-      grid.node(i, j)[1] = static_cast<float>(p.y());
-    }
-  }
-  return grid;
-}
-
 // The epipolar label of the plane through the projector ray w (see EpipolarPencil).
 double epipolarLabel(const EpipolarPencil& pencil, const Eigen::Vector3d& centre, const Eigen::Vector3d& w) {
   const Eigen::Vector3d n = centre.cross(w);
@@ -135,6 +120,21 @@ LookupGrid<4> buildEpipolarGrid(const io::LensIntrinsics& lens, const EpipolarPe
   return grid;
 }
 }  // namespace
+
+LookupGrid<2> buildUndistortGrid(const io::LensIntrinsics& lens, int threads) {
+  LookupGrid<2> grid(-kMarginPixels, -kMarginPixels, kStepPixels, kStepPixels,
+                     nodeCount(lens.width - 1 + 2 * kMarginPixels), nodeCount(lens.height - 1 + 2 * kMarginPixels));
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int j = 0; j < grid.ny(); ++j) {
+    for (int i = 0; i < grid.nx(); ++i) {
+      const Eigen::Vector2d p =
+          lens.undistort({(grid.nodeX(i) - lens.cx) / lens.fx, (grid.nodeY(j) - lens.cy) / lens.fy});
+      grid.node(i, j)[0] = static_cast<float>(p.x());
+      grid.node(i, j)[1] = static_cast<float>(p.y());
+    }
+  }
+  return grid;
+}
 
 CameraRays buildCameraRays(const io::LensIntrinsics& camera, int threads) {
   CameraRays rays;

@@ -48,6 +48,9 @@ struct ProjectorTables {
 };
 
 CameraRays buildCameraRays(const io::LensIntrinsics& camera, int threads);
+// ProjectorTables::undistort alone, for readers of decoded coordinates that need no epipolar
+// table (calibration_fit.hpp).
+LookupGrid<2> buildUndistortGrid(const io::LensIntrinsics& lens, int threads);
 ProjectorTables buildProjectorTables(const io::LensIntrinsics& projector, const EpipolarPencil& pencil,
                                      const Eigen::Vector3d& camera_centre_in_projector, int threads);
 
