@@ -11,8 +11,16 @@
 #   bash scripts/benchmark.sh --emptying [ARGS...]
 #                                        bin emptying instead (docs/benchmark/emptying.md): every
 #                                        part, 5 bins of 20, suction; any bench_emptying options
+#   bash scripts/benchmark.sh --soak [ARGS...]
+#                                        binpickd's soak instead (docs/benchmark/soak.md): 1000
+#                                        cycles with reloads and robots coming and going; any
+#                                        bench_daemon_soak options, e.g. --cycles 50
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if [ "${1:-}" = "--soak" ]; then
+  bash scripts/build.sh bench_daemon_soak  # and binpickd, which it starts
+  exec ./build/bench/bench_daemon_soak --out docs/benchmark "${@:2}"
+fi
 bash scripts/build.sh
 if [ "${1:-}" = "--emptying" ]; then
   exec ./build/bench/bench_emptying --out docs/benchmark "${@:2}"
