@@ -26,6 +26,7 @@ void addCommands(CLI::App& program, CommandTable& table) {
   addSimulateCommand(program, table);
   addEvaluateCommand(program, table);
   addCalibrateCommand(program, table);
+  addConvertCalibrationCommand(program, table);
   addGraspsCommand(program, table);
   addRobotClientCommand(program, table);
 }

@@ -37,6 +37,7 @@ void addEvaluateCommand(CLI::App& program, CommandTable& table);
 void addCalibrateCommand(CLI::App& program, CommandTable& table);  // rig | hand-eye
 void addCalibrateRigCommand(CLI::App& calibrate, CommandTable& table);
 void addCalibrateHandEyeCommand(CLI::App& calibrate, CommandTable& table);  // from a file, or --listen
+void addConvertCalibrationCommand(CLI::App& program, CommandTable& table);  // another tool's calibration
 void addGraspsCommand(CLI::App& program, CommandTable& table);              // grasps generated from a part model
 void addRobotClientCommand(CLI::App& program, CommandTable& table);
 
