@@ -94,8 +94,10 @@ class ObjParser {
       for (int corner = 0; corner < 3; ++corner) {
         const int index = mesh_.triangles[t][corner];
         if (index >= vertexCount) {
+          // 1-based as in the file, in 64 bits: the index may be INT_MAX.
           fail(path_, "line " + std::to_string(lineOfTriangle_[t]) + ": face refers to vertex " +
-                          std::to_string(index + 1) + " but the file has " + std::to_string(vertexCount) + " vertices");
+                          std::to_string(std::int64_t{index} + 1) + " but the file has " + std::to_string(vertexCount) +
+                          " vertices");
         }
       }
     }

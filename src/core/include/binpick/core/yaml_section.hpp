@@ -44,7 +44,7 @@ class YamlSection {
  private:
   YAML::Node node_;
   std::string path_;
-  const std::string& origin_;
+  std::string origin_;  // a copy: callers pass temporaries ("binpickd.yaml"), gone before a later fail()
   std::set<std::string> used_;
 };
 
