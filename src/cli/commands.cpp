@@ -22,6 +22,7 @@ void addCommands(CLI::App& program, CommandTable& table) {
   program.require_subcommand(1);
   addCaptureCommand(program, table);
   addReconstructCommand(program, table);
+  addImportCaptureCommand(program, table);
   addDetectCommand(program, table);
   addSimulateCommand(program, table);
   addEvaluateCommand(program, table);

@@ -31,6 +31,7 @@ void addCommands(CLI::App& program, CommandTable& table);
 
 void addCaptureCommand(CLI::App& program, CommandTable& table);
 void addReconstructCommand(CLI::App& program, CommandTable& table);
+void addImportCaptureCommand(CLI::App& program, CommandTable& table);  // another rig's images
 void addDetectCommand(CLI::App& program, CommandTable& table);
 void addSimulateCommand(CLI::App& program, CommandTable& table);
 void addEvaluateCommand(CLI::App& program, CommandTable& table);

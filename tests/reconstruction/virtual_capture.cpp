@@ -20,10 +20,11 @@ double key(double value) { return std::isnan(value) ? -1e300 : value; }
 
 bool CaptureOptions::operator<(const CaptureOptions& o) const {
   return std::make_tuple(part, objects, seed, camera_scale, bin_length, bin_width, row_codes, phase_steps, bit_depth,
-                         lighting, key(global_light), key(ambient), key(projector_blur), mixed_pixel_samples) <
+                         lighting, key(global_light), key(ambient), key(projector_blur), mixed_pixel_samples,
+                         code_step) <
          std::make_tuple(o.part, o.objects, o.seed, o.camera_scale, o.bin_length, o.bin_width, o.row_codes,
                          o.phase_steps, o.bit_depth, o.lighting, key(o.global_light), key(o.ambient),
-                         key(o.projector_blur), o.mixed_pixel_samples);
+                         key(o.projector_blur), o.mixed_pixel_samples, o.code_step);
 }
 
 namespace {
@@ -40,6 +41,8 @@ VirtualCapture render(const CaptureOptions& options) {
   patterns.projector_height = v.params.rig.projector.height;
   patterns.row_codes = options.row_codes;
   patterns.phase_steps = options.phase_steps;
+  patterns.code_step = options.code_step;
+  patterns.phase_period *= options.code_step;  // the same period in codes
   simulation::PhotometryParams photometry = simulation::photometryPreset(options.lighting);
   photometry.seed = options.seed;
   photometry.bit_depth = options.bit_depth;

@@ -28,6 +28,7 @@ struct CaptureOptions {
   double ambient = std::numeric_limits<double>::quiet_NaN();
   double projector_blur = std::numeric_limits<double>::quiet_NaN();  // min_blur_sigma
   int mixed_pixel_samples = 1;  // PhotometryParams::mixed_pixel_samples: 1, one ray per pixel
+  int code_step = 1;            // PatternSetSpec::code_step (the phase period scales with it)
   bool operator<(const CaptureOptions& other) const;
 };
 

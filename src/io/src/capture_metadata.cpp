@@ -1,5 +1,6 @@
 // capture.json: CaptureMetadata as JSON, every key required and type-checked on reading.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -32,6 +33,8 @@ PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
   spec.row_codes = core::jsonField<bool>(object, "row_codes", path);
   spec.phase_steps = core::jsonField<int>(object, "phase_steps", path);
   spec.phase_period = core::jsonField<int>(object, "phase_period", path);
+  // Optional: captures written before it existed coded every projector pixel.
+  if (object.contains("code_step")) spec.code_step = core::jsonField<int>(object, "code_step", path);
   try {
     spec.validate();
   } catch (const core::Error& e) {
@@ -41,9 +44,11 @@ PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
 }
 
 json toJson(const PatternSetSpec& spec) {
-  return {{"projector_width", spec.projector_width}, {"projector_height", spec.projector_height},
-          {"column_codes", spec.column_codes},       {"row_codes", spec.row_codes},
-          {"phase_steps", spec.phase_steps},         {"phase_period", spec.phase_period}};
+  json object = {{"projector_width", spec.projector_width}, {"projector_height", spec.projector_height},
+                 {"column_codes", spec.column_codes},       {"row_codes", spec.row_codes},
+                 {"phase_steps", spec.phase_steps},         {"phase_period", spec.phase_period}};
+  if (spec.code_step != 1) object["code_step"] = spec.code_step;  // older readers read the rest
+  return object;
 }
 
 void checkConsistent(const CaptureMetadata& m, const std::string& path) {
@@ -83,6 +88,9 @@ void PatternSetSpec::validate() const {
   require(column_codes || row_codes, "column_codes", "true when row_codes is false", 0);
   require(phase_steps == 0 || (phase_steps >= 3 && phase_steps <= 64), "phase_steps", "0 or in [3, 64]", phase_steps);
   require(phase_period >= 4 && phase_period <= 65536, "phase_period", "in [4, 65536]", phase_period);
+  require(code_step >= 1 && code_step <= 64 && code_step * 2 <= std::min(projector_width, projector_height), "code_step",
+          "in [1, 64] and at most half the projector's size", code_step);
+  require(phase_steps == 0 || phase_period % code_step == 0, "phase_period", "a multiple of code_step", phase_period);
 }
 
 CaptureMetadata readCaptureMetadata(const std::string& directory) {

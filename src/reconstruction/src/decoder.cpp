@@ -5,6 +5,7 @@
 #include "binpick/core/error.hpp"
 #include "binpick/core/thread_count.hpp"
 #include "binpick/reconstruction/decoder.hpp"
+#include "capture_completion.hpp"
 #include "capture_layout.hpp"
 #include "capture_light_check.hpp"
 #include "capture_order_check.hpp"
@@ -94,10 +95,24 @@ void setColumnNoiseModel(const detail::SensorNoise& noise, const detail::AxisLay
   t.column_noise_gain = static_cast<float>(scale2 * noise.gain * 0.5);
 }
 
+// Codes to projector pixels (PatternSetSpec::code_step): the centre of each code's block.
+void scaleToProjectorPixels(DecodedCapture& decoded, int code_step) {
+  if (code_step == 1) return;
+  for (cv::Mat* coordinates : {&decoded.column, &decoded.row}) {
+    if (coordinates->empty()) continue;
+    coordinates->forEach<float>([code_step](float& value, const int*) {
+      value = detail::projectorPixelOfCode(value, code_step);  // NaN stays NaN
+    });
+  }
+  if (!decoded.column_noise.empty()) decoded.column_noise *= code_step;
+}
+
 }  // namespace
 
-DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& params) {
+DecodedCapture decodeCapture(const io::Capture& original, const DecodeParams& params) {
   params.validate();
+  const detail::CompleteCapture complete = detail::completeCapture(original);
+  const io::Capture& capture = complete.capture;
   detail::DecodePlan plan = detail::makeDecodePlan(detail::captureLayout(capture), params);
   detail::checkCaptureLight(capture, plan, params);
   detail::checkCaptureOrder(capture, plan);
@@ -117,6 +132,7 @@ DecodedCapture decodeCapture(const io::Capture& capture, const DecodeParams& par
       plan.layout.bit_depth == 8 ? decodeTiles<uint8_t>(continuous, plan, threads, unwrap, decoded)
                                  : decodeTiles<uint16_t>(continuous, plan, threads, unwrap, decoded);
   if (unwrap) detail::unwrapFromNeighbours(candidates, plan, params.min_unwrap_neighbours, threads, decoded);
+  scaleToProjectorPixels(decoded, complete.code_step);
   return decoded;
 }
 

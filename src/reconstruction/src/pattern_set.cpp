@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "binpick/core/error.hpp"
 
@@ -19,8 +20,15 @@ void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, int size, cons
   }
 }
 
+// Codes along the axis: the Gray code counts codes, not projector pixels (PatternSetSpec::code_step).
 int axisSize(PatternAxis axis, const io::PatternSetSpec& spec) {
-  return axis == PatternAxis::Rows ? spec.projector_height : spec.projector_width;
+  return axis == PatternAxis::Rows ? spec.rowCodes() : spec.columnCodes();
+}
+
+// "03" -> 3; nullopt unless the text is one to three digits.
+std::optional<int> smallNumber(const std::string& text) {
+  if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+  return std::stoi(text);
 }
 
 // A projector drives 8-bit levels: the phase patterns it shows are quantised.
@@ -45,9 +53,32 @@ std::string Pattern::name() const {
 std::vector<Pattern> patternSequence(const io::PatternSetSpec& spec) {
   spec.validate();
   std::vector<Pattern> sequence{{PatternKind::White, PatternAxis::None, 0}, {PatternKind::Black, PatternAxis::None, 0}};
-  if (spec.column_codes) appendAxis(sequence, PatternAxis::Columns, spec.projector_width, spec);
-  if (spec.row_codes) appendAxis(sequence, PatternAxis::Rows, spec.projector_height, spec);
+  if (spec.column_codes) appendAxis(sequence, PatternAxis::Columns, spec.columnCodes(), spec);
+  if (spec.row_codes) appendAxis(sequence, PatternAxis::Rows, spec.rowCodes(), spec);
   return sequence;
+}
+
+std::optional<Pattern> patternFromName(const std::string& name) {
+  if (name == "white") return Pattern{PatternKind::White, PatternAxis::None, 0};
+  if (name == "black") return Pattern{PatternKind::Black, PatternAxis::None, 0};
+  const auto axisOf = [](const std::string& text) {
+    return text == "col" ? PatternAxis::Columns : text == "row" ? PatternAxis::Rows : PatternAxis::None;
+  };
+  // gray_AXIS_BB[_inv] or phase_AXIS_K
+  const bool gray = name.rfind("gray_", 0) == 0;
+  const bool phase = name.rfind("phase_", 0) == 0;
+  if (!gray && !phase) return std::nullopt;
+  std::string rest = name.substr(gray ? 5 : 6);
+  const bool inverse = gray && rest.size() > 4 && rest.compare(rest.size() - 4, 4, "_inv") == 0;
+  if (inverse) rest.resize(rest.size() - 4);
+  if (rest.size() < 5 || rest[3] != '_') return std::nullopt;
+  const PatternAxis axis = axisOf(rest.substr(0, 3));
+  const std::optional<int> index = smallNumber(rest.substr(4));
+  if (axis == PatternAxis::None || !index) return std::nullopt;
+  const PatternKind kind = phase ? PatternKind::PhaseStep : inverse ? PatternKind::GrayBitInverse : PatternKind::GrayBit;
+  const Pattern pattern{kind, axis, *index};
+  if (pattern.name() != name) return std::nullopt;  // one spelling per pattern: "gray_col_3" is not one
+  return pattern;
 }
 
 std::vector<std::string> patternNames(const io::PatternSetSpec& spec) {
@@ -62,7 +93,9 @@ int grayCodeBits(int size) {
   return bits;
 }
 
-double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int coordinate) {
+double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int pixel) {
+  // Every pixel of a code's block shows the code's brightness.
+  const int coordinate = pixel / spec.code_step;
   switch (pattern.kind) {
     case PatternKind::White: return 1.0;
     case PatternKind::Black: return 0.0;
@@ -79,7 +112,7 @@ double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec,
     case PatternKind::PhaseStep: {
       // I_k(c) = 1/2 + 1/2 cos(2 pi c / period - 2 pi k / steps): the phase of pixel c is
       // 2 pi c / period, recovered from the N steps by their first Fourier coefficient.
-      const double phase = 2.0 * M_PI * coordinate / spec.phase_period;
+      const double phase = 2.0 * M_PI * coordinate / (spec.phase_period / spec.code_step);
       const double shift = 2.0 * M_PI * pattern.index / spec.phase_steps;
       return eightBit(0.5 + 0.5 * std::cos(phase - shift));
     }

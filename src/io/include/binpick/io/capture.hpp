@@ -19,8 +19,15 @@ struct PatternSetSpec {
   bool column_codes = true;    // Gray code of the projector column, each bit with its inverse
   bool row_codes = true;       // Gray code of the projector row, each bit with its inverse
   int phase_steps = 4;         // phase-shift images per coded axis (0: none, else >= 3)
-  int phase_period = 16;       // projector pixels per sine period (>= 4)
-  void validate() const;       // throws core::Error naming the field
+  int phase_period = 16;       // projector pixels per sine period (>= 4, a multiple of code_step)
+  // Projector pixels per code: a rig whose patterns were made at a fraction of the projector's
+  // resolution (OpenCV's GrayCodePattern on a 1920x1080 projector at 960x540: 2) codes blocks
+  // of code_step x code_step pixels. Coordinates are decoded in codes and reported in pixels.
+  int code_step = 1;
+  void validate() const;  // throws core::Error naming the field
+  // Codes along the projector's width and height: ceil(projector size / code_step).
+  int columnCodes() const { return (projector_width + code_step - 1) / code_step; }
+  int rowCodes() const { return (projector_height + code_step - 1) / code_step; }
 };
 
 struct CaptureMetadata {

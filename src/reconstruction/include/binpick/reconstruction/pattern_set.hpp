@@ -5,8 +5,11 @@
 //   white, black,
 //   per coded axis (columns, then rows): Gray-code bits from the most significant, each followed
 //   by its inverse, then the phase-shift steps (if any).
+// That is binpick's own order; a capture may list its patterns in any order, and without white
+// and black or without inverses (capture_completion: the decoder makes up what it lacks).
 // Pure functions: thread-safe.
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +30,8 @@ struct Pattern {
 
 std::vector<Pattern> patternSequence(const io::PatternSetSpec& spec);
 std::vector<std::string> patternNames(const io::PatternSetSpec& spec);
+// The pattern a name stands for ("gray_row_04_inv"), or nullopt for a name no pattern has.
+std::optional<Pattern> patternFromName(const std::string& name);
 
 // Bits needed to give each of `size` projector columns (or rows) its own code: ceil(log2(size)).
 int grayCodeBits(int size);
@@ -38,9 +43,10 @@ inline unsigned grayDecode(unsigned code) {
   return code;
 }
 
-// Brightness in [0, 1] of the projector pixel at `coordinate` (its column for a column pattern,
-// its row for a row pattern, ignored for white and black), as an 8-bit projector shows it.
-double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int coordinate);
+// Brightness in [0, 1] of the projector pixel at `pixel` (its column for a column pattern, its
+// row for a row pattern, ignored for white and black), as an 8-bit projector shows it. Patterns
+// code spec.code_step pixels per code (Gray bits count codes; the phase period is in pixels).
+double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int pixel);
 // The projector image (projector_width x projector_height, CV_8UC1).
 cv::Mat patternImage(const Pattern& pattern, const io::PatternSetSpec& spec);
 
