@@ -85,6 +85,7 @@ void checkImages(const io::Capture& capture) {
       throw core::Error(name + " is not a single-channel " + std::to_string(metadata.bit_depth) + "-bit image");
     }
   }
+  if (metadata.image_width <= 0 || metadata.image_height <= 0) throw core::Error("capture: empty images");
 }
 
 class Completion {

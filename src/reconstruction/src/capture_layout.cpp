@@ -29,33 +29,6 @@ void checkNames(const io::CaptureMetadata& metadata, const std::vector<Pattern>&
   }
 }
 
-void checkImages(const io::Capture& capture) {
-  const io::CaptureMetadata& metadata = capture.metadata;
-  if (capture.images.size() != metadata.patterns.size()) {
-    throw core::Error("capture: " + std::to_string(capture.images.size()) + " images for " +
-                      std::to_string(metadata.patterns.size()) + " patterns");
-  }
-  if (metadata.bit_depth != 8 && metadata.bit_depth != 16) {
-    throw core::Error("capture: bit depth must be 8 or 16 (got " + std::to_string(metadata.bit_depth) + ")");
-  }
-  const int type = metadata.bit_depth == 8 ? CV_8UC1 : CV_16UC1;
-  for (std::size_t i = 0; i < capture.images.size(); ++i) {
-    const cv::Mat& image = capture.images[i];
-    const std::string name = "capture: image " + std::to_string(i) + " (" + metadata.patterns[i] + ")";
-    if (image.cols != metadata.image_width || image.rows != metadata.image_height) {
-      throw core::Error(name + " is " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
-                        ", the metadata says " + std::to_string(metadata.image_width) + "x" +
-                        std::to_string(metadata.image_height));
-    }
-    if (image.type() != type) {
-      throw core::Error(name + " is not a single-channel " + std::to_string(metadata.bit_depth) + "-bit image");
-    }
-  }
-  if (metadata.image_width <= 0 || metadata.image_height <= 0) {
-    throw core::Error("capture: empty images");
-  }
-}
-
 void addPattern(CaptureLayout& layout, const Pattern& pattern, const io::PatternSetSpec& spec, int image) {
   if (pattern.kind == PatternKind::White) layout.white = image;
   if (pattern.kind == PatternKind::Black) layout.black = image;
@@ -74,8 +47,7 @@ void addPattern(CaptureLayout& layout, const Pattern& pattern, const io::Pattern
 CaptureLayout captureLayout(const io::Capture& capture) {
   const io::CaptureMetadata& metadata = capture.metadata;
   const std::vector<Pattern> sequence = patternSequence(metadata.pattern_set);  // validates the spec
-  checkNames(metadata, sequence);
-  checkImages(capture);
+  checkNames(metadata, sequence);  // the images themselves were checked by completeCapture
   if (!metadata.pattern_set.column_codes) {
     throw core::Error("capture: the pattern set has no column codes; triangulation needs the projector column");
   }

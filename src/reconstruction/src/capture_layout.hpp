@@ -31,8 +31,8 @@ struct CaptureLayout {
   int bit_depth = 8;
 };
 
-// Throws core::Error naming the first mismatch: the pattern names are not the sequence the
-// pattern set defines, the image count, size or type disagrees with the metadata, or the set has
+// For a capture in binpick's own order (completeCapture's, whose images it has checked). Throws
+// core::Error when the pattern names are not the sequence the pattern set defines, or the set has
 // no column codes (triangulation needs the projector column).
 CaptureLayout captureLayout(const io::Capture& capture);
 
