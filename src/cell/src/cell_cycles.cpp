@@ -108,7 +108,7 @@ void CellService::runCycles() {
     s.cycle_cancel = cancel;
     std::vector<Eigen::Vector3d> avoid;
     for (const AvoidEntry& entry : s.avoid) {
-      if (entry.until_cycle >= cycle) avoid.push_back(entry.centre);
+      if (entry.from_cycle <= cycle && cycle <= entry.until_cycle) avoid.push_back(entry.centre);
     }
     lock.unlock();
 

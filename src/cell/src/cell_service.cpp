@@ -35,8 +35,9 @@ constexpr int kMaxDoublings = 6;         // avoided at most 64 x limits.avoid_cy
 // A part whose pick failed is avoided for limits.avoid_cycles cycles; each further failure at the
 // same place (within the recipe's avoid_radius of an earlier one) doubles that, so that a part the
 // robot cannot hold stops being offered instead of failing every few cycles.
-// Counted from the last cycle numbered: one whose TRIGGER was accepted has taken (or is about to
-// take) its avoid list, so the part is avoided from the cycle after it on.
+// Counted from the last cycle numbered: one whose TRIGGER was accepted keeps the avoid list it had
+// then, even if its thread reads the list after this failure, so the part is avoided from the
+// cycle after it on, whenever the robot's FAILED arrives.
 uint64_t CellService::State::avoidFailedPart(const Eigen::Vector3d& centre) {
   const uint64_t now = cycles_started;
   const double radius = setup->recipes.at(static_cast<std::size_t>(recipe)).picking.avoid_radius;
@@ -52,7 +53,7 @@ uint64_t CellService::State::avoidFailedPart(const Eigen::Vector3d& centre) {
   }
   const uint64_t cycles = static_cast<uint64_t>(setup->config.limits.avoid_cycles)
                           << std::min(failures - 1, kMaxDoublings);
-  avoid.push_back({centre, now + cycles, failures});
+  avoid.push_back({centre, now + 1, now + cycles, failures});
   return cycles;
 }
 

@@ -62,7 +62,8 @@ struct AcceptedTrigger {
 
 struct AvoidEntry {
   Eigen::Vector3d centre;
-  uint64_t until_cycle = 0;  // avoided in cycles numbered up to this one
+  uint64_t from_cycle = 0;   // avoided in cycles numbered from this one (the first not yet numbered)
+  uint64_t until_cycle = 0;  // up to this one
   int failures = 1;          // picks of a part at this place that failed, in a row
 };
 

@@ -3,6 +3,7 @@
 // FAILED counts whatever the cell is doing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "binpick/cell/cell_service.hpp"
@@ -120,6 +121,30 @@ TEST(CellReload, AFailureReportedWhileTheNextCycleRunsIsKept) {
     EXPECT_GT((pick.T_base_tool->translation() - first.T_base_tool->translation()).norm(), 0.01)
         << "the failed part was offered again";
   }
+}
+
+// A TRIGGER accepted before the robot's FAILED numbers a cycle that keeps the avoid list it had,
+// even when its thread reads the list after the failure: the part is avoided from the cycle after.
+TEST(CellReload, AFailureReportedAfterATriggerWasAcceptedCountsFromTheCycleAfterIt) {
+  Cell cell(cellConfigYaml(cellScene(), "limits: {avoid_cycles: 1}\n"));
+  actRightAfterACycle(cell, [&] {
+    cell.service.handle(kRobot, request(Command::Trigger));  // cycle 2, accepted, not yet taken up
+    // From another connection: the monitor's NEXT reply is the one held.
+    EXPECT_EQ(cell.ask(request(Command::PickFailed), kMonitor + 1).status, Status::Ok);  // cycle 1's pick
+  });
+  cell.collector.next(kRobot);
+  const std::optional<robot::Reply> failed_pick = cell.collector.next(kMonitor);
+  ASSERT_TRUE(failed_pick && failed_pick->status == Status::Ok);
+  const Eigen::Vector3d where = failed_pick->T_base_tool->translation();
+  const auto offers = [&where](const std::vector<robot::Reply>& picks) {
+    return std::any_of(picks.begin(), picks.end(), [&](const robot::Reply& pick) {
+      return (pick.T_base_tool->translation() - where).norm() < 0.01;
+    });
+  };
+  ASSERT_EQ(cell.collector.next(kRobot)->status, Status::Ok);  // cycle 2's TRIGGER
+  EXPECT_TRUE(offers(cell.allPicks())) << "cycle 2 was accepted before the failure: its avoid list is older";
+  ASSERT_EQ(cell.ask(request(Command::Trigger)).status, Status::Ok);  // cycle 3
+  EXPECT_FALSE(offers(cell.allPicks())) << "the failed part was offered in the cycle after";
 }
 
 // docs/robot-protocol.md, "Reply shapes": no_cycle before any cycle ran; FAILED without an object
