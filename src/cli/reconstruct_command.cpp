@@ -3,7 +3,9 @@
 // camera frame (metres, with the white image as intensity). --status writes why each pixel has
 // no point, as an 8-bit image of PixelStatus values (docs/reconstruction.md). The summary (points,
 // pixels without a point per reason, times, warnings) goes to stdout, followed by the calibration
-// check: how far the decoded rays miss each other under the calibration (calibration_fit.hpp).
+// check: how far the decoded rays miss each other under the calibration (triangulation.hpp,
+// CalibrationFit).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -14,7 +16,6 @@
 #include "binpick/io/capture.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/rig_calibration.hpp"
-#include "binpick/reconstruction/calibration_fit.hpp"
 #include "binpick/reconstruction/reconstruction_config.hpp"
 #include "capture_reconstruction.hpp"
 #include "commands.hpp"
@@ -35,42 +36,37 @@ std::string percent(double share) {
   return text;
 }
 
-// "calibration check: decoded rays miss each other by 2.1 mm (median), 1.3 projector px; 4% of
-// pixels beyond the 1.5 px epipolar limit", and a warning when most pixels are beyond it.
+// "calibration check: decoded rays miss each other by 2.1 mm (median), 2.3 projector px; the
+// calibration's residual reaches 15 px, pixels lie 0.41 px (median) from it; 4% beyond the 1.5 px
+// epipolar limit", and a warning when the calibration is worth redoing or does not fit at all.
 void printCalibrationFit(const reconstruction::CalibrationFit& fit, std::ostream& out) {
   if (!fit.measured()) {
     out << "calibration check: no pixel decoded both a column and a row\n";
     return;
   }
   out << "calibration check: decoded rays miss each other by " << measure(fit.median_gap_mm) << " mm (median), "
-      << measure(fit.median_epipolar_px) << " projector px; " << percent(fit.beyond_limit_share)
-      << " of pixels beyond the " << measure(fit.epipolar_limit_px) << " px epipolar limit\n";
+      << measure(fit.median_epipolar_px) << " projector px; ";
+  const bool followed = !std::isnan(fit.largest_residual_px);
+  if (followed) {
+    out << "the calibration's residual reaches " << measure(fit.largest_residual_px) << " px, pixels lie "
+        << measure(fit.median_off_residual_px) << " px (median) from it; ";
+  }
+  out << percent(fit.beyond_limit_share) << " beyond the " << measure(fit.epipolar_limit_px) << " px epipolar limit\n";
   // Ten times the limit is no calibration error a recalibration leaves behind: the rays belong to
   // another rig, or the codes to another scale.
-  if (fit.median_epipolar_px > 10.0 * fit.epipolar_limit_px) {
+  if (fit.median_epipolar_px > 10.0 * fit.epipolar_limit_px &&
+      (!followed || fit.largest_residual_px > fit.residual_limit_px)) {
     out << "warning: the calibration does not fit this capture: the decoded rays miss each other (another rig's "
            "calibration, or patterns coded at a fraction of the projector's resolution: a code step?)\n";
-  } else if (fit.median_epipolar_px > fit.epipolar_limit_px) {
-    out << "warning: most decoded pixels lie beyond the epipolar limit (their rows disagree with the calibration): "
-           "recalibrate, or loosen reconstruction.triangulation.max_epipolar_error\n";
+  } else if (fit.beyond_limit_share > 0.5) {
+    out << "warning: most decoded pixels lie beyond the epipolar limit: recalibrate, or loosen "
+           "reconstruction.triangulation.max_epipolar_error\n";
+  } else if (followed && fit.largest_residual_px > fit.epipolar_limit_px) {
+    out << "note: the calibration is up to " << measure(fit.largest_residual_px)
+        << " px off this capture's epipolar geometry (pixels are judged from that residual, "
+           "reconstruction.triangulation.max_calibration_residual); depth is only as good as the calibration: "
+           "recalibrate with board poses spread over the whole view and depth range\n";
   }
-}
-
-// The check decodes the capture once more: the reconstruction keeps no decoded coordinates. A
-// capture without rows has nothing to check, as a column alone always meets the camera ray.
-void checkCalibration(const CaptureInput& input, std::ostream& out) {
-  if (!io::readCaptureMetadata(input.capture_dir).pattern_set.row_codes) {
-    out << "calibration check: none (the capture has no row codes to check the calibration against)\n";
-    return;
-  }
-  reconstruction::ReconstructionParams params;
-  if (input.config) params = reconstruction::loadReconstructionParams(*input.config);
-  if (input.threads) params.setThreads(*input.threads);
-  const io::RigCalibration rig = io::readRigCalibration(
-      input.calibration.value_or((std::filesystem::path(input.capture_dir) / "calib.yaml").string()));
-  const io::Capture capture = io::readCapture(input.capture_dir, input.threads.value_or(0));
-  const reconstruction::DecodedCapture decoded = reconstruction::decodeCapture(capture, params.decode);
-  printCalibrationFit(reconstruction::measureCalibrationFit(rig, decoded, params.triangulation), out);
 }
 
 int run(const Arguments& args) {
@@ -82,7 +78,12 @@ int run(const Arguments& args) {
   const std::string out = args.value("--out").value_or("cloud.ply");
   const auto status_path = args.value("--status");
   const reconstruction::Reconstruction result = reconstructCaptureDirectory(input, std::cout);
-  checkCalibration(input, std::cout);
+  if (io::readCaptureMetadata(input.capture_dir).pattern_set.row_codes) {
+    printCalibrationFit(result.calibration_fit, std::cout);
+  } else {
+    // A column alone always meets the camera ray.
+    std::cout << "calibration check: none (the capture has no row codes to check the calibration against)\n";
+  }
   io::writePointCloud(out, result.cloud);
   if (status_path && !cv::imwrite(*status_path, result.status)) {
     throw core::Error(*status_path + ": cannot write the status image");

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "binpick/core/error.hpp"
 #include "thrown_message.hpp"
 #include "virtual_capture.hpp"
@@ -79,11 +81,28 @@ TEST(CalibrationFit, EpipolarDistanceIsInProjectorPixels) {
   shifted.row = shifted_row;
   TriangulationParams params;
   params.max_epipolar_error = 2.0;
+  params.max_calibration_residual = 0.0;  // each pixel judged from its line
   const CalibrationFit fit = measureCalibrationFit(smallCapture().scene.rig, shifted, params);
   ASSERT_TRUE(fit.measured());
   EXPECT_NEAR(fit.median_epipolar_px, 3.0, 0.3);
   EXPECT_GT(fit.beyond_limit_share, 0.95);
   EXPECT_EQ(fit.epipolar_limit_px, 2.0);
+  EXPECT_TRUE(std::isnan(fit.largest_residual_px));
+}
+
+// A shift common to all pixels is what a calibration slightly off gives: the residual field takes
+// it up (reported), and the pixels are judged from it.
+TEST(CalibrationFit, ASmoothOffsetIsTheCalibrationsResidual) {
+  DecodedCapture shifted = decodedSmallCapture();
+  const cv::Mat shifted_row = decodedSmallCapture().row + 3.0;
+  shifted.row = shifted_row;
+  const CalibrationFit fit = measureCalibrationFit(smallCapture().scene.rig, shifted);
+  ASSERT_TRUE(fit.measured());
+  EXPECT_NEAR(fit.median_epipolar_px, 3.0, 0.3);
+  EXPECT_NEAR(fit.largest_residual_px, 3.0, 0.4);
+  EXPECT_LT(fit.median_off_residual_px, 0.3);
+  EXPECT_LT(fit.beyond_limit_share, 0.05);
+  EXPECT_EQ(fit.residual_limit_px, TriangulationParams{}.max_calibration_residual);
 }
 
 TEST(CalibrationFit, ACaptureWithoutRowsHasNothingToCheck) {

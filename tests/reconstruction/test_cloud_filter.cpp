@@ -174,6 +174,57 @@ TEST(CloudFilter, SpeckleRemovalTurnsOffWithZeroMinimum) {
   expectRemovedExactly(before, g, PixelStatus::Valid, [](const Eigen::Vector3f&) { return false; });
 }
 
+// A slanted surface decoded to whole codes (no phase) is a staircase: terraces one code wide whose
+// depth steps by what a code spans there (here 5 mm, beyond the fixed 2 mm speckle step). Told
+// the code depth, the speckle filter keeps the staircase as one surface; not told, every terrace
+// is a patch of its own, too small to keep.
+TEST(CloudFilter, SpeckleStepsFollowTheDepthACodeSpans) {
+  const auto staircase = [] {
+    Grid g = tiltedPlane(120, 10);
+    for (int y = 0; y < 10; ++y) {
+      for (int x = 0; x < 120; ++x) g.at(x, y).z() = 0.7f + 0.005f * static_cast<float>(x / 4);  // 40 points a terrace
+    }
+    return g;
+  };
+  Grid told = staircase();
+  const cv::Mat code_depth(10, 120, CV_32FC1, cv::Scalar(0.004));  // 1.5 codes: 6 mm
+  filterCloud(told.cloud, told.status, speckleOnly(), {cv::Mat(), code_depth});
+  EXPECT_EQ(count(told, PixelStatus::Valid), 1200u);
+
+  Grid untold = staircase();
+  filterCloud(untold.cloud, untold.status, speckleOnly());
+  EXPECT_EQ(count(untold, PixelStatus::Speckle), 1200u);
+
+  CloudFilterParams fixed_steps = speckleOnly();
+  fixed_steps.min_step_in_codes = 0.0;
+  Grid off = staircase();
+  filterCloud(off.cloud, off.status, fixed_steps, {cv::Mat(), code_depth});
+  EXPECT_EQ(count(off, PixelStatus::Speckle), 1200u) << "min_step_in_codes: 0 must leave the fixed step alone";
+}
+
+// The same through the depth-edge test, with terraces one column wide and a reach of half a
+// footprint (at most 4.5 mm here): each point has only its own column's 2 neighbours within reach,
+// unless a code's depth is.
+TEST(CloudFilter, DepthEdgeReachFollowsTheDepthACodeSpans) {
+  const auto staircase = [] {
+    Grid g = tiltedPlane(40, 10);
+    for (int y = 0; y < 10; ++y) {
+      for (int x = 0; x < 40; ++x) g.at(x, y).z() = 0.7f + 0.005f * static_cast<float>(x);
+    }
+    return g;
+  };
+  CloudFilterParams edges_only = speckleOnly();
+  edges_only.speckle_min_pixels = 0;
+  edges_only.edge_max_jump = 0.5;
+  edges_only.edge_side_reach = 0;
+  Grid told = staircase();
+  filterCloud(told.cloud, told.status, edges_only, {cv::Mat(), cv::Mat(10, 40, CV_32FC1, cv::Scalar(0.004))});
+  EXPECT_EQ(count(told, PixelStatus::DepthEdge), 0u);
+  Grid untold = staircase();
+  filterCloud(untold.cloud, untold.status, edges_only);
+  EXPECT_EQ(count(untold, PixelStatus::DepthEdge), 400u);
+}
+
 // Random outliers sprinkled over a large surface: every one goes, the surface stays.
 TEST(CloudFilter, SpeckleRemovalCleansSprinkledOutliers) {
   Grid g = tiltedPlane(400, 300);
@@ -502,7 +553,7 @@ TEST(CloudFilter, NoiseRemovalSmoothsOnlyThePointsTheDecoderMeasuredNoisily) {
   CloudFilterParams params = noSpeckle();
   params.median_reach = 0.0045;  // median_min_noise as by default: 0.3 px
   Grid after = before;
-  filterCloud(after.cloud, after.status, params, column_noise);
+  filterCloud(after.cloud, after.status, params, {column_noise, cv::Mat()});
   std::size_t noisy_moved = 0;
   for (int y = 0; y < 120; ++y) {
     for (int x = 0; x < 160; ++x) {
@@ -535,7 +586,7 @@ TEST(CloudFilter, NoiseRemovalTakesLoneNoisyPoints) {
   CloudFilterParams params = noSpeckle();
   params.median_reach = 0.0045;
   Grid after = before;
-  filterCloud(after.cloud, after.status, params, column_noise);
+  filterCloud(after.cloud, after.status, params, {column_noise, cv::Mat()});
   EXPECT_EQ(after.statusAt(10, 10), static_cast<uint8_t>(PixelStatus::DepthEdge));
   EXPECT_FALSE(after.at(10, 10).allFinite());
   EXPECT_EQ(after.statusAt(30, 20), kValid);
@@ -589,7 +640,7 @@ TEST(CloudFilter, RefusesCloudsAndStatusesThatDoNotMatch) {
   unorganized.width = unorganized.height = 0;
   EXPECT_THROW(filterCloud(unorganized, g.status, CloudFilterParams{}), core::Error);
   const cv::Mat small_noise(10, 10, CV_32FC1, cv::Scalar(0.5f));
-  EXPECT_THROW(filterCloud(g.cloud, g.status, CloudFilterParams{}, small_noise), core::Error);
+  EXPECT_THROW(filterCloud(g.cloud, g.status, CloudFilterParams{}, {small_noise, cv::Mat()}), core::Error);
 }
 
 std::string paramsError(const CloudFilterParams& params) {

@@ -187,6 +187,7 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
   const simulation::PileScene& scene = pile(true);
   TriangulationParams params;
   params.column_when_row_inconsistent = false;
+  params.max_calibration_residual = 0.0;  // a shift of every row would be the calibration's residual
   const Triangulator triangulator(scene.rig, params);
   const DecodedCapture exact = perfectDecoding(scene, true);
   const TriangulatedCloud truth = triangulator.triangulate(exact);
@@ -216,6 +217,73 @@ TEST(Triangulation, RowsOffTheEpipolarCurveAreInconsistent) {
       EXPECT_LT(max_moved, 0.002);
     }
   }
+}
+
+// A calibration slightly off shifts every decoded row by an offset that varies smoothly over the
+// image (here from -4 to +4 px across it): the triangulator follows that residual and keeps the
+// pixels, while a patch misdecoded 5 px off its surroundings stands out as Inconsistent.
+TEST(Triangulation, ACalibrationsSmoothResidualIsFollowedAndMisdecodedRowsStillStandOut) {
+  const simulation::PileScene& scene = pile(true);
+  const Triangulator triangulator(scene.rig);
+  const DecodedCapture exact = perfectDecoding(scene, true);
+  DecodedCapture decoded = exact;
+  decoded.row = exact.row.clone();
+  const cv::Rect misdecoded(exact.width / 2, exact.height / 2, 12, 12);
+  for (int y = 0; y < exact.height; ++y) {
+    for (int x = 0; x < exact.width; ++x) {
+      decoded.row.at<float>(y, x) += -4.0f + 8.0f * static_cast<float>(x) / static_cast<float>(exact.width);
+      if (misdecoded.contains({x, y})) decoded.row.at<float>(y, x) += 5.0f;
+    }
+  }
+  const TriangulatedCloud result = triangulator.triangulate(decoded);
+  std::size_t inputs = 0, kept = 0, patch_inputs = 0, patch_inconsistent = 0;
+  for (int y = 0; y < exact.height; ++y) {
+    for (int x = 0; x < exact.width; ++x) {
+      if (exact.status.at<uint8_t>(y, x) != kValid) continue;
+      const uint8_t status = result.status.at<uint8_t>(y, x);
+      if (misdecoded.contains({x, y})) {
+        ++patch_inputs;
+        patch_inconsistent += status == static_cast<uint8_t>(PixelStatus::Inconsistent) ? 1 : 0;
+      } else {
+        ++inputs;
+        kept += status == kValid ? 1 : 0;
+      }
+    }
+  }
+  ASSERT_GT(patch_inputs, 50u) << "the patch must fall on the pile";
+  EXPECT_GT(static_cast<double>(kept) / inputs, 0.99);
+  EXPECT_GT(static_cast<double>(patch_inconsistent) / patch_inputs, 0.9);
+  // The pile covers the middle of the image: the field's largest offset there, not the border's.
+  EXPECT_GT(result.calibration_fit.largest_residual_px, 2.0);
+  EXPECT_LT(result.calibration_fit.largest_residual_px, 4.2);
+
+  TriangulationParams absolute;
+  absolute.max_calibration_residual = 0.0;
+  const TriangulatedCloud judged_absolutely = Triangulator(scene.rig, absolute).triangulate(decoded);
+  EXPECT_GT(countStatuses(judged_absolutely.status)[static_cast<std::size_t>(PixelStatus::Inconsistent)], inputs / 3);
+}
+
+// The depth a projector pixel spans along the epipolar line is what moving the decoded position
+// one pixel along it does to the point.
+TEST(Triangulation, DepthPerProjectorPixelIsTheDepthOnePixelAlongTheLineMoves) {
+  const simulation::PileScene& scene = pile(false);
+  const Triangulator triangulator(scene.rig);
+  const DecodedCapture exact = perfectDecoding(scene, false);
+  DecodedCapture moved = exact;
+  moved.column = cv::Mat();  // not into the pixels `exact` shares
+  moved.column = exact.column + 1.0;  // columns only: the line runs across the columns
+  const TriangulatedCloud before = triangulator.triangulate(exact);
+  const TriangulatedCloud after = triangulator.triangulate(moved);
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < before.cloud.size(); i += 97) {
+    const float z0 = before.cloud.points[i].z(), z1 = after.cloud.points[i].z();
+    if (!std::isfinite(z0) || !std::isfinite(z1)) continue;
+    const float predicted = before.depth_per_projector_px.ptr<float>(0)[i];
+    // The column's light crosses the line at an angle: one column is at least one pixel along it.
+    EXPECT_NEAR(std::abs(z1 - z0), predicted, 0.15 * predicted) << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 100u);
 }
 
 // The decoder keeps the column of a pixel whose row failed (row NaN): such pixels are solved from

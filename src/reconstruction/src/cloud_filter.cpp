@@ -22,14 +22,17 @@ void require(bool ok, const char* field, const char* rule, double value) {
 
 bool hasNaN(const Eigen::Vector3d& v) { return v.array().isNaN().any(); }
 
-void checkInputs(const io::PointCloud& cloud, const cv::Mat& status, const cv::Mat& column_noise) {
-  if (!column_noise.empty() &&
-      (column_noise.type() != CV_32FC1 || column_noise.cols != cloud.width || column_noise.rows != cloud.height)) {
-    throw core::Error("filterCloud: the column noise image must be empty or CV_32FC1 of the cloud's size " +
-                      std::to_string(cloud.width) + "x" + std::to_string(cloud.height) + " (got " +
-                      std::to_string(column_noise.cols) + "x" + std::to_string(column_noise.rows) + " of type " +
-                      std::to_string(column_noise.type()) + ")");
-  }
+void requireOptionalImage(const cv::Mat& image, const io::PointCloud& cloud, const char* what) {
+  if (image.empty() || (image.type() == CV_32FC1 && image.cols == cloud.width && image.rows == cloud.height)) return;
+  throw core::Error(std::string("filterCloud: the ") + what + " image must be empty or CV_32FC1 of the cloud's size " +
+                    std::to_string(cloud.width) + "x" + std::to_string(cloud.height) + " (got " +
+                    std::to_string(image.cols) + "x" + std::to_string(image.rows) + " of type " +
+                    std::to_string(image.type()) + ")");
+}
+
+void checkInputs(const io::PointCloud& cloud, const cv::Mat& status, const PointPrecision& precision) {
+  requireOptionalImage(precision.column_noise, cloud, "column noise");
+  requireOptionalImage(precision.code_depth, cloud, "code depth");
   if (!cloud.isOrganized()) {
     throw core::Error("filterCloud: the cloud must be organized (got " + std::to_string(cloud.width) + "x" +
                       std::to_string(cloud.height) + " for " + std::to_string(cloud.size()) + " points)");
@@ -90,10 +93,27 @@ void applySurfaceMedian(io::PointCloud& cloud, cv::Mat& status, const CloudFilte
                 PixelStatus::DepthEdge);
 }
 
-void applyDepthEdges(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+// The smallest step each point's decoding allows (CloudFilterParams::min_step_in_codes), metres;
+// empty without code depths.
+std::vector<float> coarseSteps(const cv::Mat& code_depth, const CloudFilterParams& params) {
+  if (code_depth.empty()) return {};
+  std::vector<float> steps;
+  steps.reserve(code_depth.total());
+  const auto codes = static_cast<float>(params.min_step_in_codes);
+  for (int y = 0; y < code_depth.rows; ++y) {
+    const float* row = code_depth.ptr<float>(y);
+    for (int x = 0; x < code_depth.cols; ++x) steps.push_back(codes * row[x]);
+  }
+  return steps;
+}
+
+const float* orNull(const std::vector<float>& values) { return values.empty() ? nullptr : values.data(); }
+
+void applyDepthEdges(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params,
+                     const std::vector<float>& coarse_steps) {
   removeFlagged(cloud, status,
                 detail::findDepthEdgeOutliers(cloud, static_cast<float>(params.edge_max_jump),
-                                              params.edge_min_neighbours, params.edge_min_support,
+                                              params.edge_min_neighbours, params.edge_min_support, orNull(coarse_steps),
                                               core::resolveThreadCount(params.threads)),
                 PixelStatus::DepthEdge);
 }
@@ -108,10 +128,11 @@ void applyEdgeCoverage(io::PointCloud& cloud, cv::Mat& status, const CloudFilter
                 PixelStatus::DepthEdge);
 }
 
-void applySpeckle(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params) {
+void applySpeckle(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params,
+                  const std::vector<float>& coarse_steps) {
+  const detail::DepthStep step{static_cast<float>(params.speckle_max_step), orNull(coarse_steps)};
   removeFlagged(cloud, status,
-                detail::findSpeckles(cloud, static_cast<float>(params.speckle_max_step), params.speckle_min_pixels,
-                                     core::resolveThreadCount(params.threads)),
+                detail::findSpeckles(cloud, step, params.speckle_min_pixels, core::resolveThreadCount(params.threads)),
                 PixelStatus::Speckle);
 }
 
@@ -141,23 +162,27 @@ void CloudFilterParams::validate() const {
   require(edge_side_reach >= 0 && edge_side_reach <= 16, "edge_side_reach", "in [0, 16] pixels", edge_side_reach);
   require(std::isfinite(edge_side_min_contrast) && edge_side_min_contrast >= 0.0 && edge_side_min_contrast <= 1.0,
           "edge_side_min_contrast", "in [0, 1]", edge_side_min_contrast);
+  require(std::isfinite(min_step_in_codes) && min_step_in_codes >= 0.0, "min_step_in_codes", "finite and >= 0",
+          min_step_in_codes);
   require(threads >= 0, "threads", ">= 0", threads);
 }
 
-void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params, const cv::Mat& column_noise) {
+void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params,
+                 const PointPrecision& precision) {
   params.validate();
-  checkInputs(cloud, status, column_noise);
+  checkInputs(cloud, status, precision);
   // Triangulated points lie in front of the camera: the default range and no crop remove nothing.
   const CloudFilterParams defaults;
   const bool limits_depth = params.min_depth > defaults.min_depth || params.max_depth < defaults.max_depth;
   if (limits_depth || !params.crop.isEmpty()) applyDepthAndCrop(cloud, status, params);
   // Without the decoder's noise, which points are noisy is unknown: only median_min_noise = 0
   // (every dark point) smooths such a cloud.
-  const bool noise_known = !column_noise.empty() || params.median_min_noise == 0.0;
-  if (params.median_reach > 0.0 && noise_known) applySurfaceMedian(cloud, status, params, column_noise);
-  if (params.edge_max_jump > 0.0) applyDepthEdges(cloud, status, params);
+  const bool noise_known = !precision.column_noise.empty() || params.median_min_noise == 0.0;
+  if (params.median_reach > 0.0 && noise_known) applySurfaceMedian(cloud, status, params, precision.column_noise);
+  const std::vector<float> coarse_steps = coarseSteps(precision.code_depth, params);
+  if (params.edge_max_jump > 0.0) applyDepthEdges(cloud, status, params, coarse_steps);
   if (params.edge_max_jump > 0.0 && params.edge_side_reach > 0) applyEdgeCoverage(cloud, status, params);
-  if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params);
+  if (params.speckle_min_pixels > 1) applySpeckle(cloud, status, params, coarse_steps);
 }
 
 }  // namespace binpick::reconstruction

@@ -47,7 +47,8 @@ float rayPitch(const io::PointCloud& cloud) {
 }
 
 std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
-                                           int min_support, int threads) {
+                                           int min_support, const float* coarse_step, int threads) {
+  const DepthStep step{0.0f, coarse_step};
   std::vector<uint8_t> outlier(cloud.points.size(), 0);
   const float reach_per_metre = max_jump * rayPitch(cloud);  // footprints -> a share of z
   if (!(reach_per_metre > 0.0f)) return outlier;
@@ -60,7 +61,7 @@ std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float ma
       if (!std::isfinite(z)) continue;
       const int count = neighbourDepths(cloud, x, y, depths);
       if (count < min_neighbours) continue;
-      outlier[i] = support(depths, count, z, reach_per_metre * z) < min_support ? 1 : 0;
+      outlier[i] = support(depths, count, z, step.at(i, reach_per_metre * z)) < min_support ? 1 : 0;
     }
   }
   return outlier;

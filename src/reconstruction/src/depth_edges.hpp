@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "binpick/io/point_cloud.hpp"
+#include "depth_step.hpp"
 
 namespace binpick::reconstruction::detail {
 
@@ -17,10 +18,11 @@ namespace binpick::reconstruction::detail {
 // its normal, every neighbour but the diagonals across the slope lies within 8 footprints; the
 // last pixels of a near surface at an edge keep those along the edge and inside. A mixed pixel,
 // which sees neither surface, has at most the other mixed pixels along a 1-pixel veil; a lone
-// misdecoded point has none. Rows in parallel on `threads` threads; the result does not depend on
-// their number.
+// misdecoded point has none. `coarse_step` (nullptr, or metres per point): a point whose decoding
+// is coarser than that (DepthStep) has at least it as its reach. Rows in parallel on `threads`
+// threads; the result does not depend on their number.
 std::vector<uint8_t> findDepthEdgeOutliers(const io::PointCloud& cloud, float max_jump, int min_neighbours,
-                                           int min_support, int threads);
+                                           int min_support, const float* coarse_step, int threads);
 
 // The angle between the rays of horizontally adjacent pixels (1 / f for a pinhole), from the
 // cloud itself: the median of |x/z - x'/z'| over adjacent points of every 8th row. 0 when the

@@ -62,6 +62,15 @@ std::vector<float> intensitiesOf(const cv::Mat& intensity) {
   return std::vector<float>(first, first + continuous.total());
 }
 
+// Without phase images a pixel is decoded to a whole code, code_step projector pixels wide: the
+// depth that spans is the depth resolution the filters must allow between neighbours. With phase
+// the coordinates are sub-pixel and the filters' fixed steps hold.
+cv::Mat codeDepth(const DecodedCapture& decoded, const TriangulatedCloud& triangulated,
+                  const io::PatternSetSpec& spec) {
+  if (decoded.has_phase) return {};
+  return triangulated.depth_per_projector_px * static_cast<double>(spec.code_step);
+}
+
 const ReconstructionParams& validated(const ReconstructionParams& params) {
   params.validate();
   return params;
@@ -99,13 +108,15 @@ Reconstruction Reconstructor::reconstruct(const io::Capture& capture, const core
   result.timings.triangulate = stage.lapMs();
   core::throwIfCancelled(cancel, "before filtering");
   triangulated.cloud.intensities = intensitiesOf(decoded.intensity);  // the noise filter reads them
-  filterCloud(triangulated.cloud, triangulated.status, params_.filter, decoded.column_noise);
+  filterCloud(triangulated.cloud, triangulated.status, params_.filter,
+              {decoded.column_noise, codeDepth(decoded, triangulated, capture.metadata.pattern_set)});
   result.timings.filter = stage.lapMs();
   // The three stages end to end; the copying into the result below is not part of it.
   result.timings.total = result.timings.decode + result.timings.triangulate + result.timings.filter;
 
   result.cloud = std::move(triangulated.cloud);
   result.status = triangulated.status;
+  result.calibration_fit = triangulated.calibration_fit;
   result.counts = countStatuses(result.status);
   return result;
 }

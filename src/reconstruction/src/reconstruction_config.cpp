@@ -49,6 +49,7 @@ void readFilter(core::YamlSection s, CloudFilterParams& p) {
   readCrop(s.child("crop"), p);
   s.read("speckle_max_step", p.speckle_max_step);
   s.read("speckle_min_pixels", p.speckle_min_pixels);
+  s.read("min_step_in_codes", p.min_step_in_codes);
   s.read("median_reach", p.median_reach);
   s.read("median_max_pull", p.median_max_pull);
   s.read("median_max_intensity", p.median_max_intensity);
@@ -70,6 +71,7 @@ void readReconstruction(core::YamlSection s, ReconstructionParams& p) {
   core::YamlSection triangulation = s.child("triangulation");
   triangulation.read("max_epipolar_error", p.triangulation.max_epipolar_error);
   triangulation.read("column_when_row_inconsistent", p.triangulation.column_when_row_inconsistent);
+  triangulation.read("max_calibration_residual", p.triangulation.max_calibration_residual);
   triangulation.finish();
   readFilter(s.child("filter"), p.filter);
   s.finish();

@@ -50,13 +50,17 @@ class RunSets {
   std::vector<int32_t> size_;
 };
 
-bool connected(float z0, float z1, float max_step) { return std::abs(z0 - z1) <= max_step; }
+// Points i and j of the cloud, neighbours, are one surface.
+bool connected(const io::PointCloud& cloud, std::size_t i, std::size_t j, const DepthStep& step) {
+  return std::abs(cloud.points[i].z() - cloud.points[j].z()) <= step.between(i, j);  // NaN: no
+}
 
 // Labels one row's runs: consecutive points (organized clouds mark missing ones with NaN), each
-// within max_step of its left neighbour.
-void labelRow(const io::PointCloud& cloud, int y, float max_step, RunSets& sets, int32_t* labels) {
+// within the step of its left neighbour.
+void labelRow(const io::PointCloud& cloud, int y, const DepthStep& step, RunSets& sets, int32_t* labels) {
   const int width = cloud.width;
-  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * width;
+  const std::size_t first = static_cast<std::size_t>(y) * width;
+  const Eigen::Vector3f* points = cloud.points.data() + first;
   int x = 0;
   while (x < width) {
     if (std::isnan(points[x].z())) {
@@ -64,22 +68,21 @@ void labelRow(const io::PointCloud& cloud, int y, float max_step, RunSets& sets,
       continue;
     }
     const int start = x++;
-    while (x < width && connected(points[x].z(), points[x - 1].z(), max_step)) ++x;  // NaN: no
+    while (x < width && connected(cloud, first + x, first + x - 1, step)) ++x;
     std::fill(labels + start, labels + x, sets.add(x - start));
   }
 }
 
 // Joins the runs of row y with those of row y - 1 wherever vertical neighbours connect.
-void joinRows(const io::PointCloud& cloud, int y, float max_step, RunSets& sets, const int32_t* above,
+void joinRows(const io::PointCloud& cloud, int y, const DepthStep& step, RunSets& sets, const int32_t* above,
               const int32_t* labels) {
   const int width = cloud.width;
-  const Eigen::Vector3f* points = cloud.points.data() + static_cast<std::size_t>(y) * width;
-  const Eigen::Vector3f* points_above = points - width;
+  const std::size_t first = static_cast<std::size_t>(y) * width;
   int32_t last_above = -1, last = -1;  // the pair joined last: runs overlap over many pixels
   for (int x = 0; x < width; ++x) {
     if (labels[x] < 0 || above[x] < 0) continue;
     if (labels[x] == last && above[x] == last_above) continue;
-    if (!connected(points[x].z(), points_above[x].z(), max_step)) continue;
+    if (!connected(cloud, first + x, first + x - width, step)) continue;
     sets.join(labels[x], above[x]);
     last = labels[x];
     last_above = above[x];
@@ -88,7 +91,7 @@ void joinRows(const io::PointCloud& cloud, int y, float max_step, RunSets& sets,
 
 }  // namespace
 
-std::vector<uint8_t> findSpeckles(const io::PointCloud& cloud, float max_step, int min_pixels, int threads) {
+std::vector<uint8_t> findSpeckles(const io::PointCloud& cloud, const DepthStep& step, int min_pixels, int threads) {
   const std::size_t count = cloud.points.size();
   const int width = cloud.width;
   std::vector<int32_t> labels(count, -1);
@@ -102,8 +105,8 @@ std::vector<uint8_t> findSpeckles(const io::PointCloud& cloud, float max_step, i
   for (int b = 0; b < bands; ++b) {
     for (int y = first_row[b]; y < first_row[b + 1]; ++y) {
       int32_t* row_labels = labels.data() + static_cast<std::size_t>(y) * width;
-      labelRow(cloud, y, max_step, band_sets[b], row_labels);
-      if (y > first_row[b]) joinRows(cloud, y, max_step, band_sets[b], row_labels - width, row_labels);
+      labelRow(cloud, y, step, band_sets[b], row_labels);
+      if (y > first_row[b]) joinRows(cloud, y, step, band_sets[b], row_labels - width, row_labels);
     }
   }
   std::vector<int32_t> offset(bands, 0);
@@ -119,7 +122,7 @@ std::vector<uint8_t> findSpeckles(const io::PointCloud& cloud, float max_step, i
   RunSets sets(band_sets);
   for (int b = 1; b < bands; ++b) {
     const int32_t* row_labels = labels.data() + static_cast<std::size_t>(first_row[b]) * width;
-    joinRows(cloud, first_row[b], max_step, sets, row_labels - width, row_labels);
+    joinRows(cloud, first_row[b], step, sets, row_labels - width, row_labels);
   }
   // Decided per run, then spread to the pixels: runs are far fewer.
   std::vector<uint8_t> small_run(sets.count());

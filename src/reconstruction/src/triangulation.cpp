@@ -3,9 +3,11 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/thread_count.hpp"
+#include "epipolar_residual.hpp"
 #include "triangulation_rows.hpp"
 #include "triangulation_tables.hpp"
 
@@ -15,9 +17,14 @@ struct Triangulator::Tables {
   detail::CameraRays rays;
   detail::ProjectorTables projector;
   detail::RigGeometry geometry;
+  detail::RigFrames frames;  // for the calibration's residual field
 };
 
 namespace {
+
+// The calibration's fit is measured on every 4th pixel of every 4th row: up to 64 samples per
+// tile of its residual field, for a few milliseconds per megapixel.
+constexpr int kFitSamplingStride = 4;
 
 void requireImage(const cv::Mat& image, int type, const DecodedCapture& decoded, const char* name) {
   if (image.rows == decoded.height && image.cols == decoded.width && image.type() == type) return;
@@ -43,6 +50,8 @@ void checkDecoded(const DecodedCapture& decoded, const io::LensIntrinsics& camer
 void TriangulationParams::validate() const {
   core::requireField(std::isfinite(max_epipolar_error) && max_epipolar_error > 0.0, "TriangulationParams",
                      "max_epipolar_error", "positive and finite", max_epipolar_error);
+  core::requireField(std::isfinite(max_calibration_residual) && max_calibration_residual >= 0.0, "TriangulationParams",
+                     "max_calibration_residual", ">= 0 and finite", max_calibration_residual);
   core::requireField(threads >= 0, "TriangulationParams", "threads", ">= 0", threads);
 }
 
@@ -58,6 +67,7 @@ Triangulator::Triangulator(const io::RigCalibration& rig, const TriangulationPar
   tables->projector = detail::buildProjectorTables(rig_.projector, pencil, camera_centre, threads);
   tables->geometry = detail::makeRigGeometry(rig_, pencil, params_.max_epipolar_error);
   tables->geometry.column_when_inconsistent = params_.column_when_row_inconsistent;
+  tables->frames = detail::rigFrames(rig_);
   tables_ = std::move(tables);
 }
 
@@ -70,17 +80,32 @@ const io::RigCalibration& Triangulator::rig() const { return rig_; }
 TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const {
   checkDecoded(decoded, rig_.camera);
   const int width = decoded.width, height = decoded.height;
+  const int threads = core::resolveThreadCount(params_.threads);
   TriangulatedCloud result;
   result.cloud.width = width;
   result.cloud.height = height;
   // resize() leaves Eigen's vectors uninitialised: the row loop writes every element.
   result.cloud.points.resize(static_cast<std::size_t>(width) * height);
   result.status.create(height, width, CV_8UC1);
+  result.depth_per_projector_px.create(height, width, CV_32FC1);
   const Tables& tables = *tables_;
   const bool with_rows = !decoded.row.empty();
-#pragma omp parallel num_threads(core::resolveThreadCount(params_.threads))
+  detail::EpipolarResidualField field;
+  if (with_rows) {
+    detail::FitSampling sampling;
+    sampling.stride = kFitSamplingStride;
+    sampling.limit_px = params_.max_epipolar_error;
+    sampling.max_residual_px = params_.max_calibration_residual;
+    sampling.threads = threads;
+    detail::FitMeasurement measured =
+        detail::measureFit(tables.frames, tables.rays, tables.projector.undistort, decoded, sampling);
+    result.calibration_fit = measured.fit;
+    field = std::move(measured.field);
+  }
+#pragma omp parallel num_threads(threads)
   {
     detail::TriangulationScratch scratch(width);
+    std::vector<float> expected_offset(with_rows ? width : 0);
 #pragma omp for schedule(static)
     for (int y = 0; y < height; ++y) {
       const std::size_t offset = static_cast<std::size_t>(y) * width;
@@ -91,8 +116,11 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
       in.column = decoded.column.ptr<float>(y);
       in.row = with_rows ? decoded.row.ptr<float>(y) : nullptr;
       in.status = decoded.status.ptr<uint8_t>(y);
-      const detail::TriangulationRowOutput out{result.cloud.points.data() + offset, result.status.ptr<uint8_t>(y)};
+      const detail::TriangulationRowOutput out{result.cloud.points.data() + offset, result.status.ptr<uint8_t>(y),
+                                               result.depth_per_projector_px.ptr<float>(y)};
       if (with_rows) {
+        field.rowOffsets(y, width, expected_offset.data());
+        in.expected_offset = expected_offset.data();
         detail::triangulateRowWithRows(tables.geometry, tables.projector, in, scratch, out);
       } else {
         detail::triangulateRowColumnOnly(tables.geometry, tables.projector, in, scratch, out);

@@ -11,6 +11,7 @@
 // plane, read from a table over (column, plane).
 #include "triangulation_rows.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -48,6 +49,7 @@ inline Direction rayInProjector(const RigGeometry& g, float a, float b) {
 
 struct Solution {
   float depth;
+  float depth_per_px;  // camera z per projector pixel along the ray's epipolar line
   bool no_point;
 };
 
@@ -61,8 +63,13 @@ inline Solution intersectRays(const RigGeometry& g, const Direction& d, float wu
   const float bx = wz * d.x - wu * d.z, by = wz * d.y - wv * d.z;
   const float t = -(ax * bx + ay * by) / (bx * bx + by * by);
   const float z_projector = c[2] + t * d.z;
+  // The point's image moves along the line at d(u, v)/dt = (d_xy c_z - c_xy d_z) / z_projector^2
+  // (normalised units per metre of t): its inverse, in pixels, is the depth one projector pixel
+  // spans there.
+  const float speed_u = g.fx * (d.x * c[2] - c[0] * d.z), speed_v = g.fy * (d.y * c[2] - c[1] * d.z);
+  const float depth_per_px = z_projector * z_projector / std::sqrt(speed_u * speed_u + speed_v * speed_v);
   // NaN (parallel or degenerate rays) fails these comparisons too.
-  return {t, !((t > 0.0f) & (t < g.max_depth) & (z_projector > 0.0f))};
+  return {t, depth_per_px, !((t > 0.0f) & (t < g.max_depth) & (z_projector > 0.0f))};
 }
 
 // Decoded column and row: the point of the ray whose projection is nearest the decoded (u, v) in
@@ -71,8 +78,10 @@ inline Solution intersectRays(const RigGeometry& g, const Direction& d, float wu
 // The epipolar error is the foot's distance, measured in the undistorted image: the projector's
 // distortion scales lengths by 1 + O(k1 r^2) (a few per cent at the corners of real lenses),
 // which does not matter for a tolerance, while projecting through the distortion would cost
-// more than the rest of the solve.
-inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, float v, float& depth) {
+// more than the rest of the solve. It is judged from `expected`, the calibration's residual at
+// the pixel (normalised units, signed as s / sqrt(line)).
+inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, float v, float expected,
+                            Solution& solution) {
   const Direction d = rayInProjector(g, a, b);
   const float* c = g.c;
   const float nx = c[1] * d.z - c[2] * d.y;
@@ -83,11 +92,11 @@ inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, flo
   // |normal|^2 = line / fx^2 and (u, v) lies |s| fx / sqrt(line) pixels from the line.
   const float qny = g.aspect_sq * ny;
   const float line = nx * nx + qny * ny;
-  const bool inconsistent = s * s > g.max_error_sq * line;
+  const float off_residual = s - expected * std::sqrt(line);
+  const bool inconsistent = off_residual * off_residual > g.max_error_sq * line;
   // The foot (u, v) - (s / line) (nx, q^2 ny), kept homogeneous (times `line`): one division
   // fewer, and divisions are what this loop waits on.
-  const Solution solution = intersectRays(g, d, u * line - s * nx, v * line - s * qny, line);
-  depth = solution.depth;
+  solution = intersectRays(g, d, u * line - s * nx, v * line - s * qny, line);
   return solution.no_point ? kNoIntersection : (inconsistent ? kInconsistent : kSolved);
 }
 
@@ -136,20 +145,33 @@ BINPICK_SIMD_PASS void epipolarLabels(const RigGeometry& rig, int n, const float
   for (int x = 0; x < n; ++x) label[x] = epipolarLabel(rig, ray_x[x], ray_y[x]);
 }
 
-// The solves write camera-frame points, NaN unless solved: x, y in px, py, and z (= t) in pz.
+// The solves write camera-frame points, NaN unless solved: x, y in px, py, and z (= t) in pz;
+// and the depth a projector pixel spans in depth_per_px. The SIMD passes take them as separate
+// __restrict parameters (see above); the helpers around them pass them as one.
+struct PointRows {
+  float* px;
+  float* py;
+  float* pz;
+  float* depth_per_px;
+};
+
 BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
                                      const float* __restrict ray_y, const float* __restrict uv,
-                                     int32_t* __restrict code, float* __restrict px, float* __restrict py,
-                                     float* __restrict pz) {
+                                     const float* __restrict expected_px, int32_t* __restrict code,
+                                     float* __restrict px, float* __restrict py, float* __restrict pz,
+                                     float* __restrict depth_per_px) {
+  const float inv_fx = 1.0f / rig.fx;
   for (int x = 0; x < n; ++x) {
-    float t = 0.0f;
-    const int32_t solved = solveWithRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1], t);
+    Solution solution{};
+    const int32_t solved =
+        solveWithRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1], expected_px[x] * inv_fx, solution);
     const int32_t verdict = code[x] == kSolved ? solved : code[x];
-    const float z = verdict == kSolved ? t : kNaNf;
+    const float z = verdict == kSolved ? solution.depth : kNaNf;
     code[x] = verdict;
     px[x] = z * ray_x[x];
     py[x] = z * ray_y[x];
     pz[x] = z;
+    depth_per_px[x] = verdict == kSolved ? solution.depth_per_px : kNaNf;
   }
 }
 
@@ -158,7 +180,7 @@ BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float*
 BINPICK_SIMD_PASS void solveColumnOnly(const RigGeometry& rig, int n, const float* __restrict ray_x,
                                        const float* __restrict ray_y, const float* __restrict light, float min_row,
                                        float max_row, int32_t* __restrict code, float* __restrict px,
-                                       float* __restrict py, float* __restrict pz) {
+                                       float* __restrict py, float* __restrict pz, float* __restrict depth_per_px) {
   for (int x = 0; x < n; ++x) {
     const float* crossing = light + 4 * x;
     const Solution solution =
@@ -171,6 +193,7 @@ BINPICK_SIMD_PASS void solveColumnOnly(const RigGeometry& rig, int n, const floa
     px[x] = z * ray_x[x];
     py[x] = z * ray_y[x];
     pz[x] = z;
+    depth_per_px[x] = verdict == kSolved ? solution.depth_per_px : kNaNf;
   }
 }
 
@@ -194,9 +217,9 @@ BINPICK_SIMD_PASS void storeStatuses(int n, const uint8_t* __restrict decoded, c
 }
 
 // Columns only, for the pixels of `in` that are still to be solved: the crossing of each ray's
-// epipolar plane with its column's light. Writes code, px, py, pz.
+// epipolar plane with its column's light. Writes code and the points.
 void solveByColumns(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
-                    TriangulationScratch& s, int32_t* code, float* px, float* py, float* pz) {
+                    TriangulationScratch& s, int32_t* code, PointRows out) {
   const int n = in.width;
   const auto grid = tables.epipolar.view();
   // Each ray's epipolar plane. Outside the table's labels the plane misses the projector's
@@ -205,7 +228,8 @@ void solveByColumns(const RigGeometry& rig, const ProjectorTables& tables, const
   locateCells(grid, n, in.column, s.label.data(), in.status, tables.min_column, tables.max_column, kNoIntersection,
               s.cell.data(), s.fx.data(), s.fy.data(), code);
   crossColumnLight(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveColumnOnly(rig, n, in.ray_x, in.ray_y, s.light.data(), tables.min_row, tables.max_row, code, px, py, pz);
+  solveColumnOnly(rig, n, in.ray_x, in.ray_y, s.light.data(), tables.min_row, tables.max_row, code, out.px, out.py,
+                  out.pz, out.depth_per_px);
 }
 
 // The row did not decode, or the decoded row lies off the ray's epipolar line (a wrong row: the
@@ -223,13 +247,15 @@ void solveMissingRows(const RigGeometry& rig, const ProjectorTables& tables, con
   bool any = false;
   for (int x = 0; x < in.width; ++x) any |= columnWithoutRow(rig, in, s, x);
   if (!any) return;
-  solveByColumns(rig, tables, in, s, s.column_code.data(), s.column_px.data(), s.column_py.data(), s.column_pz.data());
+  solveByColumns(rig, tables, in, s, s.column_code.data(),
+                 {s.column_px.data(), s.column_py.data(), s.column_pz.data(), s.column_depth_per_px.data()});
   for (int x = 0; x < in.width; ++x) {
     if (!columnWithoutRow(rig, in, s, x)) continue;
     s.code[x] = s.column_code[x];
     s.px[x] = s.column_px[x];
     s.py[x] = s.column_py[x];
     s.pz[x] = s.column_pz[x];
+    s.depth_per_px[x] = s.column_depth_per_px[x];
   }
 }
 
@@ -237,6 +263,7 @@ void solveMissingRows(const RigGeometry& rig, const ProjectorTables& tables, con
 void writeRow(const TriangulationRowInput& in, const TriangulationScratch& s, const TriangulationRowOutput& out) {
   storePoints(in.width, s.px.data(), s.py.data(), s.pz.data(), out.points);
   storeStatuses(in.width, in.status, s.code.data(), out.status);
+  std::copy(s.depth_per_px.begin(), s.depth_per_px.begin() + in.width, out.depth_per_px);
 }
 
 }  // namespace
@@ -253,6 +280,8 @@ RigGeometry makeRigGeometry(const io::RigCalibration& rig, const EpipolarPencil&
     g.q2[i] = static_cast<float>(q2[i]);
     g.q3[i] = static_cast<float>(q3[i]);
   }
+  g.fx = static_cast<float>(rig.projector.fx);
+  g.fy = static_cast<float>(rig.projector.fy);
   const double aspect = rig.projector.fx / rig.projector.fy;
   g.aspect_sq = static_cast<float>(aspect * aspect);
   const double max_error = max_epipolar_error / rig.projector.fx;
@@ -268,12 +297,14 @@ TriangulationScratch::TriangulationScratch(int width)
       px(width),
       py(width),
       pz(width),
+      depth_per_px(width),
       light(4 * width),
       code(width),
       cell(width),
       column_px(width),
       column_py(width),
       column_pz(width),
+      column_depth_per_px(width),
       column_code(width) {}
 
 void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
@@ -284,14 +315,15 @@ void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& table
   locateCells(grid, n, in.column, in.row, in.status, tables.min_column, tables.max_column, kOutOfRange, s.cell.data(),
               s.fx.data(), s.fy.data(), s.code.data());
   undistortCells(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), s.code.data(), s.px.data(), s.py.data(), s.pz.data());
+  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), in.expected_offset, s.code.data(), s.px.data(), s.py.data(),
+                s.pz.data(), s.depth_per_px.data());
   solveMissingRows(rig, tables, in, s);
   writeRow(in, s, out);
 }
 
 void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
                               TriangulationScratch& s, const TriangulationRowOutput& out) {
-  solveByColumns(rig, tables, in, s, s.code.data(), s.px.data(), s.py.data(), s.pz.data());
+  solveByColumns(rig, tables, in, s, s.code.data(), {s.px.data(), s.py.data(), s.pz.data(), s.depth_per_px.data()});
   writeRow(in, s, out);
 }
 

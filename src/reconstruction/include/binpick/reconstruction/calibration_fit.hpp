@@ -15,28 +15,14 @@
 //   the depth the point is triangulated at. Pixels whose rays pass closest behind either device,
 //   or that are parallel, have no gap.
 // Stateless: thread-safe.
-#include <cstddef>
-#include <limits>
-
 #include "binpick/io/rig_calibration.hpp"
 #include "binpick/reconstruction/decoder.hpp"
 #include "binpick/reconstruction/triangulation.hpp"
 
 namespace binpick::reconstruction {
 
-struct CalibrationFit {
-  std::size_t pixels = 0;           // decoded pixels with a column and a row inside the projector image
-  std::size_t pixels_with_gap = 0;  // of those, whose rays pass closest in front of both devices
-  double median_gap_mm = std::numeric_limits<double>::quiet_NaN();
-  double median_epipolar_px = std::numeric_limits<double>::quiet_NaN();
-  double epipolar_limit_px = 0.0;   // TriangulationParams::max_epipolar_error
-  double beyond_limit_share = 0.0;  // of `pixels`, farther than the limit from their epipolar line
-  // False for a capture without rows (nothing to check: a column alone always meets the ray) or
-  // without a decoded pixel.
-  bool measured() const { return pixels > 0; }
-};
-
-// Uses params.max_epipolar_error and params.threads. Throws core::Error on an invalid rig or
+// Every pixel measured (a Triangulator samples every 4th). Uses params.max_epipolar_error,
+// params.max_calibration_residual and params.threads. Throws core::Error on an invalid rig or
 // params, or when `decoded` is not the camera's image size.
 CalibrationFit measureCalibrationFit(const io::RigCalibration& rig, const DecodedCapture& decoded,
                                      const TriangulationParams& params = {});

@@ -80,15 +80,31 @@ struct CloudFilterParams {
   // speckle_min_pixels = 0 turns it off.
   double speckle_max_step = 0.002;  // metres
   int speckle_min_pixels = 50;
+  // A capture decoded to whole codes (no phase images) puts neighbours on one smooth surface a
+  // code apart, and a code spans the depth PointPrecision::code_depth gives at each point: 7 to
+  // 9 mm for a rig 3.5 m from the scene coding 2 projector pixels per code, 0.3 mm at 0.9 m on the
+  // virtual rig. The speckle step and the depth-edge reach of a point are at least this many
+  // codes' depth there. 0: the fixed steps above alone.
+  double min_step_in_codes = 1.5;
   int threads = 0;        // 0: all cores
   void validate() const;  // throws core::Error naming the field
 };
 
+// How precisely each point was decoded, where known; each image empty or CV_32FC1 of the
+// cloud's size.
+struct PointPrecision {
+  // The decoder's DecodedCapture::column_noise: limits noise removal to the noisy points
+  // (CloudFilterParams::median_min_noise; without it, noise removal runs only with
+  // median_min_noise = 0).
+  cv::Mat column_noise;
+  // For a capture decoded to whole codes: the camera z one code spans at each point, metres
+  // (TriangulatedCloud::depth_per_projector_px times the code step); raises the speckle and
+  // depth-edge steps there (CloudFilterParams::min_step_in_codes).
+  cv::Mat code_depth;
+};
+
 // `cloud` must be organized and `status` CV_8UC1 of its size (throws core::Error otherwise).
-// `column_noise`: empty, or the decoder's DecodedCapture::column_noise (CV_32FC1 of the cloud's
-// size), which limits noise removal to the noisy points (CloudFilterParams::median_min_noise;
-// without it, noise removal runs only with median_min_noise = 0).
 void filterCloud(io::PointCloud& cloud, cv::Mat& status, const CloudFilterParams& params,
-                 const cv::Mat& column_noise = cv::Mat());
+                 const PointPrecision& precision = {});
 
 }  // namespace binpick::reconstruction

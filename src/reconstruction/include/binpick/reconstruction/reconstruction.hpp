@@ -42,6 +42,7 @@ struct Reconstruction {
   cv::Mat status;  // CV_8UC1 PixelStatus per pixel
   StatusCounts counts;
   ReconstructionTimings timings;
+  CalibrationFit calibration_fit;  // from triangulation: measured on a sample of the pixels
   // What the caller should know about a capture that was reconstructed all the same (also logged
   // as warnings by the "reconstruction" logger), e.g. a geometry that triangulates poorly.
   std::vector<std::string> warnings;
