@@ -22,6 +22,7 @@ calibration::RigCalibrationParams calibrationParams(const Arguments& args) {
   calibration::RigCalibrationParams params;
   params.min_views = args.integer("--min-views").value_or(params.min_views);
   params.drop_outliers = args.flag("--drop-outliers");
+  params.refine_intrinsics_in_stereo = !args.flag("--hold-intrinsics");
   params.outlier_factor = args.number("--outlier-factor").value_or(params.outlier_factor);
   params.outlier_floor_px = args.number("--outlier-floor-px").value_or(params.outlier_floor_px);
   if (const auto terms = args.value("--camera-distortion")) {
@@ -52,6 +53,16 @@ std::vector<calibration::RigView> gatherViews(const Arguments& args, const calib
   return captureLiveViews(args, count, args.required("--record"), layout, params, std::cin);
 }
 
+// A chessboard of another size seen in a view (the board given in the other convention): what
+// the user probably meant, for the error or a warning; empty when no view saw one.
+std::string sizeHint(const Arguments& args, const std::vector<calibration::RigView>& views) {
+  for (const calibration::RigView& view : views) {
+    const std::string hint = boardSizeHint(args, view.board);
+    if (!hint.empty()) return view.name + ": " + hint;
+  }
+  return "";
+}
+
 int run(const Arguments& args) {
   if (!args.value("--sequence") && !args.value("--views") && !args.value("--camera") && !args.value("--fake-camera")) {
     throw missingOption("--sequence, --views, --camera or --fake-camera");
@@ -62,8 +73,16 @@ int run(const Arguments& args) {
   const calibration::RigViewParams view_params = viewParams(args);
 
   const std::vector<calibration::RigView> views = gatherViews(args, layout, view_params, params.min_views);
-  const calibration::RigCalibrationResult result = calibration::calibrateRig(views, layout, params);
+  const std::string hint = sizeHint(args, views);
+  calibration::RigCalibrationResult result;
+  try {
+    result = calibration::calibrateRig(views, layout, params);
+  } catch (const core::Error& e) {
+    if (hint.empty()) throw;
+    throw core::Error(std::string(e.what()) + "; " + hint);
+  }
   for (const std::string& warning : result.warnings) std::cerr << "warning: " << warning << "\n";
+  if (!hint.empty()) std::cerr << "warning: " << hint << "\n";
   printRigReport(std::cout, result);
   io::writeRigCalibration(out, result.rig, result.quality);
   std::cout << "wrote " << out << "\n";
@@ -105,9 +124,10 @@ void addCalibrateRigCommand(CLI::App& calibrate, CommandTable& table) {
   live.push_back(addInteger(command, "--count", "K", "Live: views to take (default: --min-views, at least 12)"));
   refuseTogether(live, {sequence, views});
   addBoardOptions(command);
-  addInteger(command, "--min-views", "N", "Usable views needed, at least 3 (default 8)")
+  addInteger(command, "--min-views", "N", "Usable views needed, at least 3 (default 3; fewer than 8: a warning)")
       ->check(CLI::Validator(checkMinViews, ""));
   addFlag(command, "--drop-outliers", "Leave out views that fit much worse than the others");
+  addFlag(command, "--hold-intrinsics", "Keep each device's own-solve intrinsics in the stereo step (not refined)");
   addNumber(command, "--outlier-factor", "F", "Outlier: RMS above F times the median view's (default 3)");
   addNumber(command, "--outlier-floor-px", "PX", "An RMS below PX is never an outlier (default 0.15)");
   addText(command, "--camera-distortion", "TERMS", "Camera distortion terms fitted (default k1,k2,p1,p2; add k3)")

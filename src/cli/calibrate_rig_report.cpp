@@ -70,9 +70,18 @@ std::string termValue(int term, const calibration::TermResidual& residual) {
 // warranted shows in both.
 void printLensFit(std::ostream& out, const char* device, const calibration::LensFitReport& fit) {
   char line[320];
-  std::snprintf(line, sizeof line, "%-9s terms %s: own solve RMS %.3f px\n", device, fit.terms.text().c_str(),
-                fit.rms_px);
+  const io::LensIntrinsics& own = fit.lens;
+  std::snprintf(line, sizeof line, "%-9s terms %s: own solve RMS %.3f px  fx %.2f  fy %.2f  cx %.2f  cy %.2f\n", device,
+                fit.terms.text().c_str(), fit.rms_px, own.fx, own.fy, own.cx, own.cy);
   out << line;
+  if (!fit.restarted_from.empty()) {
+    // Honest about the local minimum: what the solve from zero distortion gave.
+    std::snprintf(line, sizeof line,
+                  "%-9s from zero distortion the solve stopped at RMS %.3f px, above the fit holding %s: restarted"
+                  " from that fit\n",
+                  "", fit.scratch_rms_px, fit.restarted_from.c_str());
+    out << line;
+  }
   std::snprintf(line, sizeof line,
                 "%-9s std dev  fx %.2f  fy %.2f  cx %.2f  cy %.2f  k1 %.4f k2 %.4f p1 %.5f p2 %.5f k3 %.4f\n", "",
                 fit.sd[0], fit.sd[1], fit.sd[2], fit.sd[3], fit.sd[4], fit.sd[5], fit.sd[6], fit.sd[7], fit.sd[8]);

@@ -18,13 +18,21 @@ namespace {
 using test::readTestViews;
 using test::rigTestData;
 
+// Below the hard minimum of three (the default), or the min_views asked for, an error.
 TEST(RigCalibrationBadInput, TooFewUsableViewsIsAnErrorNamingTheUnusableOnes) {
   const test::RigTestData& data = rigTestData();
-  const std::vector<RigView> views = readTestViews({data.views[0], data.no_board, data.views[1], data.views[2]});
+  const std::vector<RigView> views = readTestViews({data.views[0], data.no_board, data.views[1]});
   const std::string message = test::thrownMessage([&] { calibrateRig(views, data.layout); });
-  EXPECT_NE(message.find("3 usable views of 4, at least 8 needed"), std::string::npos) << message;
+  EXPECT_NE(message.find("2 usable views of 3, at least 3 needed"), std::string::npos) << message;
   EXPECT_NE(message.find(data.no_board + " (board not found"), std::string::npos) << message;
   EXPECT_EQ(message.find(data.views[1]), std::string::npos) << message;
+
+  std::vector<RigView> four = views;
+  four.push_back(readTestViews({data.views[2]}).front());
+  RigCalibrationParams params;
+  params.min_views = 8;
+  const std::string eight = test::thrownMessage([&] { calibrateRig(four, data.layout, params); });
+  EXPECT_NE(eight.find("3 usable views of 4, at least 8 needed"), std::string::npos) << eight;
 }
 
 TEST(RigCalibrationBadInput, ACaptureWithoutRowCodesIsRefusedNamingIt) {

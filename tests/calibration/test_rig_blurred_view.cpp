@@ -3,10 +3,12 @@
 // outlier with a warning naming it, and left out with drop_outliers.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "binpick/calibration/rig_calibrator.hpp"
+#include "rig_depth_error.hpp"
 #include "rig_test_data.hpp"
 
 namespace binpick::calibration {
@@ -54,6 +56,20 @@ TEST(RigBlurredView, ABlurredChessboardViewIsFlaggedAndDroppedOnRequest) {
   RecordProperty("kept_translation_error_mm", std::to_string(translationErrorMm(kept, data.params.rig)));
   RecordProperty("dropped_translation_error_mm", std::to_string(translationErrorMm(dropped, data.params.rig)));
   EXPECT_LT(translationErrorMm(dropped, data.params.rig), 1.0);
+
+  // Depth: the rig with the blurred view kept against the one without it, each against the true
+  // rig's (median |dz| over planes at 0.75-1.05 m).
+  const double kept_mm = test::medianDepthErrorMm(kept.rig, data.params.rig);
+  const double dropped_mm = test::medianDepthErrorMm(dropped.rig, data.params.rig);
+  RecordProperty("kept_median_depth_error_mm", std::to_string(kept_mm));
+  RecordProperty("dropped_median_depth_error_mm", std::to_string(dropped_mm));
+  std::printf("median depth error against the true rig: blurred view kept %.3f mm, dropped %.3f mm\n", kept_mm,
+              dropped_mm);
+  // Measured: kept 0.28 mm, dropped 0.067 mm (0.91 and 0.24 mm before the chessboard's corners
+  // were refined on the flattened image with a window sized to the squares). What is left of the
+  // kept view's share is its projector corners (RMS 0.55 px against its camera's 0.14 px).
+  EXPECT_LT(kept_mm, 0.4);
+  EXPECT_LT(dropped_mm, 0.10);
 }
 
 }  // namespace

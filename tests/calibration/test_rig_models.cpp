@@ -25,13 +25,14 @@ struct SyntheticSequence {
   std::vector<RigView> views;
 };
 
-// `poses` board poses of the virtual cell; every corner both devices see, with Gaussian noise of
-// `sigma_px` on the camera and the projector pixel.
-SyntheticSequence observedSequence(const io::RigCalibration& rig, int poses, uint64_t seed, double sigma_px) {
+// `poses` board poses of the virtual cell (drawn with `pose_params` but its count and seed);
+// every corner both devices see, with Gaussian noise of `sigma_px` on the camera and the
+// projector pixel.
+SyntheticSequence observedSequence(const io::RigCalibration& rig, int poses, uint64_t seed, double sigma_px,
+                                   simulation::BoardPoseParams pose_params = {}) {
   SyntheticSequence sequence;
   sequence.truth = rig;
   const simulation::BoardSpec spec;
-  simulation::BoardPoseParams pose_params;
   const simulation::CalibrationBoard board(spec);
   sequence.layout = spec.layout();
   pose_params.count = poses;
@@ -67,6 +68,25 @@ bool anyWarningNames(const RigCalibrationResult& result, const std::string& view
   return std::any_of(result.warnings.begin(), result.warnings.end(), [&](const std::string& w) {
     return w.find(view + ":") != std::string::npos && w.find(text) != std::string::npos;
   });
+}
+
+bool anyWarning(const RigCalibrationResult& result, const std::string& text) {
+  return std::any_of(result.warnings.begin(), result.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+// Board poses that barely tilt (up to 2 degrees) or turn: all nearly parallel to the image.
+simulation::BoardPoseParams alikePoses() {
+  simulation::BoardPoseParams params;
+  params.max_tilt = 0.035;
+  params.max_in_plane_rotation = 0.05;
+  return params;
+}
+
+std::string allWarnings(const RigCalibrationResult& result) {
+  std::string text;
+  for (const std::string& w : result.warnings) text += w + "\n";
+  return text;
 }
 
 TEST(DistortionTerms, ParsesTheListsAndNamesWhatIsWrong) {
@@ -171,6 +191,66 @@ TEST(RigModels, AViewFarAboveTheOthersIsFlaggedUnderHalfAPixel) {
   EXPECT_LT(baseline_mm, 0.2);
   EXPECT_NEAR(dropped.rig.projector.cx, clean.rig.projector.cx, 0.3);
   EXPECT_NEAR(dropped.rig.camera.cy, clean.rig.camera.cy, 0.3);
+}
+
+// Fewer views than recommended are calibrated, with a warning that names the intrinsics they
+// leave poorly determined; below the hard minimum of three, an error.
+TEST(RigModels, FewerViewsThanRecommendedAreCalibratedWithAWarning) {
+  const io::RigCalibration rig = simulation::makeVirtualRig();
+  const SyntheticSequence five = observedSequence(rig, 5, 11, 0.05);
+  const RigCalibrationResult result = calibrateRig(five.views, five.layout);
+  EXPECT_EQ(result.quality.viewsUsed(), 5);
+  EXPECT_TRUE(anyWarning(result, "only 5 views used, 8 or more recommended: poorly determined")) << allWarnings(result);
+  EXPECT_NEAR(result.rig.camera.fx, rig.camera.fx, 0.01 * rig.camera.fx);
+
+  // Alike poses leave the principal points loose: the warning names them with their deviations.
+  const SyntheticSequence alike = observedSequence(rig, 5, 11, 0.1, alikePoses());
+  const RigCalibrationResult loose = calibrateRig(alike.views, alike.layout);
+  EXPECT_TRUE(anyWarning(loose, "8 or more recommended: poorly determined (own solves' standard deviations): camera"))
+      << allWarnings(loose);
+  EXPECT_TRUE(anyWarning(loose, "cx +- ")) << allWarnings(loose);
+
+  const std::vector<RigView> two(five.views.begin(), five.views.begin() + 2);
+  EXPECT_TRUE(test::throwsNaming([&] { calibrateRig(two, five.layout); }, "2 usable views of 2, at least 3 needed"));
+}
+
+// Nearly parallel poses cannot pin the principal points: a warning with the deviations, the
+// board's tilt spread and the remedy. Well spread poses give none.
+TEST(RigModels, AlikePosesWarnThatThePrincipalPointIsPoorlyPinned) {
+  const io::RigCalibration rig = simulation::makeVirtualRig();
+  const SyntheticSequence alike = observedSequence(rig, 10, 13, 0.1, alikePoses());
+  const RigCalibrationResult loose = calibrateRig(alike.views, alike.layout);
+  RecordProperty("alike_camera_cx_sd_px", std::to_string(loose.camera_fit.sd[2]));
+  RecordProperty("alike_tilt_spread_deg", std::to_string(loose.camera_fit.board_normal_spread_deg));
+  EXPECT_TRUE(anyWarning(loose, "do not pin the principal points")) << allWarnings(loose);
+  EXPECT_TRUE(anyWarning(loose, "tilt the board more")) << allWarnings(loose);
+  EXPECT_LT(loose.camera_fit.board_normal_spread_deg, 8.0);
+  EXPECT_FALSE(anyWarning(loose, "recommended"));  // 10 views: enough of them, but alike
+
+  const SyntheticSequence spread = observedSequence(rig, 10, 13, 0.1);
+  const RigCalibrationResult pinned = calibrateRig(spread.views, spread.layout);
+  EXPECT_FALSE(anyWarning(pinned, "do not pin")) << allWarnings(pinned);
+  EXPECT_GT(pinned.camera_fit.board_normal_spread_deg, 20.0);
+}
+
+// Fitting a term never ends worse than holding it, whatever the start: on views like the real
+// ones (noisy corners, few alike poses), for every device and term; and the chosen fit is never
+// worse than the solve from zero distortion.
+TEST(RigModels, FittingMoreTermsNeverEndsWorse) {
+  io::RigCalibration rig = simulation::makeVirtualRig();
+  rig.projector.distortion = {-0.1, 0.3, 0.005, -0.002, 0.0};
+  for (const uint64_t seed : {17u, 19u, 23u}) {
+    const SyntheticSequence sequence = observedSequence(rig, 5, seed, 0.3, alikePoses());
+    const RigCalibrationResult result = calibrateRig(sequence.views, sequence.layout);
+    for (const LensFitReport* fit : {&result.camera_fit, &result.projector_fit}) {
+      EXPECT_LE(fit->rms_px, fit->scratch_rms_px + 1e-9);
+      for (int term = 0; term < kDistortionTermCount; ++term) {
+        const TermResidual& residual = fit->per_term[static_cast<std::size_t>(term)];
+        EXPECT_LE(residual.rms_fitted_px, residual.rms_held_px + 1e-9)
+            << "seed " << seed << ", " << kDistortionTermNames[term] << (residual.chosen ? " chosen" : " held");
+      }
+    }
+  }
 }
 
 }  // namespace

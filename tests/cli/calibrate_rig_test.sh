@@ -35,7 +35,7 @@ expect_error() {  # expect_error "pattern" command...
 source "$(dirname "$0")/usage_error.sh"  # expect_usage_error
 mkdir -p "$work/corrupt" && printf '{"format_version": 1, "source": ' > "$work/corrupt/capture.json"
 # Views listed one by one; a view without the board is named among the unusable ones.
-expect_error "1 usable view of 2, at least 8 needed; not usable: $data/no_board (board not found" \
+expect_error "1 usable view of 2, at least 3 needed; not usable: $data/no_board (board not found" \
   "$binpick" calibrate rig --views "$seq/pose_000" "$data/no_board" --out "$work/x.yaml"
 expect_error "$data/no_rows: the capture has no row codes" \
   "$binpick" calibrate rig --views "$data/no_rows" "$seq/pose_000" --out "$work/x.yaml"
@@ -47,6 +47,11 @@ expect_usage_error "--sequence excludes --views" "$binpick" calibrate rig --sequ
 expect_usage_error "--sequence excludes --record" "$binpick" calibrate rig --sequence "$seq" --record "$work/r" --out "$work/x.yaml"
 expect_usage_error "--out is required" "$binpick" calibrate rig --sequence "$seq"
 expect_error "board options" "$binpick" calibrate rig --sequence "$seq" --squares 2x7 --out "$work/x.yaml"
+expect_usage_error "--squares excludes --inner-corners" "$binpick" calibrate rig --sequence "$seq" --squares 9x7 --inner-corners 8x6 --out "$work/x.yaml"
+expect_error "--inner-corners 1x5: a chessboard needs at least 2x2 inner corners (3x3 squares); for the squares use --squares" \
+  "$binpick" calibrate rig --sequence "$seq" --board chessboard --inner-corners 1x5 --out "$work/x.yaml"
+expect_error "--squares 2x7: a board needs at least 3x3 squares (2x2 inner corners); for the inner corners use --inner-corners" \
+  "$binpick" calibrate rig --sequence "$seq" --squares 2x7 --out "$work/x.yaml"
 expect_usage_error "--min-views: must be at least 3" "$binpick" calibrate rig --sequence "$seq" --min-views 2 --out "$work/x.yaml"
 expect_usage_error "--projector-distortion" "$binpick" calibrate rig --sequence "$seq" --projector-distortion k1,p1 --out "$work/x.yaml"
 [ ! -e "$work/x.yaml" ] || fail "a refused calibration wrote a file"

@@ -74,18 +74,45 @@ bool findChessboardCorners(const cv::Mat& image8, cv::Size pattern, std::vector<
 // patch of squares: a board cut by the image border or partly covered).
 std::string missingChessboardProblem(const cv::Mat& image8, cv::Size pattern) {
   const std::string size = std::to_string(pattern.width) + "x" + std::to_string(pattern.height);
+  const std::string squares = std::to_string(pattern.width + 1) + "x" + std::to_string(pattern.height + 1);
   if (!cv::checkChessboard(image8, cv::Size(3, 3)))
-    return "no chessboard in the image (looked for " + size + " inner corners)";
+    return "no chessboard in the image (looked for " + size + " inner corners, " + squares + " squares)";
   return "no complete " + size +
          " chessboard in the image, only part of one (every inner corner must be visible: is the board cut by the"
-         " image border or covered?)";
+         " image border or covered? Or does it have another number of inner corners (looked for " +
+         size + ", " + squares + " squares)?)";
+}
+
+// Squares and inner corners are easily confused (a board of 9 x 7 inner corners has 10 x 8
+// squares): a whole board one corner larger or smaller each way, when there is one.
+cv::Size otherChessboardSize(const cv::Mat& image8, cv::Size pattern) {
+  for (const int step : {1, -1}) {
+    const cv::Size other(pattern.width + step, pattern.height + step);
+    if (other.width >= 2 && other.height >= 2 && seesWholeChessboard(image8, other)) return other;
+  }
+  return {};
+}
+
+std::string otherSizeProblem(cv::Size pattern, cv::Size other) {
+  const auto size = [](int x, int y) { return std::to_string(x) + "x" + std::to_string(y); };
+  return "no " + size(pattern.width, pattern.height) + " chessboard (inner corners; " +
+         size(pattern.width + 1, pattern.height + 1) + " squares) in the image, but one of " +
+         size(other.width, other.height) + " inner corners (" + size(other.width + 1, other.height + 1) +
+         " squares): the board's size is given in the other convention?";
 }
 
 // cv::findChessboardCorners lists the corners from either end of a board turned half a turn:
 // start from the end nearest the image's top-left so that views agree.
-std::string findChessboard(const cv::Mat& image8, const BoardLayout& layout, Corners& found) {
+std::string findChessboard(const cv::Mat& image8, const BoardLayout& layout, Corners& found,
+                           BoardDetection& detection) {
   const cv::Size pattern(layout.squares_x - 1, layout.squares_y - 1);
-  if (!findChessboardCorners(image8, pattern, found.pixels)) return missingChessboardProblem(image8, pattern);
+  if (!findChessboardCorners(image8, pattern, found.pixels)) {
+    const cv::Size other = otherChessboardSize(image8, pattern);
+    if (other.empty()) return missingChessboardProblem(image8, pattern);
+    detection.seen_inner_x = other.width;
+    detection.seen_inner_y = other.height;
+    return otherSizeProblem(pattern, other);
+  }
   const cv::Point2f first = found.pixels.front(), last = found.pixels.back();
   if (first.x + first.y > last.x + last.y) std::reverse(found.pixels.begin(), found.pixels.end());
   found.ids.resize(found.pixels.size());
@@ -115,21 +142,44 @@ double smallSquareSide(const BoardLayout& layout, const Corners& corners) {
 
 // The refinement window must stay in the white ring between a corner and the nearest ChArUco
 // marker (or, on a chessboard, inside the squares): a marker edge in the window pulls the
-// saddle point towards it (0.6 px with 25-pixel squares and a 5-pixel half window).
-int refinementHalfWindow(const BoardLayout& layout, const Corners& corners, int largest) {
+// saddle point towards it (0.6 px with 25-pixel squares and a 5-pixel half window). A chessboard's
+// window grows with its squares: a blurred corner's saddle is as wide as the blur, and a window
+// narrower than that left one corner of a view blurred with sigma 5 px 14 px off (the full-size
+// virtual views, squares of 46-69 px: a 15-pixel window brings it within 0.4 px).
+int refinementHalfWindow(const BoardLayout& layout, const Corners& corners, const BoardDetectionParams& params) {
   const double side = smallSquareSide(layout, corners);
-  if (side <= 0.0) return largest;
+  if (side <= 0.0) return params.subpixel_half_window;
+  if (layout.type == BoardType::Chessboard) {
+    const int window = static_cast<int>(std::floor(params.chessboard_window_share * side));
+    return std::clamp(window, 2, std::max(params.subpixel_half_window, params.chessboard_half_window));
+  }
   const double ring = (layout.square_size - layout.marker_size) / (2.0 * layout.square_size);
-  const double clear_share = layout.type == BoardType::Charuco ? ring : 0.5;
-  const int limit = static_cast<int>(std::floor(clear_share * side)) - 1;
-  return std::clamp(limit, 2, largest);
+  const int limit = static_cast<int>(std::floor(ring * side)) - 1;
+  return std::clamp(limit, 2, params.subpixel_half_window);
+}
+
+// The image divided by its local white level (the white squares' brightness around each pixel):
+// the light falling across the board, blurred together with the squares, moves a blurred
+// corner's saddle point towards the brighter side (0.3 px median on views blurred with sigma
+// 5 px, 0.07 px once flattened). The white level is the largest value within two squares' sides,
+// smoothed over one.
+cv::Mat flattened(const cv::Mat& image, double side) {
+  cv::Mat grey, white;
+  image.convertTo(grey, CV_32F);
+  if (!(side > 0.0)) return grey;
+  const int size = 2 * static_cast<int>(std::ceil(side)) + 1;
+  cv::dilate(grey, white, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(size, size)));
+  cv::GaussianBlur(white, white, cv::Size(), std::max(1.0, side));
+  cv::max(white, 1.0, white);  // no division by a black region's zero
+  cv::divide(grey, white, grey);
+  return grey;
 }
 
 // OpenCV 4.6's ChArUco interpolation leaves corners half a pixel off (opencv/opencv#25539);
 // cornerSubPix converges to the saddle point from there whatever the detector's convention.
 void refine(const cv::Mat& image, std::vector<cv::Point2f>& pixels, int half_window) {
   cv::Mat grey = image;
-  if (image.depth() != CV_8U) image.convertTo(grey, CV_32F);
+  if (image.depth() != CV_8U && image.depth() != CV_32F) image.convertTo(grey, CV_32F);
   cv::cornerSubPix(grey, pixels, cv::Size(half_window, half_window), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
 }
@@ -154,6 +204,11 @@ void keepInside(const cv::Mat& image, double margin, const Corners& corners, Boa
 void BoardDetectionParams::validate() const {
   core::requireField(subpixel_half_window >= 2, "BoardDetectionParams", "subpixel_half_window", ">= 2",
                      subpixel_half_window);
+  core::requireField(chessboard_half_window >= 2, "BoardDetectionParams", "chessboard_half_window", ">= 2",
+                     chessboard_half_window);
+  core::requireField(
+      std::isfinite(chessboard_window_share) && chessboard_window_share > 0.0 && chessboard_window_share < 0.5,
+      "BoardDetectionParams", "chessboard_window_share", "in (0, 0.5)", chessboard_window_share);
   core::requireField(min_corners >= 4, "BoardDetectionParams", "min_corners", ">= 4", min_corners);
   core::requireField(std::isfinite(border_margin) && border_margin >= 0.0, "BoardDetectionParams", "border_margin",
                      ">= 0", border_margin);
@@ -170,9 +225,14 @@ BoardDetection detectBoard(const cv::Mat& image, const BoardLayout& layout, cons
   const cv::Mat image8 = eightBit(image);
   Corners corners;
   detection.problem = layout.type == BoardType::Charuco ? findCharuco(image8, layout, corners)
-                                                        : findChessboard(image8, layout, corners);
+                                                        : findChessboard(image8, layout, corners, detection);
   if (!detection.found()) return detection;
-  refine(image, corners.pixels, refinementHalfWindow(layout, corners, params.subpixel_half_window));
+  const int window = refinementHalfWindow(layout, corners, params);
+  if (layout.type == BoardType::Chessboard && params.flatten_chessboard) {
+    refine(flattened(image, smallSquareSide(layout, corners)), corners.pixels, window);
+  } else {
+    refine(image, corners.pixels, window);
+  }
   keepInside(image, params.border_margin, corners, detection);
   if (static_cast<int>(detection.ids.size()) < params.min_corners) {
     detection.problem = "only " + std::to_string(detection.ids.size()) + " of " + std::to_string(detection.expected) +

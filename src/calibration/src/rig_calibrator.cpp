@@ -7,6 +7,7 @@
 
 #include "binpick/core/error.hpp"
 #include "binpick/io/capture.hpp"
+#include "rig_diagnosis.hpp"
 #include "rig_solver.hpp"
 #include "rig_view_triage.hpp"
 
@@ -81,6 +82,11 @@ std::vector<std::size_t> withoutOutliers(const Attempt& attempt) {
 void RigCalibrationParams::validate() const {
   const std::string owner = "RigCalibrationParams";
   core::requireField(min_views >= 3, owner, "min_views", ">= 3", min_views);
+  core::requireField(recommended_views >= 3, owner, "recommended_views", ">= 3", recommended_views);
+  core::requireField(std::isfinite(max_focal_sd_share) && max_focal_sd_share > 0.0, owner, "max_focal_sd_share",
+                     "positive", max_focal_sd_share);
+  core::requireField(std::isfinite(max_principal_point_sd_share) && max_principal_point_sd_share > 0.0, owner,
+                     "max_principal_point_sd_share", "positive", max_principal_point_sd_share);
   core::requireField(min_corners >= 6, owner, "min_corners", ">= 6", min_corners);
   core::requireField(std::isfinite(outlier_floor_px) && outlier_floor_px >= 0.0, owner, "outlier_floor_px", ">= 0",
                      outlier_floor_px);
@@ -158,6 +164,10 @@ RigCalibrationResult calibrateRig(const std::vector<RigView>& views, const Board
                   " board's flatness and that it stood still in every view",
                   solution.stereo_rms_px, params.warn_rms_px);
     result.warnings.push_back(text);
+  }
+  const double span = detail::meanBoardSpan(views, attempt.views);
+  for (std::string& warning : detail::geometryWarnings(result, static_cast<int>(attempt.views.size()), span, params)) {
+    result.warnings.push_back(std::move(warning));
   }
   return result;
 }

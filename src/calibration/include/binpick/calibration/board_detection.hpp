@@ -24,6 +24,13 @@ struct BoardDetectionParams {
   // Largest cornerSubPix search window half-size, pixels. Smaller squares get a smaller window,
   // one that stays clear of the ChArUco markers (chessboard: inside the squares), at least 2.
   int subpixel_half_window = 5;
+  // A chessboard's window: this share of its smallest squares' side in the image, at most
+  // chessboard_half_window pixels (a blurred corner needs a window as wide as the blur).
+  double chessboard_window_share = 0.3;
+  int chessboard_half_window = 15;
+  // A chessboard's corners are refined on the image divided by its local white level, which
+  // keeps the light's slope across the board from moving blurred corners.
+  bool flatten_chessboard = true;
   // A view with fewer corners is "not found". ChArUco pose and homographies need 4; a
   // calibration wants many more per view.
   int min_corners = 6;
@@ -38,6 +45,11 @@ struct BoardDetection {
   std::vector<Eigen::Vector2d> pixels;  // camera pixel of each corner
   int expected = 0;                     // the layout's corner count
   std::string problem;                  // why the board was not found; empty when found
+  // A chessboard not found: the inner corners across and down of a whole chessboard one corner
+  // larger or smaller each way that is in the image instead (a board given in the other
+  // convention, squares for inner corners or back); 0 when none is.
+  int seen_inner_x = 0;
+  int seen_inner_y = 0;
   bool found() const { return problem.empty(); }
   bool complete() const { return found() && static_cast<int>(ids.size()) == expected; }
 };

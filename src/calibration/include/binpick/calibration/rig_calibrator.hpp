@@ -30,7 +30,11 @@
 namespace binpick::calibration {
 
 struct RigCalibrationParams {
-  int min_views = 8;     // usable views needed (after dropping outliers); at least 3
+  // Usable views needed (after dropping outliers): below, an error. Three board poses are the
+  // least a lens solve needs; fewer than recommended_views are calibrated with a warning naming
+  // the intrinsics they leave poorly determined.
+  int min_views = 3;
+  int recommended_views = 8;
   int min_corners = 10;  // corners with both a camera and a projector pixel, per view
   // RMS below this never makes a view an outlier. Low enough that a view several times worse
   // than clean ones of 0.05 px (a blurred view at 0.4 px) is flagged, high enough that the
@@ -45,6 +49,16 @@ struct RigCalibrationParams {
   DistortionTerms projector_distortion;
   // Step 3 with CALIB_USE_INTRINSIC_GUESS (true) or CALIB_FIX_INTRINSIC (false).
   bool refine_intrinsics_in_stereo = true;
+  // An own solve's standard deviation above these shares (of the focal length; of the image's
+  // width for the principal point) names the intrinsic as poorly determined; a principal point
+  // poorly determined is warned about on its own, with the remedy.
+  double max_focal_sd_share = 0.005;
+  double max_principal_point_sd_share = 0.005;
+  // What that warning names as the remedy: more tilt when the board's normals stay within this
+  // angle of each other, a board filling more of the image when it spans less than this share of
+  // the camera image's width on average.
+  double min_tilt_spread_deg = 30.0;
+  double min_board_span = 0.6;
   // A final stereo RMS above this is reported as a warning: the calibration is written, but
   // something (focus, board flatness, a moving board) is wrong.
   double warn_rms_px = 1.0;
@@ -69,10 +83,17 @@ struct TermResidual {
 };
 
 // One device's own solve (step 1 or 2) with the chosen terms, and once more per term with that
-// term toggled (held when chosen, freed from the chosen fit when not).
+// term toggled (held when chosen, freed from the chosen fit when not). Fitting a term never ends
+// worse than holding it: when the solve from zero distortion stops above a fit with one chosen
+// term held (a local minimum), it is solved again from that fit and the better one is kept.
 struct LensFitReport {
   DistortionTerms terms;
+  io::LensIntrinsics lens;  // the own solve's result (the rig's lens after the stereo step may differ)
   double rms_px = 0.0;
+  double scratch_rms_px = 0.0;  // the solve from zero distortion (rms_px unless restarted)
+  std::string restarted_from;   // the term held in the fit the solve restarted from; empty if none
+  // The largest angle between the board's normals in two views: small when the poses are alike.
+  double board_normal_spread_deg = 0.0;
   // Standard deviation of fx, fy, cx, cy, k1, k2, p1, p2, k3 from the solve's Jacobian (0 for a
   // term held), in pixels and the terms' units.
   std::array<double, 9> sd{};
@@ -89,6 +110,7 @@ struct RigCalibrationResult {
   RigCalibrationTimings timings;      // of the final solve
 };
 
+// Fewer usable views than recommended_views, or principal points poorly pinned, add a warning.
 // Throws core::Error when fewer than min_views views are usable (naming each unusable view and
 // why), when dropping the outliers leaves too few, when the views disagree on the camera or
 // projector size, or when OpenCV cannot solve the calibration.
