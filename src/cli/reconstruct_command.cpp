@@ -5,11 +5,13 @@
 // pixels without a point per reason, times, warnings) goes to stdout, followed by the calibration
 // check: how far the decoded rays miss each other under the calibration (triangulation.hpp,
 // CalibrationFit).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
+#include <vector>
 
 #include "arguments.hpp"
 #include "binpick/core/error.hpp"
@@ -69,6 +71,24 @@ void printCalibrationFit(const reconstruction::CalibrationFit& fit, std::ostream
   }
 }
 
+// Per stage, why pixels have no point and which settings govern it, largest first: where a real
+// rig's capture loses its pixels.
+void printRejections(const reconstruction::Reconstruction& result, std::ostream& out) {
+  std::vector<std::size_t> statuses;
+  for (std::size_t status = 1; status < result.counts.size(); ++status) {
+    if (result.counts[status] > 0) statuses.push_back(status);
+  }
+  std::stable_sort(statuses.begin(), statuses.end(),
+                   [&](std::size_t a, std::size_t b) { return result.counts[a] > result.counts[b]; });
+  const double pixels = static_cast<double>(result.cloud.size());
+  for (const std::size_t status : statuses) {
+    const auto which = static_cast<reconstruction::PixelStatus>(status);
+    const reconstruction::StatusOrigin origin = reconstruction::statusOrigin(which);
+    out << "  " << origin.stage << ": " << reconstruction::statusName(which) << " " << result.counts[status] << " ("
+        << percent(static_cast<double>(result.counts[status]) / pixels) << "): " << origin.settings << "\n";
+  }
+}
+
 int run(const Arguments& args) {
   CaptureInput input;
   input.capture_dir = args.required("--capture");
@@ -78,6 +98,10 @@ int run(const Arguments& args) {
   const std::string out = args.value("--out").value_or("cloud.ply");
   const auto status_path = args.value("--status");
   const reconstruction::Reconstruction result = reconstructCaptureDirectory(input, std::cout);
+  if (result.validPoints() < result.cloud.size()) {
+    std::cout << "pixels without a point, by stage, with the settings that govern them:\n";
+    printRejections(result, std::cout);
+  }
   if (io::readCaptureMetadata(input.capture_dir).pattern_set.row_codes) {
     printCalibrationFit(result.calibration_fit, std::cout);
   } else {

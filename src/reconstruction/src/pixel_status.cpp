@@ -14,6 +14,28 @@ constexpr const char* kNames[] = {
     "inconsistent", "no_intersection", "out_of_depth_range", "outside_crop",   "speckle",           "depth_edge",
 };
 static_assert(sizeof(kNames) / sizeof(kNames[0]) == kPixelStatusCount);
+
+constexpr StatusOrigin kOrigins[] = {
+    {"", ""},
+    {"decode", "decode.min_contrast, decode.min_direct, decode.projector_black_level"},
+    {"decode", "decode.max_saturated_fraction (the camera's exposure)"},
+    {"decode",
+     "decode.bit_margin, decode.min_bit_difference, decode.bit_noise_sigmas, decode.max_code_run_without_phase, "
+     "decode.max_code_run_with_phase, decode.min_unwrap_neighbours"},
+    {"decode", "the projector size and code step of the capture's pattern set"},
+    {"decode", "decode.min_phase_amplitude, decode.max_phase_gray_disagreement"},
+    {"triangulation",
+     "triangulation.max_epipolar_error, triangulation.max_calibration_residual, "
+     "triangulation.column_when_row_inconsistent (and the calibration)"},
+    {"triangulation", "the calibration (rays that meet behind a device or nowhere)"},
+    {"filter", "filter.min_depth, filter.max_depth"},
+    {"filter", "filter.crop"},
+    {"filter", "filter.speckle_max_step, filter.speckle_min_pixels, filter.min_step_in_codes"},
+    {"filter",
+     "filter.edge_max_jump, filter.edge_min_support, filter.edge_side_reach, filter.min_step_in_codes, "
+     "filter.median_reach, filter.median_max_pull"},
+};
+static_assert(sizeof(kOrigins) / sizeof(kOrigins[0]) == kPixelStatusCount);
 static_assert(static_cast<std::size_t>(PixelStatus::DepthEdge) + 1 == kPixelStatusCount);
 
 }  // namespace
@@ -23,6 +45,12 @@ const char* statusName(PixelStatus status) {
   // A value cast in from a corrupt image must not index past the table.
   if (index >= kPixelStatusCount) return "unknown";
   return kNames[index];
+}
+
+StatusOrigin statusOrigin(PixelStatus status) {
+  const auto index = static_cast<std::size_t>(status);
+  if (index >= kPixelStatusCount) return {"", ""};
+  return kOrigins[index];
 }
 
 StatusCounts countStatuses(const cv::Mat& status) {

@@ -82,7 +82,7 @@ struct CloudFilterParams {
   int speckle_min_pixels = 50;
   // A capture decoded to whole codes (no phase images) puts neighbours on one smooth surface a
   // code apart, and a code spans the depth PointPrecision::code_depth gives at each point: 7 to
-  // 9 mm for a rig 3.5 m from the scene coding 2 projector pixels per code, 0.3 mm at 0.9 m on the
+  // 9 mm for a rig 3.5 m from the scene coding 2 projector pixels per code, 1.7 mm at 0.9 m on the
   // virtual rig. The speckle step and the depth-edge reach of a point are at least this many
   // codes' depth there. 0: the fixed steps above alone.
   double min_step_in_codes = 1.5;

@@ -31,6 +31,15 @@ constexpr std::size_t kPixelStatusCount = 12;
 // "valid", "unlit", "saturated", ... (snake case, used in logs and JSON).
 const char* statusName(PixelStatus status);
 
+// The stage that gives a status and the `reconstruction:` settings that govern how many pixels
+// get it (config/reconstruction.yaml), e.g. {"decode", "decode.min_contrast, decode.min_direct"}:
+// what to look at when a real rig's capture loses pixels to it.
+struct StatusOrigin {
+  const char* stage;
+  const char* settings;
+};
+StatusOrigin statusOrigin(PixelStatus status);
+
 // How many pixels of a CV_8UC1 status image carry each status, indexed by the enum's value.
 using StatusCounts = std::array<std::size_t, kPixelStatusCount>;
 StatusCounts countStatuses(const cv::Mat& status);
