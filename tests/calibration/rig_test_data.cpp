@@ -19,6 +19,7 @@ namespace fs = std::filesystem;
 // The version suffix changes whenever the rendering below does: old data is then never reused.
 constexpr const char* kDataName = "rig_calibration_v1";
 constexpr const char* kBlurredDataName = "rig_calibration_blurred_v3";
+constexpr const char* kCodeStepDataName = "rig_calibration_code_step2_v1";
 
 // A board pose of the sequence moved sideways by `offset_x` (camera metres).
 Eigen::Isometry3d shifted(const Eigen::Isometry3d& pose, double offset_x) {
@@ -78,6 +79,15 @@ void renderBlurredData(const std::string& directory) {
   io::Capture capture = io::readCapture(directory + "/sequence/" + poseName(defaults.blurred_pose));
   for (cv::Mat& image : capture.images) cv::GaussianBlur(image, image, cv::Size(), kBlurSigmaPx);
   io::writeCapture(directory + "/blurred", std::move(capture));
+}
+
+// Six poses of the test sequence's rig at code step 2.
+simulation::CalibrationSequenceParams codeStepParams() {
+  simulation::CalibrationSequenceParams params = rigTestParams();
+  params.pattern_set.code_step = 2;
+  params.poses.count = 6;
+  params.poses.seed = 3;
+  return params;
 }
 
 // Rendered aside, then renamed into place: a process never sees half the data, and when two
@@ -163,6 +173,20 @@ const BlurredViewData& blurredViewData() {
     }
     d.blurred = directory + "/blurred";
     d.views.push_back(d.blurred);
+    return d;
+  }();
+  return data;
+}
+
+const CodeStepData& codeStepData() {
+  static const CodeStepData data = [] {
+    CodeStepData d;
+    d.params = codeStepParams();
+    d.layout = d.params.board.layout();
+    const std::string directory = renderedDirectory(
+        kCodeStepDataName, "sequence/truth/board.json",
+        [](const std::string& dir) { simulation::writeCalibrationSequence(dir + "/sequence", codeStepParams()); });
+    for (int i = 0; i < d.params.poses.count; ++i) d.views.push_back(directory + "/sequence/" + poseName(i));
     return d;
   }();
   return data;

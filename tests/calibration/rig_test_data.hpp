@@ -45,6 +45,16 @@ constexpr double kBlurSigmaPx = 5.0;
 // Rendered on first use, then read from disk.
 const BlurredViewData& blurredViewData();
 
+// The test sequence's rig and board with patterns of code step 2 (each Gray code covering 2 x 2
+// projector pixels), `count` poses: views whose decoded codes are not projector pixels.
+struct CodeStepData {
+  std::vector<std::string> views;
+  simulation::CalibrationSequenceParams params;
+  calibration::BoardLayout layout;
+};
+// Rendered on first use, then read from disk.
+const CodeStepData& codeStepData();
+
 // Capture directories read and measured with the default view params.
 std::vector<calibration::RigView> readTestViews(const std::vector<std::string>& directories);
 
