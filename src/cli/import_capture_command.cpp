@@ -14,6 +14,8 @@
 #include "binpick/io/capture_import.hpp"
 #include "binpick/io/opencv_calibration.hpp"
 #include "binpick/io/rig_calibration.hpp"
+#include "binpick/reconstruction/decoder.hpp"
+#include "binpick/reconstruction/pixel_status.hpp"
 #include "binpick/reconstruction/rig_sequence.hpp"
 #include "commands.hpp"
 #include "live_capture.hpp"
@@ -65,6 +67,32 @@ void checkRigFits(const io::RigCalibration& rig, const io::Capture& capture) {
   }
 }
 
+// Codes beyond the projector mean the patterns were made for another size or code step than the
+// one given: rows past the projector's bottom would be dropped silently (and a column alone
+// triangulates poorly when the baseline runs along the columns). Decoded once, with rows kept
+// only where they fit, so that every out-of-range code shows.
+constexpr double kMaxOutOfRangeShare = 0.05;  // of the pixels whose codes were read
+
+void requireCodesInsideProjector(const io::Capture& capture) {
+  reconstruction::DecodeParams params;
+  params.keep_column_without_row = false;
+  const reconstruction::StatusCounts counts =
+      reconstruction::countStatuses(reconstruction::decodeCapture(capture, params).status);
+  const auto at = [&](reconstruction::PixelStatus s) { return counts[static_cast<std::size_t>(s)]; };
+  const std::size_t outside = at(reconstruction::PixelStatus::CodeOutOfRange);
+  const std::size_t read =
+      outside + at(reconstruction::PixelStatus::Valid) + at(reconstruction::PixelStatus::PhaseMismatch);
+  if (read == 0 || static_cast<double>(outside) <= kMaxOutOfRangeShare * static_cast<double>(read)) return;
+  const io::PatternSetSpec& spec = capture.metadata.pattern_set;
+  throw core::Error(std::to_string(100 * outside / read) +
+                    "% of the pixels whose codes were read name codes beyond a " +
+                    std::to_string(spec.projector_width) + "x" + std::to_string(spec.projector_height) +
+                    " projector at code step " + std::to_string(spec.code_step) + " (" +
+                    std::to_string(spec.columnCodes()) + "x" + std::to_string(spec.rowCodes()) +
+                    " codes): give the projector size and code step the patterns were made for (--projector, "
+                    "--code-step, or the sequence file's)");
+}
+
 int run(const Arguments& args) {
   const std::string images = args.required("--images");
   const std::string out = args.required("--out");
@@ -82,6 +110,7 @@ int run(const Arguments& args) {
       io::importImages(files, sequence.spec, sequence.patterns, "imported from " + images, &shifted_bits);
   if (shifted_bits > 0) std::cout << "16-bit images held " << 16 - shifted_bits << "-bit values: shifted up\n";
   checkRigFits(rig, capture);
+  requireCodesInsideProjector(capture);
   io::writeCapture(out, std::move(capture));
   io::writeRigCalibration((fs::path(out) / "calib.yaml").string(), rig);
   std::cout << "imported " << files.size() << " images (" << name(files.front()) << " as " << sequence.patterns.front()

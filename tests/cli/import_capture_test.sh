@@ -40,5 +40,14 @@ grep -q "42 images (graycode_00.png .. graycode_41.png), but the sequence has" "
   fail "$(cat "$work/refused.log")"
 [ ! -e "$work/refused" ] || fail "a refused import left a directory"
 
+# The same patterns taken for a smaller projector: their row codes run past its bottom. Refused,
+# one line naming the size and the options, nothing written.
+"$binpick" import-capture --images "$data/capture_0" --preset opencv-graycode --projector 1920x1080 --code-step 2 \
+  --opencv-calib "$data/calibration_result.xml" --out "$work/small" >"$work/small.log" 2>&1
+code=$?
+[ "$code" -eq 1 ] || fail "a projector too small for the codes exited $code"
+grep -q "name codes beyond a 1920x1080 projector at code step 2 (960x540 codes): give the projector size" \
+  "$work/small.log" || fail "$(cat "$work/small.log")"
+[ ! -e "$work/small" ] || fail "a refused import left a directory"
 
 [ "$failures" -eq 0 ]
