@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # binpick calibrate rig on real captures (the shared real data set: five poses of a chessboard of
-# 9 x 7 inner corners, 75 mm squares, under OpenCV's Gray codes at code step 2, with the authors'
+# 9 x 7 inner corners, 75 mm squares, under OpenCV's Gray codes at code step 2 (1024 x 768 codes:
+# a 2048 x 1536 projector), with the authors'
 # OpenCV calibration): five views calibrate with warnings naming what they leave loose, the
 # camera's own solve agrees with the authors' within 1 %, the projector comes out at its true
 # resolution, no distortion term fits worse than held, and the board given in the wrong
@@ -19,7 +20,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 views=()
 for i in 0 1 2 3 4; do
-  "$binpick" import-capture --images "$data/capture_$i" --preset opencv-graycode --projector 1920x1080 \
+  "$binpick" import-capture --images "$data/capture_$i" --preset opencv-graycode --projector 2048x1536 \
     --code-step 2 --opencv-calib "$data/calibration_result.xml" --out "$work/capture_$i" >"$work/import.log" 2>&1 || fail "import of capture_$i: $(cat "$work/import.log")"
   views+=("$work/capture_$i")
 done
@@ -32,6 +33,8 @@ grep -q "^warning: only 5 views used, 8 or more recommended: poorly determined (
 grep -q "^warning: the views do not pin the principal points" "$work/log.txt" ||
   fail "no principal point warning: $(cat "$work/log.txt")"
 grep -q "5 of 5 views used" "$work/table.txt" || fail "$(cat "$work/table.txt")"
+# Every corner the camera finds lies in the projector's light and gets its pixel.
+[ "$(grep -c '^ *[^ ]*capture_[0-4]  *63  *63 ' "$work/table.txt")" -eq 5 ] || fail "corners lost: $(cat "$work/table.txt")"
 
 # The figures, checked in Python: the camera's own solve against the XML's cam_int (the authors'
 # cv::calibrateCamera), the projector's size and focal length in real projector pixels (code step
@@ -57,8 +60,8 @@ if not own:
 for name, got, want in zip(("fx", "fy", "cx", "cy"), map(float, own.groups()), (cam[0], cam[4], cam[2], cam[5])):
     check("camera " + name, got, want, 0.01)
 yaml = open(calib).read()
-if not re.search(r"^projector_width: 1920$", yaml, re.M) or not re.search(r"^projector_height: 1080$", yaml, re.M):
-    print("FAIL: calib.yaml's projector is not 1920 x 1080")
+if not re.search(r"^projector_width: 2048$", yaml, re.M) or not re.search(r"^projector_height: 1536$", yaml, re.M):
+    print("FAIL: calib.yaml's projector is not 2048 x 1536")
     ok = False
 fx = float(re.search(r"projector_matrix:.*?data: \[ *([-0-9.e+]+)", yaml, re.S).group(1))
 check("projector fx (calib.yaml)", fx, proj[0], 0.10)

@@ -46,8 +46,9 @@ bool principalPointPoorlyPinned(const LensFitReport& fit, int image_width, const
 }
 
 std::string poorlyDetermined(const RigCalibrationResult& result, const RigCalibrationParams& params) {
-  const std::string camera = deviceList(result.camera_fit, result.rig.camera, params);
-  const std::string projector = deviceList(result.projector_fit, result.rig.projector, params);
+  // The own solves' values beside their deviations: the stereo step's may have moved.
+  const std::string camera = deviceList(result.camera_fit, result.camera_fit.lens, params);
+  const std::string projector = deviceList(result.projector_fit, result.projector_fit.lens, params);
   std::string text;
   if (!camera.empty()) text = "camera " + camera;
   if (!projector.empty()) text += (text.empty() ? "projector " : "; projector ") + projector;
