@@ -15,11 +15,13 @@ function(binpick_add_library name)
 endfunction()
 
 # binpick_add_test(NAME SOURCES a.cpp b.cpp LIBS binpick::io ...)
-#   A GoogleTest executable, its tests registered with ctest one by one.
+#   A GoogleTest executable, its tests registered with ctest one by one, each stopped as hung
+#   after BINPICK_TEST_TIMEOUT seconds (a sanitizer build raises it: cmake/Sanitize.cmake).
+set(BINPICK_TEST_TIMEOUT 300)
 function(binpick_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main binpick_warnings)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/common)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 300)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT ${BINPICK_TEST_TIMEOUT})
 endfunction()
