@@ -123,6 +123,28 @@ TEST_F(CaptureTest, MetadataRoundTrips) {
   }
 }
 
+// Another rig's code step and phase convention are kept; binpick's own are not written (older
+// readers read such a file as before).
+TEST_F(CaptureTest, CodeStepAndPhaseConventionRoundTrip) {
+  io::Capture written = smallCapture(8);
+  written.metadata.pattern_set.code_step = 2;
+  written.metadata.pattern_set.phase_direction = -1;
+  written.metadata.pattern_set.phase_offset_deg = 90.0;
+  io::writeCapture(directory_, written);
+  const io::PatternSetSpec read = io::readCaptureMetadata(directory_).pattern_set;
+  EXPECT_EQ(read.code_step, 2);
+  EXPECT_EQ(read.phase_direction, -1);
+  EXPECT_EQ(read.phase_offset_deg, 90.0);
+
+  const std::string ours = pathOf("ours");
+  io::writeCapture(ours, smallCapture(8));
+  std::ifstream file(ours + "/capture.json");
+  const std::string json((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(json.empty());
+  EXPECT_EQ(json.find("phase_direction"), std::string::npos);
+  EXPECT_EQ(json.find("phase_offset_deg"), std::string::npos);
+}
+
 TEST_F(CaptureTest, FrameTimesAreOptionalAndRoundTrip) {
   io::writeCapture(directory_, smallCapture(8));
   EXPECT_TRUE(io::readCaptureMetadata(directory_).frame_times_ms.empty());  // none recorded, none read

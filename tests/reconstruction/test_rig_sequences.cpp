@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "binpick/core/error.hpp"
 #include "binpick/reconstruction/decoder.hpp"
 #include "binpick/reconstruction/rig_sequence.hpp"
 #include "thrown_message.hpp"
@@ -175,6 +176,42 @@ io::PatternSetSpec projector(int width, int height, int code_step) {
   return spec;
 }
 
+// Another rig's phase steps may run the other way or start at another shift: the same images
+// relabelled as such a rig's (step k of a rig running backwards shows our step N - k; of one
+// starting a quarter period on, our step k + 1) decode to the same coordinates.
+TEST(RigSequences, PhaseStepsRunningTheOtherWayOrOffsetDecodeAsOurs) {
+  const io::Capture& capture = ours();
+  const DecodedCapture reference = decodeCapture(capture);
+  const int steps = capture.metadata.pattern_set.phase_steps;
+  ASSERT_EQ(steps, 4);
+  // The pattern each name shows in the other rig's convention: `theirs(k)` is our step index.
+  const auto relabelled = [&](const std::function<int(int)>& ours_for_theirs, int direction, double offset_deg) {
+    io::Capture other = capture;
+    for (std::size_t i = 0; i < other.images.size(); ++i) {
+      const std::string& name = capture.metadata.patterns[i];
+      if (name.rfind("phase_", 0) != 0) continue;
+      const int theirs = name.back() - '0';
+      const std::string our_name = name.substr(0, name.size() - 1) + std::to_string(ours_for_theirs(theirs));
+      const auto at = std::find(capture.metadata.patterns.begin(), capture.metadata.patterns.end(), our_name);
+      other.images[i] = capture.images[static_cast<std::size_t>(at - capture.metadata.patterns.begin())];
+    }
+    other.metadata.pattern_set.phase_direction = direction;
+    other.metadata.pattern_set.phase_offset_deg = offset_deg;
+    return other;
+  };
+  const io::Capture backwards = relabelled([&](int k) { return (steps - k) % steps; }, -1, 0.0);
+  const io::Capture quarter_on = relabelled([&](int k) { return (k + 1) % steps; }, 1, 90.0);
+  for (const io::Capture* other : {&backwards, &quarter_on}) {
+    const Agreement agreement = compare(reference, decodeCapture(*other), 1e-3);
+    EXPECT_GT(agreement.coverage, 0.999);
+    EXPECT_GT(agreement.agreeing, 0.999);
+  }
+  // Told as ours, the backwards steps are refused: they read as two swapped phase images.
+  io::Capture untold = backwards;
+  untold.metadata.pattern_set.phase_direction = 1;
+  EXPECT_THROW(decodeCapture(untold), core::Error);
+}
+
 TEST(RigSequenceFiles, OpenCvsGrayCodePatternIsAPreset) {
   // OpenCV's GrayCodePattern for a 1920 x 1080 projector at 960 x 540 codes: 10 + 10 bits.
   const RigSequence sequence = presetSequence("opencv-graycode", projector(1920, 1080, 2));
@@ -193,7 +230,7 @@ TEST(RigSequenceFiles, OpenCvsGrayCodePatternIsAPreset) {
 TEST(RigSequenceFiles, AFileDescribesAnyOrderInversesBitOrderAndPhase) {
   const RigSequence sequence = parseRigSequence(R"(
 projector: {width: 1024, height: 768}
-phase: {steps: 4, period: 32}
+phase: {steps: 4, period: 32, direction: -1, offset_deg: 90}
 images:
   - phase: columns
   - gray: columns
@@ -205,6 +242,8 @@ images:
                                                 "rig.yaml");
   EXPECT_TRUE(sequence.spec.column_codes);
   EXPECT_FALSE(sequence.spec.row_codes);
+  EXPECT_EQ(sequence.spec.phase_direction, -1);
+  EXPECT_EQ(sequence.spec.phase_offset_deg, 90.0);
   ASSERT_EQ(sequence.patterns.size(), 4u + 10u + 2u);
   EXPECT_EQ(sequence.patterns[0], "phase_col_0");
   EXPECT_EQ(sequence.patterns[4], "gray_col_09");

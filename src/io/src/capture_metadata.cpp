@@ -35,6 +35,10 @@ PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
   spec.phase_period = core::jsonField<int>(object, "phase_period", path);
   // Optional: captures written before it existed coded every projector pixel.
   if (object.contains("code_step")) spec.code_step = core::jsonField<int>(object, "code_step", path);
+  if (object.contains("phase_direction")) spec.phase_direction = core::jsonField<int>(object, "phase_direction", path);
+  if (object.contains("phase_offset_deg")) {
+    spec.phase_offset_deg = core::jsonField<double>(object, "phase_offset_deg", path);
+  }
   try {
     spec.validate();
   } catch (const core::Error& e) {
@@ -47,7 +51,10 @@ json toJson(const PatternSetSpec& spec) {
   json object = {{"projector_width", spec.projector_width}, {"projector_height", spec.projector_height},
                  {"column_codes", spec.column_codes},       {"row_codes", spec.row_codes},
                  {"phase_steps", spec.phase_steps},         {"phase_period", spec.phase_period}};
-  if (spec.code_step != 1) object["code_step"] = spec.code_step;  // older readers read the rest
+  // Written only when not binpick's own: older readers read the rest.
+  if (spec.code_step != 1) object["code_step"] = spec.code_step;
+  if (spec.phase_direction != 1) object["phase_direction"] = spec.phase_direction;
+  if (spec.phase_offset_deg != 0.0) object["phase_offset_deg"] = spec.phase_offset_deg;
   return object;
 }
 
@@ -88,9 +95,12 @@ void PatternSetSpec::validate() const {
   require(column_codes || row_codes, "column_codes", "true when row_codes is false", 0);
   require(phase_steps == 0 || (phase_steps >= 3 && phase_steps <= 64), "phase_steps", "0 or in [3, 64]", phase_steps);
   require(phase_period >= 4 && phase_period <= 65536, "phase_period", "in [4, 65536]", phase_period);
-  require(code_step >= 1 && code_step <= 64 && code_step * 2 <= std::min(projector_width, projector_height), "code_step",
-          "in [1, 64] and at most half the projector's size", code_step);
+  require(code_step >= 1 && code_step <= 64 && code_step * 2 <= std::min(projector_width, projector_height),
+          "code_step", "in [1, 64] and at most half the projector's size", code_step);
   require(phase_steps == 0 || phase_period % code_step == 0, "phase_period", "a multiple of code_step", phase_period);
+  require(phase_direction == 1 || phase_direction == -1, "phase_direction", "1 or -1", phase_direction);
+  core::requireField(phase_offset_deg >= 0.0 && phase_offset_deg < 360.0, "PatternSetSpec", "phase_offset_deg",
+                     "in [0, 360)", phase_offset_deg);
 }
 
 CaptureMetadata readCaptureMetadata(const std::string& directory) {

@@ -55,6 +55,7 @@ CaptureLayout captureLayout(const io::Capture& capture) {
   layout.width = metadata.image_width;
   layout.height = metadata.image_height;
   layout.bit_depth = metadata.bit_depth;
+  layout.pattern_set = metadata.pattern_set;
   for (std::size_t i = 0; i < sequence.size(); ++i) {
     addPattern(layout, sequence[i], metadata.pattern_set, static_cast<int>(i));
   }

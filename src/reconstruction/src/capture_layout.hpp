@@ -29,6 +29,7 @@ struct CaptureLayout {
   int width = 0;  // camera image size
   int height = 0;
   int bit_depth = 8;
+  io::PatternSetSpec pattern_set;  // the phase steps' shifts, among the rest
 };
 
 // For a capture in binpick's own order (completeCapture's, whose images it has checked). Throws

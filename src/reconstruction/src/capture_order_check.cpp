@@ -34,6 +34,7 @@ constexpr double kGain = 0.3;
 // Per sampled pixel: its Gray code (certain bits only) and its phase-step values above black.
 struct AxisSamples {
   int steps = 0;
+  std::vector<double> shifts;  // theta of each phase step (phaseShift, pattern_set.hpp)
   std::vector<unsigned> codes;
   std::vector<float> values;  // steps per sample
   // Samples next to each other on the sampling grid (right and below), as index pairs.
@@ -68,12 +69,14 @@ bool readCode(const io::Capture& capture, const AxisLayout& axis, int x, int y, 
   return true;
 }
 
-// The phase of `steps` values when the image at slot k shows step order[k].
-float phaseOffset(const float* values, const std::vector<int>& order, int period, float* amplitude = nullptr) {
+// The phase of `steps` values when the image at slot k shows step order[k] (of shift
+// shifts[order[k]]).
+float phaseOffset(const float* values, const std::vector<int>& order, const std::vector<double>& shifts, int period,
+                  float* amplitude = nullptr) {
   const int steps = static_cast<int>(order.size());
   double sine = 0.0, cosine = 0.0;
   for (int k = 0; k < steps; ++k) {
-    const double shift = 2.0 * M_PI * order[static_cast<std::size_t>(k)] / steps;
+    const double shift = shifts[static_cast<std::size_t>(order[static_cast<std::size_t>(k)])];
     sine += values[k] * std::sin(shift);
     cosine += values[k] * std::cos(shift);
   }
@@ -93,6 +96,7 @@ AxisSamples sampleAxis(const io::Capture& capture, const DecodePlan& plan, const
   const DecodeThresholds& t = plan.thresholds;
   AxisSamples samples;
   samples.steps = static_cast<int>(axis.phase_images.size());
+  for (int k = 0; k < samples.steps; ++k) samples.shifts.push_back(phaseShift(layout.pattern_set, k));
   const std::vector<int> order = declaredOrder(samples.steps);
   std::vector<float> values(static_cast<std::size_t>(samples.steps));
   const int grid_width = (layout.width + kSampleStep / 2) / kSampleStep;
@@ -113,7 +117,7 @@ AxisSamples sampleAxis(const io::Capture& capture, const DecodePlan& plan, const
         values[static_cast<std::size_t>(k)] = value - black;
       }
       float amplitude = 0.0f;
-      phaseOffset(values.data(), order, axis.phase_period, &amplitude);
+      phaseOffset(values.data(), order, samples.shifts, axis.phase_period, &amplitude);
       if (clipped || amplitude < kMinPhaseShare * contrast) continue;
       const auto cell = static_cast<std::size_t>(x / kSampleStep);
       const std::size_t index = samples.codes.size();
@@ -142,8 +146,8 @@ Fit fit(const AxisSamples& samples, const AxisLayout& axis, const std::vector<in
     const unsigned column = grayDecode(samples.codes[i] ^ flip);
     columns[i] = column < static_cast<unsigned>(axis.size) ? static_cast<long>(column) : -1;
     if (columns[i] < 0) continue;
-    const float offset =
-        phaseOffset(&samples.values[i * static_cast<std::size_t>(samples.steps)], order, axis.phase_period);
+    const float offset = phaseOffset(&samples.values[i * static_cast<std::size_t>(samples.steps)], order,
+                                     samples.shifts, axis.phase_period);
     float residual = offset - static_cast<float>(column);
     residual -= period * std::round(residual / period);
     if (std::fabs(residual) <= tolerance) ++agreeing;

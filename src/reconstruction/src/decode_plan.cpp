@@ -5,6 +5,7 @@
 #include <string>
 
 #include "binpick/core/error.hpp"
+#include "binpick/reconstruction/pattern_set.hpp"
 
 namespace binpick::reconstruction::detail {
 namespace {
@@ -49,11 +50,11 @@ void checkUnwrappable(const AxisLayout& axis, const DecodeParams& params) {
                     std::to_string(params.max_phase_gray_disagreement));
 }
 
-PhaseWeights phaseWeights(const AxisLayout& axis) {
+PhaseWeights phaseWeights(const AxisLayout& axis, const io::PatternSetSpec& spec) {
   PhaseWeights weights;
   const int steps = static_cast<int>(axis.phase_images.size());
   for (int k = 0; k < steps; ++k) {
-    const double shift = 2.0 * M_PI * k / steps;
+    const double shift = phaseShift(spec, k);
     weights.cosine.push_back(static_cast<float>(std::cos(shift)));
     weights.sine.push_back(static_cast<float>(std::sin(shift)));
   }
@@ -76,7 +77,7 @@ DecodePlan makeDecodePlan(const CaptureLayout& layout, const DecodeParams& param
     plan.separation_images = {columns.bit_images.back(), columns.inverse_images.back()};
   }
   // Both axes use the same number of steps (one PatternSetSpec).
-  plan.phase = phaseWeights(layout.columns);
+  plan.phase = phaseWeights(layout.columns, layout.pattern_set);
   return plan;
 }
 

@@ -36,7 +36,7 @@ struct DecodeThresholds {
 };
 
 struct PhaseWeights {
-  std::vector<float> cosine;  // cos(2 pi k / N) per step
+  std::vector<float> cosine;  // cos(theta_k) per step (phaseShift, pattern_set.hpp)
   std::vector<float> sine;
 };
 

@@ -75,7 +75,9 @@ std::optional<Pattern> patternFromName(const std::string& name) {
   const PatternAxis axis = axisOf(rest.substr(0, 3));
   const std::optional<int> index = smallNumber(rest.substr(4));
   if (axis == PatternAxis::None || !index) return std::nullopt;
-  const PatternKind kind = phase ? PatternKind::PhaseStep : inverse ? PatternKind::GrayBitInverse : PatternKind::GrayBit;
+  const PatternKind kind = phase     ? PatternKind::PhaseStep
+                           : inverse ? PatternKind::GrayBitInverse
+                                     : PatternKind::GrayBit;
   const Pattern pattern{kind, axis, *index};
   if (pattern.name() != name) return std::nullopt;  // one spelling per pattern: "gray_col_3" is not one
   return pattern;
@@ -110,14 +112,18 @@ double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec,
       return (pattern.kind == PatternKind::GrayBit) == (bit == 1u) ? 1.0 : 0.0;
     }
     case PatternKind::PhaseStep: {
-      // I_k(c) = 1/2 + 1/2 cos(2 pi c / period - 2 pi k / steps): the phase of pixel c is
+      // I_k(c) = 1/2 + 1/2 cos(2 pi c / period - theta_k): the phase of pixel c is
       // 2 pi c / period, recovered from the N steps by their first Fourier coefficient.
       const double phase = 2.0 * M_PI * coordinate / (spec.phase_period / spec.code_step);
-      const double shift = 2.0 * M_PI * pattern.index / spec.phase_steps;
+      const double shift = phaseShift(spec, pattern.index);
       return eightBit(0.5 + 0.5 * std::cos(phase - shift));
     }
   }
   throw core::Error("patternBrightness: unknown pattern kind");
+}
+
+double phaseShift(const io::PatternSetSpec& spec, int step) {
+  return spec.phase_direction * 2.0 * M_PI * step / spec.phase_steps + spec.phase_offset_deg * M_PI / 180.0;
 }
 
 cv::Mat patternImage(const Pattern& pattern, const io::PatternSetSpec& spec) {

@@ -152,6 +152,8 @@ RigSequence parseRigSequence(const std::string& yaml_text, const std::string& or
   core::YamlSection phase = top.child("phase");
   phase.read("steps", spec.phase_steps);
   phase.read("period", spec.phase_period);
+  phase.read("direction", spec.phase_direction);
+  phase.read("offset_deg", spec.phase_offset_deg);
   phase.finish();
   core::validateSettings(origin, [&] { spec.validate(); });
   if (!top.has("images") || !top.node()["images"].IsSequence())

@@ -20,6 +20,11 @@ struct PatternSetSpec {
   bool row_codes = true;       // Gray code of the projector row, each bit with its inverse
   int phase_steps = 4;         // phase-shift images per coded axis (0: none, else >= 3)
   int phase_period = 16;       // projector pixels per sine period (>= 4, a multiple of code_step)
+  // Step k shows 1/2 + 1/2 cos(2 pi c / period - theta_k) at projector coordinate c, with
+  // theta_k = phase_direction 2 pi k / phase_steps + phase_offset_deg: binpick's own steps advance
+  // by +2 pi / N from 0; another rig's may run the other way (-1) or start elsewhere.
+  int phase_direction = 1;        // +1 or -1
+  double phase_offset_deg = 0.0;  // [0, 360)
   // Projector pixels per code: a rig whose patterns were made at a fraction of the projector's
   // resolution (OpenCV's GrayCodePattern on a 1920x1080 projector at 960x540: 2) codes blocks
   // of code_step x code_step pixels. Coordinates are decoded in codes and reported in pixels.

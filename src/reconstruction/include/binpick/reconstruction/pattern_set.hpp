@@ -43,6 +43,11 @@ inline unsigned grayDecode(unsigned code) {
   return code;
 }
 
+// theta_k, the shift of phase step k (io::PatternSetSpec::phase_direction, phase_offset_deg),
+// radians: step k shows 1/2 + 1/2 cos(2 pi c / period - theta_k). Decoding weighs the steps by
+// cos and sin of it, so the phase it finds is 2 pi c / period whichever way the steps run.
+double phaseShift(const io::PatternSetSpec& spec, int step);
+
 // Brightness in [0, 1] of the projector pixel at `pixel` (its column for a column pattern, its
 // row for a row pattern, ignored for white and black), as an 8-bit projector shows it. Patterns
 // code spec.code_step pixels per code (Gray bits count codes; the phase period is in pixels).

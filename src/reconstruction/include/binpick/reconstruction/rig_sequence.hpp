@@ -6,6 +6,7 @@
 //   projector: {width: 1920, height: 1080}
 //   code_step: 2                  # projector pixels per code (default 1)
 //   phase: {steps: 4, period: 32} # only with phase images; the period in projector pixels
+//                                 # (direction: -1 and offset_deg: D for another rig's steps)
 //   images:                       # in capture order
 //     - gray: columns             # every Gray bit of the columns:
 //       inverses: after_each      #   after_each (default) | after_all | none
