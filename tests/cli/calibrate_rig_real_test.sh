@@ -8,11 +8,8 @@
 # convention is refused naming the right option. Skipped (exit 77) where the data set is missing.
 set -uo pipefail
 binpick="$1"
-data="$2/kamino410-procam-calibration"
-if [ ! -f "$data/calibration_result.xml" ]; then
-  echo "SKIP: no real captures at $data (the shared real data set)"
-  exit 77
-fi
+source "$(dirname "$0")/real_captures.sh"  # require_real_captures, import_real_capture
+require_real_captures "$2"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
@@ -20,8 +17,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 views=()
 for i in 0 1 2 3 4; do
-  "$binpick" import-capture --images "$data/capture_$i" --preset opencv-graycode --projector 2048x1536 \
-    --code-step 2 --opencv-calib "$data/calibration_result.xml" --out "$work/capture_$i" >"$work/import.log" 2>&1 || fail "import of capture_$i: $(cat "$work/import.log")"
+  import_real_capture "$i" "$work/capture_$i"
   views+=("$work/capture_$i")
 done
 

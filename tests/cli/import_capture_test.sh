@@ -6,11 +6,8 @@
 # one line. Skipped (exit 77) where the data set is not beside the sources.
 set -uo pipefail
 binpick="$1"
-data="$2/kamino410-procam-calibration"
-if [ ! -f "$data/calibration_result.xml" ]; then
-  echo "SKIP: no real captures at $data (the shared real data set)"
-  exit 77
-fi
+source "$(dirname "$0")/real_captures.sh"  # require_real_captures, import_real_capture
+require_real_captures "$2"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
@@ -18,9 +15,7 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 for i in 0 1 2 3 4; do
   out="$work/capture_$i"
-  "$binpick" import-capture --images "$data/capture_$i" --preset opencv-graycode --projector 2048x1536 \
-    --code-step 2 --opencv-calib "$data/calibration_result.xml" --out "$out" >"$work/import.log" 2>&1 ||
-    fail "import of capture_$i exited $?: $(cat "$work/import.log")"
+  import_real_capture "$i" "$out"
   grep -q "^imported 42 images (graycode_00.png as gray_col_00 .. graycode_41.png as black)" "$work/import.log" ||
     fail "capture_$i: $(cat "$work/import.log")"
   "$binpick" reconstruct --capture "$out" --out "$work/cloud.ply" >"$work/reconstruct.log" 2>&1 ||
