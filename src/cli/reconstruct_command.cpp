@@ -98,6 +98,11 @@ int run(const Arguments& args) {
   const std::string out = args.value("--out").value_or("cloud.ply");
   const auto status_path = args.value("--status");
   const reconstruction::Reconstruction result = reconstructCaptureDirectory(input, std::cout);
+  if (result.points_along_stripes > 0) {
+    std::cout << "of the points, " << result.points_along_stripes
+              << " on dark surfaces read along their stripes: coarser, within half their run of codes "
+                 "(decode.stripe_reach, decode.max_code_run_along_stripe)\n";
+  }
   if (result.validPoints() < result.cloud.size()) {
     std::cout << "pixels without a point, by stage, with the settings that govern them:\n";
     printRejections(result, std::cout);

@@ -13,6 +13,7 @@
 #include "neighbour_unwrap.hpp"
 #include "row_decoder.hpp"
 #include "sensor_noise_estimate.hpp"
+#include "stripe_reading.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -132,7 +133,9 @@ DecodedCapture decodeCapture(const io::Capture& original, const DecodeParams& pa
       plan.layout.bit_depth == 8 ? decodeTiles<uint8_t>(continuous, plan, threads, unwrap, decoded)
                                  : decodeTiles<uint16_t>(continuous, plan, threads, unwrap, decoded);
   if (unwrap) detail::unwrapFromNeighbours(candidates, plan, params.min_unwrap_neighbours, threads, decoded);
+  detail::readAlongStripes(continuous, plan, params, threads, decoded);
   scaleToProjectorPixels(decoded, complete.code_step);
+  decoded.code_step = complete.code_step;
   return decoded;
 }
 
@@ -177,6 +180,9 @@ void DecodeParams::validate() const {
                      "positive", max_pair_sum_error);
   core::requireField(min_unwrap_neighbours >= 0 && min_unwrap_neighbours <= 8, owner, "min_unwrap_neighbours",
                      "in [0, 8]", min_unwrap_neighbours);
+  core::requireField(stripe_reach >= 0 && stripe_reach <= 64, owner, "stripe_reach", "in [0, 64]", stripe_reach);
+  core::requireField(max_code_run_along_stripe >= 1 && max_code_run_along_stripe <= 64, owner,
+                     "max_code_run_along_stripe", "in [1, 64]", max_code_run_along_stripe);
   core::requireField(threads >= 0, owner, "threads", ">= 0", threads);
 }
 

@@ -77,9 +77,11 @@ std::vector<PixelFit> fitOfSamples(const RigFrames& rig, const CameraRays& rays,
     const float* column = decoded.column.ptr<float>(y);
     const float* row = decoded.row.ptr<float>(y);
     const uint8_t* status = decoded.status.ptr<uint8_t>(y);
+    // Pixels read along their stripes are coarser than the calibration's residual: not measured.
+    const uint8_t* stripe_run = decoded.stripe_run.empty() ? nullptr : decoded.stripe_run.ptr<uint8_t>(y);
     for (int i = 0; i < columns; ++i) {
       const int x = i * stride;
-      if (status[x] != kValid) continue;
+      if (status[x] != kValid || (stripe_run != nullptr && stripe_run[x] != 0)) continue;
       const auto at = grid.locate(column[x], row[x]);  // NaN rows fall outside
       if (!at.inside) continue;
       float uv[2];

@@ -17,11 +17,14 @@ static_assert(sizeof(kNames) / sizeof(kNames[0]) == kPixelStatusCount);
 
 constexpr StatusOrigin kOrigins[] = {
     {"", ""},
-    {"decode", "decode.min_contrast, decode.min_direct, decode.projector_black_level"},
+    {"decode",
+     "decode.min_contrast, decode.min_direct, decode.projector_black_level, decode.stripe_reach, "
+     "decode.max_code_run_along_stripe"},
     {"decode", "decode.max_saturated_fraction (the camera's exposure)"},
     {"decode",
      "decode.bit_margin, decode.min_bit_difference, decode.bit_noise_sigmas, decode.max_code_run_without_phase, "
-     "decode.max_code_run_with_phase, decode.min_unwrap_neighbours"},
+     "decode.max_code_run_with_phase, decode.min_unwrap_neighbours, decode.stripe_reach, "
+     "decode.max_code_run_along_stripe"},
     {"decode", "the projector size and code step of the capture's pattern set"},
     {"decode", "decode.min_phase_amplitude, decode.max_phase_gray_disagreement"},
     {"triangulation",

@@ -39,12 +39,17 @@ void requireProjectorSize(const io::Capture& capture, const io::RigCalibration& 
 // every such plane, and the intersection degenerates.
 constexpr double kMinBaselineAcrossColumns = 0.5;  // share of the baseline's length
 
-std::vector<std::string> geometryWarnings(const io::Capture& capture, const io::RigCalibration& rig) {
-  if (capture.metadata.pattern_set.row_codes) return {};
+// The share of the camera-projector baseline across the projector's columns: how much depth the
+// column alone carries (1: all of it, a camera beside the projector).
+double baselineAcrossColumns(const io::RigCalibration& rig) {
   const Eigen::Vector3d baseline = rig.T_projector_camera.translation();  // camera centre, projector frame
   const double length = baseline.norm();
-  if (!(length > 0.0)) return {};
-  const double across = std::fabs(baseline.x()) / length;
+  return length > 0.0 ? std::fabs(baseline.x()) / length : 1.0;
+}
+
+std::vector<std::string> geometryWarnings(const io::Capture& capture, const io::RigCalibration& rig) {
+  if (capture.metadata.pattern_set.row_codes) return {};
+  const double across = baselineAcrossColumns(rig);
   if (across >= kMinBaselineAcrossColumns) return {};
   char text[320];
   std::snprintf(text, sizeof text,
@@ -53,6 +58,14 @@ std::vector<std::string> geometryWarnings(const io::Capture& capture, const io::
                 "ill-conditioned; code rows too, or mount the camera beside the projector",
                 100.0 * across, std::acos(std::min(1.0, across)) * 180.0 / M_PI);
   return {text};
+}
+
+// A pixel whose row did not decode keeps its column only where the column carries the depth: on
+// a rig whose projector stands above the camera its column alone puts points centimetres off.
+DecodeParams decodeParamsFor(const ReconstructionParams& params, const io::RigCalibration& rig) {
+  DecodeParams decode = params.decode;
+  if (baselineAcrossColumns(rig) < kMinBaselineAcrossColumns) decode.keep_column_without_row = false;
+  return decode;
 }
 
 // The white image, scaled, for every pixel: also where there is no point, as a camera image.
@@ -68,7 +81,20 @@ std::vector<float> intensitiesOf(const cv::Mat& intensity) {
 cv::Mat codeDepth(const DecodedCapture& decoded, const TriangulatedCloud& triangulated,
                   const io::PatternSetSpec& spec) {
   if (decoded.has_phase) return {};
-  return triangulated.depth_per_projector_px * static_cast<double>(spec.code_step);
+  cv::Mat depth = triangulated.depth_per_projector_px * static_cast<double>(spec.code_step);
+  if (decoded.stripe_run.empty()) return depth;
+  // A pixel read along its stripe lies within half its run of codes, not half a code.
+  depth.forEach<float>([&decoded](float& value, const int* at) {
+    const uint8_t run = decoded.stripe_run.at<uint8_t>(at[0], at[1]);
+    if (run > 2) value *= 0.5f * static_cast<float>(run);
+  });
+  return depth;
+}
+
+std::size_t pointsAlongStripes(const DecodedCapture& decoded, const cv::Mat& status) {
+  if (decoded.stripe_run.empty()) return 0;
+  cv::Mat along = (decoded.stripe_run > 0) & (status == static_cast<int>(PixelStatus::Valid));
+  return static_cast<std::size_t>(cv::countNonZero(along));
 }
 
 const ReconstructionParams& validated(const ReconstructionParams& params) {
@@ -101,7 +127,7 @@ Reconstruction Reconstructor::reconstruct(const io::Capture& capture, const core
   for (const std::string& warning : result.warnings) core::componentLogger("reconstruction")->warn(warning);
   core::Stopwatch stage;
   core::throwIfCancelled(cancel, "before decoding");
-  const DecodedCapture decoded = decodeCapture(capture, params_.decode);
+  const DecodedCapture decoded = decodeCapture(capture, decodeParamsFor(params_, rig()));
   result.timings.decode = stage.lapMs();
   core::throwIfCancelled(cancel, "before triangulation");
   TriangulatedCloud triangulated = triangulator_.triangulate(decoded);
@@ -118,6 +144,7 @@ Reconstruction Reconstructor::reconstruct(const io::Capture& capture, const core
   result.status = triangulated.status;
   result.calibration_fit = triangulated.calibration_fit;
   result.counts = countStatuses(result.status);
+  result.points_along_stripes = pointsAlongStripes(decoded, result.status);
   return result;
 }
 

@@ -25,6 +25,8 @@ void readDecode(core::YamlSection s, DecodeParams& p) {
   s.read("max_phase_gray_disagreement", p.max_phase_gray_disagreement);
   s.read("keep_column_without_row", p.keep_column_without_row);
   s.read("min_unwrap_neighbours", p.min_unwrap_neighbours);
+  s.read("stripe_reach", p.stripe_reach);
+  s.read("max_code_run_along_stripe", p.max_code_run_along_stripe);
   s.read("max_saturated_fraction", p.max_saturated_fraction);
   s.read("max_pair_sum_error", p.max_pair_sum_error);
   s.finish();

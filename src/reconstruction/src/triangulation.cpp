@@ -26,6 +26,16 @@ namespace {
 // tile of its residual field, for a few milliseconds per megapixel.
 constexpr int kFitSamplingStride = 4;
 
+// Row y's epipolar limits: a pixel read along its stripe has its column and row each somewhere in
+// a run of codes, about (run - 1) / 2 codes from where it was placed (stripe_reading.hpp).
+void stripeLimits(const DecodedCapture& decoded, int y, double max_epipolar_error, float* limit_scale_sq) {
+  const uint8_t* run = decoded.stripe_run.ptr<uint8_t>(y);
+  for (int x = 0; x < decoded.width; ++x) {
+    const double limit = max_epipolar_error + 0.5 * std::max(0, run[x] - 1) * decoded.code_step;
+    limit_scale_sq[x] = static_cast<float>((limit * limit) / (max_epipolar_error * max_epipolar_error));
+  }
+}
+
 void requireImage(const cv::Mat& image, int type, const DecodedCapture& decoded, const char* name) {
   if (image.rows == decoded.height && image.cols == decoded.width && image.type() == type) return;
   throw core::Error(std::string("Triangulator::triangulate: decoded.") + name + " must be " +
@@ -43,6 +53,7 @@ void checkDecoded(const DecodedCapture& decoded, const io::LensIntrinsics& camer
   requireImage(decoded.column, CV_32FC1, decoded, "column");
   requireImage(decoded.status, CV_8UC1, decoded, "status");
   if (!decoded.row.empty()) requireImage(decoded.row, CV_32FC1, decoded, "row");
+  if (!decoded.stripe_run.empty()) requireImage(decoded.stripe_run, CV_8UC1, decoded, "stripe_run");
 }
 
 }  // namespace
@@ -106,6 +117,7 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
   {
     detail::TriangulationScratch scratch(width);
     std::vector<float> expected_offset(with_rows ? width : 0);
+    std::vector<float> limit_scale_sq(with_rows ? width : 0, 1.0f);
 #pragma omp for schedule(static)
     for (int y = 0; y < height; ++y) {
       const std::size_t offset = static_cast<std::size_t>(y) * width;
@@ -121,6 +133,8 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
       if (with_rows) {
         field.rowOffsets(y, width, expected_offset.data());
         in.expected_offset = expected_offset.data();
+        if (!decoded.stripe_run.empty()) stripeLimits(decoded, y, params_.max_epipolar_error, limit_scale_sq.data());
+        in.limit_scale_sq = limit_scale_sq.data();
         detail::triangulateRowWithRows(tables.geometry, tables.projector, in, scratch, out);
       } else {
         detail::triangulateRowColumnOnly(tables.geometry, tables.projector, in, scratch, out);

@@ -81,7 +81,7 @@ inline Solution intersectRays(const RigGeometry& g, const Direction& d, float wu
 // more than the rest of the solve. It is judged from `expected`, the calibration's residual at
 // the pixel (normalised units, signed as s / sqrt(line)).
 inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, float v, float expected,
-                            Solution& solution) {
+                            float limit_scale_sq, Solution& solution) {
   const Direction d = rayInProjector(g, a, b);
   const float* c = g.c;
   const float nx = c[1] * d.z - c[2] * d.y;
@@ -93,7 +93,7 @@ inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, flo
   const float qny = g.aspect_sq * ny;
   const float line = nx * nx + qny * ny;
   const float off_residual = s - expected * std::sqrt(line);
-  const bool inconsistent = off_residual * off_residual > g.max_error_sq * line;
+  const bool inconsistent = off_residual * off_residual > g.max_error_sq * limit_scale_sq * line;
   // The foot (u, v) - (s / line) (nx, q^2 ny), kept homogeneous (times `line`): one division
   // fewer, and divisions are what this loop waits on.
   solution = intersectRays(g, d, u * line - s * nx, v * line - s * qny, line);
@@ -157,14 +157,14 @@ struct PointRows {
 
 BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
                                      const float* __restrict ray_y, const float* __restrict uv,
-                                     const float* __restrict expected_px, int32_t* __restrict code,
-                                     float* __restrict px, float* __restrict py, float* __restrict pz,
-                                     float* __restrict depth_per_px) {
+                                     const float* __restrict expected_px, const float* __restrict limit_scale_sq,
+                                     int32_t* __restrict code, float* __restrict px, float* __restrict py,
+                                     float* __restrict pz, float* __restrict depth_per_px) {
   const float inv_fx = 1.0f / rig.fx;
   for (int x = 0; x < n; ++x) {
     Solution solution{};
-    const int32_t solved =
-        solveWithRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1], expected_px[x] * inv_fx, solution);
+    const int32_t solved = solveWithRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1], expected_px[x] * inv_fx,
+                                        limit_scale_sq[x], solution);
     const int32_t verdict = code[x] == kSolved ? solved : code[x];
     const float z = verdict == kSolved ? solution.depth : kNaNf;
     code[x] = verdict;
@@ -315,8 +315,8 @@ void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& table
   locateCells(grid, n, in.column, in.row, in.status, tables.min_column, tables.max_column, kOutOfRange, s.cell.data(),
               s.fx.data(), s.fy.data(), s.code.data());
   undistortCells(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), in.expected_offset, s.code.data(), s.px.data(), s.py.data(),
-                s.pz.data(), s.depth_per_px.data());
+  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), in.expected_offset, in.limit_scale_sq, s.code.data(),
+                s.px.data(), s.py.data(), s.pz.data(), s.depth_per_px.data());
   solveMissingRows(rig, tables, in, s);
   writeRow(in, s, out);
 }

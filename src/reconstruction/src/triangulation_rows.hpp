@@ -37,6 +37,9 @@ struct TriangulationRowInput {
   // The calibration's residual field at each pixel (epipolar_residual.hpp), projector pixels:
   // the epipolar offset a pixel is judged from. Rows only.
   const float* expected_offset = nullptr;
+  // Per pixel, the square of how many times max_epipolar_error it may lie from that offset:
+  // 1, more for a pixel read along its stripe (DecodedCapture::stripe_run). Rows only.
+  const float* limit_scale_sq = nullptr;
   const uint8_t* status = nullptr;
 };
 

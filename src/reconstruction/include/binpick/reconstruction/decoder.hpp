@@ -15,6 +15,8 @@
 //    position is the run's centre.
 // 4. Phase: phi = atan2(sum I_k sin(2 pi k/N), sum I_k cos(2 pi k/N)), unwrapped temporally by
 //    the Gray-code run: the period instance that falls within the run (PhaseMismatch if none).
+// 5. Gray code only: the dark pixels that failed are read again with the dark pixels of their
+//    stripe, their differences summed along it (stripe_reading.hpp; DecodedCapture::stripe_run).
 // Stateless: thread-safe.
 #include <cstddef>
 #include <opencv2/core.hpp>
@@ -56,7 +58,9 @@ struct DecodeParams {
   double max_phase_gray_disagreement = 1.0;
   // A pixel whose column decoded but whose row did not keeps its column (row NaN): triangulation
   // intersects the camera ray with the column's light alone. With a horizontal baseline the row
-  // carries almost no depth, so little is lost; false: such pixels take the row's status.
+  // carries almost no depth, so little is lost; false: such pixels take the row's status. The
+  // Reconstructor decodes with false on a rig whose baseline lies less than half across the
+  // projector's columns (a projector above the camera: the column alone carries little depth).
   bool keep_column_without_row = true;
   // A pixel whose column Gray code leaves too long a run (noise on a dark surface undecides
   // coarse bits far from their stripe edges) but whose phase is usable takes the period named by
@@ -65,6 +69,16 @@ struct DecodeParams {
   // their median, and the certain bits agree with it (neighbour_unwrap.hpp). Fewer than 5 let
   // pixels beside depth edges through. 0: off (such pixels stay UncertainCode).
   int min_unwrap_neighbours = 5;
+  // Gray-code-only captures: a dark pixel left Unlit or UncertainCode (its contrast 1 to 4 noise
+  // margins) is read again with the dark pixels of its stripe that also failed, within this many
+  // pixels each side (stripe_reading.hpp): black surfaces, where the finest bits drown in the
+  // noise. Each bit must clear bit_noise_sigmas of the summed noise (so this needs the noise
+  // measured). 0: off.
+  int stripe_reach = 8;
+  // Such a pixel is placed in the shortest run of codes that holds 95% of the likelihood its
+  // uncertain bits leave, when that run is at most this long (the finest bits dropped where
+  // darkness erased them): a coarser point than the others', about half the run from the truth.
+  int max_code_run_along_stripe = 8;
   // Capture-level checks (throw): the share of pixels the white image may saturate, and how far
   // a Gray pair's sum may drift from white + black (a missing or shuffled frame) before the
   // capture is refused.
@@ -92,9 +106,14 @@ struct DecodedCapture {
   // capture has no phase-shift images or its noise could not be measured. Where the sensor
   // clipped phase steps it is that of the clipped sinusoid (an approximation).
   cv::Mat column_noise;
+  // CV_8UC1, Gray-code-only captures: for the pixels read along their stripes
+  // (DecodeParams::stripe_reach), how many codes their readable bits left open (the point lies
+  // within half of that of the truth); 0 for the pixels read alone. Empty when none was.
+  cv::Mat stripe_run;
   // CV_32FC1: the white image scaled to [0, 1] (the sensor's full scale), for display.
   cv::Mat intensity;
   bool has_phase = false;  // the capture had phase-shift images (sub-pixel coordinates)
+  int code_step = 1;       // projector pixels per code (io::PatternSetSpec::code_step)
 };
 
 // Throws core::Error naming what is wrong when the capture cannot be decoded as a whole: the

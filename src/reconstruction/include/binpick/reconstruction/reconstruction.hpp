@@ -43,6 +43,9 @@ struct Reconstruction {
   StatusCounts counts;
   ReconstructionTimings timings;
   CalibrationFit calibration_fit;  // from triangulation: measured on a sample of the pixels
+  // Of the points, those read along their stripes (dark pixels, DecodeParams::stripe_reach): each
+  // within half its run of codes of the truth rather than half a code.
+  std::size_t points_along_stripes = 0;
   // What the caller should know about a capture that was reconstructed all the same (also logged
   // as warnings by the "reconstruction" logger), e.g. a geometry that triangulates poorly.
   std::vector<std::string> warnings;
