@@ -26,7 +26,7 @@ constexpr int kEnergyBits = 4;          // the finest bits, whose sums depend mo
 constexpr int kSearchStride = 4;        // every 4th pixel of a block, both ways, takes part in the search
 constexpr double kCredibleMass = 0.95;  // of the codes' likelihood, in the run a member is placed in
 constexpr int kAreaSide = 5;            // pixels: the neighbourhood that tells a dark area from a line, keepDarkAreas
-constexpr float kMaxContrastInMargins = 4.0f;  // white - black over a pixel's noise margin, darkEnough
+constexpr float kMaxContrastInMargins = 4.0f;  // white - black over a pixel's noise margin, lightOf
 constexpr float kZScale = 25.0f;               // Member::z per unit: up to 10.2, beyond any uncertain bit
 
 // The pixels of the segment t u, |t| <= reach, for one direction u: as steps and as row-major
@@ -54,10 +54,10 @@ std::vector<Segment> segmentsOfEveryDirection(int reach, int width) {
   return segments;
 }
 
-// What every bit's sums need, as float (pattern - inverse per bit is made when its bit is read).
+// What every bit's sums need (pattern - inverse is made per bit when the bit is read, differenceOf).
 struct Light {
   cv::Mat variance;  // bit_noise_sigmas^2 var(pattern - inverse): the squared margin the noise sets
-  cv::Mat member;    // CV_8U: 1 for the pixels read along their stripes
+  cv::Mat member;    // CV_8U: non-zero for the pixels read along their stripes
 };
 
 cv::Mat asFloat(const cv::Mat& image) {
@@ -74,52 +74,37 @@ void differenceOf(const io::Capture& capture, const AxisLayout& axis, int bit, c
                cv::noArray(), CV_32F);
 }
 
-// Some light of the projector's beyond the noise margin (a pixel in shadow sums to noise alone),
-// but at most kMaxContrastInMargins margins: a brighter pixel failed alone for another reason
-// than the noise (a mixed pixel at a depth edge, interreflections), which summing does not cure.
-// On the virtual cell's defocused Gray-code capture, the pixels brighter than that read along
-// their stripes were 0.7% wrong (by more than their run), those darker none.
-bool darkEnough(float contrast_sq, float margin_sq) {
-  return contrast_sq > margin_sq && contrast_sq < kMaxContrastInMargins * kMaxContrastInMargins * margin_sq;
-}
-
-// Keeps the dark pixels with at least half of their kAreaSide x kAreaSide neighbourhood dark: a
-// dark surface. A thin dark line between bright pixels is a crease or a depth step, whose pixels
-// mix two stripes, and along which the direction search would follow the line across the
-// stripes.
+// Keeps the dark pixels (CV_8U, 0 or 255) with at least half of their kAreaSide x kAreaSide
+// neighbourhood dark: a dark surface. A thin dark line between bright pixels is a crease or a
+// depth step, whose pixels mix two stripes, and along which the direction search would follow
+// the line across the stripes.
 void keepDarkAreas(cv::Mat& dark) {
   cv::Mat around;
-  cv::boxFilter(dark, around, CV_16U, cv::Size(kAreaSide, kAreaSide), cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
-  const auto least = static_cast<uint16_t>((kAreaSide * kAreaSide + 1) / 2);
-  dark.forEach<uint8_t>([&around, least](uint8_t& in, const int* at) {
-    if (around.at<uint16_t>(at[0], at[1]) < least) in = 0;
-  });
+  cv::boxFilter(dark / 255, around, CV_16U, cv::Size(kAreaSide, kAreaSide), cv::Point(-1, -1), false,
+                cv::BORDER_CONSTANT);
+  dark &= around >= (kAreaSide * kAreaSide + 1) / 2;
 }
 
-bool failedForLackOfSignal(uint8_t status) {
-  return status == static_cast<uint8_t>(PixelStatus::Unlit) ||
-         status == static_cast<uint8_t>(PixelStatus::UncertainCode);
-}
-
+// The members: pixels that failed alone for lack of signal (Unlit, UncertainCode), unclipped, in
+// dark areas, with some light of the projector's beyond the noise margin (a pixel in shadow sums
+// to noise alone) but at most kMaxContrastInMargins margins. A brighter pixel failed alone for
+// another reason than the noise (a mixed pixel at a depth edge, interreflections), which summing
+// does not cure: on the virtual cell's defocused Gray-code capture, the brighter pixels read
+// along their stripes were 0.7% wrong (by more than their run), the darker ones none.
 Light lightOf(const io::Capture& capture, const DecodePlan& plan, const DecodedCapture& decoded) {
   const DecodeThresholds& t = plan.thresholds;
   const cv::Mat white = asFloat(capture.images[static_cast<std::size_t>(plan.layout.white)]);
   const cv::Mat black = asFloat(capture.images[static_cast<std::size_t>(plan.layout.black)]);
   Light light;
   light.variance = t.noise_floor + t.noise_slope * (white + black);
-  cv::Mat dark = cv::Mat::zeros(decoded.status.size(), CV_8UC1);
-  for (int y = 0; y < dark.rows; ++y) {
-    for (int x = 0; x < dark.cols; ++x) {
-      const float contrast = white.at<float>(y, x) - black.at<float>(y, x);
-      dark.at<uint8_t>(y, x) =
-          darkEnough(contrast * contrast, light.variance.at<float>(y, x)) && white.at<float>(y, x) < t.saturation;
-    }
-  }
+  const cv::Mat contrast = white - black;
+  const cv::Mat contrast_sq = contrast.mul(contrast);
+  const cv::Mat brightest_sq = kMaxContrastInMargins * kMaxContrastInMargins * light.variance;
+  cv::Mat dark = (contrast_sq > light.variance) & (contrast_sq < brightest_sq) & (white < t.saturation);
   keepDarkAreas(dark);
-  light.member = cv::Mat::zeros(decoded.status.size(), CV_8UC1);
-  light.member.forEach<uint8_t>([&](uint8_t& in, const int* at) {
-    in = dark.at<uint8_t>(at[0], at[1]) != 0 && failedForLackOfSignal(decoded.status.at<uint8_t>(at[0], at[1]));
-  });
+  const cv::Mat failed = (decoded.status == static_cast<int>(PixelStatus::Unlit)) |
+                         (decoded.status == static_cast<int>(PixelStatus::UncertainCode));
+  light.member = dark & failed;
   return light;
 }
 
