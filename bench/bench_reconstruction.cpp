@@ -2,12 +2,16 @@
 // 1. speed of each stage (decode, triangulate, filter) and of the whole reconstruct, from images
 //    already in memory, for the virtual rig's 1280x1024 camera and a 2448x2048 one;
 // 2. accuracy of the reconstructed cloud against the cell's exact depth;
-// 3. end-to-end detection on the reconstructed cloud versus the ideal sensor's and the exact one.
+// 3. end-to-end detection on the reconstructed cloud versus the ideal sensor's and the exact one;
+// 4. (--pattern-sets) the images each candidate pattern set takes, the capture time they imply,
+//    and the coverage and accuracy they give.
 //
 //   bench_reconstruction [--part l_bracket] [--parts l_bracket,clamp,gear,ring_magnet]
 //                        [--scenes 3] [--repeats 15] [--threads 0] [--skip-large] [--skip-detection]
 //                        [--lighting clean|harsh] [--mixed-pixels K] [--camera-blur SIGMA]
-//                        [--settings FILE]
+//                        [--settings FILE] [--pattern-sets]
+// --pattern-sets runs only section 4: candidate pattern sets (fewer images: columns only, a
+// complementary Gray code, no inverses) on the same piles, against the default set.
 // --settings reads the `reconstruction:` section of a settings file (defaults otherwise).
 // --lighting picks the virtual cell's photometry preset (lighting_presets.hpp) for every capture.
 // --mixed-pixels sets its mixed_pixel_samples (K x K rays over each pixel at depth edges; 1: one
@@ -54,10 +58,11 @@ struct Options {
   int threads = 0;
   bool skip_large = false;
   bool skip_detection = false;
+  bool pattern_sets = false;
   std::string lighting = "clean";
   int mixed_pixels = 0;      // 0: the preset's mixed_pixel_samples
   double camera_blur = NAN;  // NaN: the preset's camera_blur_sigma
-  std::string settings;  // empty: reconstruction defaults
+  std::string settings;      // empty: reconstruction defaults
 };
 
 using bench::splitCommas;
@@ -87,6 +92,10 @@ Options parse(int argc, char** argv) {
     }
     if (flag == "--skip-detection") {
       o.skip_detection = true;
+      continue;
+    }
+    if (flag == "--pattern-sets") {
+      o.pattern_sets = true;
       continue;
     }
     if (i + 1 >= argc) throw core::Error("bench_reconstruction: " + flag + " needs a value");
@@ -148,13 +157,12 @@ io::PatternSetSpec defaultPatterns(const io::RigCalibration& rig) {
   return patterns;
 }
 
-RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& rig, uint64_t seed,
-                        const Options& o) {
+RenderedPile renderPile(const simulation::Part& part, const io::RigCalibration& rig, uint64_t seed, const Options& o,
+                        const io::PatternSetSpec& patterns) {
   RenderedPile r;
   r.params.objects = kObjects;
   r.params.seed = seed;
   r.params.rig = rig;
-  const io::PatternSetSpec patterns = defaultPatterns(rig);
   simulation::PhotometryParams photometry = photometryFor(o);
   photometry.seed = seed;
   simulation::PileCapture pile = simulation::generatePileCapture(part.mesh, r.params, patterns, photometry);
@@ -571,7 +579,8 @@ void benchDetectionPart(const std::string& part_name, const reconstruction::Reco
   params.threads = o.threads;
   CloudTotals reconstructed, ideal, exact;
   for (int s = 1; s <= o.scenes; ++s) {
-    const RenderedPile pile = renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s), o);
+    const RenderedPile pile =
+        renderPile(part, reconstructor.rig(), static_cast<uint64_t>(s), o, defaultPatterns(reconstructor.rig()));
     params.scene.crop = evaluation::binInterior(pile.scene, pile.params);
     const estimation::Detector detector(model, params);
     detectInto(detector, reconstructor.reconstruct(pile.capture).cloud, pile.scene, part, reconstructed);
@@ -599,6 +608,122 @@ void benchDetection(const Options& o) {
 
 // ---------------------------------------------------------------------------------------------
 
+// ---------------------------------------------------------------------------------------------
+// 4. Pattern sets.
+
+// 1280x1024 Mono8 frames on 1 Gb/s GigE Vision: about 95 per second, whatever the exposure.
+constexpr double kGigEFramesPerSecond = 95.0;
+
+struct PatternSetCandidate {
+  std::string name;
+  io::PatternSetSpec spec;
+  bool inverses = true;  // false: the Gray bits' inverses are left out (thresholds from white and black)
+};
+
+std::vector<PatternSetCandidate> patternSetCandidates(const io::RigCalibration& rig) {
+  const auto candidate = [&](const char* name, bool rows, int period, int gray_unit, bool inverses) {
+    io::PatternSetSpec spec = defaultPatterns(rig);
+    spec.row_codes = rows;
+    spec.phase_period = period;
+    spec.gray_unit = gray_unit;
+    return PatternSetCandidate{name, spec, inverses};
+  };
+  return {candidate("default: Gray cols+rows, 4-step P16", true, 16, 0, true),
+          candidate("Gray cols, 4-step P16", false, 16, 0, true),
+          candidate("compl. Gray cols+rows, 4-step P16", true, 16, 8, true),
+          candidate("compl. Gray cols, 4-step P16", false, 16, 8, true),
+          candidate("compl. Gray cols, 4-step P32", false, 32, 16, true),
+          candidate("compl. Gray cols no inv, 4-step P16", false, 16, 8, false)};
+}
+
+io::Capture withoutInverses(const io::Capture& capture) {
+  io::Capture kept;
+  kept.metadata = capture.metadata;
+  kept.metadata.patterns.clear();
+  kept.metadata.images.clear();  // a capture in memory: its file names are made when written
+  for (std::size_t i = 0; i < capture.images.size(); ++i) {
+    const std::string& name = capture.metadata.patterns[i];
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, "_inv") == 0) continue;
+    kept.images.push_back(capture.images[i]);
+    kept.metadata.patterns.push_back(name);
+  }
+  return kept;
+}
+
+struct PatternSetTotals {
+  std::size_t images = 0;
+  std::size_t parts_ideal = 0, parts_valid = 0, wrong = 0;
+  std::vector<double> medians;  // |dz| per capture, mm
+  double reconstruct_ms = 0.0;
+  reconstruction::StatusCounts parts_missing{};
+};
+
+void printPatternSets(const std::vector<PatternSetCandidate>& candidates, const std::vector<PatternSetTotals>& totals,
+                      int captures) {
+  std::printf("  %-38s %6s %9s %9s %10s %8s %12s\n", "pattern set", "images", "capture", "coverage", "|dz| med",
+              "wrong", "reconstruct");
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const PatternSetTotals& t = totals[c];
+    std::vector<double> medians = t.medians;
+    std::sort(medians.begin(), medians.end());
+    std::printf(
+        "  %-38s %6zu %7.0fms %8.1f%% %8.3fmm %8zu %10.0fms\n", candidates[c].name.c_str(), t.images,
+        1000.0 * static_cast<double>(t.images) / kGigEFramesPerSecond,
+        100.0 * static_cast<double>(t.parts_valid) / static_cast<double>(std::max<std::size_t>(t.parts_ideal, 1)),
+        medians.empty() ? NAN : medians[medians.size() / 2], t.wrong, t.reconstruct_ms / captures);
+  }
+  std::printf(
+      "  (capture: images at %.0f frames/s, GigE Vision 1280x1024 Mono8; coverage: the parts' pixels the ideal "
+      "sensor sees that get a point; |dz| med: median over captures of each one's median; wrong: points > %.0f mm "
+      "off in z, summed; reconstruct: mean per capture)\n",
+      kGigEFramesPerSecond, kWrongMm);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    printStatusCounts(candidates[c].name + ", parts' pixels without a point", totals[c].parts_missing);
+  }
+}
+
+// Every candidate set on the same piles (the parts of --parts, seeds 1..--scenes, the options'
+// lighting), reconstructed with the same settings.
+void benchPatternSets(const Options& o) {
+  const io::RigCalibration rig = simulation::makeVirtualRig();
+  const std::vector<PatternSetCandidate> candidates = patternSetCandidates(rig);
+  std::vector<PatternSetTotals> totals(candidates.size());
+  const reconstruction::Reconstructor reconstructor(rig, reconstructionParams(o));
+  int captures = 0;
+  for (const std::string& part_name : o.parts) {
+    const simulation::Part part = simulation::makePart(part_name);
+    for (int seed = 1; seed <= o.scenes; ++seed, ++captures) {
+      const RenderedPile pile = renderPile(part, rig, static_cast<uint64_t>(seed), o, candidates.front().spec);
+      simulation::PhotometryParams photometry = photometryFor(o);
+      photometry.seed = static_cast<uint64_t>(seed);
+      if (captures == 0) reconstructor.reconstruct(pile.capture);  // warm-up: first-touch allocations, threads
+      for (std::size_t c = 0; c < candidates.size(); ++c) {
+        const io::PatternSetSpec& spec = candidates[c].spec;
+        io::Capture capture =
+            c == 0 ? pile.capture
+                   : simulation::recordedCapture(
+                         simulation::renderPileImages(part.mesh, pile.scene, pile.params, spec, photometry),
+                         pile.params, spec, photometry, "bench_reconstruction " + part_name);
+        if (!candidates[c].inverses) capture = withoutInverses(capture);
+        const core::Stopwatch stopwatch;
+        const reconstruction::Reconstruction result = reconstructor.reconstruct(capture);
+        totals[c].reconstruct_ms += stopwatch.elapsedMs();
+        const Accuracy a = measureAccuracy(candidates[c].name, pile, result);
+        totals[c].images = capture.images.size();
+        totals[c].parts_ideal += a.parts_ideal;
+        totals[c].parts_valid += a.parts_valid;
+        totals[c].wrong += a.all.wrong;
+        totals[c].medians.push_back(a.all.median);
+        for (std::size_t k = 0; k < a.parts_missing.size(); ++k) totals[c].parts_missing[k] += a.parts_missing[k];
+      }
+      std::fprintf(stderr, "  %s seed %d done\n", part_name.c_str(), seed);
+    }
+  }
+  std::printf("\n== 4. Pattern sets (%s lighting, %zu parts x %d scenes x %d objects, 1280x1024) ==\n",
+              o.lighting.c_str(), o.parts.size(), o.scenes, kObjects);
+  printPatternSets(candidates, totals, captures);
+}
+
 // What tracing mixed pixels costs: the pile's images rendered again (rays cast again too) with
 // one ray per pixel and with the options' mixed pixels, each timed once.
 void printMixedPixelCost(const simulation::Part& part, const RenderedPile& pile, const Options& o) {
@@ -625,7 +750,7 @@ void benchReconstruction(const Options& o) {
   std::vector<Accuracy> accuracy;
   for (const io::RigCalibration& rig : rigs) {
     const core::Stopwatch render;
-    const RenderedPile pile = renderPile(part, rig, 1, o);
+    const RenderedPile pile = renderPile(part, rig, 1, o, defaultPatterns(rig));
     std::printf("rendered %dx%d: %zu images of %s x %d in %.1f s\n", rig.camera.width, rig.camera.height,
                 pile.capture.images.size(), o.part.c_str(), kObjects, render.elapsedMs() / 1000.0);
     printMixedPixelCost(part, pile, o);
@@ -658,6 +783,10 @@ int main(int argc, char** argv) {
         core::resolveThreadCount(options.threads), options.threads, options.lighting.c_str(),
         photometry.mixed_pixel_samples, photometry.mixed_pixel_samples, photometry.camera_blur_sigma,
         options.settings.empty() ? "defaults" : options.settings.c_str());
+    if (options.pattern_sets) {
+      benchPatternSets(options);
+      return 0;
+    }
     benchReconstruction(options);
     if (!options.skip_detection) benchDetection(options);
     return 0;

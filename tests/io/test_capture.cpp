@@ -123,16 +123,18 @@ TEST_F(CaptureTest, MetadataRoundTrips) {
   }
 }
 
-// Another rig's code step and phase convention are kept; binpick's own are not written (older
-// readers read such a file as before).
+// Another rig's code step, Gray-code words and phase convention are kept; binpick's own are not
+// written (older readers read such a file as before).
 TEST_F(CaptureTest, CodeStepAndPhaseConventionRoundTrip) {
   io::Capture written = smallCapture(8);
   written.metadata.pattern_set.code_step = 2;
+  written.metadata.pattern_set.gray_unit = 8;
   written.metadata.pattern_set.phase_direction = -1;
   written.metadata.pattern_set.phase_offset_deg = 90.0;
   io::writeCapture(directory_, written);
   const io::PatternSetSpec read = io::readCaptureMetadata(directory_).pattern_set;
   EXPECT_EQ(read.code_step, 2);
+  EXPECT_EQ(read.gray_unit, 8);
   EXPECT_EQ(read.phase_direction, -1);
   EXPECT_EQ(read.phase_offset_deg, 90.0);
 
@@ -143,6 +145,7 @@ TEST_F(CaptureTest, CodeStepAndPhaseConventionRoundTrip) {
   ASSERT_FALSE(json.empty());
   EXPECT_EQ(json.find("phase_direction"), std::string::npos);
   EXPECT_EQ(json.find("phase_offset_deg"), std::string::npos);
+  EXPECT_EQ(json.find("gray_unit"), std::string::npos);
 }
 
 TEST_F(CaptureTest, FrameTimesAreOptionalAndRoundTrip) {

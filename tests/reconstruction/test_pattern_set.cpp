@@ -260,6 +260,28 @@ TEST(PatternSet, BadSpecsAreRejectedNamingTheField) {
   spec.row_codes = false;
   EXPECT_TRUE(rejectedNaming(spec, "column_codes"));
   EXPECT_THROW(patternImage({PatternKind::White, PatternAxis::None, 0}, spec), core::Error);
+  for (const auto& [unit, steps] : {std::pair{24, 4}, std::pair{8, 0}, std::pair{-2, 4}}) {
+    spec = defaultSpec();  // a period of 16
+    spec.gray_unit = unit;
+    spec.phase_steps = steps;
+    EXPECT_TRUE(rejectedNaming(spec, "gray_unit")) << unit << " with " << steps << " phase steps";
+  }
+}
+
+// Words of half a period (a complementary Gray code): each bit is the full code's bit three
+// places lower, so a column's word is its column divided by 8.
+TEST(PatternSet, GrayWordsCountUnitsOfColumns) {
+  io::PatternSetSpec spec = defaultSpec();  // 1280 x 800, a period of 16
+  spec.gray_unit = 8;
+  EXPECT_EQ(patternSequence(spec).size(), 2u + (8 * 2 + 4) + (7 * 2 + 4));
+  io::PatternSetSpec full = defaultSpec();
+  for (int bit = 0; bit < 8; ++bit) {
+    for (const int column : {0, 7, 8, 15, 100, 1279}) {
+      EXPECT_EQ(patternBrightness({PatternKind::GrayBit, PatternAxis::Columns, bit}, spec, column),
+                patternBrightness({PatternKind::GrayBit, PatternAxis::Columns, bit}, full, column))
+          << "bit " << bit << ", column " << column;
+    }
+  }
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <random>
 #include <string>
@@ -162,6 +163,56 @@ TEST(RigSequences, ACodeStepOfTwoDecodesToProjectorPixels) {
   }
 }
 
+// Decoded columns against the truth: the share of the measurable pixels decoded, the median
+// error and the share of decoded pixels more than `far` projector pixels off.
+struct TruthAgreement {
+  double coverage = 0.0;
+  double median_px = 0.0;
+  double far_share = 0.0;
+};
+TruthAgreement againstTruth(const testing::VirtualCapture& v, const DecodedCapture& decoded, double far) {
+  std::vector<double> errors;
+  int measurable = 0, far_off = 0;
+  for (int i = 0; i < static_cast<int>(v.pixelCount()); ++i) {
+    measurable += v.measurable(static_cast<std::size_t>(i)) ? 1 : 0;
+    if (!valid(decoded, i)) continue;
+    const double truth = v.trueProjectorPixel(static_cast<std::size_t>(i)).x();
+    if (!std::isfinite(truth)) continue;
+    errors.push_back(std::fabs(decoded.column.ptr<float>(0)[i] - truth));
+    far_off += errors.back() > far ? 1 : 0;
+  }
+  if (errors.empty()) return {};
+  std::nth_element(errors.begin(), errors.begin() + errors.size() / 2, errors.end());
+  return {static_cast<double>(errors.size()) / std::max(measurable, 1), errors[errors.size() / 2],
+          static_cast<double>(far_off) / errors.size()};
+}
+
+// A complementary Gray code (Zhang et al. 2012) counts half periods only, one bit more than the
+// periods need, and the phase places the pixel inside its word: 4 Gray pairs fewer per axis at a
+// period of 16, the same coverage and no pixel a period off.
+TEST(RigSequences, AComplementaryGrayCodeUnwrapsThePhaseAsTheFullCodeDoes) {
+  for (const int period : {16, 32}) {
+    CaptureOptions full = smallOptions();
+    full.phase_period = period;
+    CaptureOptions complementary = full;
+    complementary.gray_unit = period / 2;
+    const testing::VirtualCapture& reference = virtualCapture(full);
+    const testing::VirtualCapture& v = virtualCapture(complementary);
+    const TruthAgreement ours = againstTruth(reference, decodeCapture(reference.capture), 2.0);
+    const TruthAgreement theirs = againstTruth(v, decodeCapture(v.capture), 2.0);
+    const int fewer = period == 16 ? 2 * (3 + 3) : 2 * (4 + 4);  // Gray pairs of columns and rows
+    EXPECT_EQ(v.capture.images.size() + static_cast<std::size_t>(fewer), reference.capture.images.size());
+    EXPECT_GT(theirs.coverage, ours.coverage - 0.01) << "period " << period;
+    EXPECT_LT(theirs.median_px, 0.3) << "period " << period;
+    EXPECT_LT(theirs.far_share, 0.002) << "period " << period;
+    std::printf(
+        "period %d: full Gray code %zu images, coverage %.3f, median %.3f px, beyond 2 px %.5f; "
+        "complementary %zu images, %.3f, %.3f px, %.5f\n",
+        period, reference.capture.images.size(), ours.coverage, ours.median_px, ours.far_share, v.capture.images.size(),
+        theirs.coverage, theirs.median_px, theirs.far_share);
+  }
+}
+
 }  // namespace
 }  // namespace binpick::reconstruction
 
@@ -249,6 +300,16 @@ images:
   EXPECT_EQ(sequence.patterns[4], "gray_col_09");
   EXPECT_EQ(sequence.patterns[13], "gray_col_00");
   EXPECT_EQ(sequence.patterns.back(), "black");
+
+  const RigSequence complementary = parseRigSequence(R"(
+projector: {width: 1024, height: 768}
+gray_unit: 16
+phase: {steps: 4, period: 32}
+images: [white, black, {gray: columns}, {phase: columns}]
+)",
+                                                     "rig.yaml");
+  EXPECT_EQ(complementary.spec.gray_unit, 16);
+  EXPECT_EQ(complementary.patterns.size(), 2u + 2 * 6 + 4);  // 64 words of 16 columns: 6 bits
 
   const RigSequence after_all = parseRigSequence(
       "projector: {width: 8, height: 8}\nimages:\n  - {gray: columns, inverses: after_all}\n", "rig.yaml");

@@ -20,11 +20,11 @@ double key(double value) { return std::isnan(value) ? -1e300 : value; }
 
 bool CaptureOptions::operator<(const CaptureOptions& o) const {
   return std::make_tuple(part, objects, seed, camera_scale, bin_length, bin_width, row_codes, phase_steps, bit_depth,
-                         lighting, key(global_light), key(ambient), key(projector_blur), mixed_pixel_samples,
-                         code_step) <
+                         lighting, key(global_light), key(ambient), key(projector_blur), mixed_pixel_samples, code_step,
+                         phase_period, gray_unit) <
          std::make_tuple(o.part, o.objects, o.seed, o.camera_scale, o.bin_length, o.bin_width, o.row_codes,
                          o.phase_steps, o.bit_depth, o.lighting, key(o.global_light), key(o.ambient),
-                         key(o.projector_blur), o.mixed_pixel_samples, o.code_step);
+                         key(o.projector_blur), o.mixed_pixel_samples, o.code_step, o.phase_period, o.gray_unit);
 }
 
 namespace {
@@ -42,7 +42,8 @@ VirtualCapture render(const CaptureOptions& options) {
   patterns.row_codes = options.row_codes;
   patterns.phase_steps = options.phase_steps;
   patterns.code_step = options.code_step;
-  patterns.phase_period *= options.code_step;  // the same period in codes
+  patterns.phase_period = options.phase_period * options.code_step;  // the same period in codes
+  patterns.gray_unit = options.gray_unit * options.code_step;
   simulation::PhotometryParams photometry = simulation::photometryPreset(options.lighting);
   photometry.seed = options.seed;
   photometry.bit_depth = options.bit_depth;

@@ -29,6 +29,8 @@ struct CaptureOptions {
   double projector_blur = std::numeric_limits<double>::quiet_NaN();  // min_blur_sigma
   int mixed_pixel_samples = 1;  // PhotometryParams::mixed_pixel_samples: 1, one ray per pixel
   int code_step = 1;            // PatternSetSpec::code_step (the phase period scales with it)
+  int phase_period = 16;        // PatternSetSpec::phase_period, in codes
+  int gray_unit = 0;            // PatternSetSpec::gray_unit, in codes (0: one code per word)
   bool operator<(const CaptureOptions& other) const;
 };
 

@@ -24,6 +24,7 @@ io::PatternSetSpec readPatterns(core::YamlSection s) {
   s.read("row_codes", spec.row_codes);
   s.read("phase_steps", spec.phase_steps);
   s.read("phase_period", spec.phase_period);
+  s.read("gray_unit", spec.gray_unit);
   s.finish();
   return spec;
 }

@@ -35,6 +35,7 @@ PatternSetSpec patternSetFrom(const json& object, const std::string& path) {
   spec.phase_period = core::jsonField<int>(object, "phase_period", path);
   // Optional: captures written before it existed coded every projector pixel.
   if (object.contains("code_step")) spec.code_step = core::jsonField<int>(object, "code_step", path);
+  if (object.contains("gray_unit")) spec.gray_unit = core::jsonField<int>(object, "gray_unit", path);
   if (object.contains("phase_direction")) spec.phase_direction = core::jsonField<int>(object, "phase_direction", path);
   if (object.contains("phase_offset_deg")) {
     spec.phase_offset_deg = core::jsonField<double>(object, "phase_offset_deg", path);
@@ -53,6 +54,7 @@ json toJson(const PatternSetSpec& spec) {
                  {"phase_steps", spec.phase_steps},         {"phase_period", spec.phase_period}};
   // Written only when not binpick's own: older readers read the rest.
   if (spec.code_step != 1) object["code_step"] = spec.code_step;
+  if (spec.gray_unit > spec.code_step) object["gray_unit"] = spec.gray_unit;
   if (spec.phase_direction != 1) object["phase_direction"] = spec.phase_direction;
   if (spec.phase_offset_deg != 0.0) object["phase_offset_deg"] = spec.phase_offset_deg;
   return object;
@@ -98,6 +100,11 @@ void PatternSetSpec::validate() const {
   require(code_step >= 1 && code_step <= 64 && code_step * 2 <= std::min(projector_width, projector_height),
           "code_step", "in [1, 64] and at most half the projector's size", code_step);
   require(phase_steps == 0 || phase_period % code_step == 0, "phase_period", "a multiple of code_step", phase_period);
+  const bool words = gray_unit > code_step;
+  require(gray_unit >= 0 && gray_unit <= 65536 && gray_unit % code_step == 0, "gray_unit",
+          "0 or a multiple of code_step", gray_unit);
+  require(!words || phase_steps > 0, "gray_unit", "code_step unless there are phase images", gray_unit);
+  require(!words || gray_unit <= phase_period, "gray_unit", "at most phase_period", gray_unit);
   require(phase_direction == 1 || phase_direction == -1, "phase_direction", "1 or -1", phase_direction);
   core::requireField(phase_offset_deg >= 0.0 && phase_offset_deg < 360.0, "PatternSetSpec", "phase_offset_deg",
                      "in [0, 360)", phase_offset_deg);

@@ -60,6 +60,21 @@ inline CodeRun candidateRun(uint32_t code, uint32_t uncertain) {
   return run;
 }
 
+// The codes of a run of Gray-code words, AxisLayout::gray_unit codes each.
+inline CodeRun codesOfWords(const CodeRun& words, const AxisLayout& axis) {
+  const auto unit = static_cast<unsigned>(axis.gray_unit);
+  return {words.first * unit, words.last * unit + unit - 1};
+}
+
+// The longest run of codes a pixel may leave. Words longer than half the setting (a
+// complementary Gray code's half periods) leave two at a stripe edge, where the pixel sees either
+// side: the phase then picks the instance nearest that edge, which is right while the phase errs
+// by less than half a period.
+inline int longestRun(const AxisLayout& axis, const DecodeThresholds& t) {
+  if (!axis.hasPhase()) return t.max_run_without_phase;
+  return std::max(t.max_run_with_phase, 2 * axis.gray_unit);
+}
+
 // The period instance of the phase's position closest to the run's centre; the true position
 // lies within the run (columns first..last cover [first - 0.5, last + 0.5]).
 inline AxisVerdict unwrapPhase(const AxisSample& sample, const CodeRun& run, const AxisLayout& axis,
@@ -78,9 +93,10 @@ inline AxisVerdict unwrapPhase(const AxisSample& sample, const CodeRun& run, con
 
 inline AxisVerdict resolveAxis(const AxisSample& sample, const AxisLayout& axis, const DecodeThresholds& t) {
   if (__builtin_popcount(sample.uncertain) > kMaxUncertainBits) return {0.0f, PixelStatus::UncertainCode};
-  CodeRun run = candidateRun(sample.code, sample.uncertain);
-  const int longest = axis.hasPhase() ? t.max_run_with_phase : t.max_run_without_phase;
-  if (run.last - run.first + 1 > static_cast<unsigned>(longest)) return {0.0f, PixelStatus::UncertainCode};
+  CodeRun run = codesOfWords(candidateRun(sample.code, sample.uncertain), axis);
+  if (run.last - run.first + 1 > static_cast<unsigned>(longestRun(axis, t))) {
+    return {0.0f, PixelStatus::UncertainCode};
+  }
   const unsigned size = static_cast<unsigned>(axis.size);
   if (run.first >= size) return {0.0f, PixelStatus::CodeOutOfRange};
   run.last = std::min(run.last, size - 1);  // codes past the edge were never projected
@@ -92,11 +108,11 @@ inline AxisVerdict resolveAxis(const AxisSample& sample, const AxisLayout& axis,
 constexpr uint8_t kNeedsFullResolution = 255;
 
 // resolveAxis for a whole tile at once, vectorised, for the common pixels: at most one uncertain
-// bit (a stripe edge or none), a run no longer than `longest`, inside the projector. Writes the
+// bit (a stripe edge or none), a run no longer than longestRun, inside the projector. Writes the
 // run's centre and a verdict per pixel: Valid for those pixels, kNeedsFullResolution for the
 // others. Gives the same result as resolveAxis wherever it decides.
-void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain, int longest,
-                       int last_index, float* __restrict centre, uint8_t* __restrict verdict, int width);
+void resolveSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain, const AxisLayout& axis,
+                       const DecodeThresholds& t, float* __restrict centre, uint8_t* __restrict verdict, int width);
 // unwrapPhase for the pixels resolveSimpleRuns decided: the centre becomes the unwrapped
 // position, and their verdict Valid, PhaseMismatch or Saturated.
 void unwrapSimpleRuns(const uint16_t* __restrict code, const uint16_t* __restrict uncertain,

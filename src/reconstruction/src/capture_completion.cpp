@@ -21,6 +21,7 @@ io::PatternSetSpec inCodes(const io::PatternSetSpec& spec) {
   codes.projector_width = spec.columnCodes();
   codes.projector_height = spec.rowCodes();
   codes.phase_period = spec.phase_period / spec.code_step;
+  codes.gray_unit = spec.grayUnitCodes() > 1 ? spec.grayUnitCodes() : 0;
   codes.code_step = 1;
   return codes;
 }

@@ -37,6 +37,7 @@ void addPattern(CaptureLayout& layout, const Pattern& pattern, const io::Pattern
   axis.present = true;
   axis.size = pattern.axis == PatternAxis::Columns ? spec.projector_width : spec.projector_height;
   axis.phase_period = spec.phase_period;
+  axis.gray_unit = spec.grayUnitCodes();
   if (pattern.kind == PatternKind::GrayBit) axis.bit_images.push_back(image);
   if (pattern.kind == PatternKind::GrayBitInverse) axis.inverse_images.push_back(image);
   if (pattern.kind == PatternKind::PhaseStep) axis.phase_images.push_back(image);

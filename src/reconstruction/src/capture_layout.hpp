@@ -14,11 +14,12 @@ struct AxisLayout {
   std::vector<int> inverse_images;
   std::vector<int> phase_images;  // one per phase step; empty without phase shift
   int phase_period = 0;           // projector pixels
+  int gray_unit = 1;              // projector pixels per Gray-code word (PatternSetSpec::gray_unit)
 
   int bits() const { return static_cast<int>(bit_images.size()); }
   bool hasPhase() const { return !phase_images.empty(); }
-  // Width in projector pixels of the stripes of Gray bit j: 2^(bits - 1 - j).
-  int stripeWidth(int bit) const { return 1 << (bits() - 1 - bit); }
+  // Width in projector pixels of the stripes of Gray bit j: gray_unit 2^(bits - 1 - j).
+  int stripeWidth(int bit) const { return gray_unit << (bits() - 1 - bit); }
 };
 
 struct CaptureLayout {

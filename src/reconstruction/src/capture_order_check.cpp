@@ -139,16 +139,18 @@ AxisSamples sampleAxis(const io::Capture& capture, const DecodePlan& plan, const
 // stripe blocks of a wrongly inverted bit meet.
 Fit fit(const AxisSamples& samples, const AxisLayout& axis, const std::vector<int>& order, unsigned flip) {
   const float period = static_cast<float>(axis.phase_period);
-  const float tolerance = std::max(1.5f, period / 8.0f);
+  // A word of several columns (AxisLayout::gray_unit) places the phase anywhere inside it.
+  const float half_word = 0.5f * static_cast<float>(axis.gray_unit - 1);
+  const float tolerance = std::max(1.5f, period / 8.0f) + half_word;
   std::vector<long> columns(samples.size());
   std::size_t agreeing = 0;
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    const unsigned column = grayDecode(samples.codes[i] ^ flip);
+    const unsigned column = grayDecode(samples.codes[i] ^ flip) * static_cast<unsigned>(axis.gray_unit);
     columns[i] = column < static_cast<unsigned>(axis.size) ? static_cast<long>(column) : -1;
     if (columns[i] < 0) continue;
     const float offset = phaseOffset(&samples.values[i * static_cast<std::size_t>(samples.steps)], order,
                                      samples.shifts, axis.phase_period);
-    float residual = offset - static_cast<float>(column);
+    float residual = offset - (static_cast<float>(column) + half_word);
     residual -= period * std::round(residual / period);
     if (std::fabs(residual) <= tolerance) ++agreeing;
   }

@@ -29,10 +29,17 @@ DecodeThresholds thresholdsFor(const DecodeParams& params, int bit_depth) {
   return t;
 }
 
+// The Gray pairs whose stripes are as wide as the settings ask, and at least the two finest: a
+// pixel on the edge of one pair's stripe sees the other's lit or dark (with words of a whole
+// period or half of one, AxisLayout::gray_unit, often one pair alone is in range).
 void addSeparationImages(std::vector<int>& images, const AxisLayout& axis, const DecodeParams& params) {
-  for (int bit = 0; bit < axis.bits(); ++bit) {
+  constexpr int kMinPairs = 2;
+  const int first_image = static_cast<int>(images.size());
+  for (int bit = axis.bits() - 1; bit >= 0; --bit) {
     const int stripe = axis.stripeWidth(bit);
-    if (stripe < params.separation_min_stripe || stripe > params.separation_max_stripe) continue;
+    const bool in_range = stripe >= params.separation_min_stripe && stripe <= params.separation_max_stripe;
+    const int pairs = (static_cast<int>(images.size()) - first_image) / 2;
+    if (!in_range && !(pairs < kMinPairs && stripe > params.separation_max_stripe)) continue;
     images.push_back(axis.bit_images[bit]);
     images.push_back(axis.inverse_images[bit]);
   }

@@ -11,9 +11,10 @@ namespace binpick::reconstruction::detail {
 namespace {
 
 // Distance (projector pixels) from position x to the nearest stripe edge of the Gray bit of
-// weight 2^b: that bit changes between columns c - 1 and c for c = 2^b (2m + 1).
-float distanceToStripeEdge(float x, int b) {
-  const float half = std::ldexp(1.0f, b);
+// weight 2^b, in words of `unit` columns: that bit changes between columns c - 1 and c for
+// c = unit 2^b (2m + 1).
+float distanceToStripeEdge(float x, int b, int unit) {
+  const float half = std::ldexp(static_cast<float>(unit), b);
   float r = std::fmod(x + 0.5f - half, 2.0f * half);
   if (r < 0.0f) r += 2.0f * half;
   return std::min(r, 2.0f * half - r);
@@ -21,10 +22,12 @@ float distanceToStripeEdge(float x, int b) {
 
 // The certain bits of `code` name column c's Gray code, except bits whose edge is within
 // `tolerance` of x (there the pixel may see either side).
-bool certainBitsAgree(uint32_t code, uint32_t uncertain, unsigned column, float x, int bits, float tolerance) {
-  const uint32_t differing = (code ^ (column ^ (column >> 1))) & ~uncertain;
-  for (int b = 0; b < bits; ++b) {
-    if (((differing >> b) & 1u) != 0 && distanceToStripeEdge(x, b) > tolerance) return false;
+bool certainBitsAgree(uint32_t code, uint32_t uncertain, unsigned column, float x, const AxisLayout& axis,
+                      float tolerance) {
+  const unsigned word = column / static_cast<unsigned>(axis.gray_unit);
+  const uint32_t differing = (code ^ grayCode(word)) & ~uncertain;
+  for (int b = 0; b < axis.bits(); ++b) {
+    if (((differing >> b) & 1u) != 0 && distanceToStripeEdge(x, b, axis.gray_unit) > tolerance) return false;
   }
   return true;
 }
@@ -63,7 +66,7 @@ float columnFromNeighbours(const UnwrapCandidate& candidate, const DecodedCaptur
   if (std::fabs(x - median) > 0.5f + t.phase_tolerance || x < -0.5f || x > static_cast<float>(columns.size) - 0.5f)
     return nan;
   const auto column = static_cast<unsigned>(std::lround(x));
-  if (!certainBitsAgree(candidate.code, candidate.uncertain, column, x, columns.bits(), t.phase_tolerance)) return nan;
+  if (!certainBitsAgree(candidate.code, candidate.uncertain, column, x, columns, t.phase_tolerance)) return nan;
   return x;
 }
 

@@ -10,19 +10,19 @@
 namespace binpick::reconstruction {
 namespace {
 
-void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, int size, const io::PatternSetSpec& spec) {
-  for (int bit = 0; bit < grayCodeBits(size); ++bit) {
+// Codes along the axis: the Gray code counts codes, not projector pixels (PatternSetSpec::code_step).
+int axisSize(PatternAxis axis, const io::PatternSetSpec& spec) {
+  return axis == PatternAxis::Rows ? spec.rowCodes() : spec.columnCodes();
+}
+
+void appendAxis(std::vector<Pattern>& sequence, PatternAxis axis, const io::PatternSetSpec& spec) {
+  for (int bit = 0; bit < grayCodeBitsOf(axis, spec); ++bit) {
     sequence.push_back({PatternKind::GrayBit, axis, bit});
     sequence.push_back({PatternKind::GrayBitInverse, axis, bit});
   }
   for (int step = 0; step < spec.phase_steps; ++step) {
     sequence.push_back({PatternKind::PhaseStep, axis, step});
   }
-}
-
-// Codes along the axis: the Gray code counts codes, not projector pixels (PatternSetSpec::code_step).
-int axisSize(PatternAxis axis, const io::PatternSetSpec& spec) {
-  return axis == PatternAxis::Rows ? spec.rowCodes() : spec.columnCodes();
 }
 
 // "03" -> 3; nullopt unless the text is one to three digits.
@@ -53,8 +53,8 @@ std::string Pattern::name() const {
 std::vector<Pattern> patternSequence(const io::PatternSetSpec& spec) {
   spec.validate();
   std::vector<Pattern> sequence{{PatternKind::White, PatternAxis::None, 0}, {PatternKind::Black, PatternAxis::None, 0}};
-  if (spec.column_codes) appendAxis(sequence, PatternAxis::Columns, spec.columnCodes(), spec);
-  if (spec.row_codes) appendAxis(sequence, PatternAxis::Rows, spec.rowCodes(), spec);
+  if (spec.column_codes) appendAxis(sequence, PatternAxis::Columns, spec);
+  if (spec.row_codes) appendAxis(sequence, PatternAxis::Rows, spec);
   return sequence;
 }
 
@@ -95,6 +95,11 @@ int grayCodeBits(int size) {
   return bits;
 }
 
+int grayCodeBitsOf(PatternAxis axis, const io::PatternSetSpec& spec) {
+  const int unit = spec.grayUnitCodes();
+  return grayCodeBits((axisSize(axis, spec) + unit - 1) / unit);
+}
+
 double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int pixel) {
   // Every pixel of a code's block shows the code's brightness.
   const int coordinate = pixel / spec.code_step;
@@ -103,12 +108,13 @@ double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec,
     case PatternKind::Black: return 0.0;
     case PatternKind::GrayBit:
     case PatternKind::GrayBitInverse: {
-      const int bits = grayCodeBits(axisSize(pattern.axis, spec));
+      const int bits = grayCodeBitsOf(pattern.axis, spec);
       if (pattern.index < 0 || pattern.index >= bits) {
         throw core::Error("patternBrightness: Gray-code bit " + std::to_string(pattern.index) + " of " +
                           pattern.name() + " is outside [0, " + std::to_string(bits) + ")");
       }
-      const unsigned bit = (grayCode(static_cast<unsigned>(coordinate)) >> (bits - 1 - pattern.index)) & 1u;
+      const auto word = static_cast<unsigned>(coordinate / spec.grayUnitCodes());
+      const unsigned bit = (grayCode(word) >> (bits - 1 - pattern.index)) & 1u;
       return (pattern.kind == PatternKind::GrayBit) == (bit == 1u) ? 1.0 : 0.0;
     }
     case PatternKind::PhaseStep: {

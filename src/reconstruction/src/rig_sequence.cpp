@@ -21,12 +21,8 @@ struct GrayEntry {
 
 std::string name(PatternKind kind, PatternAxis axis, int index) { return Pattern{kind, axis, index}.name(); }
 
-int bitsOf(PatternAxis axis, const io::PatternSetSpec& spec) {
-  return grayCodeBits(axis == PatternAxis::Rows ? spec.rowCodes() : spec.columnCodes());
-}
-
 void appendGray(std::vector<std::string>& patterns, const GrayEntry& entry, const io::PatternSetSpec& spec) {
-  const int bits = bitsOf(entry.axis, spec);
+  const int bits = grayCodeBitsOf(entry.axis, spec);
   std::vector<int> order(static_cast<std::size_t>(bits));
   for (int j = 0; j < bits; ++j) order[static_cast<std::size_t>(j)] = entry.msb_first ? j : bits - 1 - j;
   for (const int bit : order) {
@@ -103,7 +99,7 @@ void deriveAxes(RigSequence& sequence, const std::string& origin) {
     if (pattern.axis == PatternAxis::Columns) sequence.spec.column_codes = true;
     if (pattern.axis == PatternAxis::Rows) sequence.spec.row_codes = true;
     const bool gray = pattern.kind == PatternKind::GrayBit || pattern.kind == PatternKind::GrayBitInverse;
-    const int limit = gray ? bitsOf(pattern.axis, sequence.spec) : sequence.spec.phase_steps;
+    const int limit = gray ? grayCodeBitsOf(pattern.axis, sequence.spec) : sequence.spec.phase_steps;
     if (pattern.axis != PatternAxis::None && pattern.index >= limit) {
       throw core::Error(origin + ": '" + text + "' is beyond the " + std::to_string(limit) +
                         (gray ? " Gray bits" : " phase steps") + " of the sequence");
@@ -148,6 +144,7 @@ RigSequence parseRigSequence(const std::string& yaml_text, const std::string& or
   projector.finish();
   if (!top.has("projector")) top.fail("projector", "is required: {width: W, height: H} in pixels");
   top.read("code_step", spec.code_step);
+  top.read("gray_unit", spec.gray_unit);
   spec.phase_steps = 0;
   core::YamlSection phase = top.child("phase");
   phase.read("steps", spec.phase_steps);

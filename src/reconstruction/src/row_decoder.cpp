@@ -123,9 +123,7 @@ AxisSample sampleAt(const AxisRow& row, int x, bool with_phase) {
 }
 
 void resolveSimple(const AxisLayout& axis, const DecodeThresholds& t, AxisRow& row, int width) {
-  const int longest = axis.hasPhase() ? t.max_run_with_phase : t.max_run_without_phase;
-  resolveSimpleRuns(row.code.data(), row.uncertain.data(), longest, axis.size - 1, row.position.data(),
-                    row.verdict.data(), width);
+  resolveSimpleRuns(row.code.data(), row.uncertain.data(), axis, t, row.position.data(), row.verdict.data(), width);
   if (!axis.hasPhase()) return;
   unwrapSimpleRuns(row.code.data(), row.uncertain.data(), row.phase_offset.data(), row.phase_amplitude.data(),
                    row.phase_clipped.data(), axis, t, row.position.data(), row.verdict.data(), width);
@@ -173,7 +171,7 @@ bool phaseFromUnclippedSteps(const io::Capture& capture, const DecodePlan& plan,
 // would accept: its centre, to half a projector pixel.
 AxisVerdict grayCodeAlone(const AxisSample& sample, const AxisLayout& axis, const DecodeThresholds& t) {
   if (__builtin_popcount(sample.uncertain) > kMaxUncertainBits) return {0.0f, PixelStatus::Saturated};
-  const CodeRun run = candidateRun(sample.code, sample.uncertain);
+  const CodeRun run = codesOfWords(candidateRun(sample.code, sample.uncertain), axis);
   const auto size = static_cast<unsigned>(axis.size);
   if (run.last - run.first + 1 > static_cast<unsigned>(t.max_run_without_phase) || run.first >= size) {
     return {0.0f, PixelStatus::Saturated};

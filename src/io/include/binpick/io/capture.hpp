@@ -29,10 +29,19 @@ struct PatternSetSpec {
   // resolution (OpenCV's GrayCodePattern on a 1920x1080 projector at 960x540: 2) codes blocks
   // of code_step x code_step pixels. Coordinates are decoded in codes and reported in pixels.
   int code_step = 1;
+  // Projector pixels per Gray-code word, a multiple of code_step (0: code_step, every code its
+  // own word). With phase images the Gray code need only say which period a pixel lies in: a
+  // complementary Gray code (Zhang et al., Optics and Lasers in Engineering 2012) counts half
+  // periods (gray_unit = phase_period / 2, one bit more than the periods need), and the phase
+  // gives the position inside the word. At most phase_period; needs phase images when larger
+  // than code_step.
+  int gray_unit = 0;
   void validate() const;  // throws core::Error naming the field
   // Codes along the projector's width and height: ceil(projector size / code_step).
   int columnCodes() const { return (projector_width + code_step - 1) / code_step; }
   int rowCodes() const { return (projector_height + code_step - 1) / code_step; }
+  // Codes per Gray-code word (gray_unit in codes).
+  int grayUnitCodes() const { return gray_unit > 0 ? gray_unit / code_step : 1; }
 };
 
 struct CaptureMetadata {

@@ -35,6 +35,8 @@ std::optional<Pattern> patternFromName(const std::string& name);
 
 // Bits needed to give each of `size` projector columns (or rows) its own code: ceil(log2(size)).
 int grayCodeBits(int size);
+// The Gray bits a set projects along an axis: one word per PatternSetSpec::gray_unit.
+int grayCodeBitsOf(PatternAxis axis, const io::PatternSetSpec& spec);
 // The reflected binary Gray code of a column or row index, and its inverse.
 inline unsigned grayCode(unsigned index) { return index ^ (index >> 1); }
 inline unsigned grayDecode(unsigned code) {
@@ -50,7 +52,8 @@ double phaseShift(const io::PatternSetSpec& spec, int step);
 
 // Brightness in [0, 1] of the projector pixel at `pixel` (its column for a column pattern, its
 // row for a row pattern, ignored for white and black), as an 8-bit projector shows it. Patterns
-// code spec.code_step pixels per code (Gray bits count codes; the phase period is in pixels).
+// code spec.code_step pixels per code (Gray bits count words of spec.gray_unit; the phase period
+// is in pixels).
 double patternBrightness(const Pattern& pattern, const io::PatternSetSpec& spec, int pixel);
 // The projector image (projector_width x projector_height, CV_8UC1).
 cv::Mat patternImage(const Pattern& pattern, const io::PatternSetSpec& spec);

@@ -5,6 +5,8 @@
 //
 //   projector: {width: 1920, height: 1080}
 //   code_step: 2                  # projector pixels per code (default 1)
+//   gray_unit: 16                 # projector pixels per Gray-code word (default code_step);
+//                                 # a complementary Gray code: half the phase period
 //   phase: {steps: 4, period: 32} # only with phase images; the period in projector pixels
 //                                 # (direction: -1 and offset_deg: D for another rig's steps)
 //   images:                       # in capture order
