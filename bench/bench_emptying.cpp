@@ -90,15 +90,17 @@ Options parseOptions(int argc, char** argv) {
   return options;
 }
 
-// A user's mesh as a part: FILE or FILE:SCALE (an STL in millimetres: FILE:0.001); no symmetry.
+// A user's mesh as a part: FILE or FILE:SCALE (an STL in millimetres: FILE:0.001); its symmetry
+// found from the mesh.
 simulation::Part meshPart(const std::string& spec) {
   const auto colon = spec.rfind(':');
   const bool scaled = colon != std::string::npos && colon > 0;
-  simulation::Part part;
-  part.name = fs::path(scaled ? spec.substr(0, colon) : spec).stem().string();
-  part.mesh = io::readMesh(scaled ? spec.substr(0, colon) : spec);
+  io::TriangleMesh mesh = io::readMesh(scaled ? spec.substr(0, colon) : spec);
   const float scale = scaled ? std::stof(spec.substr(colon + 1)) : 1.0f;
-  for (auto& v : part.mesh.vertices) v *= scale;
+  for (auto& v : mesh.vertices) v *= scale;
+  simulation::Part part =
+      simulation::partFromMesh(fs::path(scaled ? spec.substr(0, colon) : spec).stem().string(), std::move(mesh));
+  std::fprintf(stderr, "%s: %s\n", part.name.c_str(), part.description.c_str());
   return part;
 }
 

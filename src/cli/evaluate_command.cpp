@@ -27,17 +27,15 @@ double meshDiameter(const io::TriangleMesh& mesh) {
   return best;
 }
 
-// A built-in part by name, else the mesh stored with the truth (a user's part: no symmetry known).
+// A built-in part by name, else the mesh stored with the truth (a user's part: its symmetry found
+// from the mesh).
 simulation::Part partOf(const std::string& name, const std::string& truth_path) {
   const auto names = simulation::partNames();
   if (std::find(names.begin(), names.end(), name) != names.end()) return simulation::makePart(name);
   const std::filesystem::path truth_dir = std::filesystem::is_directory(truth_path)
                                               ? std::filesystem::path(truth_path) / "truth"
                                               : std::filesystem::path(truth_path).parent_path();
-  simulation::Part part;
-  part.name = name;
-  part.mesh = io::readMesh((truth_dir / "part.ply").string());
-  return part;
+  return simulation::partFromMesh(name, io::readMesh((truth_dir / "part.ply").string()));
 }
 
 int run(const Arguments& args) {

@@ -43,8 +43,7 @@ Model modelFrom(const Arguments& args) {
     model.name = part.name;
     model.geometry.mesh = part.mesh;
     model.geometry.cloud.points = part.mesh.vertices;
-    model.symmetry.discrete = part.symmetry.discrete;
-    model.symmetry.continuous_axis = part.symmetry.continuous_axis;
+    model.symmetry = part.symmetry;
     return model;
   }
   model.name = args.required("--model");
@@ -56,7 +55,8 @@ Model modelFrom(const Arguments& args) {
   return model;
 }
 
-// --symmetry-order N --symmetry-axis x,y,z and --continuous-axis x,y,z add to a part's own.
+// --symmetry-order N --symmetry-axis x,y,z and --continuous-axis x,y,z add to a part's own (a
+// model file's, found from its mesh, they replace).
 void addSymmetry(const Arguments& args, picking::PartSymmetry& symmetry) {
   const int order = args.integer("--symmetry-order").value_or(1);
   if (order < 1) throw core::Error("--symmetry-order must be >= 1");
@@ -96,10 +96,23 @@ void printGrasp(std::size_t index, const picking::Grasp& grasp) {
               grasp.name.c_str(), grasp.quality, t.x(), t.y(), t.z(), approach.x(), approach.y(), approach.z());
 }
 
+// What the symmetry options give, or else, for a mesh file, what its mesh shows; printed.
+void chooseSymmetry(const Arguments& args, Model& model) {
+  const bool given = args.value("--symmetry-axis") || args.value("--continuous-axis");
+  if (!given && !args.value("--part") && model.geometry.hasMesh()) {
+    const io::FoundSymmetry found = io::findSymmetry(model.geometry.mesh);
+    model.symmetry = found.symmetry;
+    std::cerr << "symmetry from the mesh: " << found.description << "\n";
+    return;
+  }
+  addSymmetry(args, model.symmetry);
+  std::cerr << "symmetry" << (given ? " as given: " : ": ") << io::describeSymmetry(model.symmetry) << "\n";
+}
+
 int run(const Arguments& args) {
   const std::string out = args.required("--out");
   Model model = modelFrom(args);
-  addSymmetry(args, model.symmetry);
+  chooseSymmetry(args, model);
   const picking::GripperParams gripper = gripperFromArguments(args);
   picking::GraspGenerationParams params;
   if (const auto seed = args.integer("--seed")) params.seed = static_cast<std::uint32_t>(*seed);

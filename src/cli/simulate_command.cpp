@@ -34,16 +34,17 @@ int listParts() {
   return 0;
 }
 
-// A built-in part, or a user's mesh file (its symmetry unknown: none is assumed).
+// A built-in part, or a user's mesh file (its symmetry found from the mesh, and printed).
 simulation::Part partFrom(const Arguments& args) {
   if (!args.value("--part") && !args.value("--mesh")) throw missingOption("--part or --mesh");
   if (args.value("--part")) return simulation::makePart(*args.value("--part"));
-  simulation::Part part;
-  part.name = args.required("--mesh");
-  part.mesh = io::readMesh(part.name);
+  const std::string file = args.required("--mesh");
+  io::TriangleMesh mesh = io::readMesh(file);
   const double scale = args.number("--mesh-scale").value_or(1.0);
   if (!(scale > 0.0)) throw core::Error("--mesh-scale must be positive");
-  for (auto& v : part.mesh.vertices) v *= static_cast<float>(scale);
+  for (auto& v : mesh.vertices) v *= static_cast<float>(scale);
+  simulation::Part part = simulation::partFromMesh(file, std::move(mesh));
+  std::cerr << file << ": " << part.description << "\n";
   return part;
 }
 

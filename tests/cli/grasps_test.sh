@@ -33,5 +33,15 @@ grep -q 'vacuum' "$work/err" || fail "the error does not name the gripper: $(cat
 [ "$code" -eq 2 ] && grep -q -- '--cup-diameter excludes --gripper parallel' "$work/err" ||
   fail "a suction size for a parallel gripper gave $code: $(cat "$work/err")"
 
+# A model file: its symmetry found from the mesh and printed, unless the options give one.
+"$binpick" simulate --export-part ring_magnet "$work/magnet.ply" >/dev/null 2>&1 || fail "export exited $?"
+"$binpick" grasps --model "$work/magnet.ply" --gripper suction --cup-diameter 0.004 --out "$work/magnet.yaml" \
+  >/dev/null 2>"$work/err" || fail "grasps on a model file exited $?: $(cat "$work/err")"
+grep -q '^symmetry from the mesh: revolved about (0, 0, 1), flips over: any turn about (0, 0, 1) with 2 rotations$' \
+  "$work/err" || fail "no symmetry from the mesh: $(cat "$work/err")"
+"$binpick" grasps --model "$work/magnet.ply" --gripper suction --cup-diameter 0.004 --symmetry-order 2 \
+  --symmetry-axis 1,0,0 --out "$work/told.yaml" >/dev/null 2>"$work/err" || fail "grasps as told exited $?"
+grep -q '^symmetry as given: 2 rotations$' "$work/err" || fail "the given symmetry was not kept: $(cat "$work/err")"
+
 [ "$failures" -eq 0 ] && echo "grasps CLI: all checks passed"
 exit "$failures"

@@ -23,7 +23,7 @@ void validateAll(const CellConfig& config) {
     // the picking settings are checked with a stand-in grasp.
     for (const RecipeConfig& recipe : config.recipes) {
       picking.grasps = recipe.grasps.empty() ? std::vector<picking::Grasp>{picking::Grasp{}} : recipe.grasps;
-      picking.symmetry = recipe.symmetry;
+      picking.symmetry = recipe.symmetry.value_or(picking::PartSymmetry{});
       picking.validate();
     }
     config.robot.validate("robot");  // the section's name, so that messages name the key in the file

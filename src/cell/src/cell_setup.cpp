@@ -12,17 +12,29 @@
 namespace binpick::cell {
 namespace {
 
+// The recipe's symmetry, or the one its model's mesh shows (logged: a part taken for revolved, or
+// not, changes every grasp the planner tries).
+picking::PartSymmetry recipeSymmetry(const RecipeConfig& config, const io::ModelGeometry& geometry) {
+  if (config.symmetry) return *config.symmetry;
+  if (!geometry.hasMesh()) return {};
+  const core::Stopwatch stopwatch;
+  const io::FoundSymmetry found = io::findSymmetry(geometry.mesh);
+  logger()->info("recipe {}: symmetry from the model's mesh: {} ({:.0f} ms)", config.name, found.description,
+                 stopwatch.elapsedMs());
+  return found.symmetry;
+}
+
 // A recipe without grasps: generated from its model (mesh or cloud with normals) for the cell's
 // gripper, one per symmetry class.
-std::vector<picking::Grasp> generatedGrasps(const RecipeConfig& config, const picking::PickParams& cell_picking) {
+std::vector<picking::Grasp> generatedGrasps(const RecipeConfig& config, const io::ModelGeometry& geometry,
+                                            const picking::PartSymmetry& symmetry,
+                                            const picking::PickParams& cell_picking) {
   const core::Stopwatch stopwatch;
-  const io::ModelGeometry geometry = io::readModelGeometry(config.model_file);
   const picking::GraspGenerationParams params;
   std::vector<picking::Grasp> grasps;
   try {
-    grasps = geometry.hasMesh()
-                 ? picking::generateGrasps(geometry.mesh, cell_picking.gripper, config.symmetry, params)
-                 : picking::generateGrasps(geometry.cloud, cell_picking.gripper, config.symmetry, params);
+    grasps = geometry.hasMesh() ? picking::generateGrasps(geometry.mesh, cell_picking.gripper, symmetry, params)
+                                : picking::generateGrasps(geometry.cloud, cell_picking.gripper, symmetry, params);
   } catch (const core::Error& e) {
     throw core::Error(config.model_file + ": recipe " + config.name + ": cannot generate grasps: " + e.what());
   }
@@ -63,9 +75,12 @@ Recipe prepareRecipe(const RecipeConfig& config, const picking::PickParams& cell
   estimation::PreparedModel model = preparedModel(config, settings.model, recipe.model_from_cache);
   recipe.detector = std::make_shared<const estimation::Detector>(std::move(model), settings.detector);
   recipe.picking = cell_picking;
+  const bool needs_geometry = !config.symmetry || config.grasps.empty();
+  const io::ModelGeometry geometry = needs_geometry ? io::readModelGeometry(config.model_file) : io::ModelGeometry{};
+  recipe.picking.symmetry = recipeSymmetry(config, geometry);
   // Hand-written (or file) grasps take precedence over generated ones.
-  recipe.picking.grasps = config.grasps.empty() ? generatedGrasps(config, cell_picking) : config.grasps;
-  recipe.picking.symmetry = config.symmetry;
+  recipe.picking.grasps =
+      config.grasps.empty() ? generatedGrasps(config, geometry, recipe.picking.symmetry, cell_picking) : config.grasps;
   return recipe;
 }
 

@@ -27,10 +27,11 @@ std::vector<picking::Grasp> readGrasps(core::YamlSection& recipe, const std::str
 constexpr int kMaxSymmetryOrder = 360;
 
 // symmetry: {rotations: [[...rotation values...], ...], convention: NAME, continuous_axis: [x, y, z]}
-// or {order: N, axis: [x, y, z]}: N-fold about the axis.
-picking::PartSymmetry readSymmetry(core::YamlSection s) {
+// or {order: N, axis: [x, y, z]}: N-fold about the axis. None: found from the model's mesh
+// when the cell starts (cell_setup.cpp).
+std::optional<picking::PartSymmetry> readSymmetry(core::YamlSection s) {
+  if (s.isNull()) return std::nullopt;
   picking::PartSymmetry symmetry;
-  if (s.isNull()) return symmetry;
   int order = 1;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   bool continuous = false;

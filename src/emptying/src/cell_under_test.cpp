@@ -77,13 +77,6 @@ std::string detectionSettings(const simulation::PileParams& pile) {
   return text.str();
 }
 
-picking::PartSymmetry recipeSymmetry(const simulation::Symmetry& symmetry) {
-  picking::PartSymmetry recipe;
-  recipe.discrete = symmetry.discrete;
-  recipe.continuous_axis = symmetry.continuous_axis;
-  return recipe;
-}
-
 std::string gripperSettings(const picking::GripperParams& g) {
   std::ostringstream text;
   text.precision(9);
@@ -136,7 +129,7 @@ CellUnderTest::CellUnderTest(const simulation::Part& part, const EmptyingParams&
 
   cell::CellConfig config = cell::loadCellConfig((directory / "binpickd.yaml").string());
   // The settings file's symmetry syntax covers one axis; the built-in parts declare theirs exactly.
-  config.recipes.front().symmetry = recipeSymmetry(part.symmetry);
+  config.recipes.front().symmetry = part.symmetry;
   setup_ = cell::prepareCell(config);
 
   std::shared_ptr<web::LogRing> log_ring;

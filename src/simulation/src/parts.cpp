@@ -59,4 +59,9 @@ Part makePart(const std::string& name) {
   throw core::Error("makePart: unknown part '" + name + "' (known: " + known + ")");
 }
 
+Part partFromMesh(const std::string& name, io::TriangleMesh mesh) {
+  const io::FoundSymmetry found = io::findSymmetry(mesh);
+  return {name, "a user's mesh; symmetry from the mesh: " + found.description, std::move(mesh), found.symmetry};
+}
+
 }  // namespace binpick::simulation

@@ -115,11 +115,13 @@ TEST(CellConfig, SymmetryOrderGivesTheRotations) {
       "recipes: [{name: p, model: m.ply, symmetry: {order: 4, axis: [0, 0, 2]}, grasps: [{translation: [0, 0, 0]}]},\n"
       "          {name: q, model: m.ply, symmetry: {continuous: true, axis: [1, 0, 0]}, grasps: [{translation: [0, 0, "
       "0]}]}]\n");
-  ASSERT_EQ(config.recipes[0].symmetry.discrete.size(), 4u);
-  const Eigen::Vector3d turned = config.recipes[0].symmetry.discrete[1] * Eigen::Vector3d::UnitX();
+  ASSERT_TRUE(config.recipes[0].symmetry.has_value());
+  ASSERT_EQ(config.recipes[0].symmetry->discrete.size(), 4u);
+  const Eigen::Vector3d turned = config.recipes[0].symmetry->discrete[1] * Eigen::Vector3d::UnitX();
   EXPECT_NEAR((turned - Eigen::Vector3d::UnitY()).norm(), 0.0, 1e-12);
-  ASSERT_TRUE(config.recipes[1].symmetry.continuous_axis.has_value());
-  EXPECT_NEAR(config.recipes[1].symmetry.continuous_axis->x(), 1.0, 1e-12);
+  ASSERT_TRUE(config.recipes[1].symmetry.has_value());
+  ASSERT_TRUE(config.recipes[1].symmetry->continuous_axis.has_value());
+  EXPECT_NEAR(config.recipes[1].symmetry->continuous_axis->x(), 1.0, 1e-12);
 }
 
 TEST(CellConfig, MistakesNameTheKey) {

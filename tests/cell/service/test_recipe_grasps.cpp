@@ -82,6 +82,24 @@ TEST_F(RecipeGrasps, ARecipeWithoutGraspsGetsThemGeneratedFromItsModel) {
   EXPECT_EQ(setup->recipes[1].picking.grasps[0].name, someGrasps()[0].name);
 }
 
+// A recipe that gives no symmetry gets the one its model's mesh shows; one that gives it keeps it.
+TEST_F(RecipeGrasps, ARecipeWithoutASymmetryTakesTheOneItsMeshShows) {
+  io::writeMesh(pathOf("magnet.ply"), simulation::makePart("ring_magnet").mesh);
+  io::writeMesh(pathOf("gear.ply"), simulation::makePart("gear").mesh);
+  const CellConfig config = parse(
+      "{name: magnet, model: magnet.ply}, {name: gear, model: gear.ply}, "
+      "{name: told, model: gear.ply, symmetry: {order: 2, axis: [1, 0, 0]}}");
+  EXPECT_FALSE(config.recipes[0].symmetry.has_value());
+  const auto setup = prepareCell(config);
+  const picking::PartSymmetry& magnet = setup->recipes[0].picking.symmetry;
+  ASSERT_TRUE(magnet.continuous_axis.has_value());
+  EXPECT_GT(std::abs(magnet.continuous_axis->z()), 0.999);
+  EXPECT_EQ(magnet.discrete.size(), 2u);                               // and flipped over
+  EXPECT_EQ(setup->recipes[1].picking.symmetry.discrete.size(), 24u);  // 12 turns, each flipped
+  EXPECT_FALSE(setup->recipes[1].picking.symmetry.continuous_axis.has_value());
+  EXPECT_EQ(setup->recipes[2].picking.symmetry.discrete.size(), 2u);  // as told
+}
+
 TEST_F(RecipeGrasps, AGripperThatFitsNowhereStopsTheCellNamingTheRecipe) {
   io::writeMesh(pathOf("magnet.ply"), simulation::makePart("ring_magnet").mesh);  // 13 mm wide: no 16 mm cup seals
   const CellConfig config = parse("{name: magnet, model: magnet.ply}", "picking: {gripper: {cup_diameter: 0.016}}\n");

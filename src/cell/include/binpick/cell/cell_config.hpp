@@ -37,7 +37,9 @@ struct RecipeConfig {
   std::string model_cache;             // prepared-model cache ("" = none): fast restarts
   std::string settings_file;           // estimation settings (model:, detection:); "" = defaults
   std::vector<picking::Grasp> grasps;  // model frame; empty: generated from the model at startup
-  picking::PartSymmetry symmetry;
+  // As the recipe gives it; none: found from the model's mesh at startup (io::findSymmetry), or
+  // the identity alone for a model without a mesh.
+  std::optional<picking::PartSymmetry> symmetry;
 };
 
 struct CycleLimits {

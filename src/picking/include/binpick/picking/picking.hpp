@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "binpick/io/mesh_symmetry.hpp"
 #include "binpick/io/point_cloud.hpp"
 #include "binpick/picking/gripper.hpp"
 #include "binpick/picking/seal_check.hpp"
@@ -39,11 +40,10 @@ struct Grasp {
 // Rotations mapping the part onto itself about its model origin: a grasp S * T_model_grasp is as
 // good as T_model_grasp. With a continuous axis too, every discrete S is combined with
 // continuous_symmetry_steps even rotations about the axis.
-struct PartSymmetry {
-  // Proper rotations; must hold the identity (so the grasp as taught is always a candidate).
-  std::vector<Eigen::Matrix3d> discrete{Eigen::Matrix3d::Identity()};
-  std::optional<Eigen::Vector3d> continuous_axis;  // axis through the origin (normalised here)
-};
+// Found from the part's mesh (io::findSymmetry) where a recipe gives none. The discrete
+// rotations must hold the identity (so the grasp as taught is always a candidate); the
+// continuous axis is normalised here.
+using PartSymmetry = io::Symmetry;
 
 // The bin's inside: a box on its floor. Bin frame: origin at the centre of the floor, x along
 // `length`, y along `width`, z up.

@@ -7,15 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "binpick/io/mesh_symmetry.hpp"
 #include "binpick/io/point_cloud.hpp"
 
 namespace binpick::simulation {
 
-// The rotations that map a part onto itself (about its model origin).
-struct Symmetry {
-  std::vector<Eigen::Matrix3d> discrete{Eigen::Matrix3d::Identity()};  // always holds identity
-  std::optional<Eigen::Vector3d> continuous_axis;                      // unit axis through the origin, if any
-};
+// The rotations that map a part onto itself (about its model origin): declared by hand for the
+// built-in parts (io::findSymmetry finds the same), found from the mesh for a user's.
+using Symmetry = io::Symmetry;
 
 struct Part {
   std::string name;
@@ -28,6 +27,9 @@ struct Part {
 std::vector<std::string> partNames();
 // Builds a built-in part; throws core::Error naming the unknown part.
 Part makePart(const std::string& name);
+// A user's mesh as a part (as it is: not re-centred), its symmetry found from the mesh
+// (io::findSymmetry) and named in its description.
+Part partFromMesh(const std::string& name, io::TriangleMesh mesh);
 
 // A prism: a simple polygon (counter-clockwise, metres, in the xy plane) extruded along z by
 // `thickness`, centred on z = 0. Throws on a degenerate or self-intersecting profile.
