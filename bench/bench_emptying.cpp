@@ -6,8 +6,9 @@
 //                  [--cups PART=M,...] [--bins 5] [--objects 20] [--first-seed 1] [--threads 0] --out DIR
 // --cups sets the suction cup's diameter (metres) for a part, as an integrator chooses the cup for
 // the part's narrowest faces; the others get the default (cell/gripper.hpp).
-// Writes DIR/emptying.md (tables), DIR/emptying.csv (one row per bin, flushed as it goes),
-// DIR/emptying-parts-left.png; each bin's run (emptying.json, overlays) under DIR/emptying-runs/.
+// Writes DIR/emptying.md (the table, and why the parts left in each bin stayed), DIR/emptying.csv
+// (one row per bin, flushed as it goes), DIR/emptying-parts-left.png; each bin's run
+// (emptying.json, overlays) under DIR/emptying-runs/.
 #include <algorithm>
 #include <cstdio>
 #include <ctime>
@@ -169,6 +170,30 @@ std::string summaryTable(const std::vector<Row>& rows) {
   return table;
 }
 
+// Why the parts left stayed, one row per bin that kept any: how many lie near a wall (where the
+// tool body meets the wall first), how many the cell did not detect in its last capture, and its
+// last answer, which accounts for every part it detected (too tilted, tool hitting the bin, ...).
+std::string partsLeftTable(const std::vector<Row>& rows) {
+  constexpr double kNearWall = 0.05;  // metres from the part's centre to the wall
+  std::string table =
+      "| part | gripper | seed | left | within 5 cm of a wall | not detected | the cell's last answer |\n"
+      "|---|---|---:|---:|---:|---:|---|\n";
+  int bins = 0;
+  for (const Row& row : rows) {
+    const auto& left = row.report.left;
+    if (left.empty() || row.report.cycles.empty()) continue;
+    ++bins;
+    const auto near_wall = std::count_if(
+        left.begin(), left.end(), [&](const emptying::PartLeft& part) { return part.wall_distance < kNearWall; });
+    const emptying::CycleRecord& last = row.report.cycles.back();
+    const int undetected = std::max(0, static_cast<int>(left.size()) - last.detections);
+    table += "| " + row.part + " | " + row.gripper + " | " + std::to_string(row.seed) + " | " +
+             std::to_string(left.size()) + " | " + std::to_string(near_wall) + " | " + std::to_string(undetected) +
+             " | " + last.status + (last.detail.empty() ? "" : ": " + last.detail) + " |\n";
+  }
+  return bins > 0 ? table : "Every bin was emptied.\n";
+}
+
 // Parts left in the bin after each cycle, one line per part and gripper (the mean over its bins;
 // a bin that has ended counts with what it left).
 void writePartsLeftPlot(const std::string& path, const std::vector<Row>& rows) {
@@ -221,7 +246,9 @@ void writeReport(const Options& options, const std::vector<Row>& rows, const std
      << summaryTable(rows) << "\n"
      << "cleared: parts the simulated robot took out of the bin / parts in the bin after the drop; a failed pick\n"
      << "is a pick the judge refused (the cell avoided that part afterwards). Cycle times: reconstruct + detect +\n"
-     << "plan as binpickd timed them. Per bin: emptying.csv; plot: emptying-parts-left.png.\n";
+     << "plan as binpickd timed them. Per bin: emptying.csv; plot: emptying-parts-left.png.\n\n"
+     << "## Why the parts left stayed\n\n"
+     << partsLeftTable(rows);
 }
 
 int run(int argc, char** argv) {

@@ -90,8 +90,22 @@ TEST(picking_bin, ApproachFromBelowTheFloorIsRejected) {
   params.max_tilt_deg = 180;
   const DetectedPart upside_down = part({0, 0, 0.05}, rotX(180));  // grasp point 30 mm up
   EXPECT_FALSE(reachable(params, upside_down));                    // pre-grasp point 70 mm below the floor
-  params.approach_distance = 0.02;
-  EXPECT_TRUE(reachable(params, upside_down));  // pre-grasp point 10 mm above the floor
+  params.approach_distance = 0.005;
+  params.gripper.cup_length = 0.01;
+  params.gripper.tool_length = 0.01;
+  EXPECT_TRUE(reachable(params, upside_down));  // the tool's end 5 mm above the floor at the pre-grasp point
+}
+
+// Tilted 50 degrees towards the +x wall from a grasp point 50 mm off the centre, 30 mm up: the
+// pre-grasp point (100 mm out) stays within the corridor's 170 mm, but the body behind it (25 mm
+// of cup and 150 mm of tool) swings out to x = 220 mm below the wall top.
+TEST(picking_bin, ATiltedToolsBodySwingsOverTheWallBeyondThePreGraspPoint) {
+  PickParams params = wideToolParams();
+  const Eigen::Matrix3d tilt = rotY(50);
+  const DetectedPart tilted = part(Eigen::Vector3d(0.05, 0, 0.03) - tilt * Eigen::Vector3d(0, 0, 0.02), tilt);
+  EXPECT_FALSE(reachable(params, tilted));
+  params.gripper.tool_length = 0.02;  // the end of the body at x = 161 mm
+  EXPECT_TRUE(reachable(params, tilted));
 }
 
 // The bin turned a quarter about base z (its length along base y), tilted 10 degrees and moved:

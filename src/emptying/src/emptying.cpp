@@ -2,6 +2,7 @@
 #include "binpick/emptying/emptying.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "binpick/core/error.hpp"
@@ -148,6 +149,9 @@ class EmptyingRun {
       left.T_base_part = cell_->T_base_bin() * poses[i];
       // The last capture shows the pile as it lies now unless that cycle's pick took a part.
       if (last_scene_.objects.size() == poses.size()) left.visible_fraction = last_scene_.objects[i].visible_fraction;
+      const Eigen::Vector3d centre = poses[i].translation();  // bin frame: origin at the floor's centre
+      left.wall_distance = std::min(0.5 * params_.pile.bin_length - std::abs(centre.x()),
+                                    0.5 * params_.pile.bin_width - std::abs(centre.y()));
       report_.left.push_back(left);
     }
     report_.grasps = static_cast<int>(cell_->recipe().picking.grasps.size());

@@ -75,7 +75,8 @@ void writeEmptyingJson(const std::string& path, const EmptyingReport& report) {
   for (const PartLeft& part : report.left) {
     left.push_back({{"index", part.index},
                     {"T_base_part", poseJson(part.T_base_part)},
-                    {"visible_fraction", part.visible_fraction}});
+                    {"visible_fraction", part.visible_fraction},
+                    {"wall_distance", part.wall_distance}});
   }
   const nlohmann::json json = {
       {"part", report.part},

@@ -283,7 +283,8 @@ std::string describeSymmetry(const Symmetry& symmetry) {
   if (!symmetry.continuous_axis && count <= 1) return "none";
   const std::string rotations = std::to_string(count) + (count == 1 ? " rotation" : " rotations");
   if (!symmetry.continuous_axis) return rotations;
-  return "any turn about " + vectorText(*symmetry.continuous_axis) + " with " + rotations;
+  const std::string turns = "any turn about " + vectorText(*symmetry.continuous_axis);
+  return count <= 1 ? turns : turns + " with " + rotations;
 }
 
 }  // namespace binpick::io

@@ -61,7 +61,9 @@ bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& pa
   const Eigen::Isometry3d T_bin_grasp = params.bin.T_base_bin.inverse() * T_base_grasp;
   const Eigen::Vector3d grasp_point = T_bin_grasp.translation();
   const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
-  const Segment axis{grasp_point - params.approach_distance * approach, grasp_point};
+  // The whole tool, from the end of its body at the pre-grasp point down to the grasp: on a tilted
+  // approach the body's far end swings out over the wall first.
+  const Segment axis{grasp_point - (params.approach_distance + params.gripper.toolBack()) * approach, grasp_point};
   const double radius = params.gripper.tool_radius + params.wall_clearance;
   return corridorHitsFloor(axis) || corridorHitsWalls(axis, approach, radius, params.bin);
 }

@@ -1,39 +1,69 @@
-// Parallel-jaw grasps: two opposite faces no wider apart than the stroke, both finger contact
-// rectangles on them, and the fingers' path and the tool body free of the part.
+// Parallel-jaw grasps: two opposite faces no wider apart than the stroke, both fingers touching
+// them (over an area, or along a line on a curved surface), and the fingers' path and the tool
+// body free of the part.
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "grasp_proposals.hpp"
 
 namespace binpick::picking {
 namespace {
 
-constexpr int kContactColumns = 3;  // samples across the finger (y)
-constexpr int kContactRows = 5;     // samples along the approach (z)
+constexpr int kContactColumns = 3;  // area samples across the finger (y)
+constexpr int kContactRows = 5;     // area samples along the approach (z)
+constexpr int kLineSamples = 7;     // samples along each of the two contact lines
 constexpr double kMinContactShare = 0.5;
-constexpr double kMinWidth = 0.001;  // metres: thinner walls are not gripped across
+constexpr double kMinWidth = 0.001;        // metres: thinner walls are not gripped across
+constexpr double kTipPastContact = 0.002;  // metres of finger beyond a contact taken near the tips
+constexpr double kStep = 1e-6;             // metres: a ray restarts this far past a surface it crossed
+constexpr int kMaxCrossings = 16;          // surfaces followed along one closing line
 
-// The share of one finger's contact rectangle (centred on the grasp frame's yz, at x = side *
-// width / 2) that touches a face whose outward normal is side * x, within the tolerance.
-double contactShare(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp, double width, double side,
-                    const GripperParams& gripper, const GraspGenerationParams& params, double antipodal_cos) {
+// How one finger touches its face.
+struct FingerContact {
+  double area_share = 0.0;   // of the finger's contact rectangle
+  double line_length = 0.0;  // metres: the longer of the two lines through the contact point
+};
+
+// Whether the finger's contact face, at `on_face` (grasp frame x = side * width / 2), touches a face
+// whose outward normal is side * x, within the tolerance.
+bool touches(const SurfaceModel& surface, const Eigen::Vector3d& on_face, const Eigen::Vector3d& x,
+             const GripperParams& gripper, const GraspGenerationParams& params, double antipodal_cos) {
+  const double standoff = gripper.finger_thickness;  // the ray starts where the finger's back is
+  const auto hit = surface.castRay(on_face + standoff * x, -x, standoff + params.contact_tolerance);
+  return hit && std::abs(hit->distance - standoff) <= params.contact_tolerance && hit->normal.dot(x) >= antipodal_cos;
+}
+
+// One finger (centred on the grasp frame's yz, at x = side * width / 2) on its face: the share of
+// its rectangle that touches, and the contact lines through the point at `contact_along` on the
+// finger's axis. A flat face touches over the rectangle; a cylinder only along its generator, which
+// holds it as well when the line is long enough (a shaft between flat jaws).
+FingerContact fingerContact(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp, double width,
+                            double side, double contact_along, const GripperParams& gripper,
+                            const GraspGenerationParams& params, double antipodal_cos) {
   const Eigen::Vector3d x = side * T_model_grasp.linear().col(0);
   const Eigen::Vector3d y = T_model_grasp.linear().col(1), z = T_model_grasp.linear().col(2);
-  const double standoff = gripper.finger_thickness;  // the ray starts where the finger's back is
+  const Eigen::Vector3d face_centre = T_model_grasp.translation() + 0.5 * width * x;
+  const auto touchesAt = [&](double across, double along) {
+    return touches(surface, face_centre + across * y + along * z, x, gripper, params, antipodal_cos);
+  };
+  FingerContact contact;
   int touching = 0;
   for (int column = 0; column < kContactColumns; ++column) {
     for (int row = 0; row < kContactRows; ++row) {
-      const double across = gripper.finger_width * (column / (kContactColumns - 1.0) - 0.5);
-      const double along = gripper.finger_depth * (row / (kContactRows - 1.0) - 0.5);
-      const Eigen::Vector3d on_face = T_model_grasp.translation() + 0.5 * width * x + across * y + along * z;
-      const auto hit = surface.castRay(on_face + standoff * x, -x, standoff + params.contact_tolerance);
-      if (hit && std::abs(hit->distance - standoff) <= params.contact_tolerance &&
-          hit->normal.dot(x) >= antipodal_cos) {
-        ++touching;
-      }
+      touching += touchesAt(gripper.finger_width * (column / (kContactColumns - 1.0) - 0.5),
+                            gripper.finger_depth * (row / (kContactRows - 1.0) - 0.5));
     }
   }
-  return static_cast<double>(touching) / (kContactColumns * kContactRows);
+  contact.area_share = static_cast<double>(touching) / (kContactColumns * kContactRows);
+  int across_line = 0, along_line = 0;
+  for (int i = 0; i < kLineSamples; ++i) {
+    const double t = i / (kLineSamples - 1.0) - 0.5;
+    across_line += touchesAt(gripper.finger_width * t, contact_along);
+    along_line += touchesAt(0.0, gripper.finger_depth * t);
+  }
+  contact.line_length = std::max(across_line * gripper.finger_width, along_line * gripper.finger_depth) / kLineSamples;
+  return contact;
 }
 
 // Part points inside a finger (on its way in along the approach, or closed) or the tool body.
@@ -55,12 +85,71 @@ bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_mod
   return false;
 }
 
-std::string facesLabel(const Eigen::Vector3d& closing, double width) {
+// Where the far jaw can touch on the closing line into the part from a sample: the first surface
+// that leaves the part (a wall held across its thickness, the other finger in the hole behind it)
+// and the last one (the part held across its whole extent on that line: a ring across its
+// diameter), each when it faces opposite the sample and lies within the stroke.
+std::vector<double> farContactWidths(const SurfaceModel& surface, const SurfaceSample& sample, double stroke,
+                                     double antipodal_cos) {
+  const Eigen::Vector3d into = -sample.normal;
+  const double reach = std::max(stroke, 2.0 * surface.radius());  // beyond the stroke: is the part still there?
+  std::vector<double> widths;
+  double travelled = kStep;
+  bool outermost_holds = false;
+  for (int crossing = 0;; ++crossing) {
+    if (crossing == kMaxCrossings) return widths;  // too many surfaces to tell the last
+    const auto hit = surface.castRay(sample.point + travelled * into, into, reach - travelled);
+    if (!hit) break;
+    travelled += hit->distance;
+    const bool leaves = hit->normal.dot(into) > 0.0;
+    outermost_holds = leaves && hit->normal.dot(into) >= antipodal_cos && travelled <= stroke;
+    if (outermost_holds && widths.empty() && crossing == 0) widths.push_back(travelled);
+    travelled += kStep;
+  }
+  if (outermost_holds && (widths.empty() || travelled - kStep > widths.front() + kMinWidth)) {
+    widths.push_back(travelled - kStep);
+  }
+  return widths;
+}
+
+std::string facesLabel(const Eigen::Vector3d& closing, double width, bool on_lines) {
   std::string axis = directionLabel(closing);
   if (axis.size() == 2) axis = "+-" + axis.substr(1);  // both faces: "+-x"
   char millimetres[32];
   std::snprintf(millimetres, sizeof millimetres, "%.1f mm", width * 1e3);
-  return "faces " + axis + ", " + millimetres;
+  return "faces " + axis + ", " + millimetres + (on_lines ? ", on lines" : "");
+}
+
+// The proposal for jaws closing along the sample's normal with this approach, when both fingers
+// hold and nothing is in their way. The fingers go no deeper than they must: the contact near
+// their tips first (a part lying on the floor is taken without the tips reaching the floor), then
+// at their middle.
+std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, const SurfaceSample& sample, double width,
+                                    const Eigen::Vector3d& approach, const GripperParams& gripper,
+                                    const GraspGenerationParams& params, double antipodal_cos) {
+  const Eigen::Vector3d closing = sample.normal;  // grasp x: from the far face to the sample's
+  const Eigen::Vector3d contact_centre = sample.point - 0.5 * width * closing;
+  const double min_line = kMinContactShare * std::min(gripper.finger_width, gripper.finger_depth);
+  for (const double contact_along : {0.5 * gripper.finger_depth - kTipPastContact, 0.0}) {
+    GraspProposal proposal;
+    proposal.T_model_grasp.linear() << closing, approach.cross(closing), approach;
+    proposal.T_model_grasp.translation() = contact_centre - contact_along * approach;
+    const FingerContact near =
+        fingerContact(surface, proposal.T_model_grasp, width, 1.0, contact_along, gripper, params, antipodal_cos);
+    const FingerContact far =
+        fingerContact(surface, proposal.T_model_grasp, width, -1.0, contact_along, gripper, params, antipodal_cos);
+    const double area = std::min(near.area_share, far.area_share);
+    const bool on_area = area >= kMinContactShare;
+    if (!on_area && std::min(near.line_length, far.line_length) < min_line) continue;
+    if (gripperHitsPart(surface, proposal.T_model_grasp, width, gripper, params)) continue;
+    // Lines hold less surely than faces: they rank after every face, by closeness to the centre.
+    proposal.margin = on_area ? (area - kMinContactShare) / (1.0 - kMinContactShare) : 0.0;
+    proposal.patch = sample.patch;
+    proposal.where = facesLabel(closing, width, !on_area);
+    proposal.width = width;
+    return proposal;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -70,33 +159,16 @@ std::vector<GraspProposal> proposeParallelGrasps(const SurfaceModel& surface, co
   const double antipodal_cos = std::cos(params.max_antipodal_angle_deg * M_PI / 180.0);
   std::vector<GraspProposal> proposals;
   for (const SurfaceSample& sample : surface.samples()) {
-    // Into the part from the sample: where it leaves is the opposite contact.
-    const double start = 1e-6;
-    const auto exit = surface.castRay(sample.point - start * sample.normal, -sample.normal, gripper.stroke);
-    if (!exit || exit->normal.dot(-sample.normal) < antipodal_cos) continue;
-    const double width = exit->distance + start;
-    if (width < kMinWidth || width > gripper.stroke) continue;
-    const Eigen::Vector3d closing = sample.normal;  // grasp x: from the far face to the sample's
-    const Eigen::Vector3d centre = sample.point - 0.5 * width * closing;
-    const Eigen::Vector3d u = perpendicularTo(closing), v = closing.cross(u);
-    for (int k = 0; k < params.approach_directions; ++k) {
-      const double angle = 2.0 * M_PI * k / params.approach_directions;
-      const Eigen::Vector3d approach = std::cos(angle) * u + std::sin(angle) * v;
-      GraspProposal proposal;
-      proposal.T_model_grasp.linear() << closing, approach.cross(closing), approach;
-      proposal.T_model_grasp.translation() = centre;
-      const double near_share =
-          contactShare(surface, proposal.T_model_grasp, width, 1.0, gripper, params, antipodal_cos);
-      if (near_share < kMinContactShare) continue;
-      const double far_share =
-          contactShare(surface, proposal.T_model_grasp, width, -1.0, gripper, params, antipodal_cos);
-      if (far_share < kMinContactShare) continue;
-      if (gripperHitsPart(surface, proposal.T_model_grasp, width, gripper, params)) continue;
-      proposal.margin = (std::min(near_share, far_share) - kMinContactShare) / (1.0 - kMinContactShare);
-      proposal.patch = sample.patch;
-      proposal.where = facesLabel(closing, width);
-      proposal.width = width;
-      proposals.push_back(proposal);
+    for (const double width : farContactWidths(surface, sample, gripper.stroke, antipodal_cos)) {
+      if (width < kMinWidth) continue;
+      const Eigen::Vector3d u = perpendicularTo(sample.normal), v = sample.normal.cross(u);
+      for (int k = 0; k < params.approach_directions; ++k) {
+        const double angle = 2.0 * M_PI * k / params.approach_directions;
+        const Eigen::Vector3d approach = std::cos(angle) * u + std::sin(angle) * v;
+        if (auto proposal = jawsAt(surface, sample, width, approach, gripper, params, antipodal_cos)) {
+          proposals.push_back(std::move(*proposal));
+        }
+      }
     }
   }
   return proposals;

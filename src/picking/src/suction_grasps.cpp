@@ -65,10 +65,11 @@ bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_mod
 }  // namespace
 
 std::vector<GraspProposal> proposeSuctionGrasps(const SurfaceModel& surface, const GripperParams& gripper,
-                                                const GraspGenerationParams& /*params*/) {
+                                                const GraspGenerationParams& params) {
   const double radius = 0.5 * gripper.cup_diameter;
   // Rays start this far above the disc: anything of the part closer above it is in the cup's way.
-  const SealTest seal(surface, gripper.seal_tolerance, std::max(radius, 4.0 * gripper.seal_tolerance));
+  const SealTest seal(surface, (1.0 - params.seal_reserve) * gripper.seal_tolerance,
+                      std::max(radius, 4.0 * gripper.seal_tolerance));
   std::vector<GraspProposal> proposals;
   for (const SurfaceSample& sample : surface.samples()) {
     DiscFrame disc{sample.point, sample.normal, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};

@@ -74,6 +74,7 @@ struct PartLeft {
   int index = 0;  // in the physics world's order
   Eigen::Isometry3d T_base_part = Eigen::Isometry3d::Identity();
   double visible_fraction = 0.0;  // in the last capture
+  double wall_distance = 0.0;     // metres from the part's centre to the nearest inner wall of the bin
 };
 
 struct EmptyingReport {

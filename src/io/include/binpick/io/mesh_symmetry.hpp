@@ -50,7 +50,7 @@ struct FoundSymmetry {
 // Throws core::Error on an empty or invalid mesh or bad params.
 FoundSymmetry findSymmetry(const TriangleMesh& mesh, const SymmetryParams& params = {});
 
-// "revolved about (0, 0, 1), 2 rotations" / "24 rotations" / "none": what a given symmetry holds.
+// "any turn about (0, 0, 1) with 2 rotations" / "24 rotations" / "none": what a given symmetry holds.
 std::string describeSymmetry(const Symmetry& symmetry);
 
 }  // namespace binpick::io

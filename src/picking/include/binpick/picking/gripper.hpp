@@ -37,6 +37,8 @@ struct GripperParams {
   double tool_radius = 0.015;  // metres
   double tool_length = 0.15;   // metres
   void validate() const;       // throws core::Error naming the field
+  // Metres from the grasp point back along the approach to the end of the tool body.
+  double toolBack() const { return (type == GripperType::Suction ? cup_length : 0.5 * finger_depth) + tool_length; }
 };
 
 }  // namespace binpick::picking

@@ -9,7 +9,8 @@
 // back along -z.
 //
 // The approach corridor is the cylinder of radius gripper.tool_radius + wall_clearance around the segment
-// from the pre-grasp to the grasp point. It hits a wall when a slice of it reaching below the wall
+// from the end of the tool body at the pre-grasp point (gripper.toolBack() behind it) to the grasp
+// point. It hits a wall when a slice of it reaching below the wall
 // top has its axis outside the bin's inner box shrunk by that radius (checked analytically: exact
 // for a vertical approach, on the safe side for a tilted one). It hits the floor when its axis
 // goes below the floor: the grasp point itself may lie just above it (a flat part lying on the
