@@ -4,6 +4,7 @@
 #include <string>
 
 #include "binpick/core/error.hpp"
+#include "binpick/io/mesh_surface.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
 
@@ -21,14 +22,14 @@ struct DenseCloud {
 
 DenseCloud denseFromMesh(const io::TriangleMesh& mesh, const ModelParams& params) {
   io::validateMesh(mesh, "model mesh");
-  const double area = surfaceArea(mesh);
+  const double area = io::surfaceArea(mesh);
   const float diameter = approximateDiameter(mesh.vertices);
   if (!(area > 0.0) || !(diameter > 0.0f)) throw core::Error("model mesh has no surface area");
   const double step = params.sampling_ratio * diameter;
   const auto count = static_cast<std::size_t>(std::ceil(area / (step * step) * params.dense_samples_per_step2));
   if (count > 20'000'000)
     throw core::Error("model: sampling would need " + std::to_string(count) + " points; raise sampling_ratio");
-  SurfaceSamples samples = sampleSurface(mesh, count, params.seed);
+  io::SurfaceSamples samples = io::sampleSurface(mesh, count, params.seed);
   return {std::move(samples.points), std::move(samples.face_normals), false};
 }
 
@@ -108,8 +109,8 @@ PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams&
                       " points after subsampling is too many for the pair table; raise sampling_ratio");
   }
   model.centre /= static_cast<float>(model.points.size());
-  for (uint32_t i : voxelSubsample(dense.points, &dense_normals, 0.5f * model.step,
-                                   params.normal_cluster_angle_deg * kDegToRad)) {
+  for (uint32_t i :
+       voxelSubsample(dense.points, &dense_normals, 0.5f * model.step, params.normal_cluster_angle_deg * kDegToRad)) {
     model.fine_points.push_back(dense.points[i]);
     model.fine_normals.push_back(dense_normals[i]);
   }

@@ -11,14 +11,6 @@
 
 namespace binpick::estimation {
 
-// Points spread over a mesh surface in proportion to area, each with its face's unit normal.
-struct SurfaceSamples {
-  std::vector<Eigen::Vector3f> points;
-  std::vector<Eigen::Vector3f> face_normals;
-};
-SurfaceSamples sampleSurface(const io::TriangleMesh& mesh, std::size_t count, uint64_t seed);
-double surfaceArea(const io::TriangleMesh& mesh);
-
 // The pose with its rotation made orthonormal again: float compositions (ICP steps, a pose times a
 // near-symmetry) drift by 1e-5 after a few dozen, more than a pose read back from JSON may have.
 inline void orthonormalise(Eigen::Isometry3f& pose) {

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <unordered_map>
 
 #include "binpick/core/error.hpp"
+#include "binpick/io/mesh_surface.hpp"
 
 namespace binpick::io {
 namespace {
@@ -54,20 +54,9 @@ SurfaceMoments surfaceMoments(const TriangleMesh& mesh) {
 
 // Points spread over the surface by area (seeded): the probes a rotation turns.
 std::vector<Eigen::Vector3d> probePoints(const TriangleMesh& mesh, int count, uint64_t seed) {
-  std::vector<double> cumulative;
-  double total = 0.0;
-  for (int i = 0; i < static_cast<int>(mesh.triangles.size()); ++i)
-    cumulative.push_back(total += triangleOf(mesh, i).area());
-  std::mt19937_64 random(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Eigen::Vector3d> points;
-  for (int k = 0; k < count; ++k) {
-    const auto found = std::lower_bound(cumulative.begin(), cumulative.end(), unit(random) * total);
-    const Triangle t =
-        triangleOf(mesh, static_cast<int>(std::min<std::ptrdiff_t>(
-                             found - cumulative.begin(), static_cast<std::ptrdiff_t>(cumulative.size()) - 1)));
-    const double r1 = std::sqrt(unit(random)), r2 = unit(random);
-    points.push_back((1.0 - r1) * t.a + r1 * (1.0 - r2) * t.b + r1 * r2 * t.c);
+  for (const Eigen::Vector3f& p : sampleSurface(mesh, static_cast<std::size_t>(count), seed).points) {
+    points.push_back(p.cast<double>());
   }
   return points;
 }

@@ -73,7 +73,7 @@ bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_mod
   const double finger_inner = 0.5 * width + params.contact_tolerance;  // the contact face itself is not in the way
   const double finger_outer = 0.5 * width + gripper.finger_thickness;
   const double root = -0.5 * gripper.finger_depth;
-  const double tool_end = root - gripper.tool_length;
+  const double tool_end = -gripper.toolBack();
   for (const Eigen::Vector3d& point : surface.obstaclePoints()) {
     const Eigen::Vector3d local = T_grasp_model * point;
     if (local.z() < tool_end) continue;
@@ -94,21 +94,17 @@ std::vector<double> farContactWidths(const SurfaceModel& surface, const SurfaceS
   const Eigen::Vector3d into = -sample.normal;
   const double reach = std::max(stroke, 2.0 * surface.radius());  // beyond the stroke: is the part still there?
   std::vector<double> widths;
-  double travelled = kStep;
-  bool outermost_holds = false;
+  double travelled = 0.0;   // to the last surface crossed
+  bool last_holds = false;  // it faces opposite the sample (so it leaves the part) within the stroke
   for (int crossing = 0;; ++crossing) {
     if (crossing == kMaxCrossings) return widths;  // too many surfaces to tell the last
-    const auto hit = surface.castRay(sample.point + travelled * into, into, reach - travelled);
+    const auto hit = surface.castRay(sample.point + (travelled + kStep) * into, into, reach - travelled - kStep);
     if (!hit) break;
-    travelled += hit->distance;
-    const bool leaves = hit->normal.dot(into) > 0.0;
-    outermost_holds = leaves && hit->normal.dot(into) >= antipodal_cos && travelled <= stroke;
-    if (outermost_holds && widths.empty() && crossing == 0) widths.push_back(travelled);
-    travelled += kStep;
+    travelled += kStep + hit->distance;
+    last_holds = hit->normal.dot(into) >= antipodal_cos && travelled <= stroke;
+    if (crossing == 0 && last_holds) widths.push_back(travelled);
   }
-  if (outermost_holds && (widths.empty() || travelled - kStep > widths.front() + kMinWidth)) {
-    widths.push_back(travelled - kStep);
-  }
+  if (last_holds && (widths.empty() || travelled > widths.front() + kMinWidth)) widths.push_back(travelled);
   return widths;
 }
 
@@ -134,8 +130,12 @@ std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, const SurfaceSa
     GraspProposal proposal;
     proposal.T_model_grasp.linear() << closing, approach.cross(closing), approach;
     proposal.T_model_grasp.translation() = contact_centre - contact_along * approach;
+    const auto holds = [&](const FingerContact& c) {
+      return c.area_share >= kMinContactShare || c.line_length >= min_line;
+    };
     const FingerContact near =
         fingerContact(surface, proposal.T_model_grasp, width, 1.0, contact_along, gripper, params, antipodal_cos);
+    if (!holds(near)) continue;  // the far finger need not be looked at
     const FingerContact far =
         fingerContact(surface, proposal.T_model_grasp, width, -1.0, contact_along, gripper, params, antipodal_cos);
     const double area = std::min(near.area_share, far.area_share);

@@ -50,7 +50,7 @@ bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_mod
   const Eigen::Isometry3d T_grasp_model = T_model_grasp.inverse();
   const double cup_radius = 0.5 * gripper.cup_diameter;
   const double cup_top = -2.0 * gripper.seal_tolerance;  // the sealed surface itself is not in the way
-  const double tool_end = -gripper.cup_length - gripper.tool_length;
+  const double tool_end = -gripper.toolBack();
   for (const Eigen::Vector3d& point : surface.obstaclePoints()) {
     const Eigen::Vector3d local = T_grasp_model * point;
     if (local.z() > cup_top || local.z() < tool_end) continue;

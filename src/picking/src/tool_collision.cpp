@@ -87,8 +87,8 @@ ToolVolume suctionVolume(const GripperParams& g, const ToolSweep& s) {
   ToolVolume tool;
   const double m = s.margin;
   tool.cylinders[0] = {0.5 * g.cup_diameter + m, -(g.cup_length + s.approach_distance) - m, -m, true};
-  tool.cylinders[1] = {g.tool_radius + m, -(g.cup_length + g.tool_length + s.approach_distance) - m,
-                       std::min(-g.cup_length + m, -m), false};
+  tool.cylinders[1] = {g.tool_radius + m, -(g.toolBack() + s.approach_distance) - m, std::min(-g.cup_length + m, -m),
+                       false};
   tool.cylinder_count = 2;
   return tool;
 }
@@ -108,7 +108,7 @@ ToolVolume parallelVolume(const GripperParams& g, const ToolSweep& s) {
     finger.between_jaws = inner;
   }
   tool.box_count = 2;
-  tool.cylinders[0] = {g.tool_radius + m, root - g.tool_length - s.approach_distance - m, root + m, false};
+  tool.cylinders[0] = {g.tool_radius + m, -(g.toolBack() + s.approach_distance) - m, root + m, false};
   tool.cylinder_count = 1;
   return tool;
 }
