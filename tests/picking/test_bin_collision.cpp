@@ -18,10 +18,18 @@ DetectedPart partGraspedAt(const Eigen::Vector3d& grasp_point) {
   return part(grasp_point - Eigen::Vector3d(0, 0, 0.02));
 }
 
-// The top grasp with the tool the limits below are worked out for.
+// The top grasp with the tool the limits below are worked out for, straight (leaning tests
+// set their own max_lean_deg).
 PickParams wideToolParams() {
   PickParams params = topGraspParams();
   params.gripper.tool_radius = 0.025;
+  params.gripper.max_lean_deg = 0;
+  return params;
+}
+
+PickParams leaningToolParams(double max_lean_deg = 6) {
+  PickParams params = wideToolParams();
+  params.gripper.max_lean_deg = max_lean_deg;
   return params;
 }
 
@@ -43,9 +51,51 @@ TEST(picking_bin, VerticalCorridorLimitsHoldToTheMillimetre) {
   EXPECT_FALSE(reachable(params, partGraspedAt({0.171, 0, 0.06})));
   EXPECT_TRUE(reachable(params, partGraspedAt({0, -0.119, 0.06})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0, -0.121, 0.06})));
-  // Right beside the wall: free only once the grasp point is above the wall top.
-  EXPECT_TRUE(reachable(params, partGraspedAt({0.19, 0, 0.151})));
+}
+
+// The 6 mm cup is narrower than the body: 10 mm from the wall it fits (3 mm + 5 mm clearance)
+// once the body, 25 mm behind the grasp point, is above the wall top; 7 mm from it it does not.
+TEST(picking_bin, BesideTheWallOnlyTheCupMustFitBelowTheWallTop) {
+  PickParams params = wideToolParams();
+  EXPECT_TRUE(reachable(params, partGraspedAt({0.19, 0, 0.126})));
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.19, 0, 0.124})));
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.193, 0, 0.149})));
+  params.gripper.type = GripperType::Parallel;  // jaws: the body's width all the way down
   EXPECT_FALSE(reachable(params, partGraspedAt({0.19, 0, 0.149})));
+  EXPECT_TRUE(reachable(params, partGraspedAt({0.19, 0, 0.151})));
+}
+
+// A flat part on the floor 2 mm too close to the +x wall for a straight approach: the body's
+// lowest slice, 25 mm behind the grasp point, clears once the approach leans by asin(2 / 25) =
+// 4.6 degrees away from the wall, so the first whole degree that does is 5.
+TEST(picking_bin, ASuctionToolBesideAWallLeansAwayFromIt) {
+  PickParams params = leaningToolParams();
+  const DetectedPart by_the_wall = partGraspedAt({0.172, 0, 0.02});
+  const PickPlan plan = planPicks({by_the_wall}, {}, params);
+  ASSERT_TRUE(picksOne(plan));
+  const Pick& pick = plan.picks[0];
+  EXPECT_NEAR(pick.lean_deg, 5.0, 1e-6);
+  EXPECT_NEAR(pick.tilt_deg, 5.0, 1e-6);
+  EXPECT_LT((pick.T_base_grasp.translation() - Eigen::Vector3d(0.172, 0, 0.02)).norm(), 1e-9);  // same point
+  EXPECT_GT(pick.T_base_grasp.linear().col(2).x(), 0.0);  // the approach towards the wall, the tool's back away
+  EXPECT_NEAR(pick.T_base_grasp.linear().col(2).y(), 0.0, 1e-9);
+
+  EXPECT_FALSE(reachable(leaningToolParams(4), by_the_wall));
+  // 25 mm * sin(6) = 2.6 mm: no further
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.1727, 0, 0.02})));
+  params.gripper.type = GripperType::Parallel;  // jaws never lean
+  EXPECT_FALSE(reachable(params, by_the_wall));
+}
+
+// In a corner the tool leans along the diagonal: 1.5 mm too close to both walls needs
+// asin(1.5 * sqrt(2) / 25) = 4.9 degrees.
+TEST(picking_bin, InACornerTheToolLeansAlongTheDiagonal) {
+  const PickPlan plan = planPicks({partGraspedAt({0.1715, -0.1215, 0.02})}, {}, leaningToolParams());
+  ASSERT_TRUE(picksOne(plan));
+  EXPECT_NEAR(plan.picks[0].lean_deg, 5.0, 1e-6);
+  const Eigen::Vector3d approach = plan.picks[0].T_base_grasp.linear().col(2);
+  EXPECT_NEAR(approach.x(), -approach.y(), 1e-9);
+  EXPECT_GT(approach.x(), 0.0);
 }
 
 // Approach 45 degrees off vertical, from +x: the pre-grasp point lies 70.7 mm further out in x

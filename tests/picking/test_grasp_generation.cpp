@@ -135,6 +135,31 @@ TEST(SuctionGrasps, AShaftSideOnlyWhereTheCupKeepsAReserveOfItsCompliance) {
   EXPECT_GT(sides(0.016, defaults().seal_reserve), 0);
 }
 
+// A block with a slot 7 mm wide and 5 mm deep along its top: a 6 mm cup fits the slot's floor
+// with 0.5 mm each side, and keeps out of it once it wants 1 mm of room from the walls.
+TEST(SuctionGrasps, NotInAGrooveBarelyWiderThanTheCup) {
+  const io::TriangleMesh slotted = simulation::makePrism({{-0.015, 0.0},
+                                                          {0.015, 0.0},
+                                                          {0.015, 0.020},
+                                                          {0.0035, 0.020},
+                                                          {0.0035, 0.015},
+                                                          {-0.0035, 0.015},
+                                                          {-0.0035, 0.020},
+                                                          {-0.015, 0.020}},
+                                                         0.020);
+  const auto inTheSlot = [&](double cup_clearance) {
+    GraspGenerationParams params;
+    params.cup_clearance = cup_clearance;
+    params.sample_spacing = 0.001;  // the cup fits only within 0.5 mm of the slot's middle
+    const auto grasps = generateGrasps(slotted, GripperParams{}, PartSymmetry{}, params);
+    return std::count_if(grasps.begin(), grasps.end(), [](const Grasp& grasp) {
+      return approachOf(grasp).y() < -0.99 && grasp.T_model_grasp.translation().y() < 0.0155;
+    });
+  };
+  EXPECT_GT(inTheSlot(0.0), 0);
+  EXPECT_EQ(inTheSlot(defaults().cup_clearance), 0);
+}
+
 TEST(SuctionGrasps, ASymmetricPartKeepsOneGraspPerClass) {
   const io::TriangleMesh box = makeBox(0.040, 0.040, 0.020);
   PartSymmetry four_fold;
@@ -305,6 +330,9 @@ TEST(GraspGenerationParams, BadValuesThrowNamingTheField) {
   params = {};
   params.seal_reserve = 1.0;
   EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "seal_reserve"));
+  params = defaults();
+  params.cup_clearance = -0.001;
+  EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "cup_clearance"));
   params = {};
   params.approach_directions = 0;
   EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "approach_directions"));

@@ -8,6 +8,7 @@
 #include "binpick/core/error.hpp"
 #include "binpick/picking/seal_check.hpp"
 #include "picking_test_support.hpp"
+#include "thrown_message.hpp"
 
 namespace binpick::picking {
 namespace {
@@ -80,6 +81,21 @@ TEST(picking_seal, ATiltedCupMeasuresTheFaceAgainstItsOwnPlane) {
   EXPECT_TRUE(surface.check(pose({0, 0, kPlateauZ}, rotX(5)), 0.003, 0.0008, SealCheckParams{}).seals);
 }
 
+// 11 degrees off the face: its rim only 0.68 mm off the face, inside the depth tolerance, but the
+// plane the samples measure is turned beyond max_angle_deg (8).
+TEST(picking_seal, ACupTurnedOffTheMeasuredSurfaceDoesNotSeal) {
+  const io::LensIntrinsics camera = downwardCamera();
+  const io::PointCloud cloud = plateauCloud(camera);
+  const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
+  const SealCheck turned = surface.check(pose({0, 0, kPlateauZ}, rotY(11)), 0.003, 0.0008, SealCheckParams{});
+  EXPECT_FALSE(turned.seals);
+  EXPECT_NEAR(turned.angle_deg, 11.0, 0.1);
+  EXPECT_LT(turned.worst_deviation, 0.0008);
+  SealCheckParams lenient;
+  lenient.max_angle_deg = 12.0;
+  EXPECT_TRUE(surface.check(pose({0, 0, kPlateauZ}, rotY(11)), 0.003, 0.0008, lenient).seals);
+}
+
 TEST(picking_seal, UnmeasuredPixelsUnderTheCupFailIt) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud shadowed = plateauCloud(camera, [](double x, double) { return x > 0.001; });
@@ -136,6 +152,14 @@ TEST(picking_seal, TheBaseFrameIsHonoured) {
   EXPECT_TRUE(surface.check(on_plateau, 0.003, 0.0008, SealCheckParams{}).seals);
   const Eigen::Isometry3d on_floor_edge = T_base_camera * pose({0.0095, 0.0, kPlateauZ});
   EXPECT_FALSE(surface.check(on_floor_edge, 0.003, 0.0008, SealCheckParams{}).seals);
+}
+
+TEST(picking_seal, AnAngleLimitOutsideItsRangeThrowsNamingIt) {
+  SealCheckParams params;
+  params.max_angle_deg = 0.0;
+  EXPECT_TRUE(binpick::test::throwsNaming([&] { params.validate(); }, "max_angle_deg"));
+  params.max_angle_deg = 91.0;
+  EXPECT_TRUE(binpick::test::throwsNaming([&] { params.validate(); }, "max_angle_deg"));
 }
 
 TEST(picking_seal, RejectsACloudNotOrganizedAsTheCamera) {

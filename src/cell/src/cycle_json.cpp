@@ -24,6 +24,7 @@ std::string cycleJson(const SavedCycle& cycle) {
     picks.push_back({{"object", pick.object},
                      {"grasp", pick.grasp},
                      {"tilt_deg", pick.tilt_deg},
+                     {"lean_deg", pick.lean_deg},
                      {"clearance", pick.clearance},
                      {"rank", pick.rank},
                      {"T_base_grasp", poseJson(pick.T_base_grasp)}});

@@ -28,6 +28,7 @@ CycleSummary summarizeCycle(uint64_t cycle, const CellSetup& setup, int recipe_i
       p.grasp_name = grasps[static_cast<std::size_t>(pick.grasp)].name;
     p.T_base_grasp = pick.T_base_grasp;
     p.tilt_deg = pick.tilt_deg;
+    p.lean_deg = pick.lean_deg;
     p.clearance = pick.clearance;
     p.rank = pick.rank;
     const auto& detections = outcome.detection.detections;

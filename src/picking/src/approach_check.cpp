@@ -47,6 +47,9 @@ bool corridorHitsWalls(const Segment& axis, const Eigen::Vector3d& approach, dou
 // rests on the part there, so only the axis is kept above the floor: no radius, no clearance.
 bool corridorHitsFloor(const Segment& axis) { return std::min(axis.from.z(), axis.to.z()) < 0.0; }
 
+// Leans tried, this far apart, up to the gripper's max_lean_deg.
+constexpr double kLeanStepDeg = 1.0;
+
 }  // namespace
 
 double approachTiltDeg(const Eigen::Isometry3d& T_base_grasp) {
@@ -61,11 +64,54 @@ bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& pa
   const Eigen::Isometry3d T_bin_grasp = params.bin.T_base_bin.inverse() * T_base_grasp;
   const Eigen::Vector3d grasp_point = T_bin_grasp.translation();
   const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
+  const GripperParams& gripper = params.gripper;
   // The whole tool, from the end of its body at the pre-grasp point down to the grasp: on a tilted
   // approach the body's far end swings out over the wall first.
-  const Segment axis{grasp_point - (params.approach_distance + params.gripper.toolBack()) * approach, grasp_point};
-  const double radius = params.gripper.tool_radius + params.wall_clearance;
-  return corridorHitsFloor(axis) || corridorHitsWalls(axis, approach, radius, params.bin);
+  const Eigen::Vector3d tool_end = grasp_point - (params.approach_distance + gripper.toolBack()) * approach;
+  if (corridorHitsFloor({tool_end, grasp_point})) return true;
+  const double body_radius = gripper.tool_radius + params.wall_clearance;
+  if (gripper.type != GripperType::Suction) {
+    return corridorHitsWalls({tool_end, grasp_point}, approach, body_radius, params.bin);
+  }
+  // A suction cup is narrower than the body behind it: a part lying by a wall is in the cup's
+  // reach while the body stays clear higher up. The body's sweep also covers where the cup passed.
+  const double cup_radius = 0.5 * gripper.cup_diameter + params.wall_clearance;
+  const Eigen::Vector3d cup_back = grasp_point - gripper.cup_length * approach;
+  return corridorHitsWalls({cup_back, grasp_point}, approach, cup_radius, params.bin) ||
+         corridorHitsWalls({tool_end, cup_back}, approach, std::max(body_radius, cup_radius), params.bin);
+}
+
+std::optional<Eigen::Isometry3d> leanClearOfWalls(const Eigen::Isometry3d& T_base_grasp, const PickParams& params) {
+  const GripperParams& gripper = params.gripper;
+  if (gripper.type != GripperType::Suction || !(gripper.max_lean_deg > 0.0)) return std::nullopt;
+  const Eigen::Isometry3d T_bin_grasp = params.bin.T_base_bin.inverse() * T_base_grasp;
+  const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
+  // Away from the walls the tool comes too close to, each by how far it reaches past its limit,
+  // at the grasp point and at the end of the tool: beside one wall straight away from it, in a
+  // corner along the diagonal.
+  const double reach = gripper.tool_radius + params.wall_clearance;
+  const Eigen::Vector3d grasp_point = T_bin_grasp.translation();
+  const Eigen::Vector3d tool_end = grasp_point - (params.approach_distance + gripper.toolBack()) * approach;
+  Eigen::Vector3d inward = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d* point : {&grasp_point, &tool_end}) {
+    inward.x() -= std::copysign(std::max(0.0, std::abs(point->x()) - (0.5 * params.bin.length - reach)), point->x());
+    inward.y() -= std::copysign(std::max(0.0, std::abs(point->y()) - (0.5 * params.bin.width - reach)), point->y());
+  }
+  inward -= inward.dot(approach) * approach;  // only a turn of the approach moves the tool
+  if (inward.norm() < 1e-9) return std::nullopt;
+  inward.normalize();
+  // Leaning the approach by theta towards -inward swings the tool's back towards +inward about
+  // the grasp point; the smallest lean that clears keeps the cup squarest on its face.
+  const int steps = static_cast<int>(std::ceil(gripper.max_lean_deg / kLeanStepDeg));
+  for (int step = 1; step <= steps; ++step) {
+    const double lean = std::min(gripper.max_lean_deg, step * kLeanStepDeg) * M_PI / 180.0;
+    const Eigen::Vector3d leaned = (approach - std::tan(lean) * inward).normalized();
+    Eigen::Isometry3d T_bin_leaned = T_bin_grasp;
+    T_bin_leaned.linear() = Eigen::Quaterniond::FromTwoVectors(approach, leaned) * T_bin_grasp.linear();
+    const Eigen::Isometry3d T_base_leaned = params.bin.T_base_bin * T_bin_leaned;
+    if (!approachHitsBin(T_base_leaned, params)) return T_base_leaned;
+  }
+  return std::nullopt;
 }
 
 }  // namespace binpick::picking

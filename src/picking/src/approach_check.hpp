@@ -1,6 +1,7 @@
 #pragma once
 // Is a grasp reachable: its approach tilt, and whether its approach corridor hits the bin.
 #include <Eigen/Geometry>
+#include <optional>
 
 #include "binpick/picking/picking.hpp"
 
@@ -13,6 +14,13 @@ double approachTiltDeg(const Eigen::Isometry3d& T_base_grasp);
 // or floor. Analytic, no sampling: along the straight corridor the height and the lateral
 // position change linearly, so the part of it low enough to meet a wall is one sub-segment and
 // its extreme x and y lie at that sub-segment's ends.
+// A suction tool is two corridors: the cup's (its radius) and the body's behind it.
 bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& params);
+
+// A suction grasp whose tool meets a wall, turned about its grasp point by the smallest lean (1
+// degree steps, up to gripper.max_lean_deg) away from the walls it comes too close to whose
+// corridor clears the bin; none when no lean does (or the gripper may not lean). The cup still
+// sits on the same point of the face, its bellows taking up the lean.
+std::optional<Eigen::Isometry3d> leanClearOfWalls(const Eigen::Isometry3d& T_base_grasp, const PickParams& params);
 
 }  // namespace binpick::picking

@@ -1,5 +1,5 @@
-// planPicks: per part, the best-ranked symmetric grasp that passes the tilt, bin and cloud tests;
-// then the order.
+// planPicks: per part, the best-ranked symmetric grasp that passes the tilt, bin, cloud and seal
+// tests (leaned away from a wall where the straight approach meets it); then the order.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -70,35 +70,60 @@ double rankWithoutCloud(const DetectedPart& part, const Grasp& grasp, const Pick
 // How far a part's grasps got through the tests, in test order.
 enum class Reached { Tilt, Bin, Cloud, Seal };
 
+// A pick being tested, with the face pose it came from: the grasp as generated, before a lean
+// away from a wall turned the approach (the cup seals on the face, not on the leaned disc).
+struct Candidate {
+  Pick pick;
+  Eigen::Isometry3d T_base_face = Eigen::Isometry3d::Identity();
+};
+
 struct Screened {
-  std::vector<Pick> survivors;  // rank: the terms known without the cloud
+  std::vector<Candidate> survivors;  // rank: the terms known without the cloud
   Reached furthest = Reached::Tilt;
 };
+
+// The approach corridor against the bin; where the tool meets a wall, the approach leaned away
+// from it as far as the gripper allows. False when neither clears the bin and the tilt limit.
+bool clearsBin(Pick& pick, const PickParams& params) {
+  if (!approachHitsBin(pick.T_base_grasp, params)) return true;
+  const std::optional<Eigen::Isometry3d> leaned = leanClearOfWalls(pick.T_base_grasp, params);
+  if (!leaned) return false;
+  const Eigen::Vector3d face_approach = pick.T_base_grasp.linear().col(2);
+  const Eigen::Vector3d leaned_approach = leaned->linear().col(2);
+  pick.lean_deg =
+      std::atan2(face_approach.cross(leaned_approach).norm(), face_approach.dot(leaned_approach)) * 180.0 / M_PI;
+  pick.T_base_grasp = *leaned;
+  pick.tilt_deg = approachTiltDeg(pick.T_base_grasp);
+  return pick.tilt_deg <= params.max_tilt_deg;
+}
 
 // The cheap tests: tilt, then the approach corridor against the bin.
 Screened screenCandidates(const DetectedPart& part, int object, const std::vector<GraspCandidate>& candidates,
                           const PickParams& params) {
   Screened screened;
   for (const GraspCandidate& candidate : candidates) {
-    Pick pick;
+    Candidate tested;
+    Pick& pick = tested.pick;
     pick.object = object;
     pick.grasp = candidate.grasp;
     pick.T_base_grasp = part.T_base_model * candidate.T_model_grasp;
+    tested.T_base_face = pick.T_base_grasp;
     pick.tilt_deg = approachTiltDeg(pick.T_base_grasp);
     if (pick.tilt_deg > params.max_tilt_deg) continue;
     screened.furthest = std::max(screened.furthest, Reached::Bin);
-    if (approachHitsBin(pick.T_base_grasp, params)) continue;
+    if (!clearsBin(pick, params)) continue;
     screened.furthest = Reached::Cloud;
     pick.rank = rankWithoutCloud(part, params.grasps[static_cast<std::size_t>(pick.grasp)], pick, params);
-    screened.survivors.push_back(pick);
+    screened.survivors.push_back(tested);
   }
   return screened;
 }
 
 // No measured cloud: nothing covers the part and the tool has all the clearance it can count.
-std::optional<Pick> bestWithoutCloud(std::vector<Pick> survivors, const PickParams& params) {
+std::optional<Pick> bestWithoutCloud(std::vector<Candidate> survivors, const PickParams& params) {
   std::optional<Pick> best;
-  for (Pick& pick : survivors) {
+  for (Candidate& candidate : survivors) {
+    Pick& pick = candidate.pick;
     pick.clearance = params.clearance_cap;
     pick.rank += params.ranking.free + params.ranking.clearance;
     if (!best || ranksBetter(pick, *best)) best = pick;
@@ -160,14 +185,17 @@ class PartCloudTests {
 };
 
 // A suction cup must find a face under its whole disc in the measured cloud (seal_check.hpp),
-// where it is or slid along the face by up to seal_check.max_shift (the pick then moves with it:
-// within the collision margin of where the tool was tested); jaws and a plan without the organized
-// cloud skip the test.
-bool sealsOnSurface(Pick& pick, const PickParams& params, const MeasuredSurface* surface) {
+// where it is or slid along the face by up to seal_check.max_shift (the pick then moves with it,
+// keeping its lean: within the collision margin of where the tool was tested); jaws and a plan
+// without the organized cloud skip the test.
+bool sealsOnSurface(Candidate& candidate, const PickParams& params, const MeasuredSurface* surface) {
   if (!surface || params.gripper.type != GripperType::Suction) return true;
   const GripperParams& g = params.gripper;
-  const auto sealed = surface->findSeal(pick.T_base_grasp, 0.5 * g.cup_diameter, g.seal_tolerance, params.seal_check);
-  if (sealed) pick.T_base_grasp = *sealed;
+  // The measured surface against the face's normal: the lean comes on top of what it allows.
+  SealCheckParams check = params.seal_check;
+  check.max_angle_deg = std::max(0.0, check.max_angle_deg - candidate.pick.lean_deg);
+  const auto sealed = surface->findSeal(candidate.T_base_face, 0.5 * g.cup_diameter, g.seal_tolerance, check);
+  if (sealed) candidate.pick.T_base_grasp = *sealed * (candidate.T_base_face.inverse() * candidate.pick.T_base_grasp);
   return sealed.has_value();
 }
 
@@ -175,20 +203,22 @@ bool sealsOnSurface(Pick& pick, const PickParams& params, const MeasuredSurface*
 // terms add at most free + clearance weight, so once a candidate cannot reach the best full rank
 // neither can any after it. The result equals testing every candidate; usually the first
 // collision-free one ends the search.
-std::optional<Pick> bestAgainstCloud(std::vector<Pick> survivors, const PickParams& params, const MeasuredScene& scene,
-                                     const MeasuredSurface* surface, Reached& furthest) {
-  std::stable_sort(survivors.begin(), survivors.end(), [](const Pick& a, const Pick& b) { return a.rank > b.rank; });
+std::optional<Pick> bestAgainstCloud(std::vector<Candidate> survivors, const PickParams& params,
+                                     const MeasuredScene& scene, const MeasuredSurface* surface, Reached& furthest) {
+  std::stable_sort(survivors.begin(), survivors.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.pick.rank > b.pick.rank; });
   const RankWeights& w = params.ranking;
   PartCloudTests tests(scene, params);
   std::optional<Pick> best;
-  for (Pick& pick : survivors) {
+  for (Candidate& candidate : survivors) {
+    Pick& pick = candidate.pick;
     if (best && pick.rank + w.free + w.clearance < best->rank - kRankTie) break;
     const double without_clearance = pick.rank + w.free * (1.0 - tests.covered(pick));
     if (best && without_clearance + w.clearance < best->rank - kRankTie) continue;
     const ToolContact contact = tests.contact(pick);
     if (contact.collision) continue;
     furthest = std::max(furthest, Reached::Seal);
-    if (!sealsOnSurface(pick, params, surface)) continue;
+    if (!sealsOnSurface(candidate, params, surface)) continue;
     pick.clearance = contact.clearance;
     pick.rank = without_clearance + w.clearance * contact.clearance / params.clearance_cap;
     if (!best || ranksBetter(pick, *best)) best = pick;

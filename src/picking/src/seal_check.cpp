@@ -1,7 +1,9 @@
 #include "binpick/picking/seal_check.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "binpick/core/error.hpp"
 #include "rigid.hpp"
@@ -16,6 +18,21 @@ constexpr int kSamplesPerRing[kRings] = {8, 16, 24};
 // Pixels searched around an unmeasured sample for the far side of an edge (3: a 7 x 7 window, about 2 mm across).
 constexpr long kEdgeSearch = 3;
 
+// Degrees between `axis` and the normal of the least-squares plane through `points` (the
+// eigenvector of their scatter with the smallest eigenvalue); 90 when fewer than 3.
+double planeAngleDeg(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis) {
+  if (points.size() < 3) return 90.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : points) scatter += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  const Eigen::Vector3d normal = solver.eigenvectors().col(0);
+  const Eigen::Vector3d unit_axis = axis.normalized();
+  return std::atan2(normal.cross(unit_axis).norm(), std::abs(normal.dot(unit_axis))) * 180.0 / M_PI;
+}
+
 }  // namespace
 
 void SealCheckParams::validate() const {
@@ -25,6 +42,7 @@ void SealCheckParams::validate() const {
   core::requireField(min_seen_share >= 0 && min_seen_share <= 1, owner, "min_seen_share", "in [0, 1]", min_seen_share);
   core::requireField(isNonNegative(max_shift), owner, "max_shift", ">= 0", max_shift);
   core::requireField(isPositive(shift_step), owner, "shift_step", "> 0", shift_step);
+  core::requireField(max_angle_deg > 0 && max_angle_deg <= 90, owner, "max_angle_deg", "in (0, 90]", max_angle_deg);
 }
 
 MeasuredSurface::MeasuredSurface(const io::PointCloud& cloud, const io::LensIntrinsics& camera,
@@ -46,7 +64,8 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
   const Eigen::Vector3d normal = T_camera_grasp.linear().col(2);
   const double checked_radius = radius + params.rim_margin;
   const double allowed = tolerance + params.noise;
-  int samples = 0, seen = 0;
+  int samples = 0;
+  std::vector<Eigen::Vector3d> seen;
   SealCheck result;
   bool flat = true;
   const auto pointAt = [&](long u, long v) -> const Eigen::Vector3f& {
@@ -82,7 +101,7 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
       flat = flat && !offPlaneNear(u, v, allowed, deviationOf);
       return;
     }
-    ++seen;
+    seen.push_back(measured.cast<double>());
     const double deviation = deviationOf(measured);
     result.worst_deviation = std::max(result.worst_deviation, deviation);
     flat = flat && deviation <= allowed;
@@ -95,8 +114,9 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
       sample({r * std::cos(angle), r * std::sin(angle), 0.0});
     }
   }
-  result.seen_share = static_cast<double>(seen) / samples;
-  result.seals = flat && result.seen_share >= params.min_seen_share;
+  result.seen_share = static_cast<double>(seen.size()) / samples;
+  result.angle_deg = planeAngleDeg(seen, normal);
+  result.seals = flat && result.seen_share >= params.min_seen_share && result.angle_deg <= params.max_angle_deg;
   return result;
 }
 

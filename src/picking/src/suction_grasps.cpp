@@ -32,6 +32,19 @@ class SealTest {
     return true;
   }
 
+  // Nothing of the part stands above the plane beyond the tolerance over the ring (a wall beside
+  // the cup, the flank of a groove it sits in); the surface may fall away there. The rays come
+  // from beyond the whole part (`reach`): one starting inside a wall would find no face below it.
+  bool ringClear(const DiscFrame& disc, double radius, int rays, double reach) const {
+    for (int k = 0; k < rays; ++k) {
+      const double angle = 2.0 * M_PI * k / rays;
+      const Eigen::Vector3d on_plane = disc.centre + radius * (std::cos(angle) * disc.x + std::sin(angle) * disc.y);
+      const auto hit = surface_.castRay(on_plane + reach * disc.normal, -disc.normal, reach);
+      if (hit && reach - hit->distance > tolerance_) return false;
+    }
+    return true;
+  }
+
   bool pointSeals(const DiscFrame& disc, const Eigen::Vector3d& on_plane) const {
     const auto hit = surface_.castRay(on_plane + height_ * disc.normal, -disc.normal, height_ + tolerance_);
     if (!hit) return false;                            // a gap or past an edge
@@ -70,6 +83,7 @@ std::vector<GraspProposal> proposeSuctionGrasps(const SurfaceModel& surface, con
   // Rays start this far above the disc: anything of the part closer above it is in the cup's way.
   const SealTest seal(surface, (1.0 - params.seal_reserve) * gripper.seal_tolerance,
                       std::max(radius, 4.0 * gripper.seal_tolerance));
+  const double reach = 2.0 * surface.radius() + radius + params.cup_clearance;  // from beyond the part
   std::vector<GraspProposal> proposals;
   for (const SurfaceSample& sample : surface.samples()) {
     DiscFrame disc{sample.point, sample.normal, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
@@ -77,7 +91,8 @@ std::vector<GraspProposal> proposeSuctionGrasps(const SurfaceModel& surface, con
     disc.x = perpendicularTo(approach);
     disc.y = approach.cross(disc.x);
     if (!seal.pointSeals(disc, disc.centre) || !seal.ringSeals(disc, 0.5 * radius, kInnerRays) ||
-        !seal.ringSeals(disc, radius, kRimRays)) {
+        !seal.ringSeals(disc, radius, kRimRays) ||
+        !seal.ringClear(disc, radius + params.cup_clearance, kRimRays, reach)) {
       continue;
     }
     GraspProposal proposal;

@@ -44,6 +44,7 @@ json pickJson(const cell::PickSummary& pick, std::size_t order, core::Orientatio
           {"position_mm", {rounded(mm.x(), 0.01), rounded(mm.y(), 0.01), rounded(mm.z(), 0.01)}},
           {"orientation", values},
           {"tilt_deg", rounded(pick.tilt_deg, 0.01)},
+          {"lean_deg", rounded(pick.lean_deg, 0.01)},
           {"score", rounded(pick.score, 1e-4)},
           {"coverage", rounded(pick.coverage, 1e-4)},
           {"rank", rounded(pick.rank, 1e-4)},

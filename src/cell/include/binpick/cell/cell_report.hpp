@@ -28,6 +28,7 @@ struct PickSummary {
   std::string grasp_name;
   Eigen::Isometry3d T_base_grasp = Eigen::Isometry3d::Identity();  // metres
   double tilt_deg = 0.0;
+  double lean_deg = 0.0;   // off the face's normal, to keep the tool off a wall
   double clearance = 0.0;  // metres
   double rank = 0.0;       // the ranking value the picks were ordered by
   double score = 0.0;      // the detection's score

@@ -11,8 +11,9 @@
 //   must all meet the surface within (1 - seal_reserve) x gripper.seal_tolerance of the disc's
 //   plane, on surface facing the cup, with nothing closer above it: the disc lies on one planar or
 //   gently curved patch, no edge or gap inside it. On a cylinder or cone that is the sag of the
-//   cup's rim: a 6 mm cup holds a shaft 16 mm across or more, not one of 15. The cup and the
-//   tool body behind it must not run into the part.
+//   cup's rim: a 6 mm cup holds a shaft 16 mm across or more, not one of 15. Nothing of the part
+//   may rise above the disc's plane within cup_clearance around it (a groove just wider than the
+//   cup), and the cup and the tool body behind it must not run into the part.
 // - Parallel jaw: a ray into the part from the sample leaves it through an opposite face (normals
 //   opposite within max_antipodal_angle_deg) no wider than gripper.stroke; the jaws close along n.
 //   The far face is where the ray first leaves the part (a wall held across its thickness) or
@@ -55,7 +56,11 @@ struct GraspGenerationParams {
   // axis (off the facets of the mesh it was found on). A 6 mm cup sagging 0.68 mm on a 14 mm
   // shaft (0.8 mm tolerance) seals on the model and failed 57 of 146 picks so placed (5 bins).
   double seal_reserve = 0.25;  // in [0, 1)
-  void validate() const;       // throws core::Error naming the field
+  // Suction: metres of room the cup keeps from the part's own walls around it, for the same
+  // reasons. A 6 mm cup fits the gear's 6.5 mm tooth gap with 0.25 mm each side: it sealed there
+  // on the model and failed 4 of 9 picks so placed, across the gap's edge (5 bins).
+  double cup_clearance = 0.001;  // >= 0
+  void validate() const;         // throws core::Error naming the field
 };
 
 // Grasps on a closed mesh (metres, outward normals: counter-clockwise seen from outside). Empty

@@ -28,6 +28,9 @@ struct GripperParams {
   double cup_diameter = 0.006;     // metres: the disc that must seal on the part
   double cup_length = 0.025;       // metres: cup + bellows along the approach axis
   double seal_tolerance = 0.0008;  // metres: how far the surface under the cup may leave its plane
+  // Degrees the approach may lean off the face's normal, the bellows taking it up, where the
+  // straight approach would bring the tool against a bin wall (0: never lean).
+  double max_lean_deg = 6.0;
   // Parallel jaw
   double stroke = 0.080;            // metres: widest opening between the contact faces
   double finger_width = 0.012;      // metres, across the closing direction

@@ -10,11 +10,14 @@
 //
 // The approach corridor is the cylinder of radius gripper.tool_radius + wall_clearance around the segment
 // from the end of the tool body at the pre-grasp point (gripper.toolBack() behind it) to the grasp
-// point. It hits a wall when a slice of it reaching below the wall
+// point; a suction cup's own stretch, cup_length behind the grasp point, is only as wide as the cup
+// (+ wall_clearance). It hits a wall when a slice of it reaching below the wall
 // top has its axis outside the bin's inner box shrunk by that radius (checked analytically: exact
 // for a vertical approach, on the safe side for a tilted one). It hits the floor when its axis
 // goes below the floor: the grasp point itself may lie just above it (a flat part lying on the
-// floor), so neither the radius nor the clearance applies there.
+// floor), so neither the radius nor the clearance applies there. A suction grasp whose corridor
+// meets a wall is leaned away from it about the grasp point, by up to gripper.max_lean_deg
+// (Pick::lean_deg); the seal is still judged on the face.
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
@@ -112,6 +115,7 @@ struct Pick {
   int grasp = 0;   // index into PickParams::grasps
   Eigen::Isometry3d T_base_grasp = Eigen::Isometry3d::Identity();
   double tilt_deg = 0.0;   // approach vs straight down
+  double lean_deg = 0.0;   // approach vs the face's normal: > 0 where a wall made it lean
   double clearance = 0.0;  // metres between the tool and the nearest measured point (capped)
   double rank = 0.0;       // the ranking value the picks were ordered by, higher first
 };
