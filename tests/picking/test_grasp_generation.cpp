@@ -284,15 +284,35 @@ std::vector<Grasp> acrossTheAxis(const std::vector<Grasp>& grasps, bool approach
 }
 
 // A ring or a gear lying on its face is held across its whole diameter from above (the far jaw
-// on the outermost surface, past the bore), its rim touching each finger along a line.
+// on the outermost surface, past the bore), its rim touching each finger along a line; the closing
+// line runs through the axis, or beside it on a gear's flat tooth tip (3.8 mm wide).
 TEST(ParallelGrasps, ARingAndAGearAcrossTheirDiameterFromAlongTheAxis) {
   for (const auto& [name, diameter] : {std::pair{"ring_magnet", 0.050}, std::pair{"gear", 0.060}}) {
     const simulation::Part part = simulation::makePart(name);
     const auto grasps = acrossTheAxis(generateGrasps(part.mesh, parallelJaws(0.080), part.symmetry, defaults()), true);
     const bool across_diameter = std::any_of(grasps.begin(), grasps.end(), [&](const Grasp& grasp) {
-      return std::abs(grasp.width - diameter) < 0.5 * kMm && grasp.T_model_grasp.translation().head<2>().norm() < 1e-3;
+      return std::abs(grasp.width - diameter) < 0.5 * kMm && grasp.T_model_grasp.translation().head<2>().norm() < 2e-3;
     });
     EXPECT_TRUE(across_diameter) << name << ": no grasp across the " << diameter * 1e3 << " mm diameter";
+  }
+}
+
+// Lying on the floor, a gear or a ring is held across its rim above its lower edge: the fingertips
+// stop 2.5 mm short of the face it lies on, so that they stay clear of the floor.
+TEST(ParallelGrasps, FingertipsStopShortOfTheFaceThePartLiesOn) {
+  for (const char* name : {"ring_magnet", "gear"}) {
+    const simulation::Part part = simulation::makePart(name);
+    const GripperParams jaws = parallelJaws(0.080);
+    const auto grasps = acrossTheAxis(generateGrasps(part.mesh, jaws, part.symmetry, defaults()), true);
+    ASSERT_FALSE(grasps.empty()) << name;
+    for (const Grasp& grasp : grasps) {
+      const Eigen::Vector3d approach = approachOf(grasp);
+      const Eigen::Vector3d tip = grasp.T_model_grasp * Eigen::Vector3d(0, 0, 0.5 * jaws.finger_depth);
+      double far_side = -1.0;
+      for (const Eigen::Vector3f& vertex : part.mesh.vertices)
+        far_side = std::max(far_side, vertex.cast<double>().dot(approach));
+      EXPECT_LE(tip.dot(approach), far_side - 0.0025 + 1e-9) << name << ", " << grasp.name;
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 // Parallel-jaw grasps: two opposite faces no wider apart than the stroke, both fingers touching
 // them (over an area, or along a line on a curved surface), and the fingers' path and the tool
 // body free of the part.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -16,8 +17,13 @@ constexpr int kLineSamples = 7;     // samples along each of the two contact lin
 constexpr double kMinContactShare = 0.5;
 constexpr double kMinWidth = 0.001;        // metres: thinner walls are not gripped across
 constexpr double kTipPastContact = 0.002;  // metres of finger beyond a contact taken near the tips
-constexpr double kStep = 1e-6;             // metres: a ray restarts this far past a surface it crossed
-constexpr int kMaxCrossings = 16;          // surfaces followed along one closing line
+// Metres the fingertips stay short of the part's far side along the approach: a part lying on that
+// side lies on the floor or on its neighbours, and the planner grows the fingers by its collision
+// margin (2 mm) against what the camera measured there; a 10 mm shaft still takes the contact on
+// its axis, 2 mm from the tips.
+constexpr double kTipShortOfFarSide = 0.0025;
+constexpr double kStep = 1e-6;     // metres: a ray restarts this far past a surface it crossed
+constexpr int kMaxCrossings = 16;  // surfaces followed along one closing line
 
 // How one finger touches its face.
 struct FingerContact {
@@ -116,16 +122,25 @@ std::string facesLabel(const Eigen::Vector3d& closing, double width, bool on_lin
   return "faces " + axis + ", " + millimetres + (on_lines ? ", on lines" : "");
 }
 
+// How far the part reaches beyond `from` along the unit `direction`.
+double reachAlong(const SurfaceModel& surface, const Eigen::Vector3d& from, const Eigen::Vector3d& direction) {
+  double reach = 0.0;
+  for (const Eigen::Vector3d& point : surface.obstaclePoints()) reach = std::max(reach, (point - from).dot(direction));
+  return reach;
+}
+
 // The proposal for jaws closing along the sample's normal with this approach, when both fingers
 // hold and nothing is in their way. The fingers go no deeper than they must: the contact near
-// their tips first (a part lying on the floor is taken without the tips reaching the floor), then
-// at their middle.
+// their tips first, then at their middle; either way the tips stay kTipShortOfFarSide short of the
+// part's far side (a gear lying on the floor is held across its rim above its lower edge, the tips
+// clear of the floor).
 std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, const SurfaceSample& sample, double width,
                                     const Eigen::Vector3d& approach, const GripperParams& gripper,
                                     const GraspGenerationParams& params, double antipodal_cos) {
   const Eigen::Vector3d closing = sample.normal;  // grasp x: from the far face to the sample's
   const Eigen::Vector3d contact_centre = sample.point - 0.5 * width * closing;
   const double min_line = kMinContactShare * std::min(gripper.finger_width, gripper.finger_depth);
+  std::optional<double> part_past_contact;  // along the approach; measured once a finger holds
   for (const double contact_along : {0.5 * gripper.finger_depth - kTipPastContact, 0.0}) {
     GraspProposal proposal;
     proposal.T_model_grasp.linear() << closing, approach.cross(closing), approach;
@@ -136,6 +151,9 @@ std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, const SurfaceSa
     const FingerContact near =
         fingerContact(surface, proposal.T_model_grasp, width, 1.0, contact_along, gripper, params, antipodal_cos);
     if (!holds(near)) continue;  // the far finger need not be looked at
+    if (!part_past_contact) part_past_contact = reachAlong(surface, contact_centre, approach);
+    const double tip_past_contact = 0.5 * gripper.finger_depth - contact_along;
+    if (tip_past_contact > *part_past_contact - kTipShortOfFarSide) continue;
     const FingerContact far =
         fingerContact(surface, proposal.T_model_grasp, width, -1.0, contact_along, gripper, params, antipodal_cos);
     const double area = std::min(near.area_share, far.area_share);
