@@ -22,6 +22,9 @@ constexpr double kTipPastContact = 0.002;  // metres of finger beyond a contact 
 // margin (2 mm) against what the camera measured there; a 10 mm shaft still takes the contact on
 // its axis, 2 mm from the tips.
 constexpr double kTipShortOfFarSide = 0.0025;
+// Metres the tool body behind the fingers keeps from the part between them: the planner grows the
+// body by its collision margin (2 mm) against the measured cloud, and the part is in that cloud.
+constexpr double kBodyClearance = 0.003;
 constexpr double kStep = 1e-6;     // metres: a ray restarts this far past a surface it crossed
 constexpr int kMaxCrossings = 16;  // surfaces followed along one closing line
 
@@ -72,7 +75,8 @@ FingerContact fingerContact(const SurfaceModel& surface, const Eigen::Isometry3d
   return contact;
 }
 
-// Part points inside a finger (on its way in along the approach, or closed) or the tool body.
+// Part points inside a finger (on its way in along the approach, or closed) or the tool body
+// (grown by kBodyClearance).
 bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp, double width,
                      const GripperParams& gripper, const GraspGenerationParams& params) {
   const Eigen::Isometry3d T_grasp_model = T_model_grasp.inverse();
@@ -85,7 +89,8 @@ bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_mod
     if (local.z() < tool_end) continue;
     const bool in_finger_path = local.z() <= -root && std::abs(local.x()) > finger_inner &&
                                 std::abs(local.x()) < finger_outer && std::abs(local.y()) < 0.5 * gripper.finger_width;
-    const bool in_tool = local.z() < root && local.head<2>().norm() < gripper.tool_radius;
+    const bool in_tool =
+        local.z() < root + kBodyClearance && local.head<2>().norm() < gripper.tool_radius + kBodyClearance;
     if (in_finger_path || in_tool) return true;
   }
   return false;
