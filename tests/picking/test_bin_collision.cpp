@@ -60,9 +60,12 @@ TEST(picking_bin, BesideTheWallOnlyTheCupMustFitBelowTheWallTop) {
   EXPECT_TRUE(reachable(params, partGraspedAt({0.19, 0, 0.126})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0.19, 0, 0.124})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0.193, 0, 0.149})));
-  params.gripper.type = GripperType::Parallel;  // jaws: the body's width all the way down
-  EXPECT_FALSE(reachable(params, partGraspedAt({0.19, 0, 0.149})));
-  EXPECT_TRUE(reachable(params, partGraspedAt({0.19, 0, 0.151})));
+  // Jaws closing along the wall, 15 mm from it: the body's width all the way down, so free only
+  // once the grasp point is above the wall top (the fingers' corridors fit below it).
+  params.gripper.type = GripperType::Parallel;
+  const auto jawsAt = [](double z) { return part({0.185, 0, z - 0.02}, rotZ(90)); };
+  EXPECT_FALSE(reachable(params, jawsAt(0.149)));
+  EXPECT_TRUE(reachable(params, jawsAt(0.151)));
 }
 
 // A flat part on the floor 2 mm too close to the +x wall for a straight approach: the body's
@@ -156,6 +159,25 @@ TEST(picking_bin, ATiltedToolsBodySwingsOverTheWallBeyondThePreGraspPoint) {
   EXPECT_FALSE(reachable(params, tilted));
   params.gripper.tool_length = 0.02;  // the end of the body at x = 161 mm
   EXPECT_TRUE(reachable(params, tilted));
+}
+
+// Jaws opened to a 50 mm part + 5 mm each side: each 8 x 12 mm finger's axis stands 34 mm off the
+// grasp point along the closing axis, its corridor 7.2 + 5 mm in radius, so its axis must stay
+// within 187.8 mm of the centre along the bin (137.8 across). 160 mm along the bin the body
+// clears the +x wall (170 mm); closing along x the +x finger's axis is at 194 mm; turned a
+// quarter, closing along the wall, the fingers clear it.
+TEST(picking_bin, JawsFingersAreCheckedAgainstTheWalls) {
+  PickParams params = wideToolParams();
+  params.gripper.type = GripperType::Parallel;
+  params.grasps = {{"across", pose({0, 0, 0.02}, rotX(180)), 1.0, 0.050}};
+  EXPECT_FALSE(reachable(params, partGraspedAt({0.16, 0, 0.03})));
+  const DetectedPart turned = part({0.16, 0, 0.01}, rotZ(90));
+  EXPECT_TRUE(reachable(params, turned));
+  // 100 mm across the bin, closing across it: 134 mm for a 50 mm part, 144 mm at the full stroke.
+  const DetectedPart across = part({0.0, 0.10, 0.01}, rotZ(90));
+  EXPECT_TRUE(reachable(params, across));
+  params.grasps[0].width = 0.0;  // unknown width: opened to the whole 80 mm stroke
+  EXPECT_FALSE(reachable(params, across));
 }
 
 // The bin turned a quarter about base z (its length along base y), tilted 10 degrees and moved:

@@ -60,7 +60,23 @@ double approachTiltDeg(const Eigen::Isometry3d& T_base_grasp) {
   return angle * 180.0 / M_PI;
 }
 
-bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& params) {
+// Parallel jaws: each finger, `opening` apart from the other, is a corridor of its own from its tip
+// back to where it was at the pre-grasp point, as wide as the finger's cross-section.
+bool fingersHitBin(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params, double opening) {
+  const GripperParams& gripper = params.gripper;
+  const Eigen::Vector3d approach = T_bin_grasp.linear().col(2), closing = T_bin_grasp.linear().col(0);
+  const double radius = 0.5 * std::hypot(gripper.finger_thickness, gripper.finger_width) + params.wall_clearance;
+  for (const double side : {1.0, -1.0}) {
+    const Eigen::Vector3d centre =
+        T_bin_grasp.translation() + side * (0.5 * opening + 0.5 * gripper.finger_thickness) * closing;
+    const Segment finger{centre - (0.5 * gripper.finger_depth + params.approach_distance) * approach,
+                         centre + 0.5 * gripper.finger_depth * approach};
+    if (corridorHitsFloor(finger) || corridorHitsWalls(finger, approach, radius, params.bin)) return true;
+  }
+  return false;
+}
+
+bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& params, double opening) {
   const Eigen::Isometry3d T_bin_grasp = params.bin.T_base_bin.inverse() * T_base_grasp;
   const Eigen::Vector3d grasp_point = T_bin_grasp.translation();
   const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
@@ -71,7 +87,9 @@ bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& pa
   if (corridorHitsFloor({tool_end, grasp_point})) return true;
   const double body_radius = gripper.tool_radius + params.wall_clearance;
   if (gripper.type != GripperType::Suction) {
-    return corridorHitsWalls({tool_end, grasp_point}, approach, body_radius, params.bin);
+    const double fingers_apart = opening > 0.0 ? std::min(opening, gripper.stroke) : gripper.stroke;
+    return corridorHitsWalls({tool_end, grasp_point}, approach, body_radius, params.bin) ||
+           fingersHitBin(T_bin_grasp, params, fingers_apart);
   }
   // A suction cup is narrower than the body behind it: a part lying by a wall is in the cup's
   // reach while the body stays clear higher up. The body's sweep also covers where the cup passed.

@@ -14,8 +14,9 @@ double approachTiltDeg(const Eigen::Isometry3d& T_base_grasp);
 // or floor. Analytic, no sampling: along the straight corridor the height and the lateral
 // position change linearly, so the part of it low enough to meet a wall is one sub-segment and
 // its extreme x and y lie at that sub-segment's ends.
-// A suction tool is two corridors: the cup's (its radius) and the body's behind it.
-bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& params);
+// A suction tool is two corridors: the cup's (its radius) and the body's behind it; parallel jaws
+// add one per finger, the fingers `opening` apart between their contact faces (0: the full stroke).
+bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& params, double opening = 0.0);
 
 // A suction grasp whose tool meets a wall, turned about its grasp point by the smallest lean (1
 // degree steps, up to gripper.max_lean_deg) away from the walls it comes too close to whose

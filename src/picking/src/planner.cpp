@@ -82,10 +82,17 @@ struct Screened {
   Reached furthest = Reached::Tilt;
 };
 
+// Parallel jaws open to the part's width plus finger_clearance each side (0 when the width is
+// unknown: the full stroke).
+double jawOpening(const Grasp& grasp, const PickParams& params) {
+  return grasp.width > 0.0 ? grasp.width + 2.0 * params.finger_clearance : 0.0;
+}
+
 // The approach corridor against the bin; where the tool meets a wall, the approach leaned away
 // from it as far as the gripper allows. False when neither clears the bin and the tilt limit.
 bool clearsBin(Pick& pick, const PickParams& params) {
-  if (!approachHitsBin(pick.T_base_grasp, params)) return true;
+  const Grasp& grasp = params.grasps[static_cast<std::size_t>(pick.grasp)];
+  if (!approachHitsBin(pick.T_base_grasp, params, jawOpening(grasp, params))) return true;
   const std::optional<Eigen::Isometry3d> leaned = leanClearOfWalls(pick.T_base_grasp, params);
   if (!leaned) return false;
   const Eigen::Vector3d face_approach = pick.T_base_grasp.linear().col(2);
@@ -135,7 +142,7 @@ ToolSweep sweepFor(const Grasp& grasp, const PickParams& params) {
   ToolSweep sweep;
   sweep.approach_distance = params.approach_distance;
   sweep.margin = params.collision_margin;
-  sweep.opening = grasp.width > 0.0 ? grasp.width + 2.0 * params.finger_clearance : 0.0;
+  sweep.opening = jawOpening(grasp, params);
   sweep.clearance_cap = params.clearance_cap;
   return sweep;
 }
