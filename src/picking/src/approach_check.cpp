@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "rigid.hpp"
+
 namespace binpick::picking {
 namespace {
 
@@ -53,11 +55,7 @@ constexpr double kLeanStepDeg = 1.0;
 }  // namespace
 
 double approachTiltDeg(const Eigen::Isometry3d& T_base_grasp) {
-  const Eigen::Vector3d approach = T_base_grasp.linear().col(2);
-  const Eigen::Vector3d down(0.0, 0.0, -1.0);
-  // atan2 of sine and cosine stays accurate near 0 and 180 degrees, where acos is not.
-  const double angle = std::atan2(approach.cross(down).norm(), approach.dot(down));
-  return angle * 180.0 / M_PI;
+  return angleDeg(T_base_grasp.linear().col(2), Eigen::Vector3d(0.0, 0.0, -1.0));
 }
 
 // Parallel jaws: each finger, `opening` apart from the other, is a corridor of its own from its tip

@@ -95,10 +95,7 @@ bool clearsBin(Pick& pick, const PickParams& params) {
   if (!approachHitsBin(pick.T_base_grasp, params, jawOpening(grasp, params))) return true;
   const std::optional<Eigen::Isometry3d> leaned = leanClearOfWalls(pick.T_base_grasp, params);
   if (!leaned) return false;
-  const Eigen::Vector3d face_approach = pick.T_base_grasp.linear().col(2);
-  const Eigen::Vector3d leaned_approach = leaned->linear().col(2);
-  pick.lean_deg =
-      std::atan2(face_approach.cross(leaned_approach).norm(), face_approach.dot(leaned_approach)) * 180.0 / M_PI;
+  pick.lean_deg = angleDeg(pick.T_base_grasp.linear().col(2), leaned->linear().col(2));
   pick.T_base_grasp = *leaned;
   pick.tilt_deg = approachTiltDeg(pick.T_base_grasp);
   return pick.tilt_deg <= params.max_tilt_deg;

@@ -28,9 +28,8 @@ double planeAngleDeg(const std::vector<Eigen::Vector3d>& points, const Eigen::Ve
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const Eigen::Vector3d& p : points) scatter += (p - mean) * (p - mean).transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
-  const Eigen::Vector3d normal = solver.eigenvectors().col(0);
-  const Eigen::Vector3d unit_axis = axis.normalized();
-  return std::atan2(normal.cross(unit_axis).norm(), std::abs(normal.dot(unit_axis))) * 180.0 / M_PI;
+  const Eigen::Vector3d normal = solver.eigenvectors().col(0);  // either way round
+  return angleDeg(normal.dot(axis) >= 0.0 ? normal : Eigen::Vector3d(-normal), axis);
 }
 
 }  // namespace
