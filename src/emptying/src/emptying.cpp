@@ -118,9 +118,7 @@ class EmptyingRun {
     const TrueScene truth(part_.mesh, poses, binOf(params_.pile));
     // Jaws open to the grasp's width and the cell's clearance each side, as the planner swept them.
     const auto& picking = cell_->recipe().picking;
-    const double opening = pick.grasp >= 0 && grasps[pick.grasp].width > 0
-                               ? grasps[pick.grasp].width + 2.0 * picking.finger_clearance
-                               : 0.0;
+    const double opening = pick.grasp >= 0 ? picking.jawOpeningFor(grasps[pick.grasp]) : 0.0;
     const PickJudgement judgement =
         judgePick(truth, T_bin_grasp, params_.gripper, params_.approach_distance, params_.truth, opening);
     pick.ok = judgement.ok;

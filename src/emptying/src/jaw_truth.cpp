@@ -89,7 +89,7 @@ PickJudgement judgeParallel(const TrueScene& scene, const Eigen::Isometry3d& T_b
                             const picking::GripperParams& gripper, double approach_distance, double opening,
                             const PickTruthParams& params) {
   PickJudgement judgement;
-  opening = opening > 0.0 ? std::min(opening, gripper.stroke) : gripper.stroke;
+  opening = gripper.jawOpening(opening);
   const std::string wider = opening < gripper.stroke ? "part wider than the opening" : "part wider than the stroke";
   const JawContact right = closeJaw(scene, T_bin_grasp, gripper, opening, params, +1);
   const JawContact left = closeJaw(scene, T_bin_grasp, gripper, opening, params, -1);

@@ -1,6 +1,7 @@
 #include "approach_check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -52,10 +53,11 @@ bool corridorHitsFloor(const Segment& axis) { return std::min(axis.from.z(), axi
 // Leans tried, this far apart, up to the gripper's max_lean_deg.
 constexpr double kLeanStepDeg = 1.0;
 
-}  // namespace
-
-double approachTiltDeg(const Eigen::Isometry3d& T_base_grasp) {
-  return angleDeg(T_base_grasp.linear().col(2), Eigen::Vector3d(0.0, 0.0, -1.0));
+// Where the end of the tool body is at the pre-grasp point: on a tilted approach it swings out
+// over a wall first.
+Eigen::Vector3d toolEnd(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params) {
+  return T_bin_grasp.translation() -
+         (params.approach_distance + params.gripper.toolBack()) * T_bin_grasp.linear().col(2);
 }
 
 // Parallel jaws: each finger, `opening` apart from the other, is a corridor of its own from its tip
@@ -74,20 +76,18 @@ bool fingersHitBin(const Eigen::Isometry3d& T_bin_grasp, const PickParams& param
   return false;
 }
 
-bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& params, double opening) {
-  const Eigen::Isometry3d T_bin_grasp = params.bin.T_base_bin.inverse() * T_base_grasp;
+// approachHitsBin in the bin frame.
+bool toolHitsBin(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params, double opening) {
   const Eigen::Vector3d grasp_point = T_bin_grasp.translation();
   const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
   const GripperParams& gripper = params.gripper;
-  // The whole tool, from the end of its body at the pre-grasp point down to the grasp: on a tilted
-  // approach the body's far end swings out over the wall first.
-  const Eigen::Vector3d tool_end = grasp_point - (params.approach_distance + gripper.toolBack()) * approach;
+  // The whole tool, from the end of its body at the pre-grasp point down to the grasp.
+  const Eigen::Vector3d tool_end = toolEnd(T_bin_grasp, params);
   if (corridorHitsFloor({tool_end, grasp_point})) return true;
   const double body_radius = gripper.tool_radius + params.wall_clearance;
   if (gripper.type != GripperType::Suction) {
-    const double fingers_apart = opening > 0.0 ? std::min(opening, gripper.stroke) : gripper.stroke;
     return corridorHitsWalls({tool_end, grasp_point}, approach, body_radius, params.bin) ||
-           fingersHitBin(T_bin_grasp, params, fingers_apart);
+           fingersHitBin(T_bin_grasp, params, gripper.jawOpening(opening));
   }
   // A suction cup is narrower than the body behind it: a part lying by a wall is in the cup's
   // reach while the body stays clear higher up. The body's sweep also covers where the cup passed.
@@ -97,35 +97,50 @@ bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& pa
          corridorHitsWalls({tool_end, cup_back}, approach, std::max(body_radius, cup_radius), params.bin);
 }
 
+// Away from the walls the tool comes too close to, each by how far it reaches past its limit, at
+// the grasp point and at the end of the tool: beside one wall straight away from it, in a corner
+// along the diagonal. Unit and square to the approach (only a turn of the approach moves the
+// tool); none when no wall is near.
+std::optional<Eigen::Vector3d> awayFromWalls(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params) {
+  const double reach = params.gripper.tool_radius + params.wall_clearance;
+  const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
+  Eigen::Vector3d inward = Eigen::Vector3d::Zero();
+  const std::array<Eigen::Vector3d, 2> ends{T_bin_grasp.translation(), toolEnd(T_bin_grasp, params)};
+  for (const Eigen::Vector3d& point : ends) {
+    inward.x() -= std::copysign(std::max(0.0, std::abs(point.x()) - (0.5 * params.bin.length - reach)), point.x());
+    inward.y() -= std::copysign(std::max(0.0, std::abs(point.y()) - (0.5 * params.bin.width - reach)), point.y());
+  }
+  inward -= inward.dot(approach) * approach;
+  if (inward.norm() < 1e-9) return std::nullopt;
+  return inward.normalized();
+}
+
+}  // namespace
+
+double approachTiltDeg(const Eigen::Isometry3d& T_base_grasp) {
+  return angleDeg(T_base_grasp.linear().col(2), Eigen::Vector3d(0.0, 0.0, -1.0));
+}
+
+bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& params, double opening) {
+  return toolHitsBin(params.bin.T_base_bin.inverse() * T_base_grasp, params, opening);
+}
+
 std::optional<Eigen::Isometry3d> leanClearOfWalls(const Eigen::Isometry3d& T_base_grasp, const PickParams& params) {
   const GripperParams& gripper = params.gripper;
   if (gripper.type != GripperType::Suction || !(gripper.max_lean_deg > 0.0)) return std::nullopt;
   const Eigen::Isometry3d T_bin_grasp = params.bin.T_base_bin.inverse() * T_base_grasp;
+  const std::optional<Eigen::Vector3d> inward = awayFromWalls(T_bin_grasp, params);
+  if (!inward) return std::nullopt;
   const Eigen::Vector3d approach = T_bin_grasp.linear().col(2);
-  // Away from the walls the tool comes too close to, each by how far it reaches past its limit,
-  // at the grasp point and at the end of the tool: beside one wall straight away from it, in a
-  // corner along the diagonal.
-  const double reach = gripper.tool_radius + params.wall_clearance;
-  const Eigen::Vector3d grasp_point = T_bin_grasp.translation();
-  const Eigen::Vector3d tool_end = grasp_point - (params.approach_distance + gripper.toolBack()) * approach;
-  Eigen::Vector3d inward = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d* point : {&grasp_point, &tool_end}) {
-    inward.x() -= std::copysign(std::max(0.0, std::abs(point->x()) - (0.5 * params.bin.length - reach)), point->x());
-    inward.y() -= std::copysign(std::max(0.0, std::abs(point->y()) - (0.5 * params.bin.width - reach)), point->y());
-  }
-  inward -= inward.dot(approach) * approach;  // only a turn of the approach moves the tool
-  if (inward.norm() < 1e-9) return std::nullopt;
-  inward.normalize();
   // Leaning the approach by theta towards -inward swings the tool's back towards +inward about
   // the grasp point; the smallest lean that clears keeps the cup squarest on its face.
   const int steps = static_cast<int>(std::ceil(gripper.max_lean_deg / kLeanStepDeg));
   for (int step = 1; step <= steps; ++step) {
     const double lean = std::min(gripper.max_lean_deg, step * kLeanStepDeg) * M_PI / 180.0;
-    const Eigen::Vector3d leaned = (approach - std::tan(lean) * inward).normalized();
+    const Eigen::Vector3d leaned = (approach - std::tan(lean) * *inward).normalized();
     Eigen::Isometry3d T_bin_leaned = T_bin_grasp;
     T_bin_leaned.linear() = Eigen::Quaterniond::FromTwoVectors(approach, leaned) * T_bin_grasp.linear();
-    const Eigen::Isometry3d T_base_leaned = params.bin.T_base_bin * T_bin_leaned;
-    if (!approachHitsBin(T_base_leaned, params)) return T_base_leaned;
+    if (!toolHitsBin(T_bin_leaned, params, 0.0)) return params.bin.T_base_bin * T_bin_leaned;
   }
   return std::nullopt;
 }

@@ -82,17 +82,11 @@ struct Screened {
   Reached furthest = Reached::Tilt;
 };
 
-// Parallel jaws open to the part's width plus finger_clearance each side (0 when the width is
-// unknown: the full stroke).
-double jawOpening(const Grasp& grasp, const PickParams& params) {
-  return grasp.width > 0.0 ? grasp.width + 2.0 * params.finger_clearance : 0.0;
-}
-
 // The approach corridor against the bin; where the tool meets a wall, the approach leaned away
 // from it as far as the gripper allows. False when neither clears the bin and the tilt limit.
 bool clearsBin(Pick& pick, const PickParams& params) {
   const Grasp& grasp = params.grasps[static_cast<std::size_t>(pick.grasp)];
-  if (!approachHitsBin(pick.T_base_grasp, params, jawOpening(grasp, params))) return true;
+  if (!approachHitsBin(pick.T_base_grasp, params, params.jawOpeningFor(grasp))) return true;
   const std::optional<Eigen::Isometry3d> leaned = leanClearOfWalls(pick.T_base_grasp, params);
   if (!leaned) return false;
   pick.lean_deg = angleDeg(pick.T_base_grasp.linear().col(2), leaned->linear().col(2));
@@ -139,7 +133,7 @@ ToolSweep sweepFor(const Grasp& grasp, const PickParams& params) {
   ToolSweep sweep;
   sweep.approach_distance = params.approach_distance;
   sweep.margin = params.collision_margin;
-  sweep.opening = jawOpening(grasp, params);
+  sweep.opening = params.jawOpeningFor(grasp);
   sweep.clearance_cap = params.clearance_cap;
   return sweep;
 }

@@ -3,7 +3,6 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <string>
-#include <vector>
 
 #include "binpick/core/error.hpp"
 #include "rigid.hpp"
@@ -18,19 +17,38 @@ constexpr int kSamplesPerRing[kRings] = {8, 16, 24};
 // Pixels searched around an unmeasured sample for the far side of an edge (3: a 7 x 7 window, about 2 mm across).
 constexpr long kEdgeSearch = 3;
 
-// Degrees between `axis` and the normal of the least-squares plane through `points` (the
-// eigenvector of their scatter with the smallest eigenvalue); 90 when fewer than 3.
-double planeAngleDeg(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& axis) {
-  if (points.size() < 3) return 90.0;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : points) mean += p;
-  mean /= static_cast<double>(points.size());
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (const Eigen::Vector3d& p : points) scatter += (p - mean) * (p - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
-  const Eigen::Vector3d normal = solver.eigenvectors().col(0);  // either way round
-  return angleDeg(normal.dot(axis) >= 0.0 ? normal : Eigen::Vector3d(-normal), axis);
-}
+// The least-squares plane through points given one at a time, kept relative to `origin` (well
+// conditioned for points a few millimetres from it): no list of them on the planner's hot path.
+class PlaneFit {
+ public:
+  explicit PlaneFit(const Eigen::Vector3d& origin) : origin_(origin) {}
+
+  void add(const Eigen::Vector3d& point) {
+    const Eigen::Vector3d offset = point - origin_;
+    ++count_;
+    sum_ += offset;
+    products_ += offset * offset.transpose();
+  }
+
+  int count() const { return count_; }
+
+  // Degrees between `axis` and the plane's normal (the eigenvector of the points' scatter with the
+  // smallest eigenvalue), either way round; 90 when fewer than 3 points.
+  double normalAngleDeg(const Eigen::Vector3d& axis) const {
+    if (count_ < 3) return 90.0;
+    const Eigen::Vector3d mean = sum_ / count_;
+    const Eigen::Matrix3d scatter = products_ - count_ * mean * mean.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+    const Eigen::Vector3d normal = solver.eigenvectors().col(0);
+    return angleDeg(normal.dot(axis) >= 0.0 ? normal : Eigen::Vector3d(-normal), axis);
+  }
+
+ private:
+  Eigen::Vector3d origin_;
+  int count_ = 0;
+  Eigen::Vector3d sum_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d products_ = Eigen::Matrix3d::Zero();
+};
 
 }  // namespace
 
@@ -64,7 +82,7 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
   const double checked_radius = radius + params.rim_margin;
   const double allowed = tolerance + params.noise;
   int samples = 0;
-  std::vector<Eigen::Vector3d> seen;
+  PlaneFit seen_plane(origin);  // the measured samples
   SealCheck result;
   bool flat = true;
   const auto pointAt = [&](long u, long v) -> const Eigen::Vector3f& {
@@ -100,7 +118,7 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
       flat = flat && !offPlaneNear(u, v, allowed, deviationOf);
       return;
     }
-    seen.push_back(measured.cast<double>());
+    seen_plane.add(measured.cast<double>());
     const double deviation = deviationOf(measured);
     result.worst_deviation = std::max(result.worst_deviation, deviation);
     flat = flat && deviation <= allowed;
@@ -113,8 +131,8 @@ SealCheck MeasuredSurface::check(const Eigen::Isometry3d& T_base_grasp, double r
       sample({r * std::cos(angle), r * std::sin(angle), 0.0});
     }
   }
-  result.seen_share = static_cast<double>(seen.size()) / samples;
-  result.angle_deg = planeAngleDeg(seen, normal);
+  result.seen_share = static_cast<double>(seen_plane.count()) / samples;
+  result.angle_deg = seen_plane.normalAngleDeg(normal);
   result.seals = flat && result.seen_share >= params.min_seen_share && result.angle_deg <= params.max_angle_deg;
   return result;
 }

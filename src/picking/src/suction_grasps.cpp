@@ -14,6 +14,11 @@ constexpr int kMarginRings = 4;  // rings at 1.25, 1.5, 1.75 and 2 cup radii mea
 
 struct DiscFrame {
   Eigen::Vector3d centre, normal, x, y;  // normal: outward, the cup comes down along -normal
+  // Point k of `rays` evenly spaced on the ring of `radius` in the disc's plane.
+  Eigen::Vector3d onRing(double radius, int k, int rays) const {
+    const double angle = 2.0 * M_PI * k / rays;
+    return centre + radius * (std::cos(angle) * x + std::sin(angle) * y);
+  }
 };
 
 class SealTest {
@@ -25,9 +30,7 @@ class SealTest {
   // on surface facing the cup, with nothing in between.
   bool ringSeals(const DiscFrame& disc, double radius, int rays) const {
     for (int k = 0; k < rays; ++k) {
-      const double angle = 2.0 * M_PI * k / rays;
-      const Eigen::Vector3d on_plane = disc.centre + radius * (std::cos(angle) * disc.x + std::sin(angle) * disc.y);
-      if (!pointSeals(disc, on_plane)) return false;
+      if (!pointSeals(disc, disc.onRing(radius, k, rays))) return false;
     }
     return true;
   }
@@ -37,9 +40,7 @@ class SealTest {
   // from beyond the whole part (`reach`): one starting inside a wall would find no face below it.
   bool ringClear(const DiscFrame& disc, double radius, int rays, double reach) const {
     for (int k = 0; k < rays; ++k) {
-      const double angle = 2.0 * M_PI * k / rays;
-      const Eigen::Vector3d on_plane = disc.centre + radius * (std::cos(angle) * disc.x + std::sin(angle) * disc.y);
-      const auto hit = surface_.castRay(on_plane + reach * disc.normal, -disc.normal, reach);
+      const auto hit = surface_.castRay(disc.onRing(radius, k, rays) + reach * disc.normal, -disc.normal, reach);
       if (hit && reach - hit->distance > tolerance_) return false;
     }
     return true;

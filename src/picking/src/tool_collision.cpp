@@ -96,7 +96,7 @@ ToolVolume suctionVolume(const GripperParams& g, const ToolSweep& s) {
 ToolVolume parallelVolume(const GripperParams& g, const ToolSweep& s) {
   ToolVolume tool;
   const double m = s.margin;
-  const double opening = s.opening > 0.0 ? std::min(s.opening, g.stroke) : g.stroke;
+  const double opening = g.jawOpening(s.opening);
   const double root = -0.5 * g.finger_depth;
   const double inner = 0.5 * opening;
   for (int side = 0; side < 2; ++side) {

@@ -14,6 +14,7 @@
 // - The tool body: a cylinder of radius tool_radius on the approach axis, from where the cup (or
 //   the fingers' root at z = -finger_depth / 2) ends, tool_length further back along -z.
 // Plain data: thread-safe.
+#include <algorithm>
 #include <string>
 
 namespace binpick::picking {
@@ -40,6 +41,9 @@ struct GripperParams {
   double tool_radius = 0.015;  // metres
   double tool_length = 0.15;   // metres
   void validate() const;       // throws core::Error naming the field
+  // Parallel jaw: the opening between the contact faces when `requested` is asked for: at most
+  // the stroke, the whole stroke when requested <= 0 (the part's width unknown).
+  double jawOpening(double requested) const { return requested > 0.0 ? std::min(requested, stroke) : stroke; }
   // Metres from the grasp point back along the approach to the end of the tool body.
   double toolBack() const { return (type == GripperType::Suction ? cup_length : 0.5 * finger_depth) + tool_length; }
 };

@@ -102,6 +102,11 @@ struct PickParams {
   RankWeights ranking;
   SealCheckParams seal_check;  // suction: the measured surface under the cup (seal_check.hpp)
   void validate() const;       // throws core::Error naming the field
+  // Jaws open to the grasp's width plus finger_clearance each side; 0 when its width is unknown
+  // (GripperParams::jawOpening then opens them fully).
+  double jawOpeningFor(const Grasp& grasp) const {
+    return grasp.width > 0.0 ? grasp.width + 2.0 * finger_clearance : 0.0;
+  }
 };
 
 struct DetectedPart {
