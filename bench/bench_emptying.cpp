@@ -91,20 +91,6 @@ Options parseOptions(int argc, char** argv) {
   return options;
 }
 
-// A user's mesh as a part: FILE or FILE:SCALE (an STL in millimetres: FILE:0.001); its symmetry
-// found from the mesh.
-simulation::Part meshPart(const std::string& spec) {
-  const auto colon = spec.rfind(':');
-  const bool scaled = colon != std::string::npos && colon > 0;
-  io::TriangleMesh mesh = io::readMesh(scaled ? spec.substr(0, colon) : spec);
-  const float scale = scaled ? std::stof(spec.substr(colon + 1)) : 1.0f;
-  for (auto& v : mesh.vertices) v *= scale;
-  simulation::Part part =
-      simulation::partFromMesh(fs::path(scaled ? spec.substr(0, colon) : spec).stem().string(), std::move(mesh));
-  std::fprintf(stderr, "%s: %s\n", part.name.c_str(), part.description.c_str());
-  return part;
-}
-
 struct Row {
   std::string part, gripper;
   int seed = 0;
@@ -260,7 +246,7 @@ int run(int argc, char** argv) {
 
   std::vector<simulation::Part> parts;
   for (const std::string& name : options.parts) parts.push_back(simulation::makePart(name));
-  for (const std::string& spec : options.meshes) parts.push_back(meshPart(spec));
+  for (const std::string& spec : options.meshes) parts.push_back(bench::meshPart(spec));
 
   std::ofstream csv(fs::path(options.out) / "emptying.csv");
   csv << "part,gripper,cup_mm,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,grasps\n";

@@ -2,25 +2,40 @@
 // recognition rate of the objects at least half visible, and wrong detections among the first 10,
 // for the paper's method and its Drost baselines (Table I).
 //
-//   bench_estimation [--parts l_bracket,clamp] [--scenes 5] [--objects 20] [--seed 1]
-//                    [--method li_hashimoto|ppf1|ppf5] [--threads 0] [--max-pairs-per-feature 2000]
-//                    [--settings detection.yaml] [--explain 1]
+//   bench_estimation [--parts l_bracket,clamp] [--meshes FILE[:SCALE],...] [--scenes 5] [--objects 20]
+//                    [--seed 1] [--method li_hashimoto|ppf1|ppf5] [--threads 0]
+//                    [--max-pairs-per-feature 2000] [--reduce-by-symmetry 1] [--settings detection.yaml]
+//                    [--explain 1] [--binpick FILE]
+// --meshes: parts of one's own (an STL in millimetres: FILE:0.001), their symmetry found from the
+// mesh. The whole process: with the proposed method's defaults, each scene is also detected by
+// `binpick detect` (FILE, by default the one built beside this benchmark; "none": not) from a
+// model cache prepared beforehand, and its wall time (start, cache, scene file, detection, result
+// file) is reported per object next to the detector's own, with the cache's load time.
 // --settings: the proposed method's detector settings from a detection.yaml (e.g. a deviation
 // switched off); --explain 1: one line per detection (error against the nearest part; for a wrong
 // one, how it and the truth agree with the measured range) and per missed half-visible part (its
 // nearest detection, and how it lies).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "bench_support.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/core/stopwatch.hpp"
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/icp.hpp"
+#include "binpick/estimation/model_cache.hpp"
 #include "binpick/estimation/range_agreement.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
@@ -30,8 +45,11 @@ namespace {
 
 using namespace binpick;
 
+namespace fs = std::filesystem;
+
 struct Options {
   std::vector<std::string> parts{"l_bracket", "clamp"};
+  std::vector<std::string> meshes;
   int scenes = 5;
   int objects = 20;
   uint64_t seed = 1;
@@ -39,7 +57,9 @@ struct Options {
   int threads = 0;
   uint32_t max_pairs_per_feature = estimation::ModelParams{}.max_pairs_per_feature;
   std::string settings;  // a detection.yaml for li_hashimoto; empty: the defaults
+  bool reduce_by_symmetry = true;
   bool explain = false;
+  std::string binpick;  // the CLI timed as a whole process; empty: none
 };
 
 using bench::Nearest;
@@ -48,12 +68,20 @@ using bench::splitCommas;
 
 Options parse(int argc, char** argv) {
   Options o;
+  const fs::path beside = fs::path(argv[0]).parent_path() / ".." / "src" / "cli" / "binpick";
+  if (fs::exists(beside)) o.binpick = beside.string();
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     if (i + 1 >= argc) throw core::Error("bench_estimation: " + flag + " needs a value");
     const std::string value = argv[++i];
     if (flag == "--parts")
       o.parts = splitCommas(value);
+    else if (flag == "--meshes")
+      o.meshes = splitCommas(value);
+    else if (flag == "--reduce-by-symmetry")
+      o.reduce_by_symmetry = value != "0";
+    else if (flag == "--binpick")
+      o.binpick = value == "none" ? "" : value;
     else if (flag == "--scenes")
       o.scenes = std::stoi(value);
     else if (flag == "--objects")
@@ -182,12 +210,85 @@ void explain(const estimation::DetectionResult& result, const evaluation::Score&
   }
 }
 
-void benchPart(const std::string& part_name, const Options& o) {
-  const simulation::Part part = simulation::makePart(part_name);
+// The whole process as a user runs it: `binpick detect` on a scene's cloud file, from a model
+// cache prepared beforehand, in a directory of its own that is removed afterwards.
+class WholeProcess {
+ public:
+  WholeProcess(const Options& o, const simulation::Part& part, const estimation::PreparedModel& model)
+      : options_(o),
+        dir_(fs::temp_directory_path() / ("bench_estimation_" + std::to_string(::getpid()) + "_" + part.name)) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    io::writeMesh(path("model.ply"), part.mesh);
+    estimation::saveModelCache(model, estimation::fingerprintFile(path("model.ply")), path("model.cache"));
+  }
+  ~WholeProcess() {
+    std::error_code ignored;
+    fs::remove_all(dir_, ignored);
+  }
+
+  double cacheMegabytes() const { return static_cast<double>(fs::file_size(path("model.cache"))) / 1e6; }
+
+  // The fastest of three loads of the model cache, ms.
+  double cacheLoadMs() const {
+    double fastest = 1e30;
+    for (int k = 0; k < 3; ++k) {
+      const core::Stopwatch clock;
+      const estimation::CachedModel cached = estimation::loadModelCache(path("model.cache"));
+      fastest = std::min(fastest, clock.elapsedMs());
+    }
+    return fastest;
+  }
+
+  // Wall ms of `binpick detect` on the scene; throws when it fails.
+  double detectMs(const simulation::PileScene& scene, const estimation::CropBox& crop) const {
+    io::writePointCloud(path("cloud.ply"), scene.cloud);
+    writeConfig(crop);
+    const std::string command = "'" + options_.binpick + "' detect --model '" + path("model.ply") +
+                                "' --model-cache '" + path("model.cache") + "' --scene '" + path("cloud.ply") +
+                                "' --config '" + path("config.yaml") + "' --out '" + path("result.json") +
+                                "' 2>/dev/null";
+    const auto start = std::chrono::steady_clock::now();
+    const int status = std::system(command.c_str());
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (status != 0) throw core::Error("bench_estimation: " + command + " failed");
+    return ms;
+  }
+
+ private:
+  std::string path(const char* name) const { return (dir_ / name).string(); }
+
+  void writeConfig(const estimation::CropBox& crop) const {
+    const Eigen::Vector3f centre = crop.T_camera_box.translation();
+    const Eigen::Vector3f ypr = crop.T_camera_box.linear().eulerAngles(2, 1, 0) * static_cast<float>(180.0 / M_PI);
+    std::ofstream yaml(path("config.yaml"));
+    yaml.precision(9);
+    yaml << "model:\n  max_pairs_per_feature: " << options_.max_pairs_per_feature
+         << "\n  reduce_by_symmetry: " << (options_.reduce_by_symmetry ? "true" : "false")
+         << "\ndetection:\n  threads: " << options_.threads << "\n  selection:\n    max_objects: " << options_.objects
+         << "\n  scene:\n    crop:\n"
+         << "      centre: [" << centre.x() << ", " << centre.y() << ", " << centre.z() << "]\n"
+         << "      half_extents: [" << crop.half_extents.x() << ", " << crop.half_extents.y() << ", "
+         << crop.half_extents.z() << "]\n"
+         << "      rotation_rpy_deg: [" << ypr.z() << ", " << ypr.y() << ", " << ypr.x() << "]\n";
+  }
+
+  const Options& options_;
+  fs::path dir_;
+};
+
+void benchPart(const simulation::Part& part, const Options& o) {
   estimation::ModelParams model_params;
   model_params.max_pairs_per_feature = o.max_pairs_per_feature;
+  model_params.reduce_by_symmetry = o.reduce_by_symmetry;
+  const core::Stopwatch preparation;
   const estimation::PreparedModel model = estimation::prepareModel(io::ModelGeometry{part.mesh, {}}, model_params);
+  const double preparation_ms = preparation.elapsedMs();
   estimation::DetectorParams params = detectorParams(o);
+  const bool time_process = !o.binpick.empty() && o.settings.empty() && o.method == "li_hashimoto";
+  std::optional<WholeProcess> process;
+  if (time_process) process.emplace(o, part, model);
+  double process_ms = 0.0;
   Totals totals;
   for (int s = 0; s < o.scenes; ++s) {
     simulation::PileParams pile;
@@ -197,6 +298,7 @@ void benchPart(const std::string& part_name, const Options& o) {
     params.scene.crop = evaluation::binInterior(scene, pile);
     const estimation::Detector detector(model, params);
     const estimation::DetectionResult result = detector.detect(scene.cloud);
+    if (process) process_ms += process->detectMs(scene, *params.scene.crop);
     const evaluation::Score score =
         evaluation::scoreDetections(result.detections, scene.objects, part.symmetry, {model.diameter / 10.0, 10.0});
     totals.add(result, score, validPoints(scene.cloud));
@@ -209,14 +311,24 @@ void benchPart(const std::string& part_name, const Options& o) {
   }
   const double objects = static_cast<double>(o.scenes) * o.objects;
   const auto per_object = [&](double ms) { return ms / objects; };
-  std::printf("%-10s %-12s model %zu pts, %zu pairs | scenes %d x %d objects, %.0fk pts/scene, %d subsampled\n",
-              part_name.c_str(), o.method.c_str(), model.size(), model.table.pairCount(), o.scenes, o.objects,
-              totals.input_points / 1000.0 / o.scenes, totals.scene_points / o.scenes);
+  std::printf(
+      "%-10s %-12s model %zu pts (%zu references, symmetry %s), %zu pairs, prepared in %.0f ms | scenes %d x %d "
+      "objects, %.0fk pts/scene, %d subsampled\n",
+      part.name.c_str(), o.method.c_str(), model.size(), model.referenceCount(), model.symmetry.describe().c_str(),
+      model.table.pairCount(), preparation_ms, o.scenes, o.objects, totals.input_points / 1000.0 / o.scenes,
+      totals.scene_points / o.scenes);
   std::printf(
       "  ms/object %.1f (scene %.1f, voting %.1f, verification %.1f, selection %.2f, icp %.1f); ms/scene %.0f\n",
       per_object(totals.ms.total), per_object(totals.ms.prepare_scene), per_object(totals.ms.voting),
       per_object(totals.ms.verification), per_object(totals.ms.selection), per_object(totals.ms.icp),
       totals.ms.total / o.scenes);
+  if (process) {
+    std::printf(
+        "  whole process (binpick detect) ms/object %.1f, %.2fx the detector's; model cache %.1f MB, loads in %.1f "
+        "ms\n",
+        per_object(process_ms), process_ms / std::max(1e-9, totals.ms.total), process->cacheMegabytes(),
+        process->cacheLoadMs());
+  }
   std::printf(
       "  recognition %.1f%% (%d/%d objects >= 50%% visible), detections %d, correct %d, wrong in first 10: %d\n",
       totals.findable ? 100.0 * totals.found / totals.findable : 0.0, totals.found, totals.findable, totals.detections,
@@ -228,7 +340,8 @@ void benchPart(const std::string& part_name, const Options& o) {
 int main(int argc, char** argv) {
   try {
     const Options options = parse(argc, argv);
-    for (const std::string& part : options.parts) benchPart(part, options);
+    for (const std::string& part : options.parts) benchPart(simulation::makePart(part), options);
+    for (const std::string& spec : options.meshes) benchPart(bench::meshPart(spec), options);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";

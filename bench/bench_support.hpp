@@ -1,10 +1,13 @@
 #pragma once
 // Small helpers shared by the benchmark executables.
 #include <Eigen/Geometry>
+#include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "binpick/io/geometry_io.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 
@@ -18,6 +21,20 @@ inline std::vector<std::string> splitCommas(const std::string& text) {
     if (!item.empty()) out.push_back(item);
   }
   return out;
+}
+
+// A user's mesh as a part: FILE or FILE:SCALE (an STL in millimetres: FILE:0.001); its symmetry
+// found from the mesh (printed).
+inline simulation::Part meshPart(const std::string& spec) {
+  const auto colon = spec.rfind(':');
+  const bool scaled = colon != std::string::npos && colon > 0;
+  const std::string file = scaled ? spec.substr(0, colon) : spec;
+  io::TriangleMesh mesh = io::readMesh(file);
+  const float scale = scaled ? std::stof(spec.substr(colon + 1)) : 1.0f;
+  for (auto& v : mesh.vertices) v *= scale;
+  simulation::Part part = simulation::partFromMesh(std::filesystem::path(file).stem().string(), std::move(mesh));
+  std::fprintf(stderr, "%s: %s\n", part.name.c_str(), part.description.c_str());
+  return part;
 }
 
 // The part whose pose lies nearest a detected one (by the distance of their origins) and the

@@ -19,8 +19,8 @@ PARTS = {
 }
 
 
-def on_circle(r, z, step):
-    angle = 2 * math.pi * step / SEGMENTS
+def on_circle(r, z, step, segments=SEGMENTS):
+    angle = 2 * math.pi * step / segments
     return (r * math.cos(angle), r * math.sin(angle), z)
 
 
@@ -32,16 +32,16 @@ def normal_of(a, b, c):
     return tuple(x / length for x in n)
 
 
-def revolve(profile):
+def revolve(profile, segments=SEGMENTS):
     """Triangles of the profile's edges revolved; an edge on the axis (r = 0) closes nothing."""
     triangles = []
     for i, (r0, z0) in enumerate(profile):
         r1, z1 = profile[(i + 1) % len(profile)]
         if r0 == 0 and r1 == 0:
             continue
-        for step in range(SEGMENTS):
-            a0, a1 = on_circle(r0, z0, step), on_circle(r0, z0, step + 1)
-            b0, b1 = on_circle(r1, z1, step), on_circle(r1, z1, step + 1)
+        for step in range(segments):
+            a0, a1 = on_circle(r0, z0, step, segments), on_circle(r0, z0, step + 1, segments)
+            b0, b1 = on_circle(r1, z1, step, segments), on_circle(r1, z1, step + 1, segments)
             # The quad a0 a1 b1 b0 of a counter-clockwise profile, split so that both triangles
             # face outward, (dz, -dr) in (r, z); a corner on the axis leaves one triangle.
             if r1 != 0:

@@ -125,7 +125,8 @@ TEST(PpfHashTable, ValidatingConstructorAdoptsConsistentArrays) {
   const Cloud c = randomCloud(20, 0.05f, 1);
   const PpfQuantizer q(0.005f, rad(12.0f), 0.1f);
   const PpfHashTable built(c.points, c.normals, q);
-  const PpfHashTable adopted(built.offsets(), built.entries(), 20);
+  const PpfHashTable adopted(std::vector<uint32_t>(built.offsets().begin(), built.offsets().end()),
+                             std::vector<PairEntry>(built.entries().begin(), built.entries().end()), 20);
   EXPECT_EQ(adopted.offsets(), built.offsets());
   ASSERT_EQ(adopted.entries().size(), built.entries().size());
   for (std::size_t k = 0; k < built.entries().size(); ++k) {

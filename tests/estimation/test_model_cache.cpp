@@ -32,9 +32,17 @@ void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
-template <class T>
-bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+template <class Values>
+bool sameBytes(const Values& a, const Values& b) {
+  return a.size() == b.size() && std::memcmp(&*a.begin(), &*b.begin(), a.size() * sizeof(*a.begin())) == 0;
+}
+
+bool sameTurns(const std::vector<Eigen::Isometry3f>& a, const std::vector<Eigen::Isometry3f>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (!(a[k].matrix() == b[k].matrix())) return false;
+  }
+  return true;
 }
 
 void expectIdenticalModels(const PreparedModel& a, const PreparedModel& b) {
@@ -50,6 +58,12 @@ void expectIdenticalModels(const PreparedModel& a, const PreparedModel& b) {
   EXPECT_EQ(a.params.normal_cluster_angle_deg, b.params.normal_cluster_angle_deg);
   EXPECT_EQ(a.params.max_pairs_per_feature, b.params.max_pairs_per_feature);
   EXPECT_EQ(a.params.seed, b.params.seed);
+  EXPECT_EQ(a.params.reduce_by_symmetry, b.params.reduce_by_symmetry);
+  EXPECT_TRUE(a.symmetry.axis == b.symmetry.axis);
+  EXPECT_EQ(a.symmetry.turns, b.symmetry.turns);
+  EXPECT_EQ(a.referenceCount(), b.referenceCount());
+  EXPECT_TRUE(sameTurns(a.near_symmetries.turned, b.near_symmetries.turned));
+  EXPECT_TRUE(sameTurns(a.near_symmetries.slid, b.near_symmetries.slid));
   EXPECT_EQ(a.table.offsets(), b.table.offsets());
   EXPECT_TRUE(sameBytes(a.table.entries(), b.table.entries()));
 }
@@ -165,20 +179,23 @@ TEST_F(ModelCache, RejectsConsistentlySignedFilesWithBadContent) {
   const fs::path good = dir / "good.bpmodel";
   saveModelCache(model, 42, good.string());
   const std::vector<uint8_t> bytes = readBytes(good);
-  const std::size_t header = 12, checksum_at = bytes.size() - 8;
+  const std::size_t signed_from = 8, header = 16, checksum_at = bytes.size() - 8;
   const auto resign = [&](std::vector<uint8_t> changed, const std::string& name) {
-    writeBytes(dir / "payload", std::vector<uint8_t>(changed.begin() + header, changed.begin() + checksum_at));
+    writeBytes(dir / "payload", std::vector<uint8_t>(changed.begin() + signed_from, changed.begin() + checksum_at));
     const uint64_t checksum = fingerprintFile((dir / "payload").string());
     std::memcpy(changed.data() + checksum_at, &checksum, sizeof(checksum));
     writeBytes(dir / name, changed);
     return dir / name;
   };
-  ASSERT_EQ(readBytes(resign(bytes, "resigned.bpmodel")), bytes) << "the cache checksum is FNV-1a 64 of the payload";
+  ASSERT_EQ(readBytes(resign(bytes, "resigned.bpmodel")), bytes)
+      << "the cache checksum is the file fingerprint's, of all after the magic";
   EXPECT_NO_THROW(loadModelCache((dir / "resigned.bpmodel").string()));
 
-  // Layout: magic, version | params (32), fingerprint (8), diameter, step (8), centre (12),
-  // points (count + 12 n), normals (count + 12 n), offsets (count + 4 k), entries (count + 8 e) | checksum.
-  const std::size_t points_count_at = header + 32 + 8 + 8 + 12;
+  // Layout: magic, version, padding | params (36), fingerprint (8), diameter, step (8), centre (12),
+  // symmetry axis and turns (16), reference count (8), points (count + 12 n, 8-aligned), normals,
+  // fine points and normals, near symmetries, offsets (count + 4 k), entries (count + 8 e) | checksum.
+  const std::size_t reference_count_at = header + 36 + 8 + 8 + 12 + 16;
+  const std::size_t points_count_at = reference_count_at + 8;
   const std::size_t entries_at = checksum_at - 8 * model.table.pairCount();
   uint64_t stored_count = 0;
   std::memcpy(&stored_count, bytes.data() + points_count_at, sizeof(stored_count));
@@ -203,6 +220,16 @@ TEST_F(ModelCache, RejectsConsistentlySignedFilesWithBadContent) {
   const float zero = 0.0f;
   std::memcpy(changed.data() + header, &zero, sizeof(zero));  // sampling_ratio
   expectRejected(resign(changed, "bad_params.bpmodel"), "invalid params");
+
+  changed = bytes;
+  const uint64_t more_references = model.size() + 1;
+  std::memcpy(changed.data() + reference_count_at, &more_references, sizeof(more_references));
+  expectRejected(resign(changed, "more_references.bpmodel"), "more references than points");
+
+  changed = bytes;
+  const int32_t turns_without_axis = 12;
+  std::memcpy(changed.data() + reference_count_at - 4, &turns_without_axis, sizeof(turns_without_axis));
+  expectRejected(resign(changed, "turns_without_axis.bpmodel"), "a symmetry without an axis");
 }
 
 TEST_F(ModelCache, RejectsADirectoryAndUnwritablePathsWithBinpickError) {

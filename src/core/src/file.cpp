@@ -1,5 +1,8 @@
 #include "binpick/core/file.hpp"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -91,6 +94,30 @@ void replaceFileAtomically(const std::string& path, const std::function<void(con
 void writeFileAtomically(const std::string& path, std::string_view bytes, ParentDirectory parent) {
   if (parent == ParentDirectory::Create) createParentDirectory(path);
   replaceFileAtomically(path, [&](const std::string& temporary) { writeBytes(path, temporary, bytes); });
+}
+
+std::shared_ptr<const MappedFile> MappedFile::open(const std::string& path) {
+  std::error_code error;
+  if (!fs::is_regular_file(path, error)) throw Error(path + ": not a readable file");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(path + ": cannot open: " + std::strerror(errno));
+  struct stat info {};
+  if (fstat(fd, &info) != 0) {
+    const int reason = errno;
+    ::close(fd);
+    throw Error(path + ": cannot read its size: " + std::strerror(reason));
+  }
+  const auto size = static_cast<std::size_t>(info.st_size);
+  void* data = nullptr;
+  if (size > 0) data = mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+  const int reason = errno;
+  ::close(fd);  // the mapping keeps the file
+  if (data == MAP_FAILED) throw Error(path + ": cannot map: " + std::strerror(reason));
+  return std::shared_ptr<const MappedFile>(new MappedFile(static_cast<const uint8_t*>(data), size));
+}
+
+MappedFile::~MappedFile() {
+  if (data_ != nullptr) munmap(const_cast<uint8_t*>(data_), size_);
 }
 
 }  // namespace binpick::core

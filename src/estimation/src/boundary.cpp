@@ -165,7 +165,7 @@ BoundaryModel prepareBoundaryModel(const PreparedModel& model, const BoundaryPar
     boundary.creases.directions.push_back(solver.eigenvectors().col(2).normalized());
   }
   boundary.table = PpfHashTable(model.points, model.normals, boundary.creases.points, boundary.creases.directions,
-                                model.quantizer(), model.params.max_pairs_per_feature);
+                                model.quantizer(), model.params.max_pairs_per_feature, model.referenceCount());
   return boundary;
 }
 

@@ -25,6 +25,7 @@ void readModel(Section s, ModelParams& p) {
   s.read("normal_cluster_angle_deg", p.normal_cluster_angle_deg);
   s.read("max_pairs_per_feature", p.max_pairs_per_feature);
   s.read("seed", p.seed);
+  s.read("reduce_by_symmetry", p.reduce_by_symmetry);
   s.finish();
 }
 

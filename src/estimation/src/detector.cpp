@@ -7,7 +7,6 @@
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/core/thread_count.hpp"
-#include "binpick/estimation/near_symmetries.hpp"
 #include "binpick/estimation/range_agreement.hpp"
 #include "point_ops.hpp"
 
@@ -118,8 +117,10 @@ Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model,
 // refined by ICP before its scene points stop existing, so that a coarse candidate does not leave
 // half of its object behind for a repeat detection.
 void selectVerified(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                    const NearSymmetries& near_symmetries, const std::vector<PoseCandidate>& candidates,
-                    DetectionResult& result, core::Stopwatch& clock, const core::CancelFlag* cancel) {
+                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock,
+                    const core::CancelFlag* cancel) {
+  static const NearSymmetries kNoTwins;
+  const NearSymmetries& near_symmetries = p.verification.compare_turned ? model.near_symmetries : kNoTwins;
   const SceneVoxelGrid grid(scene.points, p.verification.voxel_size_ratio * model.step);
   const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification, cancel);
   result.timing_ms.verification = clock.lapMs();
@@ -250,7 +251,6 @@ Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::mov
   params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.boundary.threads =
       params_.threads;
   if (model_.size() == 0) throw core::Error("detector: the model has no points");
-  if (params_.verification.compare_turned) near_symmetries_ = nearSymmetries(model_);
   if (params_.boundary.enabled) boundary_model_ = prepareBoundaryModel(model_, params_.boundary);
 }
 
@@ -283,7 +283,7 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::o
   result.timing_ms.voting = clock.lapMs();
   if (!candidates.empty()) {
     if (params_.method == Method::LiHashimoto) {
-      selectVerified(model_, scene, params_, near_symmetries_, candidates, result, clock, cancel);
+      selectVerified(model_, scene, params_, candidates, result, clock, cancel);
     } else {
       selectClustered(model_, scene, params_, candidates, result, clock, cancel);
     }

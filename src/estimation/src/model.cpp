@@ -1,10 +1,14 @@
 #include "binpick/estimation/model.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numeric>
 #include <string>
 
 #include "binpick/core/error.hpp"
 #include "binpick/io/mesh_surface.hpp"
+#include "binpick/io/mesh_symmetry.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
 
@@ -12,6 +16,13 @@ namespace binpick::estimation {
 namespace {
 
 constexpr float kDegToRad = static_cast<float>(M_PI / 180.0);
+constexpr float kTwoPi = static_cast<float>(2.0 * M_PI);
+// One turn's references reach this far (in d_dist, along the circle about the axis) past the
+// turn's end: a scene point whose equivalent lies at the sector's edge finds a sample on either
+// side. A revolved part's strip is this wide in all: a voxel-subsampled profile has a point per
+// step along every meridian strip that wide.
+constexpr float kSectorMarginSteps = 0.5f;
+constexpr float kRevolvedStripSteps = 2.0f;
 
 // The original (dense) cloud with a reference normal per point used only for orientation.
 struct DenseCloud {
@@ -65,7 +76,47 @@ std::vector<Eigen::Vector3f> fitNormals(const DenseCloud& dense, const KdTree& t
   return normals;
 }
 
+ModelSymmetry symmetryOf(const io::TriangleMesh& mesh) {
+  const io::FoundSymmetry found = io::findSymmetry(mesh);
+  ModelSymmetry symmetry;
+  if (found.turns == 1) return symmetry;
+  symmetry.axis = found.axis.cast<float>().normalized();
+  symmetry.turns = found.turns;
+  return symmetry;
+}
+
+// Puts the model points of one turn of its symmetry first, keeping their order; returns how many.
+std::size_t referencesFirst(PreparedModel& model) {
+  const ModelSymmetry& symmetry = model.symmetry;
+  if (symmetry.turns == 1) return model.size();
+  const Eigen::Vector3f u = symmetry.axis.unitOrthogonal(), v = symmetry.axis.cross(u);
+  const float turn = symmetry.turns == 0 ? 0.0f : kTwoPi / static_cast<float>(symmetry.turns);
+  const float reach = (symmetry.turns == 0 ? kRevolvedStripSteps : kSectorMarginSteps) * model.step;
+  const auto inFirstTurn = [&](const Eigen::Vector3f& p) {
+    const float radius = std::hypot(p.dot(u), p.dot(v));
+    float azimuth = std::atan2(p.dot(v), p.dot(u));
+    if (azimuth < 0.0f) azimuth += kTwoPi;
+    return radius * (azimuth - turn) < reach;  // the arc past the turn's end
+  };
+  std::vector<uint32_t> order(model.size());
+  std::iota(order.begin(), order.end(), 0u);
+  const auto first_other =
+      std::stable_partition(order.begin(), order.end(), [&](uint32_t i) { return inFirstTurn(model.points[i]); });
+  std::vector<Eigen::Vector3f> points, normals;
+  for (uint32_t i : order) points.push_back(model.points[i]), normals.push_back(model.normals[i]);
+  model.points = std::move(points);
+  model.normals = std::move(normals);
+  return static_cast<std::size_t>(first_other - order.begin());
+}
+
 }  // namespace
+
+std::string ModelSymmetry::describe() const {
+  if (turns == 1) return "none";
+  char axis_text[64];
+  std::snprintf(axis_text, sizeof(axis_text), "(%.3g, %.3g, %.3g)", axis.x(), axis.y(), axis.z());
+  return (turns == 0 ? std::string("revolved") : std::to_string(turns) + "-fold") + " about " + axis_text;
+}
 
 void ModelParams::validate() const {
   const auto require = [](bool ok, const char* field, const char* rule) {
@@ -114,7 +165,11 @@ PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams&
     model.fine_points.push_back(dense.points[i]);
     model.fine_normals.push_back(dense_normals[i]);
   }
-  model.table = PpfHashTable(model.points, model.normals, model.quantizer(), params.max_pairs_per_feature);
+  if (params.reduce_by_symmetry && geometry.hasMesh()) model.symmetry = symmetryOf(geometry.mesh);
+  model.reference_count = referencesFirst(model);
+  model.table =
+      PpfHashTable(model.points, model.normals, model.quantizer(), params.max_pairs_per_feature, model.reference_count);
+  model.near_symmetries = nearSymmetries(model);
   return model;
 }
 

@@ -1,5 +1,7 @@
 #include "binpick/estimation/near_symmetries.hpp"
 
+#include "binpick/estimation/model.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -122,7 +122,8 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
 
 #pragma omp parallel num_threads(threads)
   {
-    Accumulator accumulator(model.size(), quantizer.alphaBinCount());
+    // Only the references of the table (one turn of a symmetric part) can receive votes.
+    Accumulator accumulator(model.referenceCount(), quantizer.alphaBinCount());
 #pragma omp for schedule(dynamic, 4)
     for (std::size_t r = 0; r < references.size(); ++r) {
       if (core::isCancelled(cancel)) continue;  // the rest is skipped; the throw comes after the region

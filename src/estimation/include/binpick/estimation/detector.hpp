@@ -14,7 +14,6 @@
 #include "binpick/estimation/clustering.hpp"
 #include "binpick/estimation/icp.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/estimation/near_symmetries.hpp"
 #include "binpick/estimation/scene.hpp"
 #include "binpick/estimation/selection.hpp"
 #include "binpick/estimation/verification.hpp"
@@ -99,7 +98,6 @@ class Detector {
  private:
   PreparedModel model_;
   DetectorParams params_;
-  NearSymmetries near_symmetries_;               // verification.compare_turned
   std::optional<BoundaryModel> boundary_model_;  // boundary.enabled
 };
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "binpick/estimation/hash_table.hpp"
+#include "binpick/estimation/near_symmetries.hpp"
 #include "binpick/estimation/ppf.hpp"
 #include "binpick/io/geometry_io.hpp"
 
@@ -22,7 +23,22 @@ struct ModelParams {
   uint32_t max_pairs_per_feature = 2000;   // cap on model pairs per hash key (0: none, as in the
                                            // paper); halves voting for parts with big flat faces
   uint64_t seed = 1;                       // dense surface sampling
+  bool reduce_by_symmetry = true;          // mesh models: the model points of one turn of the part's
+                                           // symmetry are the table's references (ModelSymmetry)
   void validate() const;                   // throws core::Error naming the field
+};
+
+// The turns about one axis through the model origin that map the part onto itself, found from a
+// mesh model (io::findSymmetry). A part turned by one of them explains the same scene points, so
+// every equivalent model point would vote for an equivalent pose: only the points of one turn (a
+// sector of 360/N degrees about the axis, or a strip along one meridian of a revolved part) are
+// references. Each scene pair still finds its model pair there; the pair table, the accumulator
+// and the candidates shrink about N times, and the votes once split over N equivalent poses fall
+// on one.
+struct ModelSymmetry {
+  Eigen::Vector3f axis = Eigen::Vector3f::Zero();  // unit; zero when turns == 1
+  int turns = 1;                                   // N of an N-fold axis, 0: revolved, 1: none
+  std::string describe() const;                    // "12-fold about (0, 0, 1)", "revolved about ...", "none"
 };
 
 struct PreparedModel {
@@ -34,10 +50,15 @@ struct PreparedModel {
   std::vector<Eigen::Vector3f> fine_points;          // the surface at half the step, for judging a
   std::vector<Eigen::Vector3f> fine_normals;         // refined pose point by point (range_agreement.hpp)
   ModelParams params;
+  ModelSymmetry symmetry;           // found from a mesh (params.reduce_by_symmetry), else none
+  std::size_t reference_count = 0;  // the first reference_count points are the table's references:
+                                    // one turn of `symmetry`, else all of them
   PpfHashTable table;
+  NearSymmetries near_symmetries;  // the turned twins (near_symmetries.hpp), model-only work
 
   PpfQuantizer quantizer() const;
   std::size_t size() const { return points.size(); }
+  std::size_t referenceCount() const { return reference_count == 0 ? points.size() : reference_count; }
 };
 
 // Mesh input: area-weighted dense samples, normals oriented by the faces. Cloud input: the cloud

@@ -7,8 +7,6 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "binpick/estimation/model.hpp"
-
 namespace binpick::estimation {
 
 // Rigid transforms S of the model frame (pose * S is the turned pose) under which the model
@@ -28,6 +26,8 @@ struct NearSymmetries {
   std::vector<Eigen::Isometry3f> slid;
 };
 
+struct PreparedModel;
+// Depends on the model alone: computed once by prepareModel and kept in the model cache.
 NearSymmetries nearSymmetries(const PreparedModel& model);
 
 }  // namespace binpick::estimation
