@@ -312,11 +312,11 @@ void benchPart(const simulation::Part& part, const Options& o) {
   const double objects = static_cast<double>(o.scenes) * o.objects;
   const auto per_object = [&](double ms) { return ms / objects; };
   std::printf(
-      "%-10s %-12s model %zu pts (%zu references, symmetry %s), %zu pairs, prepared in %.0f ms | scenes %d x %d "
-      "objects, %.0fk pts/scene, %d subsampled\n",
+      "%-10s %-12s model %zu pts (%zu references, symmetry %s, %zu + %zu turned and slid twins), %zu pairs, prepared "
+      "in %.0f ms | scenes %d x %d objects, %.0fk pts/scene, %d subsampled\n",
       part.name.c_str(), o.method.c_str(), model.size(), model.referenceCount(), model.symmetry.describe().c_str(),
-      model.table.pairCount(), preparation_ms, o.scenes, o.objects, totals.input_points / 1000.0 / o.scenes,
-      totals.scene_points / o.scenes);
+      model.near_symmetries.turned.size(), model.near_symmetries.slid.size(), model.table.pairCount(), preparation_ms,
+      o.scenes, o.objects, totals.input_points / 1000.0 / o.scenes, totals.scene_points / o.scenes);
   std::printf(
       "  ms/object %.1f (scene %.1f, voting %.1f, verification %.1f, selection %.2f, icp %.1f); ms/scene %.0f\n",
       per_object(totals.ms.total), per_object(totals.ms.prepare_scene), per_object(totals.ms.voting),

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Writes the estimation-speed benchmark meshes (ASCII STL, millimetres) beside this script.
 
-Parts of other sizes and shapes than the built-in ones, for bench_estimation --meshes. The files
+Parts of other sizes and shapes than the built-in ones, for bench_estimation --meshes, each with its
+origin at the centre of its bounding box (a symmetry is found about the model origin). The files
 are kept in the repository; run this only to change them.
   bearing_plate.stl     a revolved plate 120 mm across, 10 mm thick: a raceway groove, a stepped
                         bore, chamfers, 128 facets around (a fine CAD export, about 1.5 MB)
@@ -42,15 +43,22 @@ def extrude_star(outline, inner, height):
     return triangles
 
 
-def toothed_wheel(teeth=24, tip=32.0, root=28.0, bore=8.0, width=10.0, per_tooth=8):
-    """Trapezoid teeth: the tip a third of the pitch, the flanks a sixth each."""
+def toothed_wheel(teeth=24, tip=32.0, root=28.0, bore=8.0, width=10.0, per_tooth=12):
+    """Trapezoid teeth: the tip a third of the pitch, the flanks a sixth each, every tooth mirror
+    symmetric about its centre line (one lies on +x), so the wheel flips over onto itself."""
     outline, inner = [], []
     steps = teeth * per_tooth
     for k in range(steps):
         phase = (k % per_tooth) / per_tooth
-        r = root if phase < 1 / 3 else tip if 1 / 2 <= phase < 5 / 6 else root + (tip - root) * (
-            (phase - 1 / 3) * 6 if phase < 1 / 2 else (1 - phase) * 6)
-        angle = 2 * math.pi * k / steps
+        if phase < 1 / 3:
+            r = root
+        elif phase < 1 / 2:
+            r = root + (tip - root) * (phase - 1 / 3) * 6
+        elif phase < 5 / 6:
+            r = tip
+        else:
+            r = tip - (tip - root) * (phase - 5 / 6) * 6
+        angle = 2 * math.pi * (k / steps - (2 / 3) / teeth)  # the tip's centre, phase 2/3, on +x
         outline.append((r * math.cos(angle), r * math.sin(angle)))
         inner.append((bore * math.cos(angle), bore * math.sin(angle)))
     return extrude_star(outline, inner, width)
@@ -106,9 +114,16 @@ def long_profile(length=160.0):
     return triangles
 
 
+def centred(triangles):
+    """The triangles moved so that their bounding box's centre is the origin."""
+    points = [p for t in triangles for p in t]
+    centre = [(min(p[i] for p in points) + max(p[i] for p in points)) / 2 for i in range(3)]
+    return [tuple(tuple(p[i] - centre[i] for i in range(3)) for p in t) for t in triangles]
+
+
 if __name__ == "__main__":
     here = pathlib.Path(__file__).resolve().parent
-    write_stl(here / "bearing_plate.stl", "bearing_plate", revolve(BEARING_PLATE, segments=128))
-    write_stl(here / "toothed_wheel.stl", "toothed_wheel", toothed_wheel())
-    write_stl(here / "perforated_plate.stl", "perforated_plate", perforated_plate())
-    write_stl(here / "long_profile.stl", "long_profile", long_profile())
+    write_stl(here / "bearing_plate.stl", "bearing_plate", centred(revolve(BEARING_PLATE, segments=128)))
+    write_stl(here / "toothed_wheel.stl", "toothed_wheel", centred(toothed_wheel()))
+    write_stl(here / "perforated_plate.stl", "perforated_plate", centred(perforated_plate()))
+    write_stl(here / "long_profile.stl", "long_profile", centred(long_profile()))

@@ -69,5 +69,26 @@ TEST_F(WholeFile, MissingFileOrADirectoryIsAnErrorNamingIt) {
   EXPECT_TRUE(test::throwsNaming([&] { readFile(root()); }, root() + ": is a directory"));
 }
 
+// A mapped file holds the bytes it had when it was mapped: writers replace files whole, so one
+// replaced under a reader (a model cache rewritten by another service) leaves the reader's bytes.
+TEST_F(WholeFile, AMappedFileKeepsItsBytesWhenTheFileIsReplaced) {
+  const std::string path = pathOf("cache");
+  writeFileAtomically(path, "first version");
+  const std::shared_ptr<const MappedFile> mapped = MappedFile::open(path);
+  writeFileAtomically(path, "second, longer version");
+  ASSERT_EQ(mapped->size(), 13u);
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(mapped->data()), mapped->size()), "first version");
+  EXPECT_EQ(MappedFile::open(path)->size(), 22u);
+
+  writeFileAtomically(path, "");
+  EXPECT_EQ(MappedFile::open(path)->size(), 0u) << "an empty file maps to nothing, without an error";
+}
+
+TEST_F(WholeFile, MappingAMissingFileOrADirectoryIsAnErrorNamingIt) {
+  const std::string path = pathOf("missing.cache");
+  EXPECT_TRUE(test::throwsNaming([&] { MappedFile::open(path); }, path + ": the file does not exist"));
+  EXPECT_TRUE(test::throwsNaming([&] { MappedFile::open(root()); }, root() + ": is a directory"));
+}
+
 }  // namespace
 }  // namespace binpick::core

@@ -19,6 +19,7 @@ namespace binpick::estimation {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::cachedModel;
 using testing::errorMessage;
 using testing::smallModel;
 
@@ -121,6 +122,17 @@ TEST_F(ModelCache, RoundTripIsExactAndDetectsTheSame) {
     EXPECT_EQ(a.detections[k].score, b.detections[k].score);
     EXPECT_EQ(a.detections[k].votes, b.detections[k].votes);
   }
+}
+
+// The table is used where it lies in the mapped file: a cache rewritten by another process (files
+// are replaced whole) leaves a loaded model as it was.
+TEST_F(ModelCache, ALoadedModelOutlivesItsCacheFileBeingReplaced) {
+  const fs::path path = dir / "shared.bpmodel";
+  saveModelCache(smallModel(), 1, path.string());
+  const CachedModel loaded = loadModelCache(path.string());
+  saveModelCache(cachedModel("l_bracket", 0.08f), 2, path.string());
+  fs::remove(path);
+  expectIdenticalModels(smallModel(), loaded.model);
 }
 
 TEST_F(ModelCache, RejectsDamagedFilesWithTheirName) {

@@ -97,22 +97,21 @@ void writeFileAtomically(const std::string& path, std::string_view bytes, Parent
 }
 
 std::shared_ptr<const MappedFile> MappedFile::open(const std::string& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) throw Error(path + ": not a readable file");
+  regularFileSize(path);  // the same errors as readFile's for a missing file or a directory
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Error(path + ": cannot open: " + std::strerror(errno));
+  if (fd < 0) throw Error(path + ": cannot read the file: " + std::strerror(errno));
   struct stat info {};
   if (fstat(fd, &info) != 0) {
     const int reason = errno;
     ::close(fd);
-    throw Error(path + ": cannot read its size: " + std::strerror(reason));
+    throw Error(path + ": cannot read the file: " + std::strerror(reason));
   }
   const auto size = static_cast<std::size_t>(info.st_size);
   void* data = nullptr;
   if (size > 0) data = mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
   const int reason = errno;
   ::close(fd);  // the mapping keeps the file
-  if (data == MAP_FAILED) throw Error(path + ": cannot map: " + std::strerror(reason));
+  if (data == MAP_FAILED) throw Error(path + ": cannot map the file: " + std::strerror(reason));
   return std::shared_ptr<const MappedFile>(new MappedFile(static_cast<const uint8_t*>(data), size));
 }
 

@@ -117,10 +117,28 @@ void slideToMostOverlap(const PreparedModel& model, const SceneVoxelGrid& grid, 
   turn.pretranslate(best);
 }
 
+// Whether `difference` (a model-frame transform) is one of the part's own turns (ModelSymmetry):
+// about its axis through the origin by a multiple of 360/N degrees, or by any angle when revolved.
+bool isOwnTurn(const Eigen::Isometry3f& difference, const PreparedModel& model) {
+  const ModelSymmetry& symmetry = model.symmetry;
+  if (symmetry.turns == 1 || difference.translation().norm() >= model.step) return false;
+  const float tolerance = kSameTurnDeg * static_cast<float>(M_PI / 180.0);
+  const Eigen::AngleAxisf turn(difference.linear());
+  if (turn.angle() < tolerance) return true;
+  if (std::abs(turn.axis().dot(symmetry.axis)) < std::cos(tolerance)) return false;
+  if (symmetry.turns == 0) return true;
+  const float period = 2.0f * static_cast<float>(M_PI) / static_cast<float>(symmetry.turns);
+  const float off = std::fmod(turn.angle(), period);
+  return std::min(off, period - off) < tolerance;
+}
+
+// Two twins are one when they nearly coincide, or differ by one of the part's own turns: the
+// pose turned either way shows the same.
 bool sameTwin(const Eigen::Isometry3f& a, const Eigen::Isometry3f& b, const PreparedModel& model) {
   const float angle = Eigen::AngleAxisf(a.linear().transpose() * b.linear()).angle();
-  return angle < kSameTurnDeg * static_cast<float>(M_PI / 180.0) &&
-         (a * model.centre - b * model.centre).norm() < model.step;
+  const bool coincide = angle < kSameTurnDeg * static_cast<float>(M_PI / 180.0) &&
+                        (a * model.centre - b * model.centre).norm() < model.step;
+  return coincide || isOwnTurn(b.inverse() * a, model);
 }
 
 // Registers `turn` onto the model; true when the result is a near-symmetry (not another outline,
@@ -151,7 +169,10 @@ NearSymmetries nearSymmetries(const PreparedModel& model) {
     turn.translation() = model.centre - turn.linear() * model.centre;  // about the centroid
     Eigen::Isometry3f slid_turn = turn;
     slideToMostOverlap(model, grid, axes, extents, slid_turn);
-    if (registeredNearSymmetry(model, tree, turn)) twins.turned.push_back(turn);
+    const auto same = [&](const Eigen::Isometry3f& kept) { return sameTwin(kept, turn, model); };
+    if (registeredNearSymmetry(model, tree, turn) && std::none_of(twins.turned.begin(), twins.turned.end(), same)) {
+      twins.turned.push_back(turn);
+    }
     if (registeredNearSymmetry(model, tree, slid_turn)) slid.push_back(slid_turn);
   }
   for (const Eigen::Isometry3f& turn : slid) {

@@ -11,7 +11,9 @@ namespace binpick::estimation {
 
 // Rigid transforms S of the model frame (pose * S is the turned pose) under which the model
 // overlaps itself for the most part but not wholly. Turns under which the part is truly symmetric
-// are left out: they cannot change what a pose explains.
+// are left out: they cannot change what a pose explains; so are twins that differ from one kept
+// by one of the part's own turns (ModelSymmetry): a revolved plate flipped over about any axis
+// across it is one twin, not one per box turn.
 struct NearSymmetries {
   // The turns that map the model's principal box onto itself (quarter and half turns about the
   // axes, half turns about face diagonals, third turns about body diagonals) about its centroid,
