@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "binpick/estimation/boundary.hpp"
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/model_cache.hpp"
 #include "binpick/evaluation/evaluation.hpp"
@@ -62,11 +63,20 @@ void expectIdenticalModels(const PreparedModel& a, const PreparedModel& b) {
   EXPECT_EQ(a.params.reduce_by_symmetry, b.params.reduce_by_symmetry);
   EXPECT_TRUE(a.symmetry.axis == b.symmetry.axis);
   EXPECT_EQ(a.symmetry.turns, b.symmetry.turns);
+  EXPECT_EQ(a.symmetry.flips, b.symmetry.flips);
   EXPECT_EQ(a.referenceCount(), b.referenceCount());
   EXPECT_TRUE(sameTurns(a.near_symmetries.turned, b.near_symmetries.turned));
   EXPECT_TRUE(sameTurns(a.near_symmetries.slid, b.near_symmetries.slid));
   EXPECT_EQ(a.table.offsets(), b.table.offsets());
   EXPECT_TRUE(sameBytes(a.table.entries(), b.table.entries()));
+  EXPECT_EQ(a.boundary_crease_angle_deg, b.boundary_crease_angle_deg);
+  ASSERT_EQ(a.boundary == nullptr, b.boundary == nullptr);
+  if (a.boundary) {
+    EXPECT_TRUE(sameBytes(a.boundary->creases.points, b.boundary->creases.points));
+    EXPECT_TRUE(sameBytes(a.boundary->creases.directions, b.boundary->creases.directions));
+    EXPECT_EQ(a.boundary->table.offsets(), b.boundary->table.offsets());
+    EXPECT_TRUE(sameBytes(a.boundary->table.entries(), b.boundary->table.entries()));
+  }
 }
 
 class ModelCache : public ::testing::Test {
@@ -177,6 +187,14 @@ TEST_F(ModelCache, RejectsDamagedFilesWithTheirName) {
   std::memcpy(future.data() + 8, &version, sizeof(version));
   writeBytes(dir / "future.bpmodel", future);
   expectRejected(dir / "future.bpmodel", "future version");
+  // A cache from an older build (read and copied, before the mapped layout): one line that says so.
+  std::vector<uint8_t> older = bytes;
+  const uint32_t version_3 = 3;
+  std::memcpy(older.data() + 8, &version_3, sizeof(version_3));
+  writeBytes(dir / "older.bpmodel", older);
+  const std::string message = errorMessage([&] { loadModelCache((dir / "older.bpmodel").string()); });
+  EXPECT_EQ(message, (dir / "older.bpmodel").string() + ": model cache version 3, this build reads " +
+                         std::to_string(kModelCacheVersion) + "; rebuild it");
   // Empty and missing files.
   writeBytes(dir / "empty.bpmodel", {});
   expectRejected(dir / "empty.bpmodel", "empty file");
@@ -204,11 +222,14 @@ TEST_F(ModelCache, RejectsConsistentlySignedFilesWithBadContent) {
   EXPECT_NO_THROW(loadModelCache((dir / "resigned.bpmodel").string()));
 
   // Layout: magic, version, padding | params (36), fingerprint (8), diameter, step (8), centre (12),
-  // symmetry axis and turns (16), reference count (8), points (count + 12 n, 8-aligned), normals,
-  // fine points and normals, near symmetries, offsets (count + 4 k), entries (count + 8 e) | checksum.
-  const std::size_t reference_count_at = header + 36 + 8 + 8 + 12 + 16;
+  // symmetry axis, turns and flips (20), reference count (8), points (count + 12 n, 8-aligned), normals,
+  // fine points and normals, near symmetries, offsets (count + 4 k), entries (count + 8 e), the
+  // outline's crease angle, creases, offsets and entries | checksum.
+  const std::size_t reference_count_at = header + 36 + 8 + 8 + 12 + 20;
   const std::size_t points_count_at = reference_count_at + 8;
-  const std::size_t entries_at = checksum_at - 8 * model.table.pairCount();
+  ASSERT_TRUE(model.boundary != nullptr);
+  ASSERT_GT(model.boundary->table.pairCount(), 0u);
+  const std::size_t entries_at = checksum_at - 8 * model.boundary->table.pairCount();  // the outline's table, last
   uint64_t stored_count = 0;
   std::memcpy(&stored_count, bytes.data() + points_count_at, sizeof(stored_count));
   ASSERT_EQ(stored_count, model.size()) << "layout assumption";
@@ -225,7 +246,8 @@ TEST_F(ModelCache, RejectsConsistentlySignedFilesWithBadContent) {
 
   changed = bytes;
   const float nan = std::nanf("");
-  std::memcpy(changed.data() + points_count_at + 8, &nan, sizeof(nan));
+  const std::size_t first_point_at = (points_count_at + 8 + 7) / 8 * 8;  // arrays start 8-aligned
+  std::memcpy(changed.data() + first_point_at, &nan, sizeof(nan));
   expectRejected(resign(changed, "nan_point.bpmodel"), "a NaN model point");
 
   changed = bytes;
@@ -240,7 +262,7 @@ TEST_F(ModelCache, RejectsConsistentlySignedFilesWithBadContent) {
 
   changed = bytes;
   const int32_t turns_without_axis = 12;
-  std::memcpy(changed.data() + reference_count_at - 4, &turns_without_axis, sizeof(turns_without_axis));
+  std::memcpy(changed.data() + reference_count_at - 8, &turns_without_axis, sizeof(turns_without_axis));
   expectRejected(resign(changed, "turns_without_axis.bpmodel"), "a symmetry without an axis");
 }
 

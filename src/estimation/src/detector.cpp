@@ -251,7 +251,11 @@ Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::mov
   params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.boundary.threads =
       params_.threads;
   if (model_.size() == 0) throw core::Error("detector: the model has no points");
-  if (params_.boundary.enabled) boundary_model_ = prepareBoundaryModel(model_, params_.boundary);
+  if (params_.boundary.enabled) {
+    const bool prepared = model_.boundary && model_.boundary_crease_angle_deg == params_.boundary.crease_angle_deg;
+    boundary_model_ = prepared ? model_.boundary
+                               : std::make_shared<const BoundaryModel>(prepareBoundaryModel(model_, params_.boundary));
+  }
 }
 
 DetectionResult Detector::detect(const io::PointCloud& scene_cloud) const {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "binpick/core/error.hpp"
+#include "binpick/estimation/boundary.hpp"
 #include "binpick/io/mesh_surface.hpp"
 #include "binpick/io/mesh_symmetry.hpp"
 #include "kdtree.hpp"
@@ -82,6 +83,7 @@ ModelSymmetry symmetryOf(const io::TriangleMesh& mesh) {
   if (found.turns == 1) return symmetry;
   symmetry.axis = found.axis.cast<float>().normalized();
   symmetry.turns = found.turns;
+  symmetry.flips = found.flips;
   return symmetry;
 }
 
@@ -92,7 +94,11 @@ std::size_t referencesFirst(PreparedModel& model) {
   const Eigen::Vector3f u = symmetry.axis.unitOrthogonal(), v = symmetry.axis.cross(u);
   const float turn = symmetry.turns == 0 ? 0.0f : kTwoPi / static_cast<float>(symmetry.turns);
   const float reach = (symmetry.turns == 0 ? kRevolvedStripSteps : kSectorMarginSteps) * model.step;
+  const float flip_margin = kSectorMarginSteps * model.step;
   const auto inFirstTurn = [&](const Eigen::Vector3f& p) {
+    // A part that flips over shows its lower half as its upper half flipped: the upper half (and
+    // half a step below the plane across the axis) is enough.
+    if (symmetry.flips && p.dot(symmetry.axis) < -flip_margin) return false;
     const float radius = std::hypot(p.dot(u), p.dot(v));
     float azimuth = std::atan2(p.dot(v), p.dot(u));
     if (azimuth < 0.0f) azimuth += kTwoPi;
@@ -114,8 +120,10 @@ std::size_t referencesFirst(PreparedModel& model) {
 std::string ModelSymmetry::describe() const {
   if (turns == 1) return "none";
   char axis_text[64];
-  std::snprintf(axis_text, sizeof(axis_text), "(%.3g, %.3g, %.3g)", axis.x(), axis.y(), axis.z());
-  return (turns == 0 ? std::string("revolved") : std::to_string(turns) + "-fold") + " about " + axis_text;
+  const auto shown = [](float c) { return std::abs(c) < 5e-4f ? 0.0 : static_cast<double>(c); };  // no "-0"
+  std::snprintf(axis_text, sizeof(axis_text), "(%.3g, %.3g, %.3g)", shown(axis.x()), shown(axis.y()), shown(axis.z()));
+  return (turns == 0 ? std::string("revolved") : std::to_string(turns) + "-fold") + " about " + axis_text +
+         (flips ? ", flips over" : "");
 }
 
 void ModelParams::validate() const {
@@ -170,6 +178,9 @@ PreparedModel prepareModel(const io::ModelGeometry& geometry, const ModelParams&
   model.table =
       PpfHashTable(model.points, model.normals, model.quantizer(), params.max_pairs_per_feature, model.reference_count);
   model.near_symmetries = nearSymmetries(model);
+  const BoundaryParams outline;
+  model.boundary = std::make_shared<const BoundaryModel>(prepareBoundaryModel(model, outline));
+  model.boundary_crease_angle_deg = outline.crease_angle_deg;
   return model;
 }
 

@@ -10,6 +10,7 @@
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
+#include "binpick/estimation/boundary.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -184,10 +185,57 @@ void checkGeometry(const PreparedModel& m, Reader& r) {
     r.fail("has an invalid diameter, step or centre");
   }
   const ModelSymmetry& s = m.symmetry;
-  if (s.turns < 0 || (s.turns == 1) != s.axis.isZero() || (s.turns != 1 && std::abs(s.axis.norm() - 1.0f) > 1e-3f)) {
+  if (s.turns < 0 || (s.turns == 1) != s.axis.isZero() || (s.turns != 1 && std::abs(s.axis.norm() - 1.0f) > 1e-3f) ||
+      (s.flips && s.turns == 1)) {
     r.fail("has an invalid symmetry");
   }
   if (m.reference_count < 1 || m.reference_count > m.points.size()) r.fail("has an invalid reference count");
+}
+
+// A pair table where it lies in the mapped file.
+PpfHashTable getTable(Reader& r, const std::shared_ptr<const core::MappedFile>& mapped, const PreparedModel& m,
+                      const std::string& what) {
+  const ArrayView<uint32_t> offsets = r.view<uint32_t>((what + " offsets").c_str());
+  const ArrayView<PairEntry> entries = r.view<PairEntry>((what + " entries").c_str());
+  if (static_cast<int64_t>(offsets.size()) != m.quantizer().keyCount() + 1) {
+    r.fail(what + " does not match its parameters");
+  }
+  try {
+    return PpfHashTable(mapped, offsets, entries, static_cast<uint32_t>(m.reference_count));
+  } catch (const core::Error& e) {
+    r.fail(e.what());
+  }
+}
+
+// The outline's model side: its crease angle (0: none kept), creases and table.
+void putBoundary(Writer& w, const PreparedModel& model) {
+  const bool kept = model.boundary != nullptr;
+  w.put<float>(kept ? model.boundary_crease_angle_deg : 0.0f);
+  if (!kept) return;
+  w.putArray(model.boundary->creases.points);
+  w.putArray(model.boundary->creases.directions);
+  w.putArray(model.boundary->table.offsets());
+  w.putArray(model.boundary->table.entries());
+}
+
+void getBoundary(Reader& r, const std::shared_ptr<const core::MappedFile>& mapped, PreparedModel& m) {
+  m.boundary_crease_angle_deg = r.get<float>("boundary");
+  if (m.boundary_crease_angle_deg == 0.0f) return;
+  if (!(m.boundary_crease_angle_deg > 0.0f && m.boundary_crease_angle_deg < 180.0f)) {
+    r.fail("has an invalid crease angle");
+  }
+  auto boundary = std::make_shared<BoundaryModel>();
+  boundary->creases.points = r.getArray<Eigen::Vector3f>("creases");
+  boundary->creases.directions = r.getArray<Eigen::Vector3f>("crease directions");
+  const BoundaryPoints& creases = boundary->creases;
+  if (creases.points.size() != creases.directions.size()) r.fail("has inconsistent crease counts");
+  for (std::size_t i = 0; i < creases.size(); ++i) {
+    if (!creases.points[i].allFinite() || std::abs(creases.directions[i].norm() - 1.0f) > 1e-3f) {
+      r.fail("has an invalid crease at index " + std::to_string(i));
+    }
+  }
+  boundary->table = getTable(r, mapped, m, "boundary table");
+  m.boundary = std::move(boundary);
 }
 
 }  // namespace
@@ -201,6 +249,7 @@ void saveModelCache(const PreparedModel& model, uint64_t source_fingerprint, con
   w.put(model.centre);
   w.put(model.symmetry.axis);
   w.put<int32_t>(model.symmetry.turns);
+  w.put<int32_t>(model.symmetry.flips ? 1 : 0);
   w.put<uint64_t>(model.referenceCount());
   w.putArray(model.points);
   w.putArray(model.normals);
@@ -210,6 +259,7 @@ void saveModelCache(const PreparedModel& model, uint64_t source_fingerprint, con
   w.putArray(affines(model.near_symmetries.slid));
   w.putArray(model.table.offsets());
   w.putArray(model.table.entries());
+  putBoundary(w, model);
   // Atomically: a crash never leaves a half-written cache behind, and services sharing a cache
   // never write into one file (nor into one that another maps).
   std::string file(kMagic, sizeof(kMagic));
@@ -257,6 +307,7 @@ CachedModel loadModelCache(const std::string& path) {
   m.centre = r.get<Eigen::Vector3f>("centre");
   m.symmetry.axis = r.get<Eigen::Vector3f>("symmetry");
   m.symmetry.turns = r.get<int32_t>("symmetry");
+  m.symmetry.flips = r.get<int32_t>("symmetry") != 0;
   m.reference_count = r.get<uint64_t>("reference count");
   m.points = r.getArray<Eigen::Vector3f>("points");
   m.normals = r.getArray<Eigen::Vector3f>("normals");
@@ -265,16 +316,9 @@ CachedModel loadModelCache(const std::string& path) {
   checkGeometry(m, r);
   m.near_symmetries.turned = isometries(r.getArray<Affine>("near symmetries"), r);
   m.near_symmetries.slid = isometries(r.getArray<Affine>("near symmetries"), r);
-  const ArrayView<uint32_t> offsets = r.view<uint32_t>("table offsets");
-  const ArrayView<PairEntry> entries = r.view<PairEntry>("table entries");
+  m.table = getTable(r, mapped, m, "table");
+  getBoundary(r, mapped, m);
   if (!r.atEnd()) r.fail("has trailing bytes");
-  if (static_cast<int64_t>(offsets.size()) != m.quantizer().keyCount() + 1)
-    r.fail("table does not match its parameters");
-  try {
-    m.table = PpfHashTable(mapped, offsets, entries, static_cast<uint32_t>(m.reference_count));
-  } catch (const core::Error& e) {
-    r.fail(e.what());
-  }
   return cached;
 }
 

@@ -98,7 +98,7 @@ class Detector {
  private:
   PreparedModel model_;
   DetectorParams params_;
-  std::optional<BoundaryModel> boundary_model_;  // boundary.enabled
+  std::shared_ptr<const BoundaryModel> boundary_model_;  // boundary.enabled: the model's, or one of its own
 };
 
 }  // namespace binpick::estimation

@@ -4,6 +4,7 @@
 // model pairs. A PreparedModel is immutable once built: share it between threads freely.
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,16 +30,20 @@ struct ModelParams {
 };
 
 // The turns about one axis through the model origin that map the part onto itself, found from a
-// mesh model (io::findSymmetry). A part turned by one of them explains the same scene points, so
-// every equivalent model point would vote for an equivalent pose: only the points of one turn (a
-// sector of 360/N degrees about the axis, or a strip along one meridian of a revolved part) are
-// references. Each scene pair still finds its model pair there; the pair table, the accumulator
-// and the candidates shrink about N times, and the votes once split over N equivalent poses fall
-// on one.
+// mesh model (io::findSymmetry), and whether it also flips over onto itself (half turns about axes
+// across that one). A part turned by one of them explains the same scene points, so every
+// equivalent model point would vote for an equivalent pose: only the points of one turn (a sector
+// of 360/N degrees about the axis, or a strip along one meridian of a revolved part; its upper half
+// when the part flips) are references. Each scene pair still finds its model pair there; the pair
+// table, the accumulator and the candidates shrink about N (2N) times, and the votes once split
+// over equivalent poses fall on one.
+struct BoundaryModel;  // boundary.hpp
+
 struct ModelSymmetry {
   Eigen::Vector3f axis = Eigen::Vector3f::Zero();  // unit; zero when turns == 1
   int turns = 1;                                   // N of an N-fold axis, 0: revolved, 1: none
-  std::string describe() const;                    // "12-fold about (0, 0, 1)", "revolved about ...", "none"
+  bool flips = false;                              // only with an axis
+  std::string describe() const;  // "12-fold about (0, 0, 1), flips over", "revolved about ...", "none"
 };
 
 struct PreparedModel {
@@ -55,6 +60,10 @@ struct PreparedModel {
                                     // one turn of `symmetry`, else all of them
   PpfHashTable table;
   NearSymmetries near_symmetries;  // the turned twins (near_symmetries.hpp), model-only work
+  // The outline's model side (boundary.hpp) for the default crease angle, also model-only work; a
+  // detector set to another crease angle builds its own.
+  std::shared_ptr<const BoundaryModel> boundary;
+  float boundary_crease_angle_deg = 0.0f;
 
   PpfQuantizer quantizer() const;
   std::size_t size() const { return points.size(); }

@@ -1,10 +1,9 @@
 #pragma once
-// Prepared-model cache files: the sampled model, its parameters, its symmetry, its near symmetries
-// and the PPF table, so that a service starts in milliseconds instead of redoing the work that
-// depends on the model alone. The table is mapped from the file and used where it lies, never
-// read or copied. Versioned and checksummed; a truncated, corrupt, foreign or outdated file is
-// rejected with core::Error, never trusted.
-// Free functions without shared state: thread-safe (for different files).
+// Prepared-model cache files: the sampled model, its parameters, its symmetry, its near symmetries,
+// the PPF table and the outline's (boundary.hpp), so that a service starts in milliseconds instead of redoing the work
+// that depends on the model alone. The table is mapped from the file and used where it lies, never read or copied.
+// Versioned and checksummed; a truncated, corrupt, foreign or outdated file is rejected with core::Error, never
+// trusted. Free functions without shared state: thread-safe (for different files).
 #include <cstdint>
 #include <string>
 
@@ -13,7 +12,7 @@
 namespace binpick::estimation {
 
 // 2: max_pairs_per_feature; 3: the fine surface; 4: mapped (8-aligned arrays, a word-wise
-// checksum), the symmetry's references and the near symmetries
+// checksum), the symmetry's references, the near symmetries and the outline's model side
 constexpr uint32_t kModelCacheVersion = 4;
 
 // `source_fingerprint` identifies what the model was built from (see fingerprintFile): a cache is
