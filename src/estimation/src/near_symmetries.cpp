@@ -24,7 +24,8 @@ constexpr int kSlideSamples = 256;             // model points that score a slid
 constexpr float kSlideStepInSteps = 2.0f;      // the slide search's grid, in d_dist ...
 constexpr int kMaxSlidesEachWay = 8;           // ... coarser when a fine sampling would need more
 constexpr float kMinNormalCosine = 0.5f;       // a point on the other face of a plate does not count
-constexpr float kSameTurnDeg = 5.0f;           // closer than this and a step: the same twin
+// Closer than this and a step: the same twin.
+constexpr float kSameTurnRad = 5.0f * static_cast<float>(M_PI / 180.0);
 
 // Point-to-point ICP of the model onto itself from `start`; the share of turned points that end up
 // within a step of a model point.
@@ -122,22 +123,20 @@ void slideToMostOverlap(const PreparedModel& model, const SceneVoxelGrid& grid, 
 bool isOwnTurn(const Eigen::Isometry3f& difference, const PreparedModel& model) {
   const ModelSymmetry& symmetry = model.symmetry;
   if (symmetry.turns == 1 || difference.translation().norm() >= model.step) return false;
-  const float tolerance = kSameTurnDeg * static_cast<float>(M_PI / 180.0);
   const Eigen::AngleAxisf turn(difference.linear());
-  if (turn.angle() < tolerance) return true;
-  if (std::abs(turn.axis().dot(symmetry.axis)) < std::cos(tolerance)) return false;
+  if (turn.angle() < kSameTurnRad) return true;
+  if (std::abs(turn.axis().dot(symmetry.axis)) < std::cos(kSameTurnRad)) return false;
   if (symmetry.turns == 0) return true;
   const float period = 2.0f * static_cast<float>(M_PI) / static_cast<float>(symmetry.turns);
   const float off = std::fmod(turn.angle(), period);
-  return std::min(off, period - off) < tolerance;
+  return std::min(off, period - off) < kSameTurnRad;
 }
 
 // Two twins are one when they nearly coincide, or differ by one of the part's own turns: the
 // pose turned either way shows the same.
 bool sameTwin(const Eigen::Isometry3f& a, const Eigen::Isometry3f& b, const PreparedModel& model) {
   const float angle = Eigen::AngleAxisf(a.linear().transpose() * b.linear()).angle();
-  const bool coincide = angle < kSameTurnDeg * static_cast<float>(M_PI / 180.0) &&
-                        (a * model.centre - b * model.centre).norm() < model.step;
+  const bool coincide = angle < kSameTurnRad && (a * model.centre - b * model.centre).norm() < model.step;
   return coincide || isOwnTurn(b.inverse() * a, model);
 }
 
