@@ -31,15 +31,16 @@
 
 #include "bench_support.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/core/pose_yaml.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/detector.hpp"
-#include "binpick/estimation/icp.hpp"
 #include "binpick/estimation/model_cache.hpp"
-#include "binpick/estimation/range_agreement.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
+#include "icp.hpp"
+#include "range_agreement.hpp"
 
 namespace {
 
@@ -259,18 +260,15 @@ class WholeProcess {
   std::string path(const char* name) const { return (dir_ / name).string(); }
 
   void writeConfig(const estimation::CropBox& crop) const {
-    const Eigen::Vector3f centre = crop.T_camera_box.translation();
-    const Eigen::Vector3f ypr = crop.T_camera_box.linear().eulerAngles(2, 1, 0) * static_cast<float>(180.0 / M_PI);
     std::ofstream yaml(path("config.yaml"));
     yaml.precision(9);
     yaml << "model:\n  max_pairs_per_feature: " << options_.max_pairs_per_feature
          << "\n  reduce_by_symmetry: " << (options_.reduce_by_symmetry ? "true" : "false")
          << "\ndetection:\n  threads: " << options_.threads << "\n  selection:\n    max_objects: " << options_.objects
          << "\n  scene:\n    crop:\n"
-         << "      centre: [" << centre.x() << ", " << centre.y() << ", " << centre.z() << "]\n"
-         << "      half_extents: [" << crop.half_extents.x() << ", " << crop.half_extents.y() << ", "
-         << crop.half_extents.z() << "]\n"
-         << "      rotation_rpy_deg: [" << ypr.z() << ", " << ypr.y() << ", " << ypr.x() << "]\n";
+         << "      pose:\n"
+         << core::poseYaml(crop.T_camera_box.cast<double>(), "        ") << "      half_extents: ["
+         << crop.half_extents.x() << ", " << crop.half_extents.y() << ", " << crop.half_extents.z() << "]\n";
   }
 
   const Options& options_;

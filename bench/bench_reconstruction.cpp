@@ -35,10 +35,10 @@
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
 #include "binpick/reconstruction/reconstruction_config.hpp"
-#include "binpick/simulation/lighting_presets.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
+#include "sensor/lighting_presets.hpp"
 
 namespace {
 

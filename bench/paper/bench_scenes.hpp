@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "binpick/estimation/scene.hpp"
+#include "scene.hpp"
 #include "binpick/io/point_cloud.hpp"
 #include "binpick/reconstruction/reconstruction.hpp"
 #include "binpick/simulation/parts.hpp"

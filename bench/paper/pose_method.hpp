@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "binpick/estimation/model.hpp"
-#include "binpick/estimation/scene.hpp"
+#include "scene.hpp"
 #include "binpick/io/point_cloud.hpp"
 
 namespace binpick::bench {

@@ -5,10 +5,10 @@
 #include <optional>
 
 #include "binpick/core/stopwatch.hpp"
-#include "binpick/estimation/selection.hpp"
-#include "binpick/estimation/verification.hpp"
-#include "binpick/estimation/voting.hpp"
-#include "binpick/estimation/voxel_grid.hpp"
+#include "selection.hpp"
+#include "verification.hpp"
+#include "voting.hpp"
+#include "voxel_grid.hpp"
 
 namespace binpick::bench {
 namespace {
@@ -68,15 +68,12 @@ SelectionCurves measureSelection(const estimation::PreparedModel& model, const i
                                  const estimation::CropBox& crop, int picks, int threads) {
   estimation::SceneParams scene_params;
   scene_params.crop = crop;
-  scene_params.threads = threads;
-  const estimation::PreparedScene scene = estimation::prepareScene(cloud, model, scene_params);
-  estimation::VotingParams voting;
-  voting.threads = threads;
-  estimation::VerificationParams verification;
-  verification.threads = threads;
+  const estimation::PreparedScene scene = estimation::prepareScene(cloud, model, scene_params, threads);
+  const estimation::VerificationParams verification;
   const estimation::SceneVoxelGrid grid(scene.points, verification.voxel_size_ratio * model.step);
   const std::vector<VerifiedCandidate> candidates =
-      estimation::verify(estimation::vote(model, scene, voting), model, scene, grid, verification);
+      estimation::verify(estimation::vote(model, scene, estimation::VotingParams{}, nullptr, nullptr, threads), model,
+                         scene, grid, verification, nullptr, threads);
 
   SelectionCurves out;
   out.scene_points = scene.size();

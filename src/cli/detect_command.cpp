@@ -19,6 +19,7 @@ namespace {
 estimation::EstimationConfig configFrom(const Arguments& args) {
   estimation::EstimationConfig config;
   if (const auto path = args.value("--config")) config = estimation::loadEstimationConfig(*path);
+  for (const std::string& warning : config.warnings) std::cerr << "binpick detect: warning: " << warning << "\n";
   if (const auto n = args.integer("--max-objects")) config.detector.selection.max_objects = *n;
   if (const auto n = args.integer("--threads")) config.detector.threads = *n;
   if (const auto m = args.value("--method")) config.detector.method = estimation::methodFromName(*m);

@@ -6,7 +6,7 @@
 #include <string>
 #include <thread>
 
-#include "binpick/acquisition/backoff.hpp"
+#include "backoff.hpp"
 #include "binpick/acquisition/capture_source.hpp"
 #include "fake_camera.hpp"
 #include "rendered_pile.hpp"

@@ -91,7 +91,7 @@ TEST(PaperExperiment, TranslationCriterionIsATenthOfTheDiameter) {
 }
 
 TEST(PaperExperiment, BinpickFindsTheHalfVisibleObjectsOfTheExactCloud) {
-  const MethodSetup setup{&lBracketModel(), 6, 0};
+  const MethodSetup setup{&lBracketModel(), 6, 0, {}};
   const auto method = makeBinpickMethod("binpick", setup);
   const SceneOutcome o = runMethod(*method, exactScene(), CloudInput::Exact, lBracket(), lBracketModel().diameter);
   ASSERT_TRUE(o.stages.has_value());
@@ -102,7 +102,7 @@ TEST(PaperExperiment, BinpickFindsTheHalfVisibleObjectsOfTheExactCloud) {
 }
 
 TEST(PaperExperiment, DrostBaselinesFollowTableOne) {
-  const MethodSetup setup{&lBracketModel(), 6, 0};
+  const MethodSetup setup{&lBracketModel(), 6, 0, {}};
   EXPECT_EQ(makeBinpickMethod("ppf1", setup)->name(), "ppf1");
   EXPECT_EQ(makeBinpickMethod("ppf5", setup)->name(), "ppf5");
   EXPECT_THROW(makeBinpickMethod("ppf3", setup), core::Error);

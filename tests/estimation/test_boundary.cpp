@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "binpick/estimation/boundary.hpp"
 #include "binpick/estimation/detector.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/pile.hpp"
+#include "boundary.hpp"
 #include "estimation_test_support.hpp"
+#include "voting.hpp"
 
 namespace binpick::estimation {
 namespace {

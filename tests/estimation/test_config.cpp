@@ -39,13 +39,15 @@ TEST(EstimationConfig, ShippedDefaultsFileMatchesTheCodeDefaults) {
   EXPECT_EQ(s.icp.max_iterations, d.icp.max_iterations);
   EXPECT_EQ(s.icp.final_max_distance_ratio, d.icp.final_max_distance_ratio);
   EXPECT_EQ(s.icp.fit_distance_ratio, d.icp.fit_distance_ratio);
+  EXPECT_EQ(s.icp.max_normal_angle_deg, d.icp.max_normal_angle_deg);
   EXPECT_EQ(s.clustering.max_rotation_deg, d.clustering.max_rotation_deg);
 }
 
 TEST(EstimationConfig, ReadsCropBoxAndOverrides) {
   const EstimationConfig c = parseEstimationConfig(
       "detection:\n  method: drost\n  selection: {max_objects: 7}\n"
-      "  scene:\n    crop: {centre: [0, 0, 0.5], half_extents: [0.2, 0.1, 0.3], rotation_rpy_deg: [0, 0, 90]}\n"
+      "  scene:\n    crop:\n      pose: {translation: [0, 0, 0.5], rotation: [0, 0, 90], convention: fixed_xyz}\n"
+      "      half_extents: [0.2, 0.1, 0.3]\n"
       "  boundary: {enabled: false, depth_jump_ratio: 2, crease_angle_deg: 45, min_linearity: 5}\n",
       "test.yaml");
   EXPECT_EQ(c.detector.method, Method::Drost);
@@ -58,6 +60,24 @@ TEST(EstimationConfig, ReadsCropBoxAndOverrides) {
   // A 90-degree yaw swaps the box's x and y extents in the camera frame.
   EXPECT_TRUE(c.detector.scene.crop->contains(Eigen::Vector3f(0.05f, 0.15f, 0.5f)));
   EXPECT_FALSE(c.detector.scene.crop->contains(Eigen::Vector3f(0.15f, 0.05f, 0.5f)));
+  EXPECT_TRUE(c.warnings.empty());
+}
+
+TEST(EstimationConfig, OlderCropFormIsReadWithAWarningNamingTheNewKey) {
+  const EstimationConfig older = parseEstimationConfig(
+      "detection:\n  scene:\n    crop: {centre: [0.1, 0, 0.5], half_extents: [0.2, 0.1, 0.3], "
+      "rotation_rpy_deg: [10, -20, 90]}\n",
+      "cell.yaml");
+  const EstimationConfig newer = parseEstimationConfig(
+      "detection:\n  scene:\n    crop:\n      pose: {translation: [0.1, 0, 0.5], rotation: [10, -20, 90], "
+      "convention: fixed_xyz}\n      half_extents: [0.2, 0.1, 0.3]\n",
+      "cell.yaml");
+  ASSERT_TRUE(older.detector.scene.crop && newer.detector.scene.crop);
+  EXPECT_TRUE(older.detector.scene.crop->T_camera_box.isApprox(newer.detector.scene.crop->T_camera_box, 1e-6f));
+  ASSERT_EQ(older.warnings.size(), 1u);
+  EXPECT_NE(older.warnings[0].find("cell.yaml: detection.scene.crop"), std::string::npos) << older.warnings[0];
+  EXPECT_NE(older.warnings[0].find("pose: {translation"), std::string::npos) << older.warnings[0];
+  EXPECT_TRUE(newer.warnings.empty());
 }
 
 TEST(EstimationConfig, ErrorsNameTheFileAndTheKey) {
@@ -74,6 +94,12 @@ TEST(EstimationConfig, ErrorsNameTheFileAndTheKey) {
             std::string::npos);
   EXPECT_NE(message("detection:\n  scene:\n    crop: {centre: [0, 0], half_extents: [1, 1, 1]}\n")
                 .find("centre needs three numbers"),
+            std::string::npos);
+  EXPECT_NE(message("detection:\n  scene:\n    crop: {half_extents: [1, 1, 1]}\n")
+                .find("detection.scene.crop.pose is required"),
+            std::string::npos);
+  EXPECT_NE(message("detection:\n  scene:\n    crop: {pose: {translation: [0, 0, .nan]}, half_extents: [1, 1, 1]}\n")
+                .find("detection.scene.crop.pose.translation"),
             std::string::npos);
   EXPECT_NE(message("detection:\n  boundary:\n    crease_angle_deg: 0\n").find("crease_angle_deg"), std::string::npos);
   EXPECT_NE(message("detection: [1, 2\n").find("not valid YAML"), std::string::npos);

@@ -13,6 +13,8 @@
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
+#include "scene.hpp"
+#include "verification.hpp"
 
 namespace binpick::estimation {
 namespace {

@@ -7,12 +7,12 @@
 #include <random>
 #include <set>
 
-#include "binpick/estimation/icp.hpp"
-#include "binpick/estimation/scene.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
 #include "binpick/simulation/virtual_rig.hpp"
 #include "estimation_test_support.hpp"
+#include "icp.hpp"
+#include "scene.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -93,9 +93,9 @@ TEST_P(IcpOnSinglePart, ConvergesFromAPerturbedPose) {
     EXPECT_LT(translationError(r.T_camera_model, s.truth), 0.001);
     EXPECT_LT(rotationErrorDeg(r.T_camera_model.linear(), s.truth.linear()), 0.5);
     EXPECT_GT(r.iterations, 0);
-    EXPECT_GT(r.coverage, 0.8f);
-    EXPECT_GT(r.visible_points, 0);
-    EXPECT_LT(r.rmse, 0.25f * s.model->step);
+    EXPECT_GT(r.fit.coverage(), 0.8f);
+    EXPECT_GT(r.fit.visible, 0);
+    EXPECT_LT(r.fit.rmse, 0.25f * s.model->step);
     // The refined rotation is orthonormal.
     const Eigen::Matrix3f R = r.T_camera_model.linear();
     EXPECT_LT((R.transpose() * R - Eigen::Matrix3f::Identity()).norm(), 1e-5f);
@@ -157,7 +157,7 @@ TEST(PoseRefiner, EmptySceneLeavesThePose) {
   EXPECT_TRUE(r.T_camera_model.isApprox(pose));
   EXPECT_EQ(r.iterations, 0);
   EXPECT_FALSE(r.converged);
-  EXPECT_EQ(r.coverage, 0.0f);
+  EXPECT_EQ(r.fit.coverage(), 0.0f);
 }
 
 }  // namespace

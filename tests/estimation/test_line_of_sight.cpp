@@ -8,13 +8,13 @@
 #include <map>
 #include <tuple>
 
-#include "binpick/estimation/icp.hpp"
-#include "binpick/estimation/line_of_sight.hpp"
-#include "binpick/estimation/scene.hpp"
-#include "binpick/estimation/verification.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
+#include "icp.hpp"
+#include "line_of_sight.hpp"
+#include "scene.hpp"
+#include "verification.hpp"
 
 namespace binpick::estimation {
 namespace {

@@ -8,12 +8,12 @@
 #include <fstream>
 #include <iterator>
 
-#include "binpick/estimation/boundary.hpp"
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/model_cache.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/simulation/pile.hpp"
+#include "boundary.hpp"
 #include "estimation_test_support.hpp"
 
 namespace binpick::estimation {

@@ -6,6 +6,8 @@
 
 #include "binpick/estimation/detector.hpp"
 #include "estimation_test_support.hpp"
+#include "scene.hpp"
+#include "voting.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -45,7 +47,6 @@ TEST(Params, SceneParamsNameTheField) {
   expectRejected<P>("min_normal_neighbours", [](P& p) { p.min_normal_neighbours = 2; });
   expectRejected<P>("max_window_half_size", [](P& p) { p.max_window_half_size = 0; });
   expectRejected<P>("max_window_half_size", [](P& p) { p.max_window_half_size = 1000; });
-  expectRejected<P>("threads", [](P& p) { p.threads = -1; });
   expectRejected<P>("crop", [](P& p) { p.crop = CropBox{}; });  // zero half extents
   expectRejected<P>("crop", [](P& p) {
     CropBox box;
@@ -71,7 +72,6 @@ TEST(Params, VotingParamsNameTheField) {
   expectRejected<P>("poses_per_reference", [](P& p) { p.poses_per_reference = 100000; });
   expectRejected<P>("min_relative_votes", [](P& p) { p.min_relative_votes = -0.1f; });
   expectRejected<P>("min_relative_votes", [](P& p) { p.min_relative_votes = kNaN; });
-  expectRejected<P>("threads", [](P& p) { p.threads = -2; });
   // vote() itself refuses them too.
   PreparedScene scene;
   VotingParams bad;
@@ -87,7 +87,6 @@ TEST(Params, BoundaryParamsNameTheField) {
   expectRejected<P>("crease_angle_deg", [](P& p) { p.crease_angle_deg = kNaN; });
   expectRejected<P>("min_linearity", [](P& p) { p.min_linearity = 0.5f; });
   expectRejected<P>("min_linearity", [](P& p) { p.min_linearity = kInf; });
-  expectRejected<P>("threads", [](P& p) { p.threads = -1; });
 }
 
 TEST(Params, VerificationSelectionIcpClusteringNameTheField) {
@@ -95,7 +94,6 @@ TEST(Params, VerificationSelectionIcpClusteringNameTheField) {
   expectRejected<VerificationParams>("voxel_size_ratio", [](auto& p) { p.voxel_size_ratio = kNaN; });
   expectRejected<VerificationParams>("max_normal_angle_deg", [](auto& p) { p.max_normal_angle_deg = 0.0f; });
   expectRejected<VerificationParams>("max_normal_angle_deg", [](auto& p) { p.max_normal_angle_deg = 181.0f; });
-  expectRejected<VerificationParams>("threads", [](auto& p) { p.threads = -1; });
 
   expectRejected<SelectionParams>("max_objects", [](auto& p) { p.max_objects = 0; });
   expectRejected<SelectionParams>("min_score_fraction", [](auto& p) { p.min_score_fraction = 1.5f; });

@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "binpick/estimation/detector.hpp"
-#include "binpick/estimation/icp.hpp"
-#include "binpick/estimation/range_agreement.hpp"
-#include "binpick/estimation/scene.hpp"
 #include "binpick/evaluation/evaluation.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "estimation_test_support.hpp"
+#include "icp.hpp"
+#include "range_agreement.hpp"
+#include "scene.hpp"
 
 namespace binpick::estimation {
 namespace {

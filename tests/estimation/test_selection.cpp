@@ -5,8 +5,8 @@
 #include <atomic>
 #include <random>
 
-#include "binpick/estimation/selection.hpp"
 #include "estimation_test_support.hpp"
+#include "selection.hpp"
 
 namespace binpick::estimation {
 namespace {

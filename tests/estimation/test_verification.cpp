@@ -6,9 +6,9 @@
 #include <limits>
 #include <random>
 
-#include "binpick/estimation/verification.hpp"
-#include "binpick/estimation/voxel_grid.hpp"
 #include "estimation_test_support.hpp"
+#include "verification.hpp"
+#include "voxel_grid.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -229,8 +229,7 @@ TEST_F(Eq4, NormalGateDropsOpposingSurfaces) {
   candidates[1].T_camera_model.translation().x() += 1.0f;
   VerificationParams params;
   params.max_normal_angle_deg = 60.0f;
-  params.threads = 2;
-  const auto verified = verify(candidates, model, scene, grid, params);
+  const auto verified = verify(candidates, model, scene, grid, params, nullptr, 2);
   ASSERT_EQ(verified.size(), 2u);
   EXPECT_EQ(verified[0].support, (std::vector<uint32_t>{5, 3, 2, 0}));
   EXPECT_EQ(verified[0].score, 4u);

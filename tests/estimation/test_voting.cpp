@@ -6,8 +6,8 @@
 #include <random>
 #include <unordered_map>
 
-#include "binpick/estimation/voting.hpp"
 #include "estimation_test_support.hpp"
+#include "voting.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -81,12 +81,11 @@ std::vector<std::vector<Cell>> bruteForceVote(const PreparedModel& model, const 
   return result;
 }
 
-VotingParams allPairs(int poses_per_reference, int threads) {
+VotingParams allPairs(int poses_per_reference) {
   VotingParams p;
   p.reference_fraction = 1.0f;
   p.referred_fraction = 1.0f;
   p.poses_per_reference = poses_per_reference;
-  p.threads = threads;
   return p;
 }
 
@@ -129,7 +128,7 @@ class VotingVsBruteForce : public ::testing::Test {
 TEST_F(VotingVsBruteForce, WinnerOfEveryReferenceMatches) {
   ASSERT_GT(model.size(), 50u);
   ASSERT_LT(model.size(), 800u) << "the small model should stay small";
-  const auto candidates = vote(model, scene, allPairs(1, 2));
+  const auto candidates = vote(model, scene, allPairs(1), nullptr, nullptr, 2);
   const auto expected = bruteForceVote(model, scene, 1);
   expectSameAsBruteForce(model, scene, candidates, expected);
 
@@ -156,8 +155,8 @@ TEST_F(VotingVsBruteForce, WinnerOfEveryReferenceMatches) {
 }
 
 TEST_F(VotingVsBruteForce, TopThreeOfEveryReferenceMatchAndThreadCountDoesNotMatter) {
-  const auto one_thread = vote(model, scene, allPairs(3, 1));
-  const auto two_threads = vote(model, scene, allPairs(3, 2));
+  const auto one_thread = vote(model, scene, allPairs(3), nullptr, nullptr, 1);
+  const auto two_threads = vote(model, scene, allPairs(3), nullptr, nullptr, 2);
   expectSameAsBruteForce(model, scene, two_threads, bruteForceVote(model, scene, 3));
   ASSERT_EQ(one_thread.size(), two_threads.size());
   for (std::size_t k = 0; k < one_thread.size(); ++k) {
@@ -176,9 +175,9 @@ TEST_F(VotingVsBruteForce, TopThreeOfEveryReferenceMatchAndThreadCountDoesNotMat
 }
 
 TEST_F(VotingVsBruteForce, MinRelativeVotesDropsWeakLocalCoordinates) {
-  VotingParams p = allPairs(5, 2);
+  VotingParams p = allPairs(5);
   p.min_relative_votes = 0.9f;
-  const auto candidates = vote(model, scene, p);
+  const auto candidates = vote(model, scene, p, nullptr, nullptr, 2);
   const auto expected = bruteForceVote(model, scene, 5);
   std::size_t next = 0;
   for (std::size_t r = 0; r < scene.size(); ++r) {
@@ -195,10 +194,10 @@ TEST_F(VotingVsBruteForce, MinRelativeVotesDropsWeakLocalCoordinates) {
 }
 
 TEST_F(VotingVsBruteForce, ReferenceFractionSelectsTheSampledReferences) {
-  VotingParams p = allPairs(2, 2);
+  VotingParams p = allPairs(2);
   p.reference_fraction = 0.1f;
   p.seed = 77;
-  const auto candidates = vote(model, scene, p);
+  const auto candidates = vote(model, scene, p, nullptr, nullptr, 2);
   const auto references = sampleIndices(scene.size(), 0.1f, 77);
   std::vector<uint32_t> seen;
   for (const auto& c : candidates) {
@@ -219,7 +218,7 @@ TEST(Voting, DegenerateScenesGiveNoCandidates) {
   scene.points.push_back({0, 0, 1 + 3 * model.diameter});
   scene.normals.push_back({0, 0, -1});
   scene.source_index.push_back(1);
-  EXPECT_TRUE(vote(model, scene, allPairs(1, 1)).empty());
+  EXPECT_TRUE(vote(model, scene, allPairs(1), nullptr, nullptr, 1).empty());
 }
 
 TEST(SampleIndices, SeededSortedPrefixOfTheRequestedShare) {

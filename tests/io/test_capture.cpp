@@ -141,11 +141,11 @@ TEST_F(CaptureTest, CodeStepAndPhaseConventionRoundTrip) {
   const std::string ours = pathOf("ours");
   io::writeCapture(ours, smallCapture(8));
   std::ifstream file(ours + "/capture.json");
-  const std::string json((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-  ASSERT_FALSE(json.empty());
-  EXPECT_EQ(json.find("phase_direction"), std::string::npos);
-  EXPECT_EQ(json.find("phase_offset_deg"), std::string::npos);
-  EXPECT_EQ(json.find("gray_unit"), std::string::npos);
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.find("phase_direction"), std::string::npos);
+  EXPECT_EQ(text.find("phase_offset_deg"), std::string::npos);
+  EXPECT_EQ(text.find("gray_unit"), std::string::npos);
 }
 
 TEST_F(CaptureTest, FrameTimesAreOptionalAndRoundTrip) {

@@ -37,7 +37,7 @@ bool reachable(const PickParams& params, const DetectedPart& detected) {
   return planPicks({detected}, {}, params).picks.size() == 1;
 }
 
-TEST(picking_bin, VerticalGraspNearAWallIsRejectedInTheCentreAccepted) {
+TEST(PickingBin, VerticalGraspNearAWallIsRejectedInTheCentreAccepted) {
   const PickParams params = wideToolParams();
   EXPECT_FALSE(reachable(params, partGraspedAt({0.185, 0, 0.06})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0, -0.135, 0.06})));
@@ -45,7 +45,7 @@ TEST(picking_bin, VerticalGraspNearAWallIsRejectedInTheCentreAccepted) {
 }
 
 // Analytic, not sampled: 1 mm either side of each limit decides.
-TEST(picking_bin, VerticalCorridorLimitsHoldToTheMillimetre) {
+TEST(PickingBin, VerticalCorridorLimitsHoldToTheMillimetre) {
   const PickParams params = wideToolParams();
   EXPECT_TRUE(reachable(params, partGraspedAt({0.169, 0, 0.06})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0.171, 0, 0.06})));
@@ -55,7 +55,7 @@ TEST(picking_bin, VerticalCorridorLimitsHoldToTheMillimetre) {
 
 // The 6 mm cup is narrower than the body: 10 mm from the wall it fits (3 mm + 5 mm clearance)
 // once the body, 25 mm behind the grasp point, is above the wall top; 7 mm from it it does not.
-TEST(picking_bin, BesideTheWallOnlyTheCupMustFitBelowTheWallTop) {
+TEST(PickingBin, BesideTheWallOnlyTheCupMustFitBelowTheWallTop) {
   PickParams params = wideToolParams();
   EXPECT_TRUE(reachable(params, partGraspedAt({0.19, 0, 0.126})));
   EXPECT_FALSE(reachable(params, partGraspedAt({0.19, 0, 0.124})));
@@ -71,7 +71,7 @@ TEST(picking_bin, BesideTheWallOnlyTheCupMustFitBelowTheWallTop) {
 // A flat part on the floor 2 mm too close to the +x wall for a straight approach: the body's
 // lowest slice, 25 mm behind the grasp point, clears once the approach leans by asin(2 / 25) =
 // 4.6 degrees away from the wall, so the first whole degree that does is 5.
-TEST(picking_bin, ASuctionToolBesideAWallLeansAwayFromIt) {
+TEST(PickingBin, ASuctionToolBesideAWallLeansAwayFromIt) {
   PickParams params = leaningToolParams();
   const DetectedPart by_the_wall = partGraspedAt({0.172, 0, 0.02});
   const PickPlan plan = planPicks({by_the_wall}, {}, params);
@@ -92,7 +92,7 @@ TEST(picking_bin, ASuctionToolBesideAWallLeansAwayFromIt) {
 
 // In a corner the tool leans along the diagonal: 1.5 mm too close to both walls needs
 // asin(1.5 * sqrt(2) / 25) = 4.9 degrees.
-TEST(picking_bin, InACornerTheToolLeansAlongTheDiagonal) {
+TEST(PickingBin, InACornerTheToolLeansAlongTheDiagonal) {
   const PickPlan plan = planPicks({partGraspedAt({0.1715, -0.1215, 0.02})}, {}, leaningToolParams());
   ASSERT_TRUE(picksOne(plan));
   EXPECT_NEAR(plan.picks[0].lean_deg, 5.0, 1e-6);
@@ -109,7 +109,7 @@ PickParams leaningGraspParams() {
   return params;
 }
 
-TEST(picking_bin, CorridorCrossingTheWallTopIsRejected) {
+TEST(PickingBin, CorridorCrossingTheWallTopIsRejected) {
   const PickParams params = leaningGraspParams();
   // Grasp point 30 mm inside the shrunk box, but the corridor leaves over the +x wall top.
   EXPECT_FALSE(reachable(params, partGraspedAt({0.14, 0, 0.12})));
@@ -121,7 +121,7 @@ TEST(picking_bin, CorridorCrossingTheWallTopIsRejected) {
 // A tilted corridor's slice reaches 30 mm * sin(45) below its axis: every slice whose axis is
 // below 150 + 21.2 mm must have it within 170 mm of the centre in x. Along the corridor x grows
 // as z does, so from a grasp point at z = 120 mm the limit is x = 170 - 51.2 mm.
-TEST(picking_bin, TiltedCorridorLimitHoldsToTheMillimetre) {
+TEST(PickingBin, TiltedCorridorLimitHoldsToTheMillimetre) {
   const PickParams params = leaningGraspParams();
   const double radius = params.gripper.tool_radius + params.wall_clearance;
   const double checked_up_to = params.bin.wall_height + radius * std::sin(radians(45));
@@ -131,14 +131,14 @@ TEST(picking_bin, TiltedCorridorLimitHoldsToTheMillimetre) {
 }
 
 // A thin part lying on the floor is pickable: only the corridor's axis must stay above it.
-TEST(picking_bin, GraspPointJustAboveTheFloorIsAcceptedBelowItRejected) {
+TEST(PickingBin, GraspPointJustAboveTheFloorIsAcceptedBelowItRejected) {
   PickParams params;
   params.grasps = {{"flat", pose({0, 0, 0.002}, rotX(180))}};
   EXPECT_TRUE(reachable(params, part({0, 0, 0})));
   EXPECT_FALSE(reachable(params, part({0, 0, -0.003})));
 }
 
-TEST(picking_bin, ApproachFromBelowTheFloorIsRejected) {
+TEST(PickingBin, ApproachFromBelowTheFloorIsRejected) {
   PickParams params = wideToolParams();
   params.max_tilt_deg = 180;
   const DetectedPart upside_down = part({0, 0, 0.05}, rotX(180));  // grasp point 30 mm up
@@ -152,7 +152,7 @@ TEST(picking_bin, ApproachFromBelowTheFloorIsRejected) {
 // Tilted 50 degrees towards the +x wall from a grasp point 50 mm off the centre, 30 mm up: the
 // pre-grasp point (100 mm out) stays within the corridor's 170 mm, but the body behind it (25 mm
 // of cup and 150 mm of tool) swings out to x = 220 mm below the wall top.
-TEST(picking_bin, ATiltedToolsBodySwingsOverTheWallBeyondThePreGraspPoint) {
+TEST(PickingBin, ATiltedToolsBodySwingsOverTheWallBeyondThePreGraspPoint) {
   PickParams params = wideToolParams();
   const Eigen::Matrix3d tilt = rotY(50);
   const DetectedPart tilted = part(Eigen::Vector3d(0.05, 0, 0.03) - tilt * Eigen::Vector3d(0, 0, 0.02), tilt);
@@ -166,7 +166,7 @@ TEST(picking_bin, ATiltedToolsBodySwingsOverTheWallBeyondThePreGraspPoint) {
 // within 187.8 mm of the centre along the bin (137.8 across). 160 mm along the bin the body
 // clears the +x wall (170 mm); closing along x the +x finger's axis is at 194 mm; turned a
 // quarter, closing along the wall, the fingers clear it.
-TEST(picking_bin, JawsFingersAreCheckedAgainstTheWalls) {
+TEST(PickingBin, JawsFingersAreCheckedAgainstTheWalls) {
   PickParams params = wideToolParams();
   params.gripper.type = GripperType::Parallel;
   params.grasps = {{"across", pose({0, 0, 0.02}, rotX(180)), 1.0, 0.050}};
@@ -182,7 +182,7 @@ TEST(picking_bin, JawsFingersAreCheckedAgainstTheWalls) {
 
 // The bin turned a quarter about base z (its length along base y), tilted 10 degrees and moved:
 // limits hold in the bin frame, and the pick is the bin-frame grasp carried into the base.
-TEST(picking_bin, MovedAndTiltedBinChecksInItsOwnFrame) {
+TEST(PickingBin, MovedAndTiltedBinChecksInItsOwnFrame) {
   PickParams params = wideToolParams();
   params.bin.T_base_bin = pose({0.8, -0.2, 0.3}, rotZ(90) * rotX(10));
   const auto inBin = [&params](const Eigen::Vector3d& grasp_point_in_bin) {

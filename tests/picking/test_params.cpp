@@ -22,7 +22,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   return throwsNaming([&] { params.validate(); }, "picking." + field + " must be");
 }
 
-TEST(picking_params, DefaultsWithAGraspAreValid) {
+TEST(PickingParams, DefaultsWithAGraspAreValid) {
   EXPECT_NO_THROW(topGraspParams().validate());
   PickParams with_axis = topGraspParams();
   with_axis.symmetry.continuous_axis = Eigen::Vector3d(1, 1, 0);
@@ -30,7 +30,7 @@ TEST(picking_params, DefaultsWithAGraspAreValid) {
   EXPECT_NO_THROW(with_axis.validate());
 }
 
-TEST(picking_params, GraspsMustBeGivenAndRigid) {
+TEST(PickingParams, GraspsMustBeGivenAndRigid) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.grasps.clear(); }, "grasps"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.grasps[0].T_model_grasp.translation().x() = kNaN; }, "grasps"));
   PickParams scaled = topGraspParams();
@@ -38,7 +38,7 @@ TEST(picking_params, GraspsMustBeGivenAndRigid) {
   EXPECT_TRUE(throwsNaming([&] { scaled.validate(); }, "(got top)"));  // names the grasp
 }
 
-TEST(picking_params, SymmetriesMustBeRotationsHoldingTheIdentity) {
+TEST(PickingParams, SymmetriesMustBeRotationsHoldingTheIdentity) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.discrete.clear(); }, "symmetry.discrete"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.symmetry.discrete.push_back(Eigen::Vector3d(1, 1, -1).asDiagonal()); },
                       "symmetry.discrete"));  // a mirror
@@ -49,14 +49,14 @@ TEST(picking_params, SymmetriesMustBeRotationsHoldingTheIdentity) {
                       "symmetry.continuous_axis"));
 }
 
-TEST(picking_params, BinMustBeARigidPoseAndPositiveSizes) {
+TEST(PickingParams, BinMustBeARigidPoseAndPositiveSizes) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.bin.T_base_bin.linear() *= 0.5; }, "bin.T_base_bin"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.bin.length = 0; }, "bin.length"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.bin.width = kNaN; }, "bin.width"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.bin.wall_height = -0.1; }, "bin.wall_height"));
 }
 
-TEST(picking_params, DistancesAnglesAndStepsMustBeInRange) {
+TEST(PickingParams, DistancesAnglesAndStepsMustBeInRange) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.approach_distance = -0.01; }, "approach_distance"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.gripper.tool_radius = kNaN; }, "gripper.tool_radius"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.gripper.cup_diameter = 0; }, "gripper.cup_diameter"));
@@ -73,7 +73,7 @@ TEST(picking_params, DistancesAnglesAndStepsMustBeInRange) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.cover_height = kNaN; }, "cover_height"));
 }
 
-TEST(picking_params, RankingWeightsAndGraspQualityMustBeInRange) {
+TEST(PickingParams, RankingWeightsAndGraspQualityMustBeInRange) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.ranking.free = -1; }, "ranking.free"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.ranking.clearance = kNaN; }, "ranking.clearance"));
   EXPECT_TRUE(rejects([](PickParams& p) { p.ranking.quality = -0.5; }, "ranking.quality"));
@@ -81,7 +81,7 @@ TEST(picking_params, RankingWeightsAndGraspQualityMustBeInRange) {
   EXPECT_TRUE(rejects([](PickParams& p) { p.grasps[0].width = -0.01; }, "grasps"));
 }
 
-TEST(picking_params, PickOrderNames) {
+TEST(PickingParams, PickOrderNames) {
   EXPECT_EQ(pickOrderFromName("highest_first"), PickOrder::HighestFirst);
   EXPECT_EQ(pickOrderFromName("best_score"), PickOrder::BestScore);
   EXPECT_EQ(pickOrderFromName("best_rank"), PickOrder::BestRank);

@@ -27,7 +27,7 @@ DetectedPart partWithTop(const Eigen::Vector3d& top, CloudBuilder& cloud) {
   return part(top - Eigen::Vector3d(0, 0, 0.02));
 }
 
-TEST(picking_ranking, APartCoveredByAnotherPartsPointsLosesToAFreeOne) {
+TEST(PickingRanking, APartCoveredByAnotherPartsPointsLosesToAFreeOne) {
   CloudBuilder cloud;
   cloud.slab(-0.19, 0.19, -0.14, 0.14, 0.0);  // the floor
   const std::vector<DetectedPart> parts = {partWithTop({-0.08, 0, 0.07}, cloud), partWithTop({0.08, 0, 0.07}, cloud)};
@@ -53,7 +53,7 @@ TEST(picking_ranking, APartCoveredByAnotherPartsPointsLosesToAFreeOne) {
 }
 
 // Each grasp counted by the furthest test any of its grasps reached.
-TEST(picking_ranking, RejectionsAreCountedByReason) {
+TEST(PickingRanking, RejectionsAreCountedByReason) {
   PickParams params = topGraspParams();
   params.grasps.push_back({"steep", pose({0, 0, 0.02}, rotY(70) * rotX(180))});  // always > 60 deg
   CloudBuilder cloud;
@@ -76,7 +76,7 @@ TEST(picking_ranking, RejectionsAreCountedByReason) {
   EXPECT_EQ(without_cloud.rejected.cloud, 0);
 }
 
-TEST(picking_ranking, ACollidingGraspGivesWayToTheNextOne) {
+TEST(PickingRanking, ACollidingGraspGivesWayToTheNextOne) {
   PickParams params = topGraspParams();
   params.gripper.cup_diameter = 0.016;  // the cup reaches 10 mm from the axis with the margin
   params.gripper.tool_radius = 0.025;
@@ -97,7 +97,7 @@ TEST(picking_ranking, ACollidingGraspGivesWayToTheNextOne) {
   EXPECT_FALSE(toolCollision(scene, plan.picks[0].T_base_grasp, params.gripper, {}).collision);
 }
 
-TEST(picking_ranking, RankingPrefersHigherCoverageAndLowerTilt) {
+TEST(PickingRanking, RankingPrefersHigherCoverageAndLowerTilt) {
   PickParams params = topGraspParams();
   std::vector<DetectedPart> parts = {part({-0.05, 0, 0.05}), part({0.05, 0, 0.05})};
   parts[0].coverage = 0.6;
@@ -118,7 +118,7 @@ TEST(picking_ranking, RankingPrefersHigherCoverageAndLowerTilt) {
 
 // The documented sum (picking.hpp): free 2, height 1 (70 / 150 mm), coverage 1 (0.8), upright 1
 // (tilt 0), clearance 0.5 (capped: no cloud), quality 1 (0.7).
-TEST(picking_ranking, TheRankIsTheDocumentedWeightedSum) {
+TEST(PickingRanking, TheRankIsTheDocumentedWeightedSum) {
   PickParams params = topGraspParams();
   params.grasps[0].quality = 0.7;
   DetectedPart detected = part({0, 0, 0.05});
@@ -127,6 +127,55 @@ TEST(picking_ranking, TheRankIsTheDocumentedWeightedSum) {
   ASSERT_TRUE(picksOne(plan));
   EXPECT_NEAR(plan.picks[0].rank, 2.0 + 0.07 / 0.15 + 0.8 + 1.0 + 0.5 + 0.7, 1e-9);
   EXPECT_NEAR(plan.picks[0].clearance, params.clearance_cap, 1e-12);
+}
+
+// A part the detector is not sure of (its turned twin explains the range nearly as well) comes
+// after the sure ones, however well the planner ranks it; its rank itself stays what it was.
+TEST(PickingRanking, APartTheDetectorIsNotSureOfIsPickedAfterTheSureOnes) {
+  PickParams params = topGraspParams();
+  // Part 0's top 40 mm higher and its coverage better: the higher rank.
+  std::vector<DetectedPart> parts = {part({-0.05, 0, 0.09}), part({0.05, 0, 0.05}), part({0.0, 0.08, 0.07})};
+  parts[0].coverage = 0.95;
+  parts[1].coverage = 0.7;
+  parts[2].coverage = 0.8;
+  const PickPlan all_sure = planPicks(parts, {}, params);
+  ASSERT_EQ(pickedObjects(all_sure), (std::vector<int>{0, 2, 1}));
+  ASSERT_GT(all_sure.picks[0].rank, all_sure.picks[1].rank);
+
+  parts[0].sure = false;
+  const PickPlan plan = planPicks(parts, {}, params);
+  ASSERT_EQ(pickedObjects(plan), (std::vector<int>{2, 1, 0}));
+  EXPECT_EQ(plan.picks[2].rank, all_sure.picks[0].rank);
+  EXPECT_EQ(plan.picks[2].T_base_grasp.matrix(), all_sure.picks[0].T_base_grasp.matrix());
+  // Among the unsure ones the rank still decides.
+  parts[2].sure = false;
+  EXPECT_EQ(pickedObjects(planPicks(parts, {}, params)), (std::vector<int>{1, 0, 2}));
+
+  // The explicit orders keep their one key.
+  params.order = PickOrder::HighestFirst;
+  EXPECT_EQ(pickedObjects(planPicks(parts, {}, params)), (std::vector<int>{0, 2, 1}));
+}
+
+// With every part sure (the default) the plan is what the rank alone gives, on a measured scene too.
+TEST(PickingRanking, AllSurePartsArePlannedAsBefore) {
+  CloudBuilder cloud;
+  cloud.slab(-0.19, 0.19, -0.14, 0.14, 0.0);  // the floor
+  std::vector<DetectedPart> parts = {partWithTop({-0.08, 0, 0.07}, cloud), partWithTop({0.08, 0, 0.09}, cloud),
+                                     partWithTop({0.0, 0.07, 0.05}, cloud)};
+  cloud.slab(-0.08 + 0.03, -0.08 + 0.045, -0.04, 0.04, 0.10);  // a neighbour over part 0
+  const MeasuredScene scene = cloud.scene();
+  const PickParams params = topGraspParams();
+  const PickPlan by_default = planPicks(parts, {}, params, &scene);
+  ASSERT_EQ(pickedObjects(by_default), (std::vector<int>{1, 2, 0}));
+  for (DetectedPart& p : parts) p.sure = true;
+  const PickPlan all_sure = planPicks(parts, {}, params, &scene);
+  ASSERT_EQ(pickedObjects(all_sure), pickedObjects(by_default));
+  for (std::size_t i = 0; i < all_sure.picks.size(); ++i) {
+    EXPECT_EQ(all_sure.picks[i].rank, by_default.picks[i].rank);
+    EXPECT_EQ(all_sure.picks[i].T_base_grasp.matrix(), by_default.picks[i].T_base_grasp.matrix());
+  }
+  // Ranked by the rank alone: descending.
+  for (std::size_t i = 1; i < all_sure.picks.size(); ++i) EXPECT_GT(all_sure.picks[i - 1].rank, all_sure.picks[i].rank);
 }
 
 // ---- A full-size cycle: 1280 x 1024 pixels, 20 boxes on the floor ------------------------------
@@ -165,7 +214,7 @@ io::PointCloud blockCloud(const std::vector<Block>& blocks, const Eigen::Isometr
   return cloud;
 }
 
-TEST(picking_ranking, TwentyPartsOnAFullSizeCloud) {
+TEST(PickingRanking, TwentyPartsOnAFullSizeCloud) {
   const std::vector<Block> blocks = randomBlocks(20, 11);
   const Eigen::Isometry3d T_base_camera = pose({0, 0, 1.0}, rotX(180));
   const io::PointCloud cloud = blockCloud(blocks, T_base_camera);

@@ -20,7 +20,7 @@ std::vector<int> pickedObjects(const PickPlan& plan) {
   return objects;
 }
 
-TEST(picking_planner, BasePoseMatchesAHandComputedOne) {
+TEST(PickingPlanner, BasePoseMatchesAHandComputedOne) {
   PickParams params;
   params.grasps = {{"offset", pose({0.01, 0, 0.02}, rotX(180))}};
   const PickPlan plan = planPicks({part({0.05, -0.03, 0.08}, rotZ(30))}, {}, params);
@@ -37,7 +37,7 @@ TEST(picking_planner, BasePoseMatchesAHandComputedOne) {
   EXPECT_NEAR(plan.picks[0].tilt_deg, 0.0, 1e-6);
 }
 
-TEST(picking_planner, ApproachSteeperThanMaxTiltIsRejected) {
+TEST(PickingPlanner, ApproachSteeperThanMaxTiltIsRejected) {
   PickParams params = topGraspParams();
   const DetectedPart leaning = part({0, 0, 0.06}, rotY(50));
   params.max_tilt_deg = 50.001;
@@ -51,7 +51,7 @@ TEST(picking_planner, ApproachSteeperThanMaxTiltIsRejected) {
   EXPECT_EQ(too_steep.rejected.total(), 1);
 }
 
-TEST(picking_planner, LeastTiltWinsThenTheLowestGraspIndex) {
+TEST(PickingPlanner, LeastTiltWinsThenTheLowestGraspIndex) {
   PickParams params;
   // "top_again" holds the tool's x axis along base +x, "top" 60 degrees off it: the grasp
   // index decides before the wrist angle.
@@ -68,7 +68,7 @@ TEST(picking_planner, LeastTiltWinsThenTheLowestGraspIndex) {
   EXPECT_NEAR(leaning.picks[0].tilt_deg, 0.0, 1e-6);
 }
 
-TEST(picking_planner, ObjectsNearAFailedPickAreAvoided) {
+TEST(PickingPlanner, ObjectsNearAFailedPickAreAvoided) {
   const PickParams params = topGraspParams();  // avoid_radius 20 mm
   const std::vector<DetectedPart> parts = {part({-0.05, 0, 0.05}), part({0.05, 0, 0.05})};
   const PickPlan plan = planPicks(parts, {{-0.035, 0, 0.05}}, params);  // 15 mm from part 0
@@ -91,21 +91,21 @@ std::vector<DetectedPart> partsForOrdering() {
   return parts;
 }
 
-TEST(picking_planner, HighestFirstOrdersByHeightThenScoreThenIndex) {
+TEST(PickingPlanner, HighestFirstOrdersByHeightThenScoreThenIndex) {
   PickParams params = topGraspParams();
   params.order = PickOrder::HighestFirst;
   const PickPlan plan = planPicks(partsForOrdering(), {}, params);
   EXPECT_EQ(pickedObjects(plan), (std::vector<int>{4, 1, 2, 0, 3}));
 }
 
-TEST(picking_planner, BestScoreOrdersByScoreThenHeightThenIndex) {
+TEST(PickingPlanner, BestScoreOrdersByScoreThenHeightThenIndex) {
   PickParams params = topGraspParams();
   params.order = PickOrder::BestScore;
   const PickPlan plan = planPicks(partsForOrdering(), {}, params);
   EXPECT_EQ(pickedObjects(plan), (std::vector<int>{2, 4, 0, 3, 1}));
 }
 
-TEST(picking_planner, InvalidDetectionsAreSkippedAndCounted) {
+TEST(PickingPlanner, InvalidDetectionsAreSkippedAndCounted) {
   const PickParams params = topGraspParams();
   std::vector<DetectedPart> parts(6, part({0, 0, 0.05}));
   parts[0].T_base_model.translation().x() = kNaN;
@@ -119,13 +119,13 @@ TEST(picking_planner, InvalidDetectionsAreSkippedAndCounted) {
   EXPECT_EQ(plan.rejected.total(), 5);
 }
 
-TEST(picking_planner, NoDetectionsGiveAnEmptyPlan) {
+TEST(PickingPlanner, NoDetectionsGiveAnEmptyPlan) {
   const PickPlan plan = planPicks({}, {}, topGraspParams());
   EXPECT_TRUE(plan.picks.empty());
   EXPECT_EQ(plan.rejected.total(), 0);
 }
 
-TEST(picking_planner, BadParamsThrowNamingTheField) {
+TEST(PickingPlanner, BadParamsThrowNamingTheField) {
   PickParams params = topGraspParams();
   params.gripper.tool_radius = -0.01;
   EXPECT_TRUE(binpick::test::throwsNaming(

@@ -50,7 +50,7 @@ SealCheck checkAt(const MeasuredSurface& surface, double x, double y, double z =
   return surface.check(pose({x, y, z}), 0.003, 0.0008, SealCheckParams{});
 }
 
-TEST(picking_seal, ACupInsideTheFaceSeals) {
+TEST(PickingSeal, ACupInsideTheFaceSeals) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud cloud = plateauCloud(camera);
   const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
@@ -61,7 +61,7 @@ TEST(picking_seal, ACupInsideTheFaceSeals) {
   EXPECT_TRUE(checkAt(surface, 0.006, -0.006).seals);  // 0.5 mm rim margin still on the face
 }
 
-TEST(picking_seal, ACupOverTheEdgeOrAtTheWrongHeightDoesNot) {
+TEST(PickingSeal, ACupOverTheEdgeOrAtTheWrongHeightDoesNot) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud cloud = plateauCloud(camera);
   const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
@@ -72,7 +72,7 @@ TEST(picking_seal, ACupOverTheEdgeOrAtTheWrongHeightDoesNot) {
   EXPECT_TRUE(checkAt(surface, 0.0, 0.0, kPlateauZ - 0.0008).seals);  // within tolerance + noise
 }
 
-TEST(picking_seal, ATiltedCupMeasuresTheFaceAgainstItsOwnPlane) {
+TEST(PickingSeal, ATiltedCupMeasuresTheFaceAgainstItsOwnPlane) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud cloud = plateauCloud(camera);
   const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
@@ -83,7 +83,7 @@ TEST(picking_seal, ATiltedCupMeasuresTheFaceAgainstItsOwnPlane) {
 
 // 11 degrees off the face: its rim only 0.68 mm off the face, inside the depth tolerance, but the
 // plane the samples measure is turned beyond max_angle_deg (8).
-TEST(picking_seal, ACupTurnedOffTheMeasuredSurfaceDoesNotSeal) {
+TEST(PickingSeal, ACupTurnedOffTheMeasuredSurfaceDoesNotSeal) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud cloud = plateauCloud(camera);
   const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
@@ -96,7 +96,7 @@ TEST(picking_seal, ACupTurnedOffTheMeasuredSurfaceDoesNotSeal) {
   EXPECT_TRUE(surface.check(pose({0, 0, kPlateauZ}, rotY(11)), 0.003, 0.0008, lenient).seals);
 }
 
-TEST(picking_seal, UnmeasuredPixelsUnderTheCupFailIt) {
+TEST(PickingSeal, UnmeasuredPixelsUnderTheCupFailIt) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud shadowed = plateauCloud(camera, [](double x, double) { return x > 0.001; });
   const MeasuredSurface surface(shadowed, camera, Eigen::Isometry3d::Identity());
@@ -106,7 +106,7 @@ TEST(picking_seal, UnmeasuredPixelsUnderTheCupFailIt) {
   EXPECT_TRUE(checkAt(surface, -0.005, 0.0).seals);  // wholly on the measured side
 }
 
-TEST(picking_seal, AnUnmeasuredRimNextToTheFarSideOfAnEdgeFails) {
+TEST(PickingSeal, AnUnmeasuredRimNextToTheFarSideOfAnEdgeFails) {
   const io::LensIntrinsics camera = downwardCamera();
   // A band along the plateau's +x edge measured nothing (a shadow): a few of the 49 samples fall
   // in it, fewer than the share allowed unseen here, but the floor measured beside them shows
@@ -122,7 +122,7 @@ TEST(picking_seal, AnUnmeasuredRimNextToTheFarSideOfAnEdgeFails) {
   EXPECT_TRUE(surface.check(pose({0.0030, 0.0, kPlateauZ}), 0.003, 0.0008, params).seals);
 }
 
-TEST(picking_seal, ACupJustOverTheEdgeSlidesBackOntoTheFace) {
+TEST(PickingSeal, ACupJustOverTheEdgeSlidesBackOntoTheFace) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud cloud = plateauCloud(camera);
   const MeasuredSurface surface(cloud, camera, Eigen::Isometry3d::Identity());
@@ -142,7 +142,7 @@ TEST(picking_seal, ACupJustOverTheEdgeSlidesBackOntoTheFace) {
   EXPECT_TRUE(surface.findSeal(centred, 0.003, 0.0008, params)->isApprox(centred));
 }
 
-TEST(picking_seal, TheBaseFrameIsHonoured) {
+TEST(PickingSeal, TheBaseFrameIsHonoured) {
   const io::LensIntrinsics camera = downwardCamera();
   const io::PointCloud cloud = plateauCloud(camera);
   // The camera 0.9 m above the base origin looking down: base z up is camera -z.
@@ -154,7 +154,7 @@ TEST(picking_seal, TheBaseFrameIsHonoured) {
   EXPECT_FALSE(surface.check(on_floor_edge, 0.003, 0.0008, SealCheckParams{}).seals);
 }
 
-TEST(picking_seal, AnAngleLimitOutsideItsRangeThrowsNamingIt) {
+TEST(PickingSeal, AnAngleLimitOutsideItsRangeThrowsNamingIt) {
   SealCheckParams params;
   params.max_angle_deg = 0.0;
   EXPECT_TRUE(binpick::test::throwsNaming([&] { params.validate(); }, "max_angle_deg"));
@@ -162,7 +162,7 @@ TEST(picking_seal, AnAngleLimitOutsideItsRangeThrowsNamingIt) {
   EXPECT_TRUE(binpick::test::throwsNaming([&] { params.validate(); }, "max_angle_deg"));
 }
 
-TEST(picking_seal, RejectsACloudNotOrganizedAsTheCamera) {
+TEST(PickingSeal, RejectsACloudNotOrganizedAsTheCamera) {
   const io::LensIntrinsics camera = downwardCamera();
   io::PointCloud cloud = plateauCloud(camera);
   cloud.width = 100;

@@ -19,7 +19,7 @@ Eigen::Isometry3d randomPartPose(std::mt19937_64& rng) {
   return pose({x(rng), y(rng), z(rng)}, rotZ(angle(rng)) * rotY(tilt(rng)) * rotZ(angle(rng)));
 }
 
-TEST(picking_symmetry, FourFoldPartTurnedAQuarterGetsTheSamePick) {
+TEST(PickingSymmetry, FourFoldPartTurnedAQuarterGetsTheSamePick) {
   PickParams params;
   params.grasps = {{"off_axis", pose({0.03, 0.01, 0.02}, rotX(180))}};
   params.symmetry.discrete = {rotZ(0), rotZ(90), rotZ(180), rotZ(270)};
@@ -37,7 +37,7 @@ TEST(picking_symmetry, FourFoldPartTurnedAQuarterGetsTheSamePick) {
 
 // The taught grasp approaches 40 degrees off the part's axis; a part leaning 30 degrees the
 // wrong way puts it at 70 degrees (beyond max_tilt), its half-turn twin at 10 degrees.
-TEST(picking_symmetry, TwinOfATooSteepGraspIsPicked) {
+TEST(PickingSymmetry, TwinOfATooSteepGraspIsPicked) {
   PickParams params;
   const Eigen::Isometry3d T_model_grasp = pose({0.02, 0, 0.02}, rotY(40) * rotX(180));
   params.grasps = {{"leaning", T_model_grasp}};
@@ -64,7 +64,7 @@ double wristAngleDeg(const Eigen::Isometry3d& T_base_grasp) {
   return degrees(std::acos(std::clamp(cosine, -1.0, 1.0)));
 }
 
-TEST(picking_symmetry, ContinuousAxisGivesACanonicalWristAngle) {
+TEST(PickingSymmetry, ContinuousAxisGivesACanonicalWristAngle) {
   PickParams params = topGraspParams();
   params.symmetry.continuous_axis = Eigen::Vector3d(0, 0, 2);  // not unit: normalised
   params.continuous_symmetry_steps = 36;
@@ -90,7 +90,7 @@ TEST(picking_symmetry, ContinuousAxisGivesACanonicalWristAngle) {
 
 // An upside-down cylinder is picked at its other end: the half turn about x combined with the
 // turns about the axis.
-TEST(picking_symmetry, ContinuousAndDiscreteSymmetriesCombine) {
+TEST(PickingSymmetry, ContinuousAndDiscreteSymmetriesCombine) {
   PickParams params = topGraspParams();
   params.symmetry.continuous_axis = Eigen::Vector3d::UnitZ();
   const DetectedPart upside_down = part({0.01, 0.02, 0.05}, rotX(180) * rotZ(17));

@@ -1,7 +1,7 @@
 // The calibration check on captures of the virtual cell: under the rig that rendered them the
 // decoded rays meet, under a rig with a wrong baseline or for a decoding with a wrong row they
 // miss by what was done to them.
-#include "binpick/reconstruction/calibration_fit.hpp"
+#include "calibration_fit.hpp"
 
 #include <gtest/gtest.h>
 

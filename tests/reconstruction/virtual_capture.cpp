@@ -6,8 +6,8 @@
 #include <mutex>
 #include <tuple>
 
-#include "binpick/simulation/lighting_presets.hpp"
 #include "binpick/simulation/parts.hpp"
+#include "sensor/lighting_presets.hpp"
 
 namespace binpick::reconstruction::testing {
 

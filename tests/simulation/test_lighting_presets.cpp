@@ -1,6 +1,6 @@
 // The virtual cell's named photometry presets: "clean" is the default, "harsh" renders dark
 // glossy parts whose highlights clip, and an unknown name is refused with the known ones.
-#include "binpick/simulation/lighting_presets.hpp"
+#include "sensor/lighting_presets.hpp"
 
 #include <gtest/gtest.h>
 

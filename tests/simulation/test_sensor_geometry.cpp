@@ -7,9 +7,9 @@
 
 #include "binpick/core/error.hpp"
 #include "binpick/simulation/depth_renderer.hpp"
-#include "binpick/simulation/object_visibility.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
+#include "render/object_visibility.hpp"
 #include "render_test_utils.hpp"
 #include "thrown_message.hpp"
 

@@ -146,6 +146,19 @@ def main():
         assert driver.find_elements(By.CSS_SELECTOR, "#robots tbody tr"), "the robot is listed"
         wait.until(lambda d: d.find_elements(By.CSS_SELECTOR, "#chart rect"))
         assert driver.execute_script("return window.sameDocument;") == "yes", "the page was reloaded"
+        # The low-coverage count of this cycle's reply, and of an earlier binpickd's (named
+        # not_sure there), shown the same way.
+        for key in ("low_coverage", "not_sure"):
+            shown = driver.execute_async_script(
+                "const [key, done] = arguments;"
+                "fetch('/api/status', {cache: 'no-store'}).then((r) => r.json()).then((status) => {"
+                "  const counts = status.last_cycle.counts;"
+                "  delete counts.low_coverage;"
+                "  counts[key] = 3;"
+                "  showRejected(status);"
+                "  done(document.getElementById('rejected').textContent);"
+                "});", key)
+            assert "3 coverage below the minimum" in shown, (key, shown)
         if args.screenshot:
             time.sleep(1.5)  # one more poll: the log and the chart settle
             driver.save_screenshot(args.screenshot)

@@ -108,6 +108,9 @@ TEST_F(WebViewTest, StatusAndCyclesDescribeTheCellAndItsLastCycle) {
   EXPECT_GT(cycle["counts"]["detected"].get<int>(), 0);
   ASSERT_GT(cycle["picks"].size(), 0u);
   EXPECT_EQ(cycle["counts"]["picks"], cycle["picks"].size());
+  // Detections below limits.min_pick_coverage, named for that test (not the detector's `sure`).
+  EXPECT_TRUE(cycle["counts"]["low_coverage"].is_number_unsigned());
+  EXPECT_FALSE(cycle["counts"].contains("not_sure"));
   const json& pick = cycle["picks"][0];
   EXPECT_EQ(pick["order"], 1);
   EXPECT_EQ(pick["position_mm"].size(), 3u);

@@ -14,15 +14,13 @@
 #include "aravis_frame.hpp"
 #include "aravis_support.hpp"
 #include "binpick/acquisition/aravis_camera.hpp"
-#include "component_logger.hpp"
+#include "binpick/core/component_logger.hpp"
 
 namespace binpick::acquisition {
 namespace {
 
 using detail::GErrorSlot;
 using detail::GObjectPtr;
-
-std::shared_ptr<spdlog::logger> log() { return detail::componentLogger("camera"); }
 
 // What the heartbeat thread may touch: shared, so that it outlives the camera object whatever
 // order GLib releases things in.
@@ -34,7 +32,8 @@ struct LostSignal {
 void onControlLost(ArvDevice* /*device*/, gpointer data) {
   auto* signal = static_cast<LostSignal*>(data);
   signal->flag->store(true);
-  log()->error("{}: control lost (the camera stopped answering or another host took it)", signal->name);
+  core::componentLogger("camera")->error("{}: control lost (the camera stopped answering or another host took it)",
+                                         signal->name);
 }
 
 void freeLostSignal(gpointer data, GClosure* /*closure*/) { delete static_cast<LostSignal*>(data); }
@@ -134,7 +133,8 @@ void AravisCamera::open() {
     close();
     throw;
   }
-  log()->info("{}: opened {} ({}, {} buffers)", name_, description_, params_.pixel_format, params_.buffers);
+  core::componentLogger("camera")->info("{}: opened {} ({}, {} buffers)", name_, description_, params_.pixel_format,
+                                        params_.buffers);
 }
 
 void AravisCamera::connect() {
@@ -199,8 +199,9 @@ void AravisCamera::stop() {
   streaming_ = false;
   last_run_ = since(readStatistics(stream_.get()), baseline_);
   const StreamStatistics& s = last_run_;
-  log()->info("{}: stopped: {} frames completed, {} failed, {} underruns, {} packets missing, {} resent", name_,
-              s.completed_frames, s.failed_frames, s.underruns, s.missing_packets, s.resent_packets);
+  core::componentLogger("camera")->info(
+      "{}: stopped: {} frames completed, {} failed, {} underruns, {} packets missing, {} resent", name_,
+      s.completed_frames, s.failed_frames, s.underruns, s.missing_packets, s.resent_packets);
   // A camera that is gone cannot be told to stop: asking only waits out the GVCP retries.
   if (lost_->load()) return;
   GErrorSlot error;
@@ -212,7 +213,7 @@ void AravisCamera::stopStreaming() {
   try {
     stop();
   } catch (const core::Error& e) {
-    log()->warn("{}", e.what());
+    core::componentLogger("camera")->warn("{}", e.what());
   }
 }
 

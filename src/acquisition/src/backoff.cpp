@@ -1,5 +1,5 @@
 // Backoff: doubling waits between attempts that keep failing.
-#include "binpick/acquisition/backoff.hpp"
+#include "backoff.hpp"
 
 #include <algorithm>
 #include <string>

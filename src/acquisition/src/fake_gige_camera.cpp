@@ -15,7 +15,7 @@
 
 #include "aravis_support.hpp"
 #include "binpick/acquisition/fake_gige_camera.hpp"
-#include "component_logger.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "fake_gige_fill.hpp"
 
 namespace binpick::acquisition {
@@ -131,7 +131,7 @@ void FakeGigECamera::suspend() {
   arv_fake_camera_set_control_channel_privilege(arv_gv_fake_camera_get_fake_camera(state_->server.get()), 0);
   std::this_thread::sleep_for(kHeartbeatGrace);
   state_->server.reset();
-  detail::componentLogger("fake camera")->info("fake camera {} at {}: suspended", state_->params.serial, id());
+  core::componentLogger("fake camera")->info("fake camera {} at {}: suspended", state_->params.serial, id());
 }
 
 // A fresh server, as after a power cycle: the client must open() again.
@@ -139,7 +139,7 @@ void FakeGigECamera::resume() {
   const std::lock_guard<std::mutex> lock(state_->control);
   if (state_->server != nullptr) return;
   state_->startServer();
-  detail::componentLogger("fake camera")->info("fake camera {} at {}: resumed", state_->params.serial, id());
+  core::componentLogger("fake camera")->info("fake camera {} at {}: resumed", state_->params.serial, id());
 }
 
 }  // namespace binpick::acquisition

@@ -9,8 +9,8 @@
 #include <thread>
 
 #include "binpick/acquisition/projector.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
-#include "component_logger.hpp"
 
 namespace binpick::acquisition {
 
@@ -64,7 +64,7 @@ class GpioTrigger : public ProjectorTrigger {
  public:
   explicit GpioTrigger(const GpioTriggerParams& params)
       : params_(params), chip_(openChip(params.chip)), line_(requestLine(chip_, params)) {
-    detail::componentLogger("gpio trigger")
+    core::componentLogger("gpio trigger")
         ->info("{}: pulses of {} us, active {}", lineName(params_), params_.pulse_us,
                params_.active_high ? "high" : "low");
   }

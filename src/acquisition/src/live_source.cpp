@@ -4,10 +4,10 @@
 #include <string>
 #include <utility>
 
-#include "binpick/acquisition/backoff.hpp"
+#include "backoff.hpp"
 #include "binpick/acquisition/capture_source.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
-#include "component_logger.hpp"
 
 namespace binpick::acquisition {
 namespace {
@@ -50,15 +50,14 @@ class LiveSource : public CaptureSource {
       // A lost camera is closed now and reopened by the next call; any other fault (a frame that
       // stayed lost) leaves it streaming.
       if (e.connectionLost() || camera_->connectionLost()) {
-        log()->warn("{}: connection lost, reopening before the next capture: {}", cameraName(), e.what());
+        core::componentLogger("live source")
+            ->warn("{}: connection lost, reopening before the next capture: {}", cameraName(), e.what());
         shutDown();
         backoff_.failed(Clock::now());
       }
       throw;
     }
   }
-
-  static std::shared_ptr<spdlog::logger> log() { return detail::componentLogger("live source"); }
 
   std::string cameraName() const {
     try {
@@ -92,10 +91,11 @@ class LiveSource : public CaptureSource {
       const std::string message = "live source: " + cameraName() + " did not open (attempt " +
                                   std::to_string(failed_opens_) + ", next in " +
                                   std::to_string(backoff_.delay().count()) + " ms): " + e.what();
-      log()->warn("{}", message);
+      core::componentLogger("live source")->warn("{}", message);
       throw CaptureError(message, true);
     }
-    if (backoff_.failures() > 0) log()->info("{}: streaming again", cameraName());  // after a fault
+    if (backoff_.failures() > 0)
+      core::componentLogger("live source")->info("{}: streaming again", cameraName());  // after a fault
     backoff_.succeeded();
     failed_opens_ = 0;
     streaming_ = true;
@@ -112,12 +112,12 @@ class LiveSource : public CaptureSource {
     try {
       camera_->stop();
     } catch (const std::exception& e) {
-      log()->debug("{}: stop: {}", cameraName(), e.what());
+      core::componentLogger("live source")->debug("{}: stop: {}", cameraName(), e.what());
     }
     try {
       camera_->close();
     } catch (const std::exception& e) {
-      log()->debug("{}: close: {}", cameraName(), e.what());
+      core::componentLogger("live source")->debug("{}: close: {}", cameraName(), e.what());
     }
   }
 

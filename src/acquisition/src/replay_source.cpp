@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "binpick/acquisition/capture_source.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
-#include "component_logger.hpp"
 
 namespace binpick::acquisition {
 namespace {
@@ -52,11 +52,11 @@ class ReplaySource : public CaptureSource {
  public:
   explicit ReplaySource(const ReplayParams& params) : params_(params) {
     if (!findCaptures(params_.path)) {
-      detail::componentLogger("replay")->warn("{}; every capture fails until there is one", missing_);
+      core::componentLogger("replay")->warn("{}; every capture fails until there is one", missing_);
       return;
     }
-    detail::componentLogger("replay")->info("{}: {} capture(s){}", params_.path, captures_.size(),
-                                            params_.loop ? ", looping" : "");
+    core::componentLogger("replay")->info("{}: {} capture(s){}", params_.path, captures_.size(),
+                                          params_.loop ? ", looping" : "");
   }
 
   std::string description() const override {
@@ -74,7 +74,7 @@ class ReplaySource : public CaptureSource {
     }
     // Move on before reading: a damaged capture is reported once and the replay goes on after it.
     const std::string& directory = captures_[next_++];
-    detail::componentLogger("replay")->debug("reading {}", directory);
+    core::componentLogger("replay")->debug("reading {}", directory);
     return io::readCapture(directory, params_.threads);
   }
 

@@ -5,9 +5,9 @@
 #include <utility>
 
 #include "binpick/acquisition/sequencer.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
-#include "component_logger.hpp"
 
 namespace binpick::acquisition {
 namespace {
@@ -74,7 +74,7 @@ cv::Mat takeFrame(Camera& camera, const SequencerParams& params, const std::stri
     if (attempt > 0) {
       core::throwIfCancelled(cancel, "during the capture, before a retry");
       std::string reason = label + ": " + statusText(frame);
-      detail::componentLogger("sequencer")->warn("retry {} of {}: {}", attempt, params.max_retries, reason);
+      core::componentLogger("sequencer")->warn("retry {} of {}: {}", attempt, params.max_retries, reason);
       ++report.retries;
       report.retry_reasons.push_back(std::move(reason));
       if (frame.status == FrameStatus::Timeout) dropLateFrames(camera);
@@ -120,7 +120,7 @@ CaptureSequencer::CaptureSequencer(Camera& camera, ProjectorTrigger& projector, 
 
 void CaptureSequencer::resynchroniseProjector() {
   if (projector_position_ == 0 || !projector_.advancesOnPulse()) return;
-  detail::componentLogger("sequencer")
+  core::componentLogger("sequencer")
       ->warn("the last capture stopped after {} of {} patterns: pulsing the projector {} times to its first pattern",
              projector_position_, sequence_length_, sequence_length_ - projector_position_);
   for (std::size_t k = projector_position_; k < sequence_length_; ++k) {
@@ -168,7 +168,7 @@ io::Capture CaptureSequencer::capture(const io::PatternSetSpec& patterns, Sequen
   m.bit_depth = bitDepth(capture.images.front());
   m.pattern_set = patterns;
   out.milliseconds = stopwatch.elapsedMs();
-  detail::componentLogger("sequencer")
+  core::componentLogger("sequencer")
       ->info("captured {} images ({}x{}, {}-bit) from {} in {:.0f} ms, {} retries", capture.images.size(),
              m.image_width, m.image_height, m.bit_depth, m.source, out.milliseconds, out.retries);
   return capture;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "binpick/cell/overlay.hpp"
-#include "service_logger.hpp"
+#include "binpick/core/component_logger.hpp"
+#include "overlay.hpp"
 
 namespace binpick::cell {
 
@@ -21,7 +21,9 @@ ArtefactSaver::~ArtefactSaver() {
 void ArtefactSaver::offer(SavedCycle cycle) {
   {
     std::lock_guard lock(mutex_);
-    if (waiting_) logger()->warn("cycle {}: artefacts not saved, two saves are pending already", waiting_->number);
+    if (waiting_)
+      core::componentLogger("cell")->warn("cycle {}: artefacts not saved, two saves are pending already",
+                                          waiting_->number);
     waiting_ = std::move(cycle);  // the newest cycle is the one worth keeping
   }
   wakeup_.notify_one();
@@ -44,9 +46,9 @@ void ArtefactSaver::run() {
       artefacts.detections_json = cycleJson(cycle);
       artefacts.overlay = overlay.empty() ? nullptr : &overlay;
       const std::string directory = store_.save(artefacts);
-      logger()->debug("cycle {}: artefacts in {}", cycle.number, directory);
+      core::componentLogger("cell")->debug("cycle {}: artefacts in {}", cycle.number, directory);
     } catch (const std::exception& e) {  // a full disk must not stop the cell
-      logger()->error("cycle {}: artefacts not saved: {}", cycle.number, e.what());
+      core::componentLogger("cell")->error("cycle {}: artefacts not saved: {}", cycle.number, e.what());
     }
   }
 }

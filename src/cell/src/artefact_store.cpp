@@ -4,8 +4,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <utility>
 
-#include "artefacts_logger.hpp"
 #include "binpick/cell/artefact_store.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "cycle_names.hpp"
@@ -36,7 +36,7 @@ void removeInterruptedSaves(const fs::path& directory) {
     std::error_code remove_error;
     fs::remove_all(entry.path(), remove_error);
     if (remove_error) fail(entry.path(), "cannot remove an interrupted save: " + remove_error.message());
-    artefactsLogger()->info("removed an interrupted save: {}", entry.path().string());
+    core::componentLogger("artefacts")->info("removed an interrupted save: {}", entry.path().string());
   }
   if (error) fail(directory, "cannot list the artefact directory: " + error.message());
 }
@@ -128,7 +128,7 @@ std::string ArtefactStore::save(const CycleArtefacts& cycle) {
     fs::remove_all(partial, ignored);
     rethrowNaming(cycle_directory, cycle.cycle);
   }
-  artefactsLogger()->debug("saved cycle {} to {}", cycle.cycle, cycle_directory.string());
+  core::componentLogger("artefacts")->debug("saved cycle {} to {}", cycle.cycle, cycle_directory.string());
   applyBounds(params_.directory, cycle_directory.filename().string(), params_.max_cycles, params_.max_bytes);
   return cycle_directory.string();
 }

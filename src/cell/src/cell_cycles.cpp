@@ -6,22 +6,15 @@
 
 #include "binpick/acquisition/sequencer.hpp"
 #include "binpick/cell/cell_service.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "cycle_summary.hpp"
-#include "service_logger.hpp"
 #include "service_state.hpp"
 
 namespace binpick::cell {
 namespace {
 
-using robot::Command;
 using robot::Status;
-
-struct CaptureAttempt {
-  io::Capture capture;
-  Status status = Status::Ok;
-  std::string detail;
-};
 
 // A camera fault, a lost frame, an unreadable recording: no image. The source stays usable.
 // A capture cancelled at its deadline or by the stop is no image too: its robot was answered.
@@ -39,6 +32,27 @@ CaptureAttempt captureFrom(acquisition::CaptureSource* source, const core::Cance
     attempt.detail = e.what();
   }
   return attempt;
+}
+
+// The capture on the board: its health, and the cycle moves on to reconstruction.
+void recordCapture(CellReport& report, const CaptureAttempt& attempt) {
+  CaptureHealth& health = report.capture;
+  ++health.captures;
+  health.last_capture = std::chrono::system_clock::now();
+  health.last_ok = attempt.status == Status::Ok;
+  if (!health.last_ok) {
+    ++health.failures;
+    health.last_error = attempt.detail;
+  }
+  report.stage = CycleStage::Reconstructing;
+}
+
+void logCapture(uint64_t cycle, const CaptureAttempt& attempt, AfterCapture next, double capture_ms) {
+  if (attempt.status != Status::Ok)
+    core::componentLogger("cell")->warn("cycle {}: no image: {}", cycle, attempt.detail);
+  if (next == AfterCapture::Late) {
+    core::componentLogger("cell")->warn("cycle {}: the capture took {:.0f} ms, past its deadline", cycle, capture_ms);
+  }
 }
 
 CycleOutcome processSafely(const CellSetup& setup, const Recipe& recipe, const io::Capture& capture,
@@ -64,6 +78,36 @@ CycleOutcome processSafely(const CellSetup& setup, const Recipe& recipe, const i
   }
 }
 
+// The outcome of a cycle that ended with its capture.
+CycleOutcome unprocessedOutcome(const CaptureAttempt& attempt, AfterCapture next) {
+  CycleOutcome outcome;
+  outcome.status = next == AfterCapture::Late ? Status::Timeout : attempt.status;
+  outcome.detail = attempt.detail;
+  return outcome;
+}
+
+// A processed cycle finished after the processing deadline: its waiters were told "timeout" at
+// the deadline, and its picks are late.
+CycleOutcome pastDeadline(CycleOutcome outcome) {
+  outcome.status = Status::Timeout;
+  outcome.detail = "the cycle took " + std::to_string(static_cast<int>(outcome.timing_ms.total)) + " ms" +
+                   (outcome.detail.empty() ? "" : ": " + outcome.detail);
+  return outcome;
+}
+
+void logOutcome(uint64_t cycle, const CycleOutcome& outcome, bool processed) {
+  const auto log = core::componentLogger("cell");
+  const CycleTimings& t = outcome.timing_ms;
+  log->info("cycle {}: {} ({} picks, {} parts) in {:.0f} ms: capture {:.0f}, reconstruct {:.0f}, detect {:.0f}{}",
+            cycle, robot::statusName(outcome.status), outcome.picks.size(), outcome.T_base_objects.size(), t.total,
+            t.capture, t.reconstruct, t.detect, outcome.detail.empty() ? "" : ": " + outcome.detail);
+  for (const std::string& problem : outcome.undeliverable) log->error("cycle {}: {}", cycle, problem);
+  if (processed) {
+    const std::string scene_warning = estimation::sceneWarning(outcome.detection);
+    if (!scene_warning.empty()) log->warn("cycle {}: {}", cycle, scene_warning);
+  }
+}
+
 // A cycle frees images, clouds and tables of a hundred megabytes and more, allocated on several
 // threads (OpenMP workers, the artefact saver): glibc keeps much of that in the threads' arenas
 // instead of returning it to the system, and the resident memory creeps up. Trimming after each
@@ -73,13 +117,97 @@ void releaseFreedMemory(uint64_t cycle) {
 #ifdef __GLIBC__
   const core::Stopwatch trim;
   malloc_trim(0);
-  logger()->debug("cycle {}: freed memory returned to the system in {:.1f} ms", cycle, trim.elapsedMs());
+  core::componentLogger("cell")->debug("cycle {}: freed memory returned to the system in {:.1f} ms", cycle,
+                                       trim.elapsedMs());
 #else
   (void)cycle;
 #endif
 }
 
 }  // namespace
+
+void CellService::runCycles() {
+  while (const std::optional<StartedCycle> cycle = state_->waitForTrigger()) state_->runCycle(*cycle);
+}
+
+std::optional<StartedCycle> CellService::State::waitForTrigger() {
+  std::unique_lock lock(mutex);
+  cycle_wakeup.wait(lock, [&] { return accepted_trigger || stopping; });
+  if (stopping) return std::nullopt;
+  StartedCycle cycle;
+  // The settings that accepted the TRIGGER, not whatever a reload swapped in since.
+  cycle.setup = std::move(accepted_trigger->setup);
+  cycle.recipe = accepted_trigger->recipe;
+  accepted_trigger.reset();
+  if (pending_source) source = std::move(pending_source);
+  cycle.number = cycles_started;
+  cycle.cancel = std::make_shared<core::CancelFlag>();
+  cycle_cancel = cycle.cancel;
+  cycle.avoid = avoidedIn(cycle.number);
+  return cycle;
+}
+
+void CellService::State::runCycle(const StartedCycle& cycle) {
+  const core::Stopwatch cycle_time;  // not lapped: the total includes the capture
+  CaptureAttempt attempt = captureFrom(source.get(), *cycle.cancel);
+  const double capture_ms = cycle_time.elapsedMs();
+  const AfterCapture next = endCapture(cycle, attempt);
+  logCapture(cycle.number, attempt, next, capture_ms);
+
+  const bool processed = next == AfterCapture::Process;
+  CycleOutcome outcome = processed ? process(cycle, attempt.capture) : unprocessedOutcome(attempt, next);
+  outcome.timing_ms.capture = capture_ms;
+  outcome.timing_ms.total = cycle_time.elapsedMs();
+  finishCycle(cycle, std::move(attempt.capture), std::move(outcome), processed);
+  if (cycle.setup->config.limits.trim_memory_after_cycle) releaseFreedMemory(cycle.number);
+}
+
+AfterCapture CellService::State::endCapture(const StartedCycle& cycle, const CaptureAttempt& attempt) {
+  Outbox outbox;
+  AfterCapture next = AfterCapture::End;
+  {
+    std::lock_guard lock(mutex);
+    next = answerCapture(cycle, attempt.status, outbox);
+    board.update([&](CellReport& report) { recordCapture(report, attempt); });
+    publish();
+  }
+  outbox.send(sink);
+  return next;
+}
+
+CycleOutcome CellService::State::process(const StartedCycle& cycle, const io::Capture& capture) {
+  const StageObserver on_stage = [this](CycleStage stage) {
+    board.update([stage](CellReport& report) { report.stage = stage; });
+  };
+  return processSafely(*cycle.setup, cycle.setup->recipes.at(cycle.recipe), capture, cycle.avoid, *cycle.cancel,
+                       on_stage);
+}
+
+void CellService::State::finishCycle(const StartedCycle& cycle, io::Capture capture, CycleOutcome outcome,
+                                     bool processed) {
+  Outbox outbox;
+  bool stopped = false;
+  {
+    std::lock_guard lock(mutex);
+    stopped = stopping;
+    if (processed && stage_expired) {
+      outcome = pastDeadline(std::move(outcome));
+    } else if (processed) {
+      handOutPicks(cycle.number, outcome, outbox);
+    }
+    if (processed) cell_state = CellState::Idle;  // else the next cycle may already be running
+    cycle_cancel.reset();
+    deadline_wakeup.notify_one();
+    recordOutcome(cycle, outcome);
+  }
+  outbox.send(sink);
+  logOutcome(cycle.number, outcome, processed);
+  if (saver && processed && !stopped) {  // a cycle cut short by the stop is not worth the wait
+    saver->offer(SavedCycle{cycle.number, cycle.setup, cycle.recipe, std::move(capture), std::move(outcome)});
+  }
+}
+
+// Helpers; the caller holds the mutex.
 
 void CellService::State::failRunningStage(Status status, Outbox& outbox) {
   if (cycle_cancel) cycle_cancel->cancel();  // nobody waits for its result any more
@@ -92,125 +220,56 @@ void CellService::State::failRunningStage(Status status, Outbox& outbox) {
   stage_expired = true;
 }
 
-void CellService::runCycles() {
-  State& s = *state_;
-  for (;;) {
-    std::unique_lock lock(s.mutex);
-    s.cycle_wakeup.wait(lock, [&] { return s.accepted_trigger || s.stopping; });
-    if (s.stopping) return;
-    // The settings that accepted the TRIGGER, not whatever a reload swapped in since.
-    const std::shared_ptr<const CellSetup> setup = std::move(s.accepted_trigger->setup);
-    const int recipe_index = s.accepted_trigger->recipe;
-    s.accepted_trigger.reset();
-    if (s.pending_source) s.source = std::move(s.pending_source);
-    const uint64_t cycle = s.cycles_started;  // numbered when its TRIGGER was accepted
-    const auto cancel = std::make_shared<core::CancelFlag>();
-    s.cycle_cancel = cancel;
-    std::vector<Eigen::Vector3d> avoid;
-    for (const AvoidEntry& entry : s.avoid) {
-      if (entry.from_cycle <= cycle && cycle <= entry.until_cycle) avoid.push_back(entry.centre);
-    }
-    lock.unlock();
-
-    const core::Stopwatch cycle_time;  // not lapped: the total includes the capture
-    CaptureAttempt attempt = captureFrom(s.source.get(), *cancel);
-    const double capture_ms = cycle_time.elapsedMs();
-
-    Outbox outbox;
-    lock.lock();
-    const bool capture_late = s.stage_expired;
-    if (!capture_late) {
-      if (s.trigger_client) outbox.add(*s.trigger_client, triggerReply(attempt.status, cycle));
-      s.trigger_client.reset();
-      if (attempt.status != Status::Ok) {
-        s.failRunningStage(attempt.status, outbox);
-      } else {
-        s.cell_state = CellState::Computing;
-        s.stage_deadline = Clock::now() + std::chrono::milliseconds(setup->config.limits.processing_timeout_ms);
-        s.stage_expired = false;
-        s.deadline_wakeup.notify_one();
-      }
-    }
-    const bool go_on = !capture_late && attempt.status == Status::Ok && !s.stopping;
-    if (!go_on) s.cell_state = CellState::Idle;  // before the robot hears of it: it may trigger again at once
-    s.board.update([&](CellReport& report) {
-      CaptureHealth& health = report.capture;
-      ++health.captures;
-      health.last_capture = std::chrono::system_clock::now();
-      health.last_ok = attempt.status == Status::Ok;
-      if (!health.last_ok) {
-        ++health.failures;
-        health.last_error = attempt.detail;
-      }
-      report.stage = CycleStage::Reconstructing;
-    });
-    s.publish();
-    lock.unlock();
-    outbox.send(s.sink);
-    if (attempt.status != Status::Ok) logger()->warn("cycle {}: no image: {}", cycle, attempt.detail);
-    if (capture_late) logger()->warn("cycle {}: the capture took {:.0f} ms, past its deadline", cycle, capture_ms);
-
-    CycleOutcome outcome;
-    if (go_on) {
-      const StageObserver on_stage = [&s](CycleStage stage) {
-        s.board.update([stage](CellReport& report) { report.stage = stage; });
-      };
-      outcome = processSafely(*setup, setup->recipes.at(recipe_index), attempt.capture, avoid, *cancel, on_stage);
-    } else {
-      outcome.status = capture_late ? Status::Timeout : attempt.status;
-      outcome.detail = attempt.detail;
-    }
-    outcome.timing_ms.capture = capture_ms;
-    outcome.timing_ms.total = cycle_time.elapsedMs();
-    finishCycle(cycle, setup, recipe_index, std::move(attempt.capture), std::move(outcome), go_on);
-    if (setup->config.limits.trim_memory_after_cycle) releaseFreedMemory(cycle);
+std::vector<Eigen::Vector3d> CellService::State::avoidedIn(uint64_t number) const {
+  std::vector<Eigen::Vector3d> centres;
+  for (const AvoidEntry& entry : avoid) {
+    if (entry.from_cycle <= number && number <= entry.until_cycle) centres.push_back(entry.centre);
   }
+  return centres;
 }
 
-void CellService::finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> setup, int recipe_index,
-                              io::Capture capture, CycleOutcome outcome, bool processed) {
-  State& s = *state_;
-  Outbox outbox;
-  bool stopping = false;
-  {
-    std::lock_guard lock(s.mutex);
-    stopping = s.stopping;
-    if (processed && s.stage_expired) {
-      outcome.status = Status::Timeout;  // its waiters were told at the deadline; the picks are late
-      outcome.detail = "the cycle took " + std::to_string(static_cast<int>(outcome.timing_ms.total)) + " ms" +
-                       (outcome.detail.empty() ? "" : ": " + outcome.detail);
-    } else if (processed) {
-      s.latest = LatestCycle{cycle, outcome.status, outcome.picks, outcome.T_base_objects};
-      s.answerWaiters(outbox);
-    }
-    if (processed) s.cell_state = CellState::Idle;  // else the next cycle may already be running
-    s.cycle_cancel.reset();
-    s.last.cycles_done = cycle;
-    s.last.last_status = outcome.status;
-    s.last.last_detail = outcome.detail;
-    s.last.last_picks = outcome.picks.size();
-    s.last.last_parts_detected = outcome.T_base_objects.size();
-    s.last.last_timing_ms = outcome.timing_ms;
-    s.deadline_wakeup.notify_one();
-    // The history first, so that a report naming this cycle as the latest has it. Microseconds: a
-    // copy of a few summaries.
-    CycleSummary summary = summarizeCycle(cycle, *setup, recipe_index, outcome, std::chrono::system_clock::now());
-    s.board.update([&](CellReport& report) { report.recent = withCycle(*report.recent, std::move(summary)); });
-    s.publish();
+AfterCapture CellService::State::answerCapture(const StartedCycle& cycle, Status status, Outbox& outbox) {
+  if (stage_expired) {  // its robot got "timeout" at the capture deadline
+    cell_state = CellState::Idle;
+    return AfterCapture::Late;
   }
-  outbox.send(s.sink);
-  const CycleTimings& t = outcome.timing_ms;
-  logger()->info("cycle {}: {} ({} picks, {} parts) in {:.0f} ms: capture {:.0f}, reconstruct {:.0f}, detect {:.0f}{}",
-                 cycle, robot::statusName(outcome.status), outcome.picks.size(), outcome.T_base_objects.size(), t.total,
-                 t.capture, t.reconstruct, t.detect, outcome.detail.empty() ? "" : ": " + outcome.detail);
-  for (const std::string& problem : outcome.undeliverable) logger()->error("cycle {}: {}", cycle, problem);
-  if (processed) {
-    const std::string scene_warning = estimation::sceneWarning(outcome.detection);
-    if (!scene_warning.empty()) logger()->warn("cycle {}: {}", cycle, scene_warning);
+  if (trigger_client) outbox.add(*trigger_client, triggerReply(status, cycle.number));
+  trigger_client.reset();
+  if (status != Status::Ok) {
+    failRunningStage(status, outbox);
+  } else {
+    startProcessingStage(cycle.setup->config.limits.processing_timeout_ms);
   }
-  if (s.saver && processed && !stopping) {  // a cycle cut short by the stop is not worth the wait
-    s.saver->offer(SavedCycle{cycle, std::move(setup), recipe_index, std::move(capture), std::move(outcome)});
-  }
+  if (status == Status::Ok && !stopping) return AfterCapture::Process;
+  cell_state = CellState::Idle;  // before the robot hears of it: it may trigger again at once
+  return AfterCapture::End;
+}
+
+void CellService::State::startProcessingStage(int timeout_ms) {
+  cell_state = CellState::Computing;
+  stage_deadline = Clock::now() + std::chrono::milliseconds(timeout_ms);
+  stage_expired = false;
+  deadline_wakeup.notify_one();
+}
+
+void CellService::State::handOutPicks(uint64_t number, const CycleOutcome& outcome, Outbox& outbox) {
+  latest = LatestCycle{number, outcome.status, outcome.picks, outcome.T_base_objects};
+  answerWaiters(outbox);
+}
+
+void CellService::State::recordOutcome(const StartedCycle& cycle, const CycleOutcome& outcome) {
+  last.cycles_done = cycle.number;
+  last.last_status = outcome.status;
+  last.last_detail = outcome.detail;
+  last.last_picks = outcome.picks.size();
+  last.last_parts_detected = outcome.T_base_objects.size();
+  last.last_timing_ms = outcome.timing_ms;
+  // The history first, so that a report naming this cycle as the latest has it. Microseconds: a
+  // copy of a few summaries.
+  CycleSummary summary =
+      summarizeCycle(cycle.number, *cycle.setup, cycle.recipe, outcome, std::chrono::system_clock::now());
+  board.update([&](CellReport& report) { report.recent = withCycle(*report.recent, std::move(summary)); });
+  publish();
 }
 
 void CellService::runDeadlines() {
@@ -227,8 +286,8 @@ void CellService::runDeadlines() {
       continue;
     }
     Outbox outbox;
-    logger()->warn("cycle {}: the {} stage missed its deadline", s.cycles_started,
-                   s.cell_state == CellState::Capturing ? "capture" : "processing");
+    core::componentLogger("cell")->warn("cycle {}: the {} stage missed its deadline", s.cycles_started,
+                                        s.cell_state == CellState::Capturing ? "capture" : "processing");
     s.failRunningStage(Status::Timeout, outbox);
     s.publish();
     lock.unlock();

@@ -5,9 +5,9 @@
 
 #include <algorithm>
 
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 
-#include "service_logger.hpp"
 #include "service_state.hpp"
 
 namespace binpick::cell {
@@ -66,8 +66,9 @@ robot::Reply CellService::State::nextPick() {
     return robot::encodeReplyIfItFits(nextPickReply(latest->picks[i], latest->picks.size() - i - 1), codec);
   };
   while (latest->cursor < latest->picks.size() && !sendable(latest->cursor)) {
-    logger()->error("cycle {}: the pick of object {} cannot be sent with the reloaded robot codec: skipped",
-                    latest->number, latest->picks[latest->cursor].object);
+    core::componentLogger("cell")->error(
+        "cycle {}: the pick of object {} cannot be sent with the reloaded robot codec: skipped", latest->number,
+        latest->picks[latest->cursor].object);
     ++latest->cursor;
   }
   if (latest->cursor >= latest->picks.size()) return nextReply(Status::NoMorePicks);
@@ -160,7 +161,8 @@ std::optional<robot::Reply> CellService::State::answer(robot::ClientId client, c
     case Command::Pose:
       // Hand-eye views are recorded by the calibration tool; a robot sending them here is
       // talking to the wrong program, and the log says which one it wants.
-      logger()->warn("POSE is not served here: hand-eye views are recorded by 'binpick calibrate hand-eye --listen'");
+      core::componentLogger("cell")->warn(
+          "POSE is not served here: hand-eye views are recorded by 'binpick calibrate hand-eye --listen'");
       return refusedReply(Command::Pose, Status::UnknownCommand);
     default: return refusedReply(request.command, Status::UnknownCommand);
   }
@@ -170,8 +172,9 @@ std::optional<robot::Reply> CellService::State::trigger(robot::ClientId client, 
   const int requested = request.argument ? setup->recipeIndex(*request.argument) : recipe;
   if (stopping || cell_state != CellState::Idle || accepted_trigger) return triggerReply(Status::Busy, 0);
   if (!setup->reconstructor || !setup->config.T_base_camera) {
-    logger()->warn("TRIGGER refused: {}",
-                   setup->reconstructor ? "no hand-eye T_base_camera is configured" : setup->calibration_problem);
+    core::componentLogger("cell")->warn("TRIGGER refused: {}", setup->reconstructor
+                                                                   ? "no hand-eye T_base_camera is configured"
+                                                                   : setup->calibration_problem);
     return triggerReply(Status::CalibrationMissing, 0);
   }
   if (requested < 0) return triggerReply(Status::UnknownModel, 0);
@@ -207,15 +210,16 @@ robot::Reply CellService::State::pickFailed(const robot::Request& request) {
                                                              : nullptr;
   if (!objects || *named < 0 || *named >= static_cast<int32_t>(objects->size())) {
     if (!request.argument) {
-      logger()->warn("FAILED without an object, but no pick was handed out yet");
+      core::componentLogger("cell")->warn("FAILED without an object, but no pick was handed out yet");
     } else {
-      logger()->warn("FAILED names object {}, but cycle {} detected {} objects", *named, cycle,
-                     objects ? objects->size() : 0);
+      core::componentLogger("cell")->warn("FAILED names object {}, but cycle {} detected {} objects", *named, cycle,
+                                          objects ? objects->size() : 0);
     }
     return refusedReply(Command::PickFailed, Status::BadMessage);
   }
   const uint64_t cycles = avoidFailedPart((*objects)[static_cast<std::size_t>(*named)].translation());
-  logger()->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *named, cycle, cycles);
+  core::componentLogger("cell")->info("pick of object {} (cycle {}) failed: avoided for {} cycles", *named, cycle,
+                                      cycles);
   return failedReply(Status::Ok, *named);
 }
 

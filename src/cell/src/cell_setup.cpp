@@ -1,13 +1,13 @@
 #include "binpick/cell/cell_setup.hpp"
 
 #include "binpick/acquisition/aravis_camera.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/estimation/config.hpp"
 #include "binpick/estimation/model_cache.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/rig_calibration.hpp"
 #include "binpick/picking/grasp_generation.hpp"
-#include "service_logger.hpp"
 
 namespace binpick::cell {
 namespace {
@@ -19,8 +19,8 @@ picking::PartSymmetry recipeSymmetry(const RecipeConfig& config, const io::Model
   if (!geometry.hasMesh()) return {};
   const core::Stopwatch stopwatch;
   const io::FoundSymmetry found = io::findSymmetry(geometry.mesh);
-  logger()->info("recipe {}: symmetry from the model's mesh: {} ({:.0f} ms)", config.name, found.description,
-                 stopwatch.elapsedMs());
+  core::componentLogger("cell")->info("recipe {}: symmetry from the model's mesh: {} ({:.0f} ms)", config.name,
+                                      found.description, stopwatch.elapsedMs());
   return found.symmetry;
 }
 
@@ -44,9 +44,10 @@ std::vector<picking::Grasp> generatedGrasps(const RecipeConfig& config, const io
                       " gripper fits nowhere on the model; write the recipe's grasps by hand");
   }
   const double ms = stopwatch.elapsedMs();
-  logger()->info("recipe {}: {} {} grasps generated from the model in {:.0f} ms (best: {}, quality {:.2f})",
-                 config.name, grasps.size(), picking::gripperTypeName(cell_picking.gripper.type), ms,
-                 grasps.front().name, grasps.front().quality);
+  core::componentLogger("cell")->info(
+      "recipe {}: {} {} grasps generated from the model in {:.0f} ms (best: {}, quality {:.2f})", config.name,
+      grasps.size(), picking::gripperTypeName(cell_picking.gripper.type), ms, grasps.front().name,
+      grasps.front().quality);
   return grasps;
 }
 
@@ -59,7 +60,7 @@ estimation::PreparedModel preparedModel(const RecipeConfig& config, const estima
   estimation::PreparedModel model =
       estimation::loadOrPrepareModel(config.model_file, params, config.model_cache, &from_cache, &write_problem);
   if (!write_problem.empty()) {
-    logger()->warn(
+    core::componentLogger("cell")->warn(
         "recipe {}: the model was prepared in memory, but its cache cannot be written ({}); the next "
         "start prepares it again",
         config.name, write_problem);
@@ -70,6 +71,7 @@ estimation::PreparedModel preparedModel(const RecipeConfig& config, const estima
 Recipe prepareRecipe(const RecipeConfig& config, const picking::PickParams& cell_picking) {
   estimation::EstimationConfig settings;
   if (!config.settings_file.empty()) settings = estimation::loadEstimationConfig(config.settings_file);
+  for (const std::string& warning : settings.warnings) core::componentLogger("cell")->warn("{}", warning);
   Recipe recipe;
   recipe.name = config.name;
   estimation::PreparedModel model = preparedModel(config, settings.model, recipe.model_from_cache);

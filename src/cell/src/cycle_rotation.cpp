@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "artefacts_logger.hpp"
+#include "binpick/core/component_logger.hpp"
 
 namespace binpick::cell::artefacts_detail {
 
@@ -14,10 +14,11 @@ bool removeCycle(const KeptCycle& cycle) {
   std::error_code error;
   fs::remove_all(cycle.path, error);
   if (error) {
-    artefactsLogger()->warn("cannot delete old cycle directory {}: {}", cycle.path.string(), error.message());
+    core::componentLogger("artefacts")
+        ->warn("cannot delete old cycle directory {}: {}", cycle.path.string(), error.message());
     return false;
   }
-  artefactsLogger()->debug("deleted old cycle directory {}", cycle.path.string());
+  core::componentLogger("artefacts")->debug("deleted old cycle directory {}", cycle.path.string());
   return true;
 }
 

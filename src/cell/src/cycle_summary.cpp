@@ -16,7 +16,7 @@ CycleSummary summarizeCycle(uint64_t cycle, const CellSetup& setup, int recipe_i
   summary.detail = outcome.detail;
   summary.parts_detected = outcome.T_base_objects.size();
   for (const estimation::Detection& detection : outcome.detection.detections) {
-    if (detection.coverage < setup.config.limits.min_pick_coverage) ++summary.not_sure;
+    if (detection.coverage < setup.config.limits.min_pick_coverage) ++summary.low_coverage;
   }
   summary.bin_points = outcome.bin_points;
   for (const picking::Pick& pick : outcome.picks) {

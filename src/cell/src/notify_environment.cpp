@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "binpick/cell/systemd_notify.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "notify_socket.hpp"
 
 namespace binpick::cell {
@@ -38,14 +39,14 @@ std::chrono::microseconds watchdogIntervalFromEnvironment() {
   if (usec_text == nullptr) return std::chrono::microseconds(0);
   const std::optional<std::int64_t> usec = positiveNumber(usec_text);
   if (!usec) {
-    systemd_detail::systemdLogger()->warn(
+    core::componentLogger("systemd")->warn(
         "ignoring WATCHDOG_USEC={}: not a positive number of microseconds; no watchdog", quoted(usec_text));
     return std::chrono::microseconds(0);
   }
   if (pid_text != nullptr) {
     const std::optional<std::int64_t> pid = positiveNumber(pid_text);
     if (!pid || *pid != static_cast<std::int64_t>(::getpid())) {
-      systemd_detail::systemdLogger()->info("WATCHDOG_PID={} is not this process; no watchdog", quoted(pid_text));
+      core::componentLogger("systemd")->info("WATCHDOG_PID={} is not this process; no watchdog", quoted(pid_text));
       return std::chrono::microseconds(0);
     }
   }

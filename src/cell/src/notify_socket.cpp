@@ -9,7 +9,6 @@
 #include <cstddef>
 #include <cstring>
 
-#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 
 namespace binpick::cell::systemd_detail {
@@ -84,7 +83,5 @@ std::string sendDatagram(const std::string& address, const std::string& payload)
   if (static_cast<std::size_t>(sent) != payload.size()) return "sendto(): datagram truncated";
   return "";
 }
-
-std::shared_ptr<spdlog::logger> systemdLogger() { return core::componentLogger("systemd"); }
 
 }  // namespace binpick::cell::systemd_detail

@@ -1,9 +1,6 @@
 #pragma once
-// Internal: the datagram side of the notify protocol, and the logger of this library.
+// Internal: the datagram side of the notify protocol.
 // Stateless functions: thread-safe.
-#include <spdlog/spdlog.h>
-
-#include <memory>
 #include <string>
 
 namespace binpick::cell::systemd_detail {
@@ -15,8 +12,5 @@ void checkNotifyAddress(const std::string& address);
 // Sends `payload` as one datagram to `address` (checked), waiting at most a second for room in a
 // full queue. Returns "" when sent, otherwise why it was not.
 std::string sendDatagram(const std::string& address, const std::string& payload) noexcept;
-
-// The "systemd" logger, created on first use; safe when several threads or libraries race for it.
-std::shared_ptr<spdlog::logger> systemdLogger();
 
 }  // namespace binpick::cell::systemd_detail

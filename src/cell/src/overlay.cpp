@@ -1,4 +1,4 @@
-#include "binpick/cell/overlay.hpp"
+#include "overlay.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -23,7 +23,7 @@ Candidates pickCandidates(const std::vector<Eigen::Isometry3d>& T_base_objects,
   for (std::size_t i = 0; i < T_base_objects.size(); ++i) {
     if (result.detections[i].coverage < min_coverage) continue;
     const estimation::Detection& detection = result.detections[i];
-    candidates.parts.push_back({T_base_objects[i], detection.score, detection.coverage});
+    candidates.parts.push_back({T_base_objects[i], detection.score, detection.coverage, detection.sure});
     candidates.detection.push_back(static_cast<int>(i));
   }
   return candidates;
@@ -36,12 +36,14 @@ void classifyEmpty(CycleOutcome& outcome, const CellSetup& setup) {
   outcome.detail = std::to_string(outcome.bin_points) + " points in the bin";
 }
 
-// "12 parts detected: 2 not sure enough, 4 too tilted, ..." for a cycle without a pick.
-std::string unreachableDetail(std::size_t detected, std::size_t not_sure, const picking::PickRejections& r) {
-  return std::to_string(detected) + " parts detected: " + std::to_string(not_sure) + " not sure enough, " +
-         std::to_string(r.tilt) + " too tilted, " + std::to_string(r.bin) + " with the tool hitting the bin, " +
-         std::to_string(r.cloud) + " with the tool hitting the measured cloud, " + std::to_string(r.seal) +
-         " with no measured face under the cup, " + std::to_string(r.avoided) + " avoided, " +
+// "12 parts detected: 2 with coverage below the minimum, 4 too tilted, ..." for a cycle without a
+// pick. The first count is limits.min_pick_coverage's alone, not the detector's `sure` (which
+// also weighs the turned twins): that one only orders the picks.
+std::string unreachableDetail(std::size_t detected, std::size_t low_coverage, const picking::PickRejections& r) {
+  return std::to_string(detected) + " parts detected: " + std::to_string(low_coverage) +
+         " with coverage below the minimum, " + std::to_string(r.tilt) + " too tilted, " + std::to_string(r.bin) +
+         " with the tool hitting the bin, " + std::to_string(r.cloud) + " with the tool hitting the measured cloud, " +
+         std::to_string(r.seal) + " with no measured face under the cup, " + std::to_string(r.avoided) + " avoided, " +
          std::to_string(r.invalid) + " invalid";
 }
 

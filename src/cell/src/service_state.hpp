@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -58,6 +59,30 @@ struct HandedOutCycle {
 struct AcceptedTrigger {
   std::shared_ptr<const CellSetup> setup;
   int recipe = 0;
+};
+
+// A cycle as the cycle thread takes it up: what its TRIGGER fixed, under the lock, before the
+// capture begins.
+struct StartedCycle {
+  uint64_t number = 0;  // numbered when its TRIGGER was accepted
+  std::shared_ptr<const CellSetup> setup;
+  int recipe = 0;
+  std::shared_ptr<core::CancelFlag> cancel;  // also the state's cycle_cancel while it runs
+  std::vector<Eigen::Vector3d> avoid;        // the centres of the parts this cycle does not pick
+};
+
+// What a capture brought: the images, or why there are none.
+struct CaptureAttempt {
+  io::Capture capture;
+  robot::Status status = robot::Status::Ok;
+  std::string detail;
+};
+
+// What comes after the capture.
+enum class AfterCapture {
+  Process,  // the images came in time: reconstruct, detect, plan
+  Late,     // the capture deadline has answered the robot already: the cycle ends as a timeout
+  End,      // no image, or the service stops: the cycle ends with the capture's status
 };
 
 struct AvoidEntry {
@@ -117,6 +142,28 @@ struct CellService::State {
   // FAILED: avoid the part at `centre` (base frame) in the cycles not yet started; returns for
   // how many.
   uint64_t avoidFailedPart(const Eigen::Vector3d& centre);
+  // The centres of the failed parts avoided in cycle `number`.
+  std::vector<Eigen::Vector3d> avoidedIn(uint64_t number) const;
+  // The capture is in: the TRIGGER's reply, then the processing stage under its deadline, or the
+  // cycle's end.
+  AfterCapture answerCapture(const StartedCycle& cycle, robot::Status status, Outbox& outbox);
+  void startProcessingStage(int timeout_ms);
+  // A processed cycle's picks become the latest, for NEXT; its waiters get their replies.
+  void handOutPicks(uint64_t number, const CycleOutcome& outcome, Outbox& outbox);
+  // The finished cycle for snapshot() and, with the cycle history, on the board.
+  void recordOutcome(const StartedCycle& cycle, const CycleOutcome& outcome);
+
+  // The cycle thread's steps (cell_cycles.cpp), in their order; each takes the mutex itself.
+  // The next TRIGGER the cell accepted, or nothing once the service stops.
+  std::optional<StartedCycle> waitForTrigger();
+  void runCycle(const StartedCycle& cycle);
+  // Ends the capture stage (answerCapture) and publishes the capture; the robot hears of it
+  // after the lock is released.
+  AfterCapture endCapture(const StartedCycle& cycle, const CaptureAttempt& attempt);
+  CycleOutcome process(const StartedCycle& cycle, const io::Capture& capture);
+  // Answers the NEXT requests waiting, records the cycle, logs it and hands it to the artefact
+  // saver. `processed`: the cycle got past its capture.
+  void finishCycle(const StartedCycle& cycle, io::Capture capture, CycleOutcome outcome, bool processed);
 };
 
 }  // namespace binpick::cell

@@ -4,6 +4,7 @@
 
 #include <utility>
 
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "notify_socket.hpp"
 
@@ -65,11 +66,11 @@ void SystemdNotifier::send(const std::string& message) noexcept {
   try {
     if (failure.empty()) {
       if (failure_logged_->exchange(false)) {
-        systemd_detail::systemdLogger()->info("notify socket {} reachable again", socket_path_);
+        core::componentLogger("systemd")->info("notify socket {} reachable again", socket_path_);
       }
     } else if (!failure_logged_->exchange(true)) {
       // Once per outage: a watchdog ping every few seconds would otherwise flood the journal.
-      systemd_detail::systemdLogger()->warn(
+      core::componentLogger("systemd")->warn(
           "cannot notify the service manager at {}: {} (not logged again until a send succeeds)", socket_path_,
           failure);
     }

@@ -9,6 +9,7 @@
 #include "binpick/cell/cell_config.hpp"
 #include "binpick/cell/cell_setup.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/core/pose_yaml.hpp"
 #include "binpick/io/geometry_io.hpp"
 #include "binpick/io/rig_calibration.hpp"
 
@@ -71,7 +72,8 @@ std::string detectionSettings(const simulation::PileParams& pile) {
   std::ostringstream text;
   text << "# The virtual cell's bin: the detector's crop in the camera frame (metres).\n"
        << "detection:\n  scene:\n    crop:\n"
-       << "      centre: " << vector3({0.0, 0.0, 0.5 * (near_z + far_z)}) << "\n"
+       << "      pose:\n"
+       << core::poseYaml(Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 0.5 * (near_z + far_z))), "        ")
        << "      half_extents: "
        << vector3({0.5 * pile.bin_length - kInset, 0.5 * pile.bin_width - kInset, 0.5 * (far_z - near_z)}) << "\n";
   return text.str();

@@ -1,4 +1,4 @@
-#include "binpick/estimation/boundary.hpp"
+#include "boundary.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -113,16 +113,13 @@ std::optional<Eigen::Vector3f> lineDirection(const PixelGrid& grid, const std::v
 }  // namespace
 
 void BoundaryParams::validate() const {
-  if (!(depth_jump_ratio > 0.0f && depth_jump_ratio <= 10.0f)) {
-    throw core::Error("boundary params: depth_jump_ratio must be in (0, 10]");
-  }
-  if (!(crease_angle_deg > 0.0f && crease_angle_deg < 180.0f)) {
-    throw core::Error("boundary params: crease_angle_deg must be in (0, 180)");
-  }
-  if (!(min_linearity >= 1.0f && min_linearity <= 100.0f)) {
-    throw core::Error("boundary params: min_linearity must be in [1, 100]");
-  }
-  if (threads < 0) throw core::Error("boundary params: threads must be >= 0");
+  const char* owner = "detection.boundary";
+  core::requireField(depth_jump_ratio > 0.0f && depth_jump_ratio <= 10.0f, owner, "depth_jump_ratio", "in (0, 10]",
+                     depth_jump_ratio);
+  core::requireField(crease_angle_deg > 0.0f && crease_angle_deg < 180.0f, owner, "crease_angle_deg", "in (0, 180)",
+                     crease_angle_deg);
+  core::requireField(min_linearity >= 1.0f && min_linearity <= 100.0f, owner, "min_linearity", "in [1, 100]",
+                     min_linearity);
 }
 
 BoundaryModel prepareBoundaryModel(const PreparedModel& model, const BoundaryParams& params) {
@@ -170,7 +167,7 @@ BoundaryModel prepareBoundaryModel(const PreparedModel& model, const BoundaryPar
 }
 
 BoundaryPoints sceneBoundaryPoints(const io::PointCloud& cloud, const std::optional<CropBox>& crop,
-                                   const PreparedModel& model, const BoundaryParams& params) {
+                                   const PreparedModel& model, const BoundaryParams& params, int threads) {
   params.validate();
   BoundaryPoints boundary;
   if (!cloud.isOrganized() || cloud.size() == 0) return boundary;
@@ -181,7 +178,7 @@ BoundaryPoints sceneBoundaryPoints(const io::PointCloud& cloud, const std::optio
   const float jump = params.depth_jump_ratio * model.step;
 
   std::vector<uint8_t> is_boundary(cloud.size(), 0);
-#pragma omp parallel for num_threads(core::resolveThreadCount(params.threads)) schedule(static)
+#pragma omp parallel for num_threads(core::resolveThreadCount(threads)) schedule(static)
   for (int v = 0; v < grid.height(); ++v) {
     for (int u = 0; u < grid.width(); ++u) {
       const Eigen::Vector3f& p = grid.at(u, v);

@@ -1,4 +1,4 @@
-#include "binpick/estimation/clustering.hpp"
+#include "clustering.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -47,12 +47,11 @@ float rotationAngle(const Eigen::Matrix3f& a, const Eigen::Matrix3f& b) {
 }  // namespace
 
 void ClusteringParams::validate() const {
-  if (!(max_translation_ratio > 0.0f && max_translation_ratio <= 1.0f)) {
-    throw core::Error("clustering params: max_translation_ratio must be in (0, 1]");
-  }
-  if (!(max_rotation_deg > 0.0f && max_rotation_deg <= 180.0f)) {
-    throw core::Error("clustering params: max_rotation_deg must be in (0, 180]");
-  }
+  const char* owner = "detection.clustering";
+  core::requireField(max_translation_ratio > 0.0f && max_translation_ratio <= 1.0f, owner, "max_translation_ratio",
+                     "in (0, 1]", max_translation_ratio);
+  core::requireField(max_rotation_deg > 0.0f && max_rotation_deg <= 180.0f, owner, "max_rotation_deg", "in (0, 180]",
+                     max_rotation_deg);
 }
 
 std::vector<PoseCluster> clusterPoses(const std::vector<PoseCandidate>& candidates, float diameter,

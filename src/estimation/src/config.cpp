@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "binpick/core/error.hpp"
+#include "binpick/core/orientation.hpp"
+#include "binpick/core/pose_yaml.hpp"
 #include "binpick/core/yaml_section.hpp"
 
 namespace binpick::estimation {
@@ -29,23 +31,37 @@ void readModel(Section s, ModelParams& p) {
   s.finish();
 }
 
-void readCrop(Section s, SceneParams& p) {
-  if (!s.node() || s.node().IsNull()) return;
-  CropBox box;
-  box.T_camera_box.translation() = vector3(s, "centre");
-  box.half_extents = vector3(s, "half_extents");
+// The crop box before it took core's pose form: a centre and roll, pitch, yaw in degrees for
+// Rz(yaw) Ry(pitch) Rx(roll), which is core's fixed_xyz convention with the same three values.
+Eigen::Isometry3d oldCropPose(Section& s) {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = vector3(s, "centre").cast<double>();
   if (s.has("rotation_rpy_deg")) {
-    const Eigen::Vector3f rpy = vector3(s, "rotation_rpy_deg") * static_cast<float>(M_PI / 180.0);
-    box.T_camera_box.linear() =
-        (Eigen::AngleAxisf(rpy.z(), Eigen::Vector3f::UnitZ()) * Eigen::AngleAxisf(rpy.y(), Eigen::Vector3f::UnitY()) *
-         Eigen::AngleAxisf(rpy.x(), Eigen::Vector3f::UnitX()))
-            .toRotationMatrix();
+    const Eigen::Vector3d rpy = vector3(s, "rotation_rpy_deg").cast<double>();
+    pose.linear() = core::rotationFromValues({rpy.x(), rpy.y(), rpy.z()}, core::Orientation::FixedXYZ);
+  }
+  return pose;
+}
+
+// crop: {pose: {translation, rotation, convention} (core's pose form, pose_yaml.hpp), half_extents}.
+void readCrop(Section s, SceneParams& p, std::vector<std::string>& warnings) {
+  if (s.isNull()) return;
+  CropBox box;
+  box.half_extents = vector3(s, "half_extents");
+  if (s.has("pose") || !s.has("centre")) {
+    if (!s.has("pose")) s.fail("pose", "is required: {translation: [x, y, z], rotation: [...], convention: NAME}");
+    box.T_camera_box = core::readPose(s.child("pose")).cast<float>();
+  } else {
+    box.T_camera_box = oldCropPose(s).cast<float>();
+    warnings.push_back(
+        "detection.scene.crop: centre and rotation_rpy_deg are an older form, read for now; write "
+        "pose: {translation: [x, y, z], rotation: [roll, pitch, yaw], convention: fixed_xyz} instead");
   }
   s.finish();
   p.crop = box;
 }
 
-void readDetector(Section s, DetectorParams& p) {
+void readDetector(Section s, DetectorParams& p, std::vector<std::string>& warnings) {
   std::string method = methodName(p.method);
   s.read("method", method);
   try {
@@ -55,7 +71,7 @@ void readDetector(Section s, DetectorParams& p) {
   }
   s.read("threads", p.threads);
   Section scene = s.child("scene");
-  readCrop(scene.child("crop"), p.scene);
+  readCrop(scene.child("crop"), p.scene, warnings);
   scene.read("min_normal_neighbours", p.scene.min_normal_neighbours);
   scene.read("max_window_half_size", p.scene.max_window_half_size);
   scene.read("line_of_sight_cell_ratio", p.scene.line_of_sight_cell_ratio);
@@ -99,6 +115,7 @@ void readDetector(Section s, DetectorParams& p) {
   icp.read("convergence_translation_ratio", p.icp.convergence_translation_ratio);
   icp.read("convergence_rotation_deg", p.icp.convergence_rotation_deg);
   icp.read("fit_distance_ratio", p.icp.fit_distance_ratio);
+  icp.read("max_normal_angle_deg", p.icp.max_normal_angle_deg);
   icp.read("visible_points_only", p.icp.visible_points_only);
   icp.finish();
   Section clustering = s.child("clustering");
@@ -115,7 +132,8 @@ EstimationConfig parseEstimationConfig(const std::string& yaml_text, const std::
   EstimationConfig config;
   Section top(root, "", origin);
   readModel(top.child("model"), config.model);
-  readDetector(top.child("detection"), config.detector);
+  readDetector(top.child("detection"), config.detector, config.warnings);
+  for (std::string& warning : config.warnings) warning = origin + ": " + warning;
   top.skip("reconstruction");  // the same cell file configures reconstruction
   top.finish();
   core::validateSettings(origin, [&] {

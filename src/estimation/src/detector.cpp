@@ -2,16 +2,47 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/core/thread_count.hpp"
-#include "binpick/estimation/range_agreement.hpp"
-#include "point_ops.hpp"
+#include "boundary.hpp"
+#include "clustering.hpp"
+#include "icp.hpp"
+#include "scene.hpp"
+#include "selection.hpp"
+#include "twin_choice.hpp"
+#include "verification.hpp"
+#include "voting.hpp"
+#include "voxel_grid.hpp"
 
 namespace binpick::estimation {
+
+struct Detector::Prepared {
+  PreparedModel model;
+  DetectorParams params;
+  std::shared_ptr<const BoundaryModel> boundary_model;  // boundary.enabled: the model's, or one of its own
+  int threads = 1;                                      // params.threads resolved
+};
+
 namespace {
+
+// What every selection stage works on, for one detect() call.
+struct SceneWork {
+  const PreparedModel& model;
+  const PreparedScene& scene;
+  const DetectorParams& params;
+  int threads;
+  const core::CancelFlag* cancel;
+};
+
+// What a selection stage gives back: the detections in order and what it cost.
+struct Selected {
+  std::vector<Detection> detections;
+  std::size_t refreshes = 0;              // eq. 4 evaluations during Algorithm 1
+  std::size_t seen_through_rejected = 0;  // refined picks refused: the camera saw through them
+  double verification_ms = 0, selection_ms = 0, icp_ms = 0;
+};
 
 bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector3f& centre, const PreparedModel& model,
                      float min_distance) {
@@ -21,123 +52,28 @@ bool repeatsAccepted(const std::vector<Detection>& accepted, const Eigen::Vector
   return false;
 }
 
-// A refined pose and its fit.
-struct Refined {
-  Detection detection;
-  PoseFit fit;
-};
-
-Refined refined(const PoseRefiner& refiner, const PreparedModel& model, const Eigen::Isometry3f& pose,
-                int max_iterations) {
-  const IcpResult icp = refiner.refine(model, pose, max_iterations);
-  Refined r;
-  r.detection.T_camera_model = icp.T_camera_model;
-  r.detection.coverage = icp.coverage;
-  r.detection.icp_rmse = icp.rmse;
-  r.detection.icp_iterations = icp.iterations;
-  r.fit = icp.fit;
-  return r;
-}
-
-// A pose with the range's judgement of it (range_agreement.hpp).
-struct Judged {
-  Refined pose;
-  RangeAgreement agreement;
-  bool judged = false;
-  int consistency() const { return judged ? agreement.consistency() : std::numeric_limits<int>::min(); }
-  float seenThroughShare() const {
-    return agreement.visible == 0 ? 0.0f
-                                  : static_cast<float>(agreement.seen_through) / static_cast<float>(agreement.visible);
-  }
-};
-
-// A turned twin, refined; or where it started when ICP made it agree less with the range (ICP can
-// slide a part lying on one face along it, off its outline). Not judged when it agrees with the
-// range less than `floor` before ICP: it could not win after.
-Judged judgedTwin(const PoseRefiner& refiner, const PreparedModel& model, const LineOfSightMap& map,
-                  const Eigen::Isometry3f& turned, float tolerance, int max_iterations, int floor) {
-  Judged twin;
-  const RangeAgreement start = rangeAgreement(model, turned, map, tolerance);
-  if (start.consistency() < floor) return twin;
-  twin.judged = true;
-  twin.pose = refined(refiner, model, turned, max_iterations);
-  twin.agreement = rangeAgreement(model, twin.pose.detection.T_camera_model, map, tolerance);
-  if (start.consistency() > twin.agreement.consistency()) {
-    twin.pose.fit = refiner.assess(model, turned);
-    twin.pose.detection.T_camera_model = turned;
-    orthonormalise(twin.pose.detection.T_camera_model);
-    twin.pose.detection.coverage = twin.pose.fit.coverage();
-    twin.pose.detection.icp_rmse = twin.pose.fit.rmse;
-    twin.agreement = start;
-  }
-  return twin;
-}
-
-// A pick and its turned twins (near_symmetries.hpp) explain nearly the same scene points when the
-// part shows a single face: each twin that agrees nearly as well with the measured range is
-// refined too, and the pose whose fine surface the range explains most, less what the camera saw
-// through (range_agreement.hpp), is kept. A twin must win by a margin, so that noise does not swap
-// poses that are equally good; only a `turned` twin may win, a `slid` one weighs on the margin.
-// The chosen pose's seen-through share is its range's.
-Detection mostConsistent(const PoseRefiner& refiner, const PreparedModel& model, const LineOfSightMap& map,
-                         const Refined& pick, const NearSymmetries& near_symmetries, float tolerance,
-                         int max_iterations, int threads) {
-  Judged judged_pick{pick, rangeAgreement(model, pick.detection.T_camera_model, map, tolerance), true};
-  const std::size_t turned = near_symmetries.turned.size();
-  const auto turn = [&](std::size_t t) -> const Eigen::Isometry3f& {
-    return t < turned ? near_symmetries.turned[t] : near_symmetries.slid[t - turned];
-  };
-  std::vector<Judged> twins(turned + near_symmetries.slid.size());
-  // The twins are independent: judged side by side (refine() is const and thread-safe), with a
-  // third of the iterations: registered onto the model, each starts within millimetres of its fit.
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (std::size_t t = 0; t < twins.size(); ++t) {
-    twins[t] = judgedTwin(refiner, model, map, pick.detection.T_camera_model * turn(t), tolerance, max_iterations / 3,
-                          judged_pick.consistency() * 4 / 5);
-  }
-  const Judged* best = &judged_pick;
-  int to_beat = judged_pick.consistency() + std::max(3, judged_pick.agreement.visible / 50);
-  for (std::size_t t = 0; t < turned; ++t) {
-    if (twins[t].consistency() > to_beat) best = &twins[t], to_beat = twins[t].consistency();
-  }
-  int runner_up = best == &judged_pick ? std::numeric_limits<int>::min() : judged_pick.consistency();
-  for (const Judged& twin : twins) {
-    if (&twin != best) runner_up = std::max(runner_up, twin.consistency());
-  }
-  Detection chosen = best->pose.detection;
-  chosen.seen_through = best->seenThroughShare();
-  if (runner_up != std::numeric_limits<int>::min()) {
-    chosen.twin_margin = std::min(1.0f, static_cast<float>(best->consistency() - runner_up) /
-                                            static_cast<float>(std::max(1, best->agreement.visible)));
-  }
-  return chosen;
-}
-
-// Sections III-C and III-D: verification, then Algorithm 1 picks poses one by one; each pick is
-// refined by ICP before its scene points stop existing, so that a coarse candidate does not leave
-// half of its object behind for a repeat detection.
-void selectVerified(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                    const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock,
-                    const core::CancelFlag* cancel) {
+// Algorithm 1 with ICP after each pick (section III-D): each pick is refined before its scene
+// points stop existing, so that a coarse candidate does not leave half of its object behind for a
+// repeat detection. Returns the accepted detections in selection order.
+Selected refinedSelection(const SceneWork& work, const std::vector<VerifiedCandidate>& verified, float voxel_size) {
+  const PreparedModel& model = work.model;
+  const DetectorParams& p = work.params;
   static const NearSymmetries kNoTwins;
-  const NearSymmetries& near_symmetries = p.verification.compare_turned ? model.near_symmetries : kNoTwins;
-  const SceneVoxelGrid grid(scene.points, p.verification.voxel_size_ratio * model.step);
-  const std::vector<VerifiedCandidate> verified = verify(candidates, model, scene, grid, p.verification, cancel);
-  result.timing_ms.verification = clock.lapMs();
-
-  const float refined_tolerance = p.verification.refined_tolerance_ratio * model.step;
-  const PoseRefiner refiner(scene, model.step, p.icp);
+  const TwinJudging judging{work.scene.line_of_sight, p.verification.refined_tolerance_ratio * model.step,
+                            p.icp.max_iterations, work.threads};
+  const NearSymmetries& twins = p.verification.compare_turned ? model.near_symmetries : kNoTwins;
+  const PoseRefiner refiner(work.scene, model.step, p.icp);
   // Scene-consistent verification: a candidate's free-space penalty is computed when Algorithm 1
   // first refreshes it (most candidates never are).
-  const int threads = core::resolveThreadCount(p.threads);
   MultipleSelection selection(
-      verified, scene.size(),
-      [&](uint32_t c) { return freeSpacePenalty(model, scene, verified[c].T_camera_model, p.verification); }, threads);
-  const float removal_radius = 1.5f * grid.voxelSize();
+      verified, work.scene.size(),
+      [&](uint32_t c) { return freeSpacePenalty(model, work.scene, verified[c].T_camera_model, p.verification); },
+      work.threads);
+  const float removal_radius = 1.5f * voxel_size;
   const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
-  double icp_ms = 0.0;
-  while (static_cast<int>(result.detections.size()) < p.selection.max_objects) {
+  Selected selected;
+  while (static_cast<int>(selected.detections.size()) < p.selection.max_objects) {
     const auto pick = selection.next();
     if (!pick || pick->score < std::max(min_score, 1u)) break;
     // A candidate already sitting on an accepted part is a repeat whatever ICP makes of it (no two
@@ -145,23 +81,20 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
     // points, so a cloud that yields many of them (e.g. many candidates on one flat face) would
     // otherwise spend most of its time refining them.
     const Eigen::Isometry3f& candidate = verified[pick->candidate].T_camera_model;
-    if (repeatsAccepted(result.detections, candidate * model.centre, model, min_distance)) {
-      continue;
-    }
-    core::throwIfCancelled(cancel, "during selection");
+    if (repeatsAccepted(selected.detections, candidate * model.centre, model, min_distance)) continue;
+    core::throwIfCancelled(work.cancel, "during selection");
     const core::Stopwatch icp_clock;
-    const Refined first = refined(refiner, model, candidate, p.icp.max_iterations);
-    if (repeatsAccepted(result.detections, first.detection.T_camera_model * model.centre, model, min_distance)) {
-      icp_ms += icp_clock.elapsedMs();
+    const RefinedPose first = refinedPose(refiner, model, candidate, p.icp.max_iterations);
+    if (repeatsAccepted(selected.detections, first.detection.T_camera_model * model.centre, model, min_distance)) {
+      selected.icp_ms += icp_clock.elapsedMs();
       continue;
     }
     // Scene-consistent verification again at the refined pose, tighter, and against the pick
     // turned over: ICP may have pulled a candidate onto the one face of a part turned over.
-    Detection d = mostConsistent(refiner, model, scene.line_of_sight, first, near_symmetries, refined_tolerance,
-                                 p.icp.max_iterations, threads);
-    icp_ms += icp_clock.elapsedMs();
+    Detection d = mostConsistent(refiner, model, first, twins, judging);
+    selected.icp_ms += icp_clock.elapsedMs();
     if (d.seen_through > p.verification.max_refined_seen_through) {
-      ++result.seen_through_rejected;
+      ++selected.seen_through_rejected;
       continue;
     }
     if (d.coverage < p.selection.min_coverage) continue;  // refined onto nothing: no part there
@@ -171,39 +104,59 @@ void selectVerified(const PreparedModel& model, const PreparedScene& scene, cons
     // tolerance: a voxel holds one scene point, so removing only those leaves most of a flat face
     // existing, and candidates sliding over that face would be picked (and refined) again and again.
     selection.removeExplained(refiner.scenePointsNear(model, d.T_camera_model, removal_radius));
-    result.detections.push_back(d);
+    selected.detections.push_back(d);
   }
-  // What a robot acts on first should be what the range is sure of: a pose it cannot tell from the
-  // part turned over, or one that explains little of what the camera should see, goes last.
-  for (Detection& d : result.detections) {
-    const bool told_apart = p.selection.sure_twin_margin == 0.0f || d.twin_margin >= p.selection.sure_twin_margin;
-    d.sure = told_apart && d.coverage >= p.selection.sure_coverage;
+  selected.refreshes = selection.refreshCount();
+  return selected;
+}
+
+// What a robot acts on first should be what the range is sure of: a pose it cannot tell from the
+// part turned over, or one that explains little of what the camera should see, goes last.
+void orderSureFirst(std::vector<Detection>& detections, const SelectionParams& p) {
+  for (Detection& d : detections) {
+    const bool told_apart = p.sure_twin_margin == 0.0f || d.twin_margin >= p.sure_twin_margin;
+    d.sure = told_apart && d.coverage >= p.sure_coverage;
   }
-  std::stable_partition(result.detections.begin(), result.detections.end(), [](const Detection& d) { return d.sure; });
-  result.refreshes = selection.refreshCount();
-  result.timing_ms.icp = icp_ms;
-  result.timing_ms.selection = clock.lapMs() - icp_ms;
+  std::stable_partition(detections.begin(), detections.end(), [](const Detection& d) { return d.sure; });
+}
+
+// Sections III-C and III-D: voxel verification of every candidate, then the refined selection,
+// sure detections first.
+Selected selectVerified(const SceneWork& work, const std::vector<PoseCandidate>& candidates) {
+  core::Stopwatch clock;
+  const SceneVoxelGrid grid(work.scene.points, work.params.verification.voxel_size_ratio * work.model.step);
+  const std::vector<VerifiedCandidate> verified =
+      verify(candidates, work.model, work.scene, grid, work.params.verification, work.cancel, work.threads);
+  const double verification_ms = clock.lapMs();
+  Selected selected = refinedSelection(work, verified, grid.voxelSize());
+  orderSureFirst(selected.detections, work.params.selection);
+  selected.verification_ms = verification_ms;
+  selected.selection_ms = clock.lapMs() - selected.icp_ms;
+  return selected;
 }
 
 // Section II-C: clusters of poses, best first, each refined; repeats of an accepted pose skipped.
-void selectClustered(const PreparedModel& model, const PreparedScene& scene, const DetectorParams& p,
-                     const std::vector<PoseCandidate>& candidates, DetectionResult& result, core::Stopwatch& clock,
-                     const core::CancelFlag* cancel) {
+Selected selectClustered(const SceneWork& work, const std::vector<PoseCandidate>& candidates) {
+  const PreparedModel& model = work.model;
+  const DetectorParams& p = work.params;
+  core::Stopwatch clock;
   const std::vector<PoseCluster> clusters = clusterPoses(candidates, model.diameter, p.clustering);
-  core::throwIfCancelled(cancel, "after clustering");
-  result.timing_ms.selection = clock.lapMs();
-  const PoseRefiner refiner(scene, model.step, p.icp);
+  core::throwIfCancelled(work.cancel, "after clustering");
+  Selected selected;
+  selected.selection_ms = clock.lapMs();
+  const PoseRefiner refiner(work.scene, model.step, p.icp);
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
   for (const PoseCluster& cluster : clusters) {
-    if (static_cast<int>(result.detections.size()) >= p.selection.max_objects) break;
-    core::throwIfCancelled(cancel, "during selection");
-    Detection d = refined(refiner, model, cluster.T_camera_model, p.icp.max_iterations).detection;
-    if (repeatsAccepted(result.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
+    if (static_cast<int>(selected.detections.size()) >= p.selection.max_objects) break;
+    core::throwIfCancelled(work.cancel, "during selection");
+    Detection d = refinedPose(refiner, model, cluster.T_camera_model, p.icp.max_iterations).detection;
+    if (repeatsAccepted(selected.detections, d.T_camera_model * model.centre, model, min_distance)) continue;
     d.votes = cluster.votes;
     d.score = static_cast<float>(cluster.votes) / static_cast<float>(clusters.front().votes);
-    result.detections.push_back(d);
+    selected.detections.push_back(d);
   }
-  result.timing_ms.icp = clock.lapMs();
+  selected.icp_ms = clock.lapMs();
+  return selected;
 }
 
 }  // namespace
@@ -236,7 +189,7 @@ DetectorParams DetectorParams::drost(float reference_fraction) {
 }
 
 void DetectorParams::validate() const {
-  if (threads < 0) throw core::Error("detector params: threads must be >= 0");
+  core::requireField(threads >= 0, "detection", "threads", ">= 0 (0: all hardware threads)", threads);
   scene.validate();
   voting.validate();
   boundary.validate();
@@ -246,33 +199,44 @@ void DetectorParams::validate() const {
   clustering.validate();
 }
 
-Detector::Detector(PreparedModel model, DetectorParams params) : model_(std::move(model)), params_(params) {
-  params_.validate();
-  params_.scene.threads = params_.voting.threads = params_.verification.threads = params_.boundary.threads =
-      params_.threads;
-  if (model_.size() == 0) throw core::Error("detector: the model has no points");
-  if (params_.boundary.enabled) {
-    const bool prepared = model_.boundary && model_.boundary_crease_angle_deg == params_.boundary.crease_angle_deg;
-    boundary_model_ = prepared ? model_.boundary
-                               : std::make_shared<const BoundaryModel>(prepareBoundaryModel(model_, params_.boundary));
+Detector::Detector(PreparedModel model, DetectorParams params) {
+  params.validate();
+  if (model.size() == 0) throw core::Error("detector: the model has no points");
+  auto prepared = std::make_shared<Prepared>();
+  if (params.boundary.enabled) {
+    const bool cached = model.boundary && model.boundary_crease_angle_deg == params.boundary.crease_angle_deg;
+    prepared->boundary_model =
+        cached ? model.boundary : std::make_shared<const BoundaryModel>(prepareBoundaryModel(model, params.boundary));
   }
+  prepared->model = std::move(model);
+  prepared->params = params;
+  prepared->threads = core::resolveThreadCount(params.threads);
+  prepared_ = std::move(prepared);
 }
 
+const PreparedModel& Detector::model() const { return prepared_->model; }
+const DetectorParams& Detector::params() const { return prepared_->params; }
+
 DetectionResult Detector::detect(const io::PointCloud& scene_cloud) const {
-  return detect(scene_cloud, params_.scene.crop);
+  return detect(scene_cloud, prepared_->params.scene.crop);
 }
 
 DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop,
                                  const core::CancelFlag* cancel) const {
   core::throwIfCancelled(cancel, "before detection");
+  const PreparedModel& model = prepared_->model;
+  const DetectorParams& params = prepared_->params;
+  const int threads = prepared_->threads;
   const core::Stopwatch total;
   core::Stopwatch clock;
   DetectionResult result;
-  SceneParams scene_params = params_.scene;
+  SceneParams scene_params = params.scene;
   scene_params.crop = crop;
-  const PreparedScene scene = prepareScene(scene_cloud, model_, scene_params);
+  const PreparedScene scene = prepareScene(scene_cloud, model, scene_params, threads);
   BoundaryPoints scene_boundary;
-  if (boundary_model_) scene_boundary = sceneBoundaryPoints(scene_cloud, crop, model_, params_.boundary);
+  if (prepared_->boundary_model) {
+    scene_boundary = sceneBoundaryPoints(scene_cloud, crop, model, params.boundary, threads);
+  }
   result.scene_points = scene.size();
   result.scene_boundary_points = scene_boundary.size();
   result.scene_points_without_normal = scene.without_normal;
@@ -280,17 +244,21 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::o
   core::throwIfCancelled(cancel, "after scene preparation");
 
   std::optional<BoundaryVotes> boundary_votes;
-  if (boundary_model_) boundary_votes.emplace(BoundaryVotes{*boundary_model_, scene_boundary});
+  if (prepared_->boundary_model) boundary_votes.emplace(BoundaryVotes{*prepared_->boundary_model, scene_boundary});
   const std::vector<PoseCandidate> candidates =
-      vote(model_, scene, params_.voting, cancel, boundary_votes ? &*boundary_votes : nullptr);
+      vote(model, scene, params.voting, cancel, boundary_votes ? &*boundary_votes : nullptr, threads);
   result.candidates = candidates.size();
   result.timing_ms.voting = clock.lapMs();
   if (!candidates.empty()) {
-    if (params_.method == Method::LiHashimoto) {
-      selectVerified(model_, scene, params_, candidates, result, clock, cancel);
-    } else {
-      selectClustered(model_, scene, params_, candidates, result, clock, cancel);
-    }
+    const SceneWork work{model, scene, params, threads, cancel};
+    const Selected selected =
+        params.method == Method::LiHashimoto ? selectVerified(work, candidates) : selectClustered(work, candidates);
+    result.detections = selected.detections;
+    result.refreshes = selected.refreshes;
+    result.seen_through_rejected = selected.seen_through_rejected;
+    result.timing_ms.verification = selected.verification_ms;
+    result.timing_ms.selection = selected.selection_ms;
+    result.timing_ms.icp = selected.icp_ms;
   }
   result.timing_ms.total = total.elapsedMs();
   return result;

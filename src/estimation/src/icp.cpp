@@ -1,4 +1,4 @@
-#include "binpick/estimation/icp.hpp"
+#include "icp.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -66,17 +66,21 @@ Eigen::Isometry3f solvePointToPlane(const std::vector<Correspondence>& pairs, fl
 }  // namespace
 
 void IcpParams::validate() const {
-  const auto positive = [](float v, const char* field) {
-    if (!(v > 0.0f) || !std::isfinite(v)) throw core::Error(std::string("icp params: ") + field + " must be positive");
+  const char* owner = "detection.icp";
+  const auto requirePositive = [owner](float value, const char* field) {
+    core::requireField(value > 0.0f && std::isfinite(value), owner, field, "finite and positive", value);
   };
-  if (max_iterations < 0 || max_iterations > 1000) throw core::Error("icp params: max_iterations must be in [0, 1000]");
-  positive(initial_max_distance_ratio, "initial_max_distance_ratio");
-  positive(final_max_distance_ratio, "final_max_distance_ratio");
-  positive(huber_ratio, "huber_ratio");
-  if (!(point_weight >= 0.0f && point_weight <= 10.0f)) throw core::Error("icp params: point_weight must be in [0, 10]");
-  positive(convergence_translation_ratio, "convergence_translation_ratio");
-  positive(convergence_rotation_deg, "convergence_rotation_deg");
-  positive(fit_distance_ratio, "fit_distance_ratio");
+  core::requireField(max_iterations >= 0 && max_iterations <= 1000, owner, "max_iterations", "in [0, 1000]",
+                     max_iterations);
+  requirePositive(initial_max_distance_ratio, "initial_max_distance_ratio");
+  requirePositive(final_max_distance_ratio, "final_max_distance_ratio");
+  requirePositive(huber_ratio, "huber_ratio");
+  core::requireField(point_weight >= 0.0f && point_weight <= 10.0f, owner, "point_weight", "in [0, 10]", point_weight);
+  requirePositive(convergence_translation_ratio, "convergence_translation_ratio");
+  requirePositive(convergence_rotation_deg, "convergence_rotation_deg");
+  requirePositive(fit_distance_ratio, "fit_distance_ratio");
+  core::requireField(max_normal_angle_deg > 0.0f && max_normal_angle_deg <= 180.0f, owner, "max_normal_angle_deg",
+                     "in (0, 180]", max_normal_angle_deg);
 }
 
 std::vector<uint32_t> visibleModelPoints(const PreparedModel& model, const Eigen::Isometry3f& pose) {
@@ -134,6 +138,7 @@ PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams param
     : scene_(scene),
       step_(step),
       params_(params),
+      min_normal_cos_(static_cast<float>(std::cos(static_cast<double>(params.max_normal_angle_deg) * M_PI / 180.0))),
       index_(std::make_unique<Index>(scene.points)) {
   params_.validate();
 }
@@ -183,7 +188,7 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
       const auto [s, distance_sq] = index_->tree.nearest(p);
       if (s < 0 || distance_sq > gate * gate) continue;
       // A scene normal facing away from the moved model normal belongs to another surface.
-      if (scene_.normals[s].dot(pose.linear() * model.normals[k]) < 0.5f) continue;
+      if (scene_.normals[s].dot(pose.linear() * model.normals[k]) < min_normal_cos_) continue;
       pairs.push_back({p, scene_.points[s], scene_.normals[s]});
     }
     if (pairs.size() < 6) break;
@@ -201,9 +206,6 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
 
   // Final fit: residual and how much of what the camera should see of the part is there.
   result.fit = assess(model, result.T_camera_model);
-  result.visible_points = result.fit.visible;
-  result.coverage = result.fit.coverage();
-  result.rmse = result.fit.rmse;
   return result;
 }
 

@@ -1,4 +1,4 @@
-#include "binpick/estimation/line_of_sight.hpp"
+#include "line_of_sight.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "binpick/core/error.hpp"
-#include "binpick/estimation/boundary.hpp"
 #include "binpick/io/mesh_surface.hpp"
 #include "binpick/io/mesh_symmetry.hpp"
+#include "boundary.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
 
@@ -127,16 +127,17 @@ std::string ModelSymmetry::describe() const {
 }
 
 void ModelParams::validate() const {
-  const auto require = [](bool ok, const char* field, const char* rule) {
-    if (!ok) throw core::Error(std::string("model params: ") + field + " " + rule);
-  };
-  require(sampling_ratio > 0.005f && sampling_ratio <= 0.5f, "sampling_ratio", "must be in (0.005, 0.5]");
-  require(angle_step_deg >= 1.0f && angle_step_deg <= 90.0f, "angle_step_deg", "must be in [1, 90]");
-  require(dense_samples_per_step2 >= 1.0f && dense_samples_per_step2 <= 1000.0f, "dense_samples_per_step2",
-          "must be in [1, 1000]");
-  require(normal_radius_ratio > 0.05f && normal_radius_ratio <= 5.0f, "normal_radius_ratio", "must be in (0.05, 5]");
-  require(normal_cluster_angle_deg >= 0.0f && normal_cluster_angle_deg <= 180.0f, "normal_cluster_angle_deg",
-          "must be in [0, 180]");
+  const char* owner = "model";
+  core::requireField(sampling_ratio > 0.005f && sampling_ratio <= 0.5f, owner, "sampling_ratio", "in (0.005, 0.5]",
+                     sampling_ratio);
+  core::requireField(angle_step_deg >= 1.0f && angle_step_deg <= 90.0f, owner, "angle_step_deg", "in [1, 90]",
+                     angle_step_deg);
+  core::requireField(dense_samples_per_step2 >= 1.0f && dense_samples_per_step2 <= 1000.0f, owner,
+                     "dense_samples_per_step2", "in [1, 1000]", dense_samples_per_step2);
+  core::requireField(normal_radius_ratio > 0.05f && normal_radius_ratio <= 5.0f, owner, "normal_radius_ratio",
+                     "in (0.05, 5]", normal_radius_ratio);
+  core::requireField(normal_cluster_angle_deg >= 0.0f && normal_cluster_angle_deg <= 180.0f, owner,
+                     "normal_cluster_angle_deg", "in [0, 180]", normal_cluster_angle_deg);
 }
 
 PpfQuantizer PreparedModel::quantizer() const {

@@ -10,7 +10,7 @@
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
-#include "binpick/estimation/boundary.hpp"
+#include "boundary.hpp"
 
 namespace binpick::estimation {
 namespace {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <limits>
 
-#include "binpick/estimation/voxel_grid.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
+#include "voxel_grid.hpp"
 
 namespace binpick::estimation {
 namespace {
@@ -44,7 +44,13 @@ float registerOntoItself(const PreparedModel& model, const KdTree& tree, Eigen::
       ++pairs;
     }
     if (pairs < 3) return 0.0f;
-    const Eigen::Matrix4f step = Eigen::umeyama(from.leftCols(pairs), to.leftCols(pairs), false);
+    // Eigen's umeyama compiled on its own makes GCC 12 warn (-Warray-bounds: a 4-float load from
+    // its 3-float mean, on a path for 4 or more rows it cannot rule out). Inlined whole here
+    // (flatten), the 3 rows are known and the warning goes; the arithmetic is the same.
+    const auto fitStep = [&]() __attribute__((flatten)) {
+      return Eigen::umeyama(from.leftCols(pairs), to.leftCols(pairs), false);
+    };
+    const Eigen::Matrix4f step = fitStep();
     turn = Eigen::Isometry3f(step) * turn;
   }
   std::size_t overlapping = 0;

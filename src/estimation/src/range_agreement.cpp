@@ -1,6 +1,6 @@
-#include "binpick/estimation/range_agreement.hpp"
+#include "range_agreement.hpp"
 
-#include "binpick/estimation/icp.hpp"
+#include "icp.hpp"
 
 namespace binpick::estimation {
 

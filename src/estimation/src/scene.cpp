@@ -1,4 +1,4 @@
-#include "binpick/estimation/scene.hpp"
+#include "scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -135,21 +135,22 @@ bool CropBox::contains(const Eigen::Vector3f& p_camera) const {
 }
 
 void SceneParams::validate() const {
-  if (!(line_of_sight_cell_ratio >= 0.0f && line_of_sight_cell_ratio <= 10.0f)) {
-    throw core::Error("scene params: line_of_sight_cell_ratio must be in [0, 10]");
-  }
-  if (min_normal_neighbours < 3) throw core::Error("scene params: min_normal_neighbours must be at least 3");
-  if (max_window_half_size < 1 || max_window_half_size > 50) {
-    throw core::Error("scene params: max_window_half_size must be in [1, 50]");
-  }
-  if (threads < 0) throw core::Error("scene params: threads must be >= 0");
-  if (crop && !((crop->half_extents.array() > 0.0f).all() && crop->half_extents.allFinite() &&
-                crop->T_camera_box.matrix().allFinite())) {
-    throw core::Error("scene params: crop box needs finite, positive half extents and a finite pose");
+  const char* owner = "detection.scene";
+  core::requireField(line_of_sight_cell_ratio >= 0.0f && line_of_sight_cell_ratio <= 10.0f, owner,
+                     "line_of_sight_cell_ratio", "in [0, 10]", line_of_sight_cell_ratio);
+  core::requireField(min_normal_neighbours >= 3, owner, "min_normal_neighbours", "at least 3", min_normal_neighbours);
+  core::requireField(max_window_half_size >= 1 && max_window_half_size <= 50, owner, "max_window_half_size",
+                     "in [1, 50]", max_window_half_size);
+  if (crop) {
+    core::requireField((crop->half_extents.array() > 0.0f).all() && crop->half_extents.allFinite(), owner,
+                       "crop.half_extents", "finite and positive", crop->half_extents.transpose());
+    core::requireField(crop->T_camera_box.matrix().allFinite(), owner, "crop.pose", "finite",
+                       crop->T_camera_box.translation().transpose());
   }
 }
 
-PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& model, const SceneParams& params) {
+PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& model, const SceneParams& params,
+                           int threads) {
   params.validate();
   if (!cloud.isOrganized()) io::validateCloud(cloud, "scene cloud");
   const std::vector<uint32_t> valid = validIndices(cloud, params);
@@ -169,20 +170,20 @@ PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& mod
   const float radius = model.params.normal_radius_ratio * model.step;
   std::vector<std::optional<Eigen::Vector3f>> normals(kept.size());
   const auto min_neighbours = static_cast<std::size_t>(params.min_normal_neighbours);
-  const int threads = core::resolveThreadCount(params.threads);
+  const int thread_count = core::resolveThreadCount(threads);
   if (cloud.isOrganized()) {
     const OrganizedNeighbours neighbours(cloud, params);
     std::vector<uint32_t> kept_pixels(kept.size());
     for (std::size_t k = 0; k < kept.size(); ++k) kept_pixels[k] = valid[kept[k]];
     const float support = normalSupport(radius, neighbours.typicalPitch(kept_pixels), model.step);
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(thread_count) schedule(static)
     for (std::size_t k = 0; k < kept.size(); ++k) {
       normals[k] = neighbours.fit(kept_pixels[k], support).normal(min_neighbours);
     }
   } else {
     const KdTree tree(valid_points);
     const float support = normalSupport(radius, typicalSpacing(tree, kept), model.step);
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(thread_count) schedule(static)
     for (std::size_t k = 0; k < kept.size(); ++k) {
       std::vector<uint32_t> found;
       tree.withinRadius(valid_points[kept[k]], support, found);

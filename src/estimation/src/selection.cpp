@@ -1,4 +1,4 @@
-#include "binpick/estimation/selection.hpp"
+#include "selection.hpp"
 
 #include <algorithm>
 
@@ -7,22 +7,17 @@
 namespace binpick::estimation {
 
 void SelectionParams::validate() const {
-  if (max_objects < 1 || max_objects > 10000) throw core::Error("selection params: max_objects must be in [1, 10000]");
-  if (!(min_score_fraction >= 0.0f && min_score_fraction <= 1.0f)) {
-    throw core::Error("selection params: min_score_fraction must be in [0, 1]");
-  }
-  if (!(min_coverage >= 0.0f && min_coverage <= 1.0f)) {
-    throw core::Error("selection params: min_coverage must be in [0, 1]");
-  }
-  if (!(min_centre_distance_ratio >= 0.0f && min_centre_distance_ratio <= 10.0f)) {
-    throw core::Error("selection params: min_centre_distance_ratio must be in [0, 10]");
-  }
-  if (!(sure_twin_margin >= 0.0f && sure_twin_margin <= 1.0f)) {
-    throw core::Error("selection params: sure_twin_margin must be in [0, 1]");
-  }
-  if (!(sure_coverage >= 0.0f && sure_coverage <= 1.0f)) {
-    throw core::Error("selection params: sure_coverage must be in [0, 1]");
-  }
+  const char* owner = "detection.selection";
+  core::requireField(max_objects >= 1 && max_objects <= 10000, owner, "max_objects", "in [1, 10000]", max_objects);
+  core::requireField(min_score_fraction >= 0.0f && min_score_fraction <= 1.0f, owner, "min_score_fraction", "in [0, 1]",
+                     min_score_fraction);
+  core::requireField(min_coverage >= 0.0f && min_coverage <= 1.0f, owner, "min_coverage", "in [0, 1]", min_coverage);
+  core::requireField(min_centre_distance_ratio >= 0.0f && min_centre_distance_ratio <= 10.0f, owner,
+                     "min_centre_distance_ratio", "in [0, 10]", min_centre_distance_ratio);
+  core::requireField(sure_twin_margin >= 0.0f && sure_twin_margin <= 1.0f, owner, "sure_twin_margin", "in [0, 1]",
+                     sure_twin_margin);
+  core::requireField(sure_coverage >= 0.0f && sure_coverage <= 1.0f, owner, "sure_coverage", "in [0, 1]",
+                     sure_coverage);
 }
 
 MultipleSelection::MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points,

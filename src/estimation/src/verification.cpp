@@ -1,4 +1,4 @@
-#include "binpick/estimation/verification.hpp"
+#include "verification.hpp"
 
 #include <cmath>
 
@@ -8,25 +8,19 @@
 namespace binpick::estimation {
 
 void VerificationParams::validate() const {
-  if (!(voxel_size_ratio >= 0.1f && voxel_size_ratio <= 5.0f)) {
-    throw core::Error("verification params: voxel_size_ratio must be in [0.1, 5]");
-  }
-  if (!(max_normal_angle_deg > 0.0f && max_normal_angle_deg <= 180.0f)) {
-    throw core::Error("verification params: max_normal_angle_deg must be in (0, 180]");
-  }
-  if (!(free_space_tolerance_ratio > 0.0f && free_space_tolerance_ratio <= 100.0f)) {
-    throw core::Error("verification params: free_space_tolerance_ratio must be in (0, 100]");
-  }
-  if (!(free_space_penalty >= 0.0f && free_space_penalty <= 100.0f)) {
-    throw core::Error("verification params: free_space_penalty must be in [0, 100]");
-  }
-  if (!(refined_tolerance_ratio > 0.0f && refined_tolerance_ratio <= 100.0f)) {
-    throw core::Error("verification params: refined_tolerance_ratio must be in (0, 100]");
-  }
-  if (!(max_refined_seen_through >= 0.0f && max_refined_seen_through <= 1.0f)) {
-    throw core::Error("verification params: max_refined_seen_through must be in [0, 1]");
-  }
-  if (threads < 0) throw core::Error("verification params: threads must be >= 0");
+  const char* owner = "detection.verification";
+  core::requireField(voxel_size_ratio >= 0.1f && voxel_size_ratio <= 5.0f, owner, "voxel_size_ratio", "in [0.1, 5]",
+                     voxel_size_ratio);
+  core::requireField(max_normal_angle_deg > 0.0f && max_normal_angle_deg <= 180.0f, owner, "max_normal_angle_deg",
+                     "in (0, 180]", max_normal_angle_deg);
+  core::requireField(free_space_tolerance_ratio > 0.0f && free_space_tolerance_ratio <= 100.0f, owner,
+                     "free_space_tolerance_ratio", "in (0, 100]", free_space_tolerance_ratio);
+  core::requireField(free_space_penalty >= 0.0f && free_space_penalty <= 100.0f, owner, "free_space_penalty",
+                     "in [0, 100]", free_space_penalty);
+  core::requireField(refined_tolerance_ratio > 0.0f && refined_tolerance_ratio <= 100.0f, owner,
+                     "refined_tolerance_ratio", "in (0, 100]", refined_tolerance_ratio);
+  core::requireField(max_refined_seen_through >= 0.0f && max_refined_seen_through <= 1.0f, owner,
+                     "max_refined_seen_through", "in [0, 1]", max_refined_seen_through);
 }
 
 std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const Eigen::Isometry3f& pose,
@@ -70,14 +64,13 @@ uint32_t freeSpacePenalty(const PreparedModel& model, const PreparedScene& scene
 
 std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
                                       const PreparedScene& scene, const SceneVoxelGrid& grid,
-                                      const VerificationParams& params, const core::CancelFlag* cancel) {
+                                      const VerificationParams& params, const core::CancelFlag* cancel, int threads) {
   params.validate();
   const float min_cosine = params.max_normal_angle_deg >= 180.0f
                                ? -2.0f
                                : std::cos(params.max_normal_angle_deg * static_cast<float>(M_PI / 180.0));
   std::vector<VerifiedCandidate> verified(candidates.size());
-  const int threads = core::resolveThreadCount(params.threads);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 16)
+#pragma omp parallel for num_threads(core::resolveThreadCount(threads)) schedule(dynamic, 16)
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     if (core::isCancelled(cancel)) continue;  // the rest is skipped; the throw comes after the loop
     VerifiedCandidate& v = verified[c];

@@ -1,4 +1,4 @@
-#include "binpick/estimation/voting.hpp"
+#include "voting.hpp"
 
 #include <algorithm>
 #include <array>
@@ -66,19 +66,15 @@ class Accumulator {
 }  // namespace
 
 void VotingParams::validate() const {
-  if (!(reference_fraction > 0.0f && reference_fraction <= 1.0f)) {
-    throw core::Error("voting params: reference_fraction must be in (0, 1]");
-  }
-  if (!(referred_fraction > 0.0f && referred_fraction <= 1.0f)) {
-    throw core::Error("voting params: referred_fraction must be in (0, 1]");
-  }
-  if (poses_per_reference < 1 || poses_per_reference > 100) {
-    throw core::Error("voting params: poses_per_reference must be in [1, 100]");
-  }
-  if (!(min_relative_votes >= 0.0f && min_relative_votes <= 1.0f)) {
-    throw core::Error("voting params: min_relative_votes must be in [0, 1]");
-  }
-  if (threads < 0) throw core::Error("voting params: threads must be >= 0");
+  const char* owner = "detection.voting";
+  core::requireField(reference_fraction > 0.0f && reference_fraction <= 1.0f, owner, "reference_fraction", "in (0, 1]",
+                     reference_fraction);
+  core::requireField(referred_fraction > 0.0f && referred_fraction <= 1.0f, owner, "referred_fraction", "in (0, 1]",
+                     referred_fraction);
+  core::requireField(poses_per_reference >= 1 && poses_per_reference <= 100, owner, "poses_per_reference",
+                     "in [1, 100]", poses_per_reference);
+  core::requireField(min_relative_votes >= 0.0f && min_relative_votes <= 1.0f, owner, "min_relative_votes", "in [0, 1]",
+                     min_relative_votes);
 }
 
 std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t seed) {
@@ -93,7 +89,7 @@ std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t 
 }
 
 std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params,
-                                const core::CancelFlag* cancel, const BoundaryVotes* boundary) {
+                                const core::CancelFlag* cancel, const BoundaryVotes* boundary, int threads) {
   params.validate();
   if (scene.size() < 2 || model.size() == 0) return {};
   const PpfQuantizer quantizer = model.quantizer();
@@ -118,9 +114,8 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
   std::vector<PoseCandidate> slots(references.size() * static_cast<std::size_t>(np));
   std::vector<int> filled(references.size(), 0);
   const float max_distance_sq = model.diameter * model.diameter;
-  const int threads = core::resolveThreadCount(params.threads);
 
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(core::resolveThreadCount(threads))
   {
     // Only the references of the table (one turn of a symmetric part) can receive votes.
     Accumulator accumulator(model.referenceCount(), quantizer.alphaBinCount());

@@ -1,4 +1,4 @@
-#include "binpick/estimation/voxel_grid.hpp"
+#include "voxel_grid.hpp"
 
 #include <cmath>
 #include <string>

@@ -36,10 +36,10 @@ struct FingerContact {
 
 // Whether the finger's contact face, at `on_face` (grasp frame x = side * width / 2), touches a face
 // whose outward normal is side * x, within the tolerance.
-bool touches(const SurfaceModel& surface, const Eigen::Vector3d& on_face, const Eigen::Vector3d& x,
+bool touches(const SurfaceModel& surface, RayScratch& rays, const Eigen::Vector3d& on_face, const Eigen::Vector3d& x,
              const GripperParams& gripper, const GraspGenerationParams& params, double antipodal_cos) {
   const double standoff = gripper.finger_thickness;  // the ray starts where the finger's back is
-  const auto hit = surface.castRay(on_face + standoff * x, -x, standoff + params.contact_tolerance);
+  const auto hit = surface.castRay(on_face + standoff * x, -x, standoff + params.contact_tolerance, rays);
   return hit && std::abs(hit->distance - standoff) <= params.contact_tolerance && hit->normal.dot(x) >= antipodal_cos;
 }
 
@@ -47,14 +47,14 @@ bool touches(const SurfaceModel& surface, const Eigen::Vector3d& on_face, const 
 // its rectangle that touches, and the contact lines through the point at `contact_along` on the
 // finger's axis. A flat face touches over the rectangle; a cylinder only along its generator, which
 // holds it as well when the line is long enough (a shaft between flat jaws).
-FingerContact fingerContact(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp, double width,
-                            double side, double contact_along, const GripperParams& gripper,
+FingerContact fingerContact(const SurfaceModel& surface, RayScratch& rays, const Eigen::Isometry3d& T_model_grasp,
+                            double width, double side, double contact_along, const GripperParams& gripper,
                             const GraspGenerationParams& params, double antipodal_cos) {
   const Eigen::Vector3d x = side * T_model_grasp.linear().col(0);
   const Eigen::Vector3d y = T_model_grasp.linear().col(1), z = T_model_grasp.linear().col(2);
   const Eigen::Vector3d face_centre = T_model_grasp.translation() + 0.5 * width * x;
   const auto touchesAt = [&](double across, double along) {
-    return touches(surface, face_centre + across * y + along * z, x, gripper, params, antipodal_cos);
+    return touches(surface, rays, face_centre + across * y + along * z, x, gripper, params, antipodal_cos);
   };
   FingerContact contact;
   int touching = 0;
@@ -100,8 +100,8 @@ bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_mod
 // that leaves the part (a wall held across its thickness, the other finger in the hole behind it)
 // and the last one (the part held across its whole extent on that line: a ring across its
 // diameter), each when it faces opposite the sample and lies within the stroke.
-std::vector<double> farContactWidths(const SurfaceModel& surface, const SurfaceSample& sample, double stroke,
-                                     double antipodal_cos) {
+std::vector<double> farContactWidths(const SurfaceModel& surface, RayScratch& rays, const SurfaceSample& sample,
+                                     double stroke, double antipodal_cos) {
   const Eigen::Vector3d into = -sample.normal;
   const double reach = std::max(stroke, 2.0 * surface.radius());  // beyond the stroke: is the part still there?
   std::vector<double> widths;
@@ -109,7 +109,7 @@ std::vector<double> farContactWidths(const SurfaceModel& surface, const SurfaceS
   bool last_holds = false;  // it faces opposite the sample (so it leaves the part) within the stroke
   for (int crossing = 0;; ++crossing) {
     if (crossing == kMaxCrossings) return widths;  // too many surfaces to tell the last
-    const auto hit = surface.castRay(sample.point + (travelled + kStep) * into, into, reach - travelled - kStep);
+    const auto hit = surface.castRay(sample.point + (travelled + kStep) * into, into, reach - travelled - kStep, rays);
     if (!hit) break;
     travelled += kStep + hit->distance;
     last_holds = hit->normal.dot(into) >= antipodal_cos && travelled <= stroke;
@@ -139,8 +139,8 @@ double reachAlong(const SurfaceModel& surface, const Eigen::Vector3d& from, cons
 // their tips first, then at their middle; either way the tips stay kTipShortOfFarSide short of the
 // part's far side (a gear lying on the floor is held across its rim above its lower edge, the tips
 // clear of the floor).
-std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, const SurfaceSample& sample, double width,
-                                    const Eigen::Vector3d& approach, const GripperParams& gripper,
+std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, RayScratch& rays, const SurfaceSample& sample,
+                                    double width, const Eigen::Vector3d& approach, const GripperParams& gripper,
                                     const GraspGenerationParams& params, double antipodal_cos) {
   const Eigen::Vector3d closing = sample.normal;  // grasp x: from the far face to the sample's
   const Eigen::Vector3d contact_centre = sample.point - 0.5 * width * closing;
@@ -154,13 +154,13 @@ std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, const SurfaceSa
       return c.area_share >= kMinContactShare || c.line_length >= min_line;
     };
     const FingerContact near =
-        fingerContact(surface, proposal.T_model_grasp, width, 1.0, contact_along, gripper, params, antipodal_cos);
+        fingerContact(surface, rays, proposal.T_model_grasp, width, 1.0, contact_along, gripper, params, antipodal_cos);
     if (!holds(near)) continue;  // the far finger need not be looked at
     if (!part_past_contact) part_past_contact = reachAlong(surface, contact_centre, approach);
     const double tip_past_contact = 0.5 * gripper.finger_depth - contact_along;
     if (tip_past_contact > *part_past_contact - kTipShortOfFarSide) continue;
-    const FingerContact far =
-        fingerContact(surface, proposal.T_model_grasp, width, -1.0, contact_along, gripper, params, antipodal_cos);
+    const FingerContact far = fingerContact(surface, rays, proposal.T_model_grasp, width, -1.0, contact_along, gripper,
+                                            params, antipodal_cos);
     const double area = std::min(near.area_share, far.area_share);
     const bool on_area = area >= kMinContactShare;
     if (!on_area && std::min(near.line_length, far.line_length) < min_line) continue;
@@ -180,15 +180,16 @@ std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, const SurfaceSa
 std::vector<GraspProposal> proposeParallelGrasps(const SurfaceModel& surface, const GripperParams& gripper,
                                                  const GraspGenerationParams& params) {
   const double antipodal_cos = std::cos(params.max_antipodal_angle_deg * M_PI / 180.0);
+  RayScratch rays;
   std::vector<GraspProposal> proposals;
   for (const SurfaceSample& sample : surface.samples()) {
-    for (const double width : farContactWidths(surface, sample, gripper.stroke, antipodal_cos)) {
+    for (const double width : farContactWidths(surface, rays, sample, gripper.stroke, antipodal_cos)) {
       if (width < kMinWidth) continue;
       const Eigen::Vector3d u = perpendicularTo(sample.normal), v = sample.normal.cross(u);
       for (int k = 0; k < params.approach_directions; ++k) {
         const double angle = 2.0 * M_PI * k / params.approach_directions;
         const Eigen::Vector3d approach = std::cos(angle) * u + std::sin(angle) * v;
-        if (auto proposal = jawsAt(surface, sample, width, approach, gripper, params, antipodal_cos)) {
+        if (auto proposal = jawsAt(surface, rays, sample, width, approach, gripper, params, antipodal_cos)) {
           proposals.push_back(std::move(*proposal));
         }
       }

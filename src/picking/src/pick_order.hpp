@@ -7,7 +7,8 @@
 namespace binpick::picking {
 
 // Sorts `picks` by PickParams::order (picking.hpp): deterministic, every tie broken down to the
-// object index. `parts` supplies the scores (Pick::object indexes it; scores finite).
+// object index. `parts` supplies the scores and whether each is sure (Pick::object indexes it;
+// scores finite).
 void sortPicks(std::vector<Pick>& picks, const std::vector<DetectedPart>& parts, PickOrder order);
 
 }  // namespace binpick::picking

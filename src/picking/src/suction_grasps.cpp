@@ -21,6 +21,7 @@ struct DiscFrame {
   }
 };
 
+// Casts its rays with a scratch of its own: one SealTest per thread.
 class SealTest {
  public:
   SealTest(const SurfaceModel& surface, double tolerance, double height)
@@ -28,7 +29,7 @@ class SealTest {
 
   // Every point of the ring (radius, rays) meets the surface within the tolerance of the plane,
   // on surface facing the cup, with nothing in between.
-  bool ringSeals(const DiscFrame& disc, double radius, int rays) const {
+  bool ringSeals(const DiscFrame& disc, double radius, int rays) {
     for (int k = 0; k < rays; ++k) {
       if (!pointSeals(disc, disc.onRing(radius, k, rays))) return false;
     }
@@ -38,16 +39,17 @@ class SealTest {
   // Nothing of the part stands above the plane beyond the tolerance over the ring (a wall beside
   // the cup, the flank of a groove it sits in); the surface may fall away there. The rays come
   // from beyond the whole part (`reach`): one starting inside a wall would find no face below it.
-  bool ringClear(const DiscFrame& disc, double radius, int rays, double reach) const {
+  bool ringClear(const DiscFrame& disc, double radius, int rays, double reach) {
     for (int k = 0; k < rays; ++k) {
-      const auto hit = surface_.castRay(disc.onRing(radius, k, rays) + reach * disc.normal, -disc.normal, reach);
+      const auto hit =
+          surface_.castRay(disc.onRing(radius, k, rays) + reach * disc.normal, -disc.normal, reach, scratch_);
       if (hit && reach - hit->distance > tolerance_) return false;
     }
     return true;
   }
 
-  bool pointSeals(const DiscFrame& disc, const Eigen::Vector3d& on_plane) const {
-    const auto hit = surface_.castRay(on_plane + height_ * disc.normal, -disc.normal, height_ + tolerance_);
+  bool pointSeals(const DiscFrame& disc, const Eigen::Vector3d& on_plane) {
+    const auto hit = surface_.castRay(on_plane + height_ * disc.normal, -disc.normal, height_ + tolerance_, scratch_);
     if (!hit) return false;                            // a gap or past an edge
     const double deviation = height_ - hit->distance;  // > 0: above the plane
     return std::abs(deviation) <= tolerance_ && hit->normal.dot(disc.normal) >= kSealNormalCos;
@@ -56,6 +58,7 @@ class SealTest {
  private:
   const SurfaceModel& surface_;
   double tolerance_, height_;
+  RayScratch scratch_;
 };
 
 // Part points inside the cup (above the sealing surface) or the tool body behind it.
@@ -82,8 +85,8 @@ std::vector<GraspProposal> proposeSuctionGrasps(const SurfaceModel& surface, con
                                                 const GraspGenerationParams& params) {
   const double radius = 0.5 * gripper.cup_diameter;
   // Rays start this far above the disc: anything of the part closer above it is in the cup's way.
-  const SealTest seal(surface, (1.0 - params.seal_reserve) * gripper.seal_tolerance,
-                      std::max(radius, 4.0 * gripper.seal_tolerance));
+  SealTest seal(surface, (1.0 - params.seal_reserve) * gripper.seal_tolerance,
+                std::max(radius, 4.0 * gripper.seal_tolerance));
   const double reach = 2.0 * surface.radius() + radius + params.cup_clearance;  // from beyond the part
   std::vector<GraspProposal> proposals;
   for (const SurfaceSample& sample : surface.samples()) {

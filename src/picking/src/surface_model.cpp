@@ -266,8 +266,6 @@ void SurfaceModel::buildGrid() {
     cellsOf(boxes[i].first - half, boxes[i].second + half, cells);
     for (int cell : cells) cells_[static_cast<std::size_t>(cell)].push_back(static_cast<int>(i));
   }
-  visit_stamp_.assign(primitives_.size(), 0);
-  stamp_ = 0;
 
   radius_ = 0.0;
   for (const Eigen::Vector3d& p : obstacles_) radius_ = std::max(radius_, (p - centre_of_mass_).norm());
@@ -321,11 +319,15 @@ std::optional<double> hitDisc(const SurfaceModel::Primitive& disc, const Eigen::
 }  // namespace
 
 std::optional<RayHit> SurfaceModel::castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                                            double max_distance) const {
-  if (++stamp_ == 0) {  // wrapped: forget every visit
-    std::fill(visit_stamp_.begin(), visit_stamp_.end(), 0);
-    stamp_ = 1;
+                                            double max_distance, RayScratch& scratch) const {
+  std::vector<std::uint32_t>& visit_stamp = scratch.visit_stamp_;
+  // Entries added here hold 0, older ones earlier rays' stamps: all below this ray's.
+  if (visit_stamp.size() < primitives_.size()) visit_stamp.resize(primitives_.size(), 0);
+  if (++scratch.stamp_ == 0) {  // wrapped: forget every visit
+    std::fill(visit_stamp.begin(), visit_stamp.end(), 0);
+    scratch.stamp_ = 1;
   }
+  const std::uint32_t stamp = scratch.stamp_;
   std::optional<RayHit> best;
   const double step = 0.5 * cell_size_;
   const int steps = static_cast<int>(std::ceil(max_distance / step));
@@ -337,8 +339,8 @@ std::optional<RayHit> SurfaceModel::castRay(const Eigen::Vector3d& origin, const
     if (cell < 0 || cell == last_cell) continue;
     last_cell = cell;
     for (int index : cells_[static_cast<std::size_t>(cell)]) {
-      if (visit_stamp_[static_cast<std::size_t>(index)] == stamp_) continue;
-      visit_stamp_[static_cast<std::size_t>(index)] = stamp_;
+      if (visit_stamp[static_cast<std::size_t>(index)] == stamp) continue;
+      visit_stamp[static_cast<std::size_t>(index)] = stamp;
       const Primitive& primitive = primitives_[static_cast<std::size_t>(index)];
       const std::optional<double> distance = primitive.disc_radius > 0.0 ? hitDisc(primitive, origin, direction)
                                                                          : hitTriangle(primitive, origin, direction);

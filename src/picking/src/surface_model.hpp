@@ -2,9 +2,11 @@
 // The part's surface as the grasp generator queries it: seeded, thinned samples with their outward
 // normals and smooth patch (face) ids, points to test the gripper's volume against, the centre of
 // mass, and rays cast against the surface (triangles of a mesh, or small discs standing for the
-// points of a cloud) through a uniform grid. Built once per generation call; castRay keeps a
-// scratch buffer, so one SurfaceModel is used by one thread at a time.
+// points of a cloud) through a uniform grid. Built once per generation call and immutable after:
+// castRay writes only the caller's RayScratch, so threads may share one SurfaceModel, each
+// casting with a scratch of its own.
 #include <Eigen/Core>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -24,6 +26,16 @@ struct RayHit {
   int patch = 0;
 };
 
+// Which primitives the current ray has tested (one listed in several grid cells is tested once).
+// One per thread: castRay writes it, and nothing else. Sized by castRay on first use; one scratch
+// may serve several models in turn.
+class RayScratch {
+ private:
+  friend class SurfaceModel;
+  std::vector<std::uint32_t> visit_stamp_;  // per primitive: the stamp of the last ray that tested it
+  std::uint32_t stamp_ = 0;                 // the current ray's; unsigned: its wrap is defined
+};
+
 class SurfaceModel {
  public:
   // Throws core::Error when the mesh is invalid or has no area.
@@ -32,9 +44,9 @@ class SurfaceModel {
   static SurfaceModel fromCloud(const io::PointCloud& cloud, const GraspGenerationParams& params);
 
   // The first surface crossed within max_distance of `origin` along the unit `direction`, facing
-  // either way.
-  std::optional<RayHit> castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
-                                double max_distance) const;
+  // either way. Writes `scratch` only: concurrent calls need a scratch each.
+  std::optional<RayHit> castRay(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double max_distance,
+                                RayScratch& scratch) const;
 
   const std::vector<SurfaceSample>& samples() const { return samples_; }
   // Where the part is, for the gripper's volume test: the samples and the mesh vertices.
@@ -65,8 +77,6 @@ class SurfaceModel {
   double cell_size_ = 0.0;  // 0: chosen from the extent
   Eigen::Vector3i grid_dims_ = Eigen::Vector3i::Ones();
   std::vector<std::vector<int>> cells_;
-  mutable std::vector<int> visit_stamp_;
-  mutable int stamp_ = 0;
 };
 
 }  // namespace binpick::picking

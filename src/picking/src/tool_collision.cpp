@@ -1,9 +1,11 @@
 // MeasuredScene (the thinned, column-indexed cloud) and the tool's collision test against it.
 #include "binpick/picking/tool_collision.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "binpick/core/error.hpp"
 #include "rigid.hpp"
@@ -13,10 +15,19 @@ namespace {
 
 // Calibrated transforms come from files with a few decimals.
 constexpr double kPoseTolerance = 1e-5;
-// More columns than this (a cloud with far outliers) and the columns grow instead: bounded memory.
+// More columns than this (a cloud wider than 3 m at 3 mm) and the columns grow instead: bounded
+// memory.
 constexpr double kMaxCells = 1 << 20;
+// Nor more than this along either side, however elongated the cloud: the cells stay bounded (at
+// most kMaxCells + 2 kMaxColumns) and the column counts far inside an int.
+constexpr double kMaxColumns = 1 << 14;
 // Pixels sampled to estimate an organized cloud's point spacing.
 constexpr int kSpacingSamples = 4000;
+// Points sampled to find the bulk of the cloud in base xy (OutlierWindow).
+constexpr std::size_t kBulkSamples = 4096;
+// Metres beyond the bulk of the cloud that a point may lie, at the least, and still be indexed:
+// further than any tool reaches past the bin, which lies within the bulk.
+constexpr double kMinOutlierReach = 1.0;
 
 // The median distance between horizontally neighbouring valid pixels; 0 when none are found.
 double medianPixelSpacing(const io::PointCloud& cloud) {
@@ -42,6 +53,46 @@ int pixelStride(const io::PointCloud& cloud, double step) {
   const double spacing = medianPixelSpacing(cloud);
   if (!(spacing > 0.0)) return 1;
   return std::max(1, static_cast<int>(std::floor(0.5 * step / spacing)));
+}
+
+// The base xy region the columns may cover: the 1st to 99th percentile of a sample of the points,
+// grown by that spread (at least kMinOutlierReach) each side. A stray point of the reconstruction
+// far beyond it (a mismatched stripe, a reflection) would otherwise stretch the grid: with the
+// cells bounded, each would grow and the thinning coarsen with it. Empty when the cloud has no
+// valid point.
+struct OutlierWindow {
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d hi = -lo;
+  bool holds(const Eigen::Vector3f& p) const {  // false for NaN
+    return p.x() >= lo.x() && p.x() <= hi.x() && p.y() >= lo.y() && p.y() <= hi.y();
+  }
+};
+
+OutlierWindow outlierWindow(const io::PointCloud& cloud, const Eigen::Isometry3f& T_base_camera) {
+  const std::size_t count = cloud.points.size();
+  const std::size_t step = std::max<std::size_t>(1, count / kBulkSamples);
+  std::array<std::vector<double>, 2> axes;
+  for (std::size_t i = 0; i < count; i += step) {
+    if (!cloud.points[i].allFinite()) continue;
+    const Eigen::Vector3f p = T_base_camera * cloud.points[i];
+    if (!p.allFinite()) continue;
+    axes[0].push_back(p.x());
+    axes[1].push_back(p.y());
+  }
+  OutlierWindow window;
+  if (axes[0].empty()) return window;
+  for (int a = 0; a < 2; ++a) {
+    std::vector<double>& values = axes[static_cast<std::size_t>(a)];
+    std::sort(values.begin(), values.end());
+    // Symmetric ranks, so that a few samples leave out as many at each end.
+    const std::size_t upper = static_cast<std::size_t>(std::floor(0.99 * static_cast<double>(values.size() - 1)));
+    const double q_lo = std::min(values[values.size() - 1 - upper], values[upper]);
+    const double q_hi = std::max(values[values.size() - 1 - upper], values[upper]);
+    const double reach = std::max(q_hi - q_lo, kMinOutlierReach);
+    window.lo[a] = q_lo - reach;
+    window.hi[a] = q_hi + reach;
+  }
+  return window;
 }
 
 // Calls visit(base point) for every valid point of the strided cloud. Run once per pass of the
@@ -172,18 +223,40 @@ MeasuredScene::MeasuredScene(const io::PointCloud& cloud, const Eigen::Isometry3
   const double step = params.thin_step;
   const int stride = pixelStride(cloud, step);
   const Eigen::Isometry3f transform = T_base_camera.cast<float>();
-  const auto forEach = [&](auto&& visit) { forEachBasePoint(cloud, transform, stride, visit); };
+  const OutlierWindow window = outlierWindow(cloud, transform);
+  // Every pass sees the same points: those inside the window. Usually that is all of them, and
+  // the passes skip the test.
+  bool outliers = false;
+  const auto forEach = [&](auto&& visit) {
+    if (!outliers) return forEachBasePoint(cloud, transform, stride, visit);
+    forEachBasePoint(cloud, transform, stride, [&](const Eigen::Vector3f& p) {
+      if (window.holds(p)) visit(p);
+    });
+  };
 
-  // Pass 1: the grid over the points' xy extent.
-  Eigen::Vector2f lo = Eigen::Vector2f::Constant(std::numeric_limits<float>::infinity());
-  Eigen::Vector2f hi = -lo;
-  forEach([&](const Eigen::Vector3f& p) {
-    lo = lo.cwiseMin(p.head<2>());
-    hi = hi.cwiseMax(p.head<2>());
-  });
+  // Pass 1: the grid over the points' xy extent, again without the outliers when there are any
+  // (a point that went NaN in the base frame, past the float range, is one).
+  Eigen::Vector2f lo, hi;
+  bool nan = false;
+  const auto findExtent = [&] {
+    lo = Eigen::Vector2f::Constant(std::numeric_limits<float>::infinity());
+    hi = -lo;
+    forEach([&](const Eigen::Vector3f& p) {
+      lo = lo.cwiseMin(p.head<2>());
+      hi = hi.cwiseMax(p.head<2>());
+      nan |= std::isnan(p.x()) || std::isnan(p.y());
+    });
+  };
+  findExtent();
+  const auto inWindow = [&](const Eigen::Vector2f& corner) { return window.holds({corner.x(), corner.y(), 0.0f}); };
+  if (nan || (lo.x() <= hi.x() && !(inWindow(lo) && inWindow(hi)))) {
+    outliers = true;
+    findExtent();
+  }
   if (!(lo.x() <= hi.x())) lo = hi = Eigen::Vector2f::Zero();  // no valid point
-  const Eigen::Vector2d extent = (hi - lo).cast<double>();
-  cell_size_ = std::max(step, std::sqrt(extent.x() * extent.y() / kMaxCells));
+  // In double: the difference of two finite floats may not be a finite float.
+  const Eigen::Vector2d extent = hi.cast<double>() - lo.cast<double>();
+  cell_size_ = std::max({step, std::sqrt(extent.x() * extent.y() / kMaxCells), extent.maxCoeff() / kMaxColumns});
   origin_ = lo.cast<double>();
   columns_ = static_cast<int>(extent.x() / cell_size_) + 1;
   rows_ = static_cast<int>(extent.y() / cell_size_) + 1;

@@ -1,5 +1,5 @@
 // measureCalibrationFit: every decoded pixel's fit (epipolar_residual.hpp measures it).
-#include "binpick/reconstruction/calibration_fit.hpp"
+#include "calibration_fit.hpp"
 
 #include <string>
 

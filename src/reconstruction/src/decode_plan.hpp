@@ -1,5 +1,5 @@
 #pragma once
-// Everything the per-row decoder needs that depends only on the capture's layout and the params:
+// Everything the tile decoder needs that depends only on the capture's layout and the params:
 // image indices per role, thresholds in the images' own counts, phase weights. Internal.
 #include <cstdint>
 #include <limits>

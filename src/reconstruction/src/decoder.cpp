@@ -1,4 +1,4 @@
-// decodeCapture: checks, then every row in parallel.
+// decodeCapture: checks, then every tile in parallel.
 #include <algorithm>
 #include <cmath>
 
@@ -11,9 +11,9 @@
 #include "capture_order_check.hpp"
 #include "decode_plan.hpp"
 #include "neighbour_unwrap.hpp"
-#include "row_decoder.hpp"
 #include "sensor_noise_estimate.hpp"
 #include "stripe_reading.hpp"
+#include "tile_decoder.hpp"
 
 namespace binpick::reconstruction {
 namespace {
@@ -31,8 +31,8 @@ DecodedCapture allocate(const detail::CaptureLayout& layout, bool column_noise) 
   return decoded;
 }
 
-detail::RowOutput outputOf(DecodedCapture& decoded) {
-  detail::RowOutput out;
+detail::TileOutput outputOf(DecodedCapture& decoded) {
+  detail::TileOutput out;
   out.column_noise = decoded.column_noise.empty() ? nullptr : decoded.column_noise.ptr<float>(0);
   out.column = decoded.column.ptr<float>(0);
   out.row = decoded.row.empty() ? nullptr : decoded.row.ptr<float>(0);
@@ -61,9 +61,9 @@ std::vector<detail::UnwrapCandidate> decodeTiles(const io::Capture& capture, con
   std::vector<detail::UnwrapCandidate> candidates;
 #pragma omp parallel num_threads(threads)
   {
-    detail::RowScratch<detail::WorkType<Pixel>> scratch;
+    detail::TileScratch<detail::WorkType<Pixel>> scratch;
     std::vector<detail::UnwrapCandidate> found;
-    detail::RowOutput out = outputOf(decoded);
+    detail::TileOutput out = outputOf(decoded);
     if (collect_candidates) out.candidates = &found;
 #pragma omp for schedule(static, 4)
     for (long tile = 0; tile < tiles; ++tile) {

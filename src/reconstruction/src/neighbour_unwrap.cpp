@@ -48,6 +48,18 @@ int decodedNeighbours(const DecodedCapture& decoded, std::size_t pixel, float* c
   return count;
 }
 
+// An insertion sort, as std::sort does for so few values. Written out because GCC 12 cannot see
+// that std::sort's branch for more than 16 values is never taken on the 8-float array, and warns
+// (-Warray-bounds).
+void sortFew(float* values, int count) {
+  for (int i = 1; i < count; ++i) {
+    const float value = values[i];
+    int j = i;
+    for (; j > 0 && value < values[j - 1]; --j) values[j] = values[j - 1];
+    values[j] = value;
+  }
+}
+
 }  // namespace
 
 float columnFromNeighbours(const UnwrapCandidate& candidate, const DecodedCapture& decoded, const AxisLayout& columns,
@@ -56,7 +68,7 @@ float columnFromNeighbours(const UnwrapCandidate& candidate, const DecodedCaptur
   float found[8] = {};
   const int count = decodedNeighbours(decoded, candidate.pixel, found);
   if (count < std::max(1, min_neighbours)) return nan;
-  std::sort(found, found + count);  // at most eight: an insertion sort inside
+  sortFew(found, count);
   const auto period = static_cast<float>(columns.phase_period);
   const float quarter = 0.25f * period;
   if (found[count - 1] - found[0] > quarter) return nan;  // not one smooth surface

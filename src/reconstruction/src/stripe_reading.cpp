@@ -220,7 +220,7 @@ struct Member {
   // each beyond its noise: the segment crosses from one stripe into another (a depth edge, or a
   // stripe more curved than the segment is straight).
   bool mixed = false;
-  uint16_t code = 0;  // as AxisRow: Gray code read, uncertain bits, most significant first
+  uint16_t code = 0;  // as TileAxis: Gray code read, uncertain bits, most significant first
   uint16_t uncertain = 0;
   // Per bit of `code` (index 0: least significant), |sum| / sigma in steps of 1/kZScale.
   std::array<uint8_t, 16> z{};

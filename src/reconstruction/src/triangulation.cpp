@@ -26,8 +26,9 @@ namespace {
 // tile of its residual field, for a few milliseconds per megapixel.
 constexpr int kFitSamplingStride = 4;
 
-// Row y's epipolar limits: a pixel read along its stripe has its column and row each somewhere in
-// a run of codes, about (run - 1) / 2 codes from where it was placed (stripe_reading.hpp).
+// Image row y's epipolar limits: a pixel read along its stripe has its projector column and row
+// each somewhere in a run of codes, about (run - 1) / 2 codes from where it was placed
+// (stripe_reading.hpp).
 void stripeLimits(const DecodedCapture& decoded, int y, double max_epipolar_error, float* limit_scale_sq) {
   const uint8_t* run = decoded.stripe_run.ptr<uint8_t>(y);
   for (int x = 0; x < decoded.width; ++x) {
@@ -95,7 +96,7 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
   TriangulatedCloud result;
   result.cloud.width = width;
   result.cloud.height = height;
-  // resize() leaves Eigen's vectors uninitialised: the row loop writes every element.
+  // resize() leaves Eigen's vectors uninitialised: the image-row loop writes every element.
   result.cloud.points.resize(static_cast<std::size_t>(width) * height);
   result.status.create(height, width, CV_8UC1);
   result.depth_per_projector_px.create(height, width, CV_32FC1);
@@ -121,23 +122,23 @@ TriangulatedCloud Triangulator::triangulate(const DecodedCapture& decoded) const
 #pragma omp for schedule(static)
     for (int y = 0; y < height; ++y) {
       const std::size_t offset = static_cast<std::size_t>(y) * width;
-      detail::TriangulationRowInput in;
+      detail::TriangulationImageRowInput in;
       in.width = width;
       in.ray_x = tables.rays.x.data() + offset;
       in.ray_y = tables.rays.y.data() + offset;
       in.column = decoded.column.ptr<float>(y);
       in.row = with_rows ? decoded.row.ptr<float>(y) : nullptr;
       in.status = decoded.status.ptr<uint8_t>(y);
-      const detail::TriangulationRowOutput out{result.cloud.points.data() + offset, result.status.ptr<uint8_t>(y),
-                                               result.depth_per_projector_px.ptr<float>(y)};
+      const detail::TriangulationImageRowOutput out{result.cloud.points.data() + offset, result.status.ptr<uint8_t>(y),
+                                                    result.depth_per_projector_px.ptr<float>(y)};
       if (with_rows) {
         field.rowOffsets(y, width, expected_offset.data());
         in.expected_offset = expected_offset.data();
         if (!decoded.stripe_run.empty()) stripeLimits(decoded, y, params_.max_epipolar_error, limit_scale_sq.data());
         in.limit_scale_sq = limit_scale_sq.data();
-        detail::triangulateRowWithRows(tables.geometry, tables.projector, in, scratch, out);
+        detail::triangulateImageRowWithProjectorRows(tables.geometry, tables.projector, in, scratch, out);
       } else {
-        detail::triangulateRowColumnOnly(tables.geometry, tables.projector, in, scratch, out);
+        detail::triangulateImageRowColumnOnly(tables.geometry, tables.projector, in, scratch, out);
       }
     }
   }

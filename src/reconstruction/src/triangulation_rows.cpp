@@ -1,4 +1,4 @@
-// Per-row triangulation passes: table loads, then ray intersection arithmetic.
+// Per-image-row triangulation passes: table loads, then ray intersection arithmetic.
 //
 // Frames: the camera ray of a pixel is (a, b, 1) in the camera frame (undistorted normalised
 // coordinates), so the point at ray parameter t has camera z = t. In the projector frame the
@@ -6,9 +6,9 @@
 // normalised projector coordinates: the projector ray (u, v, 1).
 //
 // Both modes reduce to the same last step: a projector ray in the camera ray's epipolar plane,
-// which the camera ray meets exactly. With rows decoded it is the foot of the decoded (u, v) on
-// the ray's epipolar line; with columns only, where the column's light crosses the epipolar
-// plane, read from a table over (column, plane).
+// which the camera ray meets exactly. With projector rows decoded it is the foot of the decoded
+// (u, v) on the ray's epipolar line; with columns only, where the column's light crosses the
+// epipolar plane, read from a table over (column, plane).
 #include "triangulation_rows.hpp"
 
 #include <algorithm>
@@ -19,12 +19,12 @@
 #include "float4.hpp"
 #include "simd_dispatch.hpp"
 
-// The row passes are compiled for SSE2 and AVX2 + FMA, picked at load time (simd_dispatch.hpp):
-// about a third faster on AVX2 machines.
+// The image-row passes are compiled for SSE2 and AVX2 + FMA, picked at load time
+// (simd_dispatch.hpp): about a third faster on AVX2 machines.
 namespace binpick::reconstruction::detail {
 namespace {
 
-// A pixel's verdict while its row is processed: the status it will get, or kSkipped.
+// A pixel's verdict while its image row is processed: the status it will get, or kSkipped.
 enum Code : int32_t {
   kSolved = static_cast<int32_t>(PixelStatus::Valid),
   kInconsistent = static_cast<int32_t>(PixelStatus::Inconsistent),
@@ -72,16 +72,16 @@ inline Solution intersectRays(const RigGeometry& g, const Direction& d, float wu
   return {t, depth_per_px, !((t > 0.0f) & (t < g.max_depth) & (z_projector > 0.0f))};
 }
 
-// Decoded column and row: the point of the ray whose projection is nearest the decoded (u, v) in
-// the undistorted projector image, in pixel units. The ray projects onto its epipolar line,
-// n . (u, v, 1) = 0 with n = C x d; the nearest point is the foot of (u, v) on the line.
+// Decoded projector column and row: the point of the ray whose projection is nearest the decoded
+// (u, v) in the undistorted projector image, in pixel units. The ray projects onto its epipolar
+// line, n . (u, v, 1) = 0 with n = C x d; the nearest point is the foot of (u, v) on the line.
 // The epipolar error is the foot's distance, measured in the undistorted image: the projector's
 // distortion scales lengths by 1 + O(k1 r^2) (a few per cent at the corners of real lenses),
 // which does not matter for a tolerance, while projecting through the distortion would cost
 // more than the rest of the solve. It is judged from `expected`, the calibration's residual at
 // the pixel (normalised units, signed as s / sqrt(line)).
-inline int32_t solveWithRow(const RigGeometry& g, float a, float b, float u, float v, float expected,
-                            float limit_scale_sq, Solution& solution) {
+inline int32_t solveWithProjectorRow(const RigGeometry& g, float a, float b, float u, float v, float expected,
+                                     float limit_scale_sq, Solution& solution) {
   const Direction d = rayInProjector(g, a, b);
   const float* c = g.c;
   const float nx = c[1] * d.z - c[2] * d.y;
@@ -104,8 +104,8 @@ inline float epipolarLabel(const RigGeometry& g, float a, float b) {
   return (g.q3[0] * a + g.q3[1] * b + g.q3[2]) / (g.q2[0] * a + g.q2[1] * b + g.q2[2]);
 }
 
-// The passes over a row, each a function of its own: GCC honours __restrict only on parameters,
-// and would not vectorise the loops that store through several pointers without it.
+// The passes over an image row, each a function of its own: GCC honours __restrict only on
+// parameters, and would not vectorise the loops that store through several pointers without it.
 
 // Which table cell each decoded point (x, y) falls in. Columns outside [min_column, max_column]
 // are CodeOutOfRange; a point otherwise outside the table gets `outside`.
@@ -125,14 +125,14 @@ BINPICK_SIMD_PASS void locateCells(const View& grid, int n, const float* __restr
   }
 }
 
-// Rows decoded: the undistorted (u, v) of each decoded projector pixel, interleaved. Unsolved
-// pixels interpolate the first cell: no branch, and their values are never used.
+// Projector rows decoded: the undistorted (u, v) of each decoded projector pixel, interleaved.
+// Unsolved pixels interpolate the first cell: no branch, and their values are never used.
 BINPICK_SIMD_PASS void undistortCells(const LookupGrid<2>::View& grid, int n, const int32_t* __restrict cell,
                                       const float* __restrict fx, const float* __restrict fy, float* __restrict uv) {
   for (int x = 0; x < n; ++x) grid.interpolate(cell[x], fx[x], fy[x], uv + 2 * x);
 }
 
-// Columns only: (u, v, distorted row, unused) where the column's light crosses the ray's
+// Columns only: (u, v, distorted projector row, unused) where the column's light crosses the ray's
 // epipolar plane, interleaved.
 BINPICK_SIMD_PASS void crossColumnLight(const LookupGrid<4>::View& grid, int n, const int32_t* __restrict cell,
                                         const float* __restrict fx, const float* __restrict fy,
@@ -148,23 +148,24 @@ BINPICK_SIMD_PASS void epipolarLabels(const RigGeometry& rig, int n, const float
 // The solves write camera-frame points, NaN unless solved: x, y in px, py, and z (= t) in pz;
 // and the depth a projector pixel spans in depth_per_px. The SIMD passes take them as separate
 // __restrict parameters (see above); the helpers around them pass them as one.
-struct PointRows {
+struct ImageRowPoints {
   float* px;
   float* py;
   float* pz;
   float* depth_per_px;
 };
 
-BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
-                                     const float* __restrict ray_y, const float* __restrict uv,
-                                     const float* __restrict expected_px, const float* __restrict limit_scale_sq,
-                                     int32_t* __restrict code, float* __restrict px, float* __restrict py,
-                                     float* __restrict pz, float* __restrict depth_per_px) {
+BINPICK_SIMD_PASS void solveWithProjectorRows(const RigGeometry& rig, int n, const float* __restrict ray_x,
+                                              const float* __restrict ray_y, const float* __restrict uv,
+                                              const float* __restrict expected_px,
+                                              const float* __restrict limit_scale_sq, int32_t* __restrict code,
+                                              float* __restrict px, float* __restrict py, float* __restrict pz,
+                                              float* __restrict depth_per_px) {
   const float inv_fx = 1.0f / rig.fx;
   for (int x = 0; x < n; ++x) {
     Solution solution{};
-    const int32_t solved = solveWithRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1], expected_px[x] * inv_fx,
-                                        limit_scale_sq[x], solution);
+    const int32_t solved = solveWithProjectorRow(rig, ray_x[x], ray_y[x], uv[2 * x], uv[2 * x + 1],
+                                                 expected_px[x] * inv_fx, limit_scale_sq[x], solution);
     const int32_t verdict = code[x] == kSolved ? solved : code[x];
     const float z = verdict == kSolved ? solution.depth : kNaNf;
     code[x] = verdict;
@@ -175,7 +176,7 @@ BINPICK_SIMD_PASS void solveWithRows(const RigGeometry& rig, int n, const float*
   }
 }
 
-// Where the column's light crosses the ray's plane outside the image rows, it never reaches
+// Where the column's light crosses the ray's plane outside the projector's rows, it never reaches
 // the ray.
 BINPICK_SIMD_PASS void solveColumnOnly(const RigGeometry& rig, int n, const float* __restrict ray_x,
                                        const float* __restrict ray_y, const float* __restrict light, float min_row,
@@ -218,8 +219,8 @@ BINPICK_SIMD_PASS void storeStatuses(int n, const uint8_t* __restrict decoded, c
 
 // Columns only, for the pixels of `in` that are still to be solved: the crossing of each ray's
 // epipolar plane with its column's light. Writes code and the points.
-void solveByColumns(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
-                    TriangulationScratch& s, int32_t* code, PointRows out) {
+void solveByColumns(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationImageRowInput& in,
+                    TriangulationScratch& s, int32_t* code, ImageRowPoints out) {
   const int n = in.width;
   const auto grid = tables.epipolar.view();
   // Each ray's epipolar plane. Outside the table's labels the plane misses the projector's
@@ -232,25 +233,26 @@ void solveByColumns(const RigGeometry& rig, const ProjectorTables& tables, const
                   out.pz, out.depth_per_px);
 }
 
-// The row did not decode, or the decoded row lies off the ray's epipolar line (a wrong row: the
-// row check cannot tell a wrong column, which lies on the line anyway).
-bool columnWithoutRow(const RigGeometry& rig, const TriangulationRowInput& in, const TriangulationScratch& s, int x) {
+// The projector row did not decode, or the decoded one lies off the ray's epipolar line (a wrong
+// row: the row check cannot tell a wrong column, which lies on the line anyway).
+bool columnWithoutProjectorRow(const RigGeometry& rig, const TriangulationImageRowInput& in,
+                               const TriangulationScratch& s, int x) {
   return in.status[x] == kSolved &&
          (std::isnan(in.row[x]) || (rig.column_when_inconsistent && s.code[x] == kInconsistent));
 }
 
-// A capture with rows whose pixels lost the row but kept the column: those get the column-only
-// solution instead of the CodeOutOfRange the NaN row gave them. Rows without such pixels cost a
-// scan.
-void solveMissingRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
-                      TriangulationScratch& s) {
+// A capture with projector rows whose pixels lost the projector row but kept the column: those
+// get the column-only solution instead of the CodeOutOfRange the NaN row gave them. Image rows
+// without such pixels cost a scan.
+void solveMissingProjectorRows(const RigGeometry& rig, const ProjectorTables& tables,
+                               const TriangulationImageRowInput& in, TriangulationScratch& s) {
   bool any = false;
-  for (int x = 0; x < in.width; ++x) any |= columnWithoutRow(rig, in, s, x);
+  for (int x = 0; x < in.width; ++x) any |= columnWithoutProjectorRow(rig, in, s, x);
   if (!any) return;
   solveByColumns(rig, tables, in, s, s.column_code.data(),
                  {s.column_px.data(), s.column_py.data(), s.column_pz.data(), s.column_depth_per_px.data()});
   for (int x = 0; x < in.width; ++x) {
-    if (!columnWithoutRow(rig, in, s, x)) continue;
+    if (!columnWithoutProjectorRow(rig, in, s, x)) continue;
     s.code[x] = s.column_code[x];
     s.px[x] = s.column_px[x];
     s.py[x] = s.column_py[x];
@@ -259,8 +261,9 @@ void solveMissingRows(const RigGeometry& rig, const ProjectorTables& tables, con
   }
 }
 
-// The solved row into the outputs: the points are in the scratch's px, py, pz.
-void writeRow(const TriangulationRowInput& in, const TriangulationScratch& s, const TriangulationRowOutput& out) {
+// The solved image row into the outputs: the points are in the scratch's px, py, pz.
+void writeImageRow(const TriangulationImageRowInput& in, const TriangulationScratch& s,
+                   const TriangulationImageRowOutput& out) {
   storePoints(in.width, s.px.data(), s.py.data(), s.pz.data(), out.points);
   storeStatuses(in.width, in.status, s.code.data(), out.status);
   std::copy(s.depth_per_px.begin(), s.depth_per_px.begin() + in.width, out.depth_per_px);
@@ -307,24 +310,26 @@ TriangulationScratch::TriangulationScratch(int width)
       column_depth_per_px(width),
       column_code(width) {}
 
-void triangulateRowWithRows(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
-                            TriangulationScratch& s, const TriangulationRowOutput& out) {
+void triangulateImageRowWithProjectorRows(const RigGeometry& rig, const ProjectorTables& tables,
+                                          const TriangulationImageRowInput& in, TriangulationScratch& s,
+                                          const TriangulationImageRowOutput& out) {
   const int n = in.width;
   const auto grid = tables.undistort.view();
-  // A row outside the table names a projector pixel outside the image too.
+  // A projector row outside the table names a projector pixel outside the image too.
   locateCells(grid, n, in.column, in.row, in.status, tables.min_column, tables.max_column, kOutOfRange, s.cell.data(),
               s.fx.data(), s.fy.data(), s.code.data());
   undistortCells(grid, n, s.cell.data(), s.fx.data(), s.fy.data(), s.light.data());
-  solveWithRows(rig, n, in.ray_x, in.ray_y, s.light.data(), in.expected_offset, in.limit_scale_sq, s.code.data(),
-                s.px.data(), s.py.data(), s.pz.data(), s.depth_per_px.data());
-  solveMissingRows(rig, tables, in, s);
-  writeRow(in, s, out);
+  solveWithProjectorRows(rig, n, in.ray_x, in.ray_y, s.light.data(), in.expected_offset, in.limit_scale_sq,
+                         s.code.data(), s.px.data(), s.py.data(), s.pz.data(), s.depth_per_px.data());
+  solveMissingProjectorRows(rig, tables, in, s);
+  writeImageRow(in, s, out);
 }
 
-void triangulateRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables, const TriangulationRowInput& in,
-                              TriangulationScratch& s, const TriangulationRowOutput& out) {
+void triangulateImageRowColumnOnly(const RigGeometry& rig, const ProjectorTables& tables,
+                                   const TriangulationImageRowInput& in, TriangulationScratch& s,
+                                   const TriangulationImageRowOutput& out) {
   solveByColumns(rig, tables, in, s, s.code.data(), {s.px.data(), s.py.data(), s.pz.data(), s.depth_per_px.data()});
-  writeRow(in, s, out);
+  writeImageRow(in, s, out);
 }
 
 }  // namespace binpick::reconstruction::detail

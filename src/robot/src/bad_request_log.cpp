@@ -2,7 +2,7 @@
 
 #include <utility>
 
-#include "server_logger.hpp"
+#include "binpick/core/component_logger.hpp"
 
 namespace binpick::robot::detail {
 
@@ -13,10 +13,10 @@ void BadRequestLog::record(const robot::Decoded& message, Clock::time_point now)
   const std::string what = std::string(robot::statusName(message.error)) + ": " + message.detail;
   if (logged_ < static_cast<std::size_t>(kBadRequestsLoggedInFull)) {
     ++logged_;
-    serverLogger()->info("client {} ({}): {}", client_, peer_, what);
+    core::componentLogger("robot")->info("client {} ({}): {}", client_, peer_, what);
     if (logged_ == static_cast<std::size_t>(kBadRequestsLoggedInFull)) {
-      serverLogger()->info("client {} ({}): further bad requests are counted, one summary per {} ms", client_, peer_,
-                           interval_.count());
+      core::componentLogger("robot")->info("client {} ({}): further bad requests are counted, one summary per {} ms",
+                                           client_, peer_, interval_.count());
     }
     return;
   }
@@ -38,8 +38,9 @@ void BadRequestLog::flushIfDue(Clock::time_point now) {
 void BadRequestLog::flush(Clock::time_point now) {
   if (suppressed_ == 0) return;
   const double seconds = std::chrono::duration<double>(now - window_start_).count();
-  serverLogger()->warn("client {} ({}): {} more bad requests suppressed in the last {:.{}f} s (latest: {})", client_,
-                       peer_, suppressed_, seconds, seconds < 10.0 ? 1 : 0, latest_);
+  core::componentLogger("robot")->warn(
+      "client {} ({}): {} more bad requests suppressed in the last {:.{}f} s (latest: {})", client_, peer_, suppressed_,
+      seconds, seconds < 10.0 ? 1 : 0, latest_);
   suppressed_ = 0;
 }
 

@@ -5,8 +5,8 @@
 #include <cerrno>
 #include <utility>
 
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
-#include "server_logger.hpp"
 
 namespace binpick::robot::detail {
 namespace {
@@ -61,8 +61,9 @@ void ClientConnection::receive() {
 void ClientConnection::switchCodec(const robot::CodecParams& codec) {
   while (std::optional<robot::Decoded> decoded = decoder_.next()) backlog_.push_back(std::move(*decoded));
   if (decoder_.buffered() > 0) {
-    serverLogger()->warn("client {} ({}): {} bytes of a request begun before the codec changed are dropped", id_, peer_,
-                         decoder_.buffered());
+    core::componentLogger("robot")->warn(
+        "client {} ({}): {} bytes of a request begun before the codec changed are dropped", id_, peer_,
+        decoder_.buffered());
   }
   codec_ = codec;
   decoder_ = robot::RequestDecoder(codec);
@@ -94,8 +95,8 @@ bool ClientConnection::answer(const robot::Reply& reply) {
   if (!outstanding_) return false;
   if (reply.command != *outstanding_) {
     // A handler bug; the robot still gets the reply so that it is not left waiting.
-    serverLogger()->warn("client {}: reply for {} answers a {} request", id_, robot::commandKeyword(reply.command),
-                         robot::commandKeyword(*outstanding_));
+    core::componentLogger("robot")->warn("client {}: reply for {} answers a {} request", id_,
+                                         robot::commandKeyword(reply.command), robot::commandKeyword(*outstanding_));
   }
   outstanding_.reset();
   idle_since_ = Clock::now();  // a robot that waited long for a cycle is not idle for it
@@ -108,8 +109,8 @@ std::string ClientConnection::encodeOrInternalError(const robot::Reply& reply) {
     return robot::encodeReply(reply, codec_);
   } catch (const core::Error& error) {
     // A reply the codec cannot encode (too many integers, ...) must still answer the request.
-    serverLogger()->error("client {}: cannot encode the {} reply: {}", id_, robot::commandKeyword(reply.command),
-                          error.what());
+    core::componentLogger("robot")->error("client {}: cannot encode the {} reply: {}", id_,
+                                          robot::commandKeyword(reply.command), error.what());
     robot::Reply fallback;
     fallback.command = reply.command;
     fallback.status = robot::Status::InternalError;

@@ -3,10 +3,10 @@
 #include <tuple>
 
 #include "binpick/core/address_filter.hpp"
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/robot/robot_server.hpp"
 #include "server_impl.hpp"
-#include "server_logger.hpp"
 
 namespace binpick::robot {
 namespace {
@@ -46,7 +46,7 @@ RobotServer::Impl::Impl(const RobotServerParams& params, RequestHandler& request
 RobotServer::RobotServer(const RobotServerParams& params, RequestHandler& handler) {
   params.validate();
   impl_ = std::make_unique<Impl>(params, handler);
-  detail::serverLogger()->info("listening on {}:{}", params.bind_address, impl_->port);
+  core::componentLogger("robot")->info("listening on {}:{}", params.bind_address, impl_->port);
 }
 
 RobotServer::~RobotServer() = default;

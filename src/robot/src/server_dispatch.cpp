@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "binpick/core/component_logger.hpp"
 #include "server_impl.hpp"
-#include "server_logger.hpp"
 
 namespace binpick::robot {
 
@@ -41,8 +41,8 @@ void RobotServer::Impl::handOver(detail::ClientConnection& client, const robot::
     failure = "unknown exception";
   }
   // The robot must not wait forever for a reply the handler will never send.
-  detail::serverLogger()->error("client {}: the handler failed on {}: {}", client.id(),
-                                robot::commandKeyword(request.command), failure);
+  core::componentLogger("robot")->error("client {}: the handler failed on {}: {}", client.id(),
+                                        robot::commandKeyword(request.command), failure);
   robot::Reply reply;
   reply.command = request.command;
   reply.status = robot::Status::InternalError;
@@ -58,12 +58,12 @@ void RobotServer::Impl::applyReplies() {
   for (const auto& [id, reply] : replies) {
     const auto found = clients.find(id);
     if (found == clients.end() || found->second->closing()) {
-      detail::serverLogger()->debug("reply for client {} dropped: the client has gone", id);
+      core::componentLogger("robot")->debug("reply for client {} dropped: the client has gone", id);
       continue;
     }
     if (!found->second->answer(reply)) {
-      detail::serverLogger()->warn("reply {} for client {} dropped: no request outstanding",
-                                   robot::commandKeyword(reply.command), id);
+      core::componentLogger("robot")->warn("reply {} for client {} dropped: no request outstanding",
+                                           robot::commandKeyword(reply.command), id);
       continue;
     }
     ready.push_back(id);
@@ -123,14 +123,14 @@ void RobotServer::Impl::closeAll(const char* reason) {
 void RobotServer::Impl::disconnect(std::unique_ptr<detail::ClientConnection> client) {
   const ClientId id = client->id();
   client->flushLog();
-  detail::serverLogger()->info("client {} ({}) disconnected: {}", id, client->peer(), client->closeReason());
+  core::componentLogger("robot")->info("client {} ({}) disconnected: {}", id, client->peer(), client->closeReason());
   client.reset();  // the socket closes before the handler hears of it
   try {
     handler.disconnected(id);
   } catch (const std::exception& error) {
-    detail::serverLogger()->error("client {}: the handler failed on disconnect: {}", id, error.what());
+    core::componentLogger("robot")->error("client {}: the handler failed on disconnect: {}", id, error.what());
   } catch (...) {
-    detail::serverLogger()->error("client {}: the handler failed on disconnect", id);
+    core::componentLogger("robot")->error("client {}: the handler failed on disconnect", id);
   }
 }
 

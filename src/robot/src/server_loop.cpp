@@ -9,9 +9,9 @@
 #include <optional>
 #include <string>
 
+#include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "server_impl.hpp"
-#include "server_logger.hpp"
 
 namespace binpick::robot {
 namespace {
@@ -71,7 +71,7 @@ void RobotServer::Impl::applyCodecChange() {
     codec_now = codec;
   }
   for (auto& entry : clients) entry.second->switchCodec(codec_now);
-  detail::serverLogger()->info(
+  core::componentLogger("robot")->info(
       "robot codec now {} framing, {}: applied to the {} connected client(s) from their next request",
       codec_now.framing == robot::Framing::Ascii ? "ascii" : "binary", core::orientationName(codec_now.orientation),
       clients.size());
@@ -121,8 +121,8 @@ void RobotServer::Impl::acceptClients() {
       throw core::Error("robot server: accept failed: " + detail::errnoText(error_number));
     }
     if (isOutOfResources(error_number)) {
-      detail::serverLogger()->warn("cannot accept a connection: {}; pausing {} ms", detail::errnoText(error_number),
-                                   kAcceptPause.count());
+      core::componentLogger("robot")->warn("cannot accept a connection: {}; pausing {} ms",
+                                           detail::errnoText(error_number), kAcceptPause.count());
       accept_paused_until = std::chrono::steady_clock::now() + kAcceptPause;
       return;
     }
@@ -139,7 +139,7 @@ void RobotServer::Impl::admit(detail::UniqueFd socket, const sockaddr_in& peer) 
     filter = allowed;
     codec_now = codec;
   }
-  const auto log = detail::serverLogger();
+  const auto log = core::componentLogger("robot");
   if (!filter->allows(peer.sin_addr)) {
     log->warn("refused {}: not in allowed_clients", peer_text);
     return;  // the socket closes here
@@ -174,7 +174,7 @@ bool RobotServer::Impl::makeRoomFor(const std::string& newcomer) {
   if (victim == clients.end()) return false;
   detail::ClientConnection& client = *victim->second;
   const double idle_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - client.idleSince()).count();
-  detail::serverLogger()->warn(
+  core::componentLogger("robot")->warn(
       "max_clients ({}) connected: closing client {} ({}), idle for {:.1f} s without a request outstanding, to "
       "make room for {}",
       max_clients, client.id(), client.peer(), idle_s, newcomer);

@@ -7,9 +7,9 @@
 #include "bin.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/reconstruction/pattern_set.hpp"
-#include "binpick/simulation/object_visibility.hpp"
 #include "binpick/simulation/pile.hpp"
 #include "pile_view.hpp"
+#include "render/object_visibility.hpp"
 #include "sensor/mixed_pixels.hpp"
 #include "sensor_noise.hpp"
 

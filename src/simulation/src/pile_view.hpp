@@ -4,9 +4,9 @@
 #include <vector>
 
 #include "binpick/simulation/pile.hpp"
-#include "binpick/simulation/pixel_lighting.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
+#include "sensor/pixel_lighting.hpp"
 
 namespace binpick::simulation::detail {
 

@@ -5,7 +5,7 @@
 
 #include "binpick/cell/artefact_store.hpp"
 #include "binpick/core/component_logger.hpp"
-#include "binpick/web/status_json.hpp"
+#include "status_json.hpp"
 #include "page.hpp"
 
 namespace binpick::web::detail {

@@ -1,4 +1,4 @@
-#include "binpick/web/status_json.hpp"
+#include "status_json.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -164,7 +164,7 @@ json cycleJson(const cell::CycleSummary& cycle, const std::vector<cell::SavedCyc
               {"counts",
                {{"detected", cycle.parts_detected},
                 {"picks", cycle.picks.size()},
-                {"not_sure", cycle.not_sure},
+                {"low_coverage", cycle.low_coverage},
                 {"rejected", cycle.rejected.total()},
                 {"undeliverable", cycle.undeliverable.size()}}},
               {"bin_points", cycle.bin_points},

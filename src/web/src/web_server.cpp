@@ -20,8 +20,6 @@ constexpr std::size_t kWaitingConnections = 8;
 constexpr std::size_t kKeepAliveRequests = 20;  // then a browser's connection is closed: slots turn over
 constexpr std::size_t kMaxRequestBody = 1024;   // a read-only API takes no bodies
 
-std::shared_ptr<spdlog::logger> logger() { return core::componentLogger("web"); }
-
 // SO_REUSEADDR only: httplib's default also sets SO_REUSEPORT, with which a second process could
 // bind the same port and take half the connections instead of failing to start.
 void reuseAddressOnly(socket_t socket) {
@@ -78,7 +76,7 @@ WebServer::WebServer(const cell::WebViewConfig& config, WebSources sources) : im
   }
   if (config.port != 0) impl_->port = config.port;
   impl_->listening = std::thread([this] { impl_->server.listen_after_bind(); });
-  logger()->info("web view on http://{}:{}/", config.bind_address, impl_->port);
+  core::componentLogger("web")->info("web view on http://{}:{}/", config.bind_address, impl_->port);
 }
 
 WebServer::~WebServer() { stop(); }

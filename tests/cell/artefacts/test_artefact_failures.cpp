@@ -21,7 +21,7 @@ using cell::ArtefactParams;
 using cell::ArtefactStore;
 using cell::CycleArtefacts;
 
-class artefacts_failures : public TempDirectoryTest {
+class ArtefactsFailures : public TempDirectoryTest {
  protected:
   ArtefactParams paramsIn(const std::string& directory) const {
     ArtefactParams params;
@@ -30,14 +30,14 @@ class artefacts_failures : public TempDirectoryTest {
   }
 };
 
-TEST_F(artefacts_failures, DirectoryBelowARegularFileIsAnErrorNamingIt) {
+TEST_F(ArtefactsFailures, DirectoryBelowARegularFileIsAnErrorNamingIt) {
   std::ofstream(pathOf("plain-file")) << "not a directory";
   const std::string directory = pathOf("plain-file/cycles");
   EXPECT_TRUE(throwsNaming([&] { ArtefactStore store(paramsIn(directory)); }, directory));
   EXPECT_TRUE(throwsNaming([&] { ArtefactStore store(paramsIn(pathOf("plain-file"))); }, pathOf("plain-file")));
 }
 
-TEST_F(artefacts_failures, DirectoryReplacedByAFileFailsTheSaveNamingTheCycle) {
+TEST_F(ArtefactsFailures, DirectoryReplacedByAFileFailsTheSaveNamingTheCycle) {
   const std::string directory = pathOf("cycles");
   ArtefactStore store(paramsIn(directory));
   fs::remove(directory);
@@ -50,7 +50,7 @@ TEST_F(artefacts_failures, DirectoryReplacedByAFileFailsTheSaveNamingTheCycle) {
   EXPECT_TRUE(fs::is_regular_file(directory));
 }
 
-TEST_F(artefacts_failures, AFailingArtefactLeavesNoPartialDirectory) {
+TEST_F(ArtefactsFailures, AFailingArtefactLeavesNoPartialDirectory) {
   const std::string directory = pathOf("cycles");
   ArtefactStore store(paramsIn(directory));
   const io::Capture capture = tinyCapture();  // written before the cloud fails
@@ -74,7 +74,7 @@ TEST_F(artefacts_failures, AFailingArtefactLeavesNoPartialDirectory) {
   EXPECT_EQ(entriesOf(directory), std::set<std::string>{nameOf(saved)});
 }
 
-TEST_F(artefacts_failures, AnUnwritableOverlayLeavesNoPartialDirectory) {
+TEST_F(ArtefactsFailures, AnUnwritableOverlayLeavesNoPartialDirectory) {
   const std::string directory = pathOf("cycles");
   ArtefactStore store(paramsIn(directory));
   const cv::Mat two_channels(6, 8, CV_8UC2, cv::Scalar(1, 2));  // PNG has no such format

@@ -26,7 +26,7 @@ std::string fileText(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-class artefacts_store : public TempDirectoryTest {
+class ArtefactsStore : public TempDirectoryTest {
  protected:
   ArtefactParams paramsIn(const std::string& name) const {
     ArtefactParams params;
@@ -47,7 +47,7 @@ class artefacts_store : public TempDirectoryTest {
   }
 };
 
-TEST_F(artefacts_store, SavesEveryArtefactOfACycle) {
+TEST_F(ArtefactsStore, SavesEveryArtefactOfACycle) {
   ArtefactStore store(paramsIn("cycles"));
   const io::Capture capture = tinyCapture();
   const io::PointCloud cloud = tinyCloud();
@@ -72,7 +72,7 @@ TEST_F(artefacts_store, SavesEveryArtefactOfACycle) {
   EXPECT_EQ(store.cycles(), std::vector<std::string>{directory});
 }
 
-TEST_F(artefacts_store, SavesOnlyWhatIsEnabledAndProvided) {
+TEST_F(ArtefactsStore, SavesOnlyWhatIsEnabledAndProvided) {
   ArtefactParams params = paramsIn("cycles");
   params.capture = false;
   params.overlay = false;
@@ -85,7 +85,7 @@ TEST_F(artefacts_store, SavesOnlyWhatIsEnabledAndProvided) {
   EXPECT_EQ(entriesOf(store.save(cycle)), std::set<std::string>{"detections.json"});
 }
 
-TEST_F(artefacts_store, SkipsEmptyArtefactsButKeepsTheCycle) {
+TEST_F(ArtefactsStore, SkipsEmptyArtefactsButKeepsTheCycle) {
   ArtefactStore store(paramsIn("cycles"));
   const io::Capture no_images;
   const io::PointCloud no_points;
@@ -100,7 +100,7 @@ TEST_F(artefacts_store, SkipsEmptyArtefactsButKeepsTheCycle) {
   EXPECT_EQ(store.cycles(), std::vector<std::string>{directory});
 }
 
-TEST_F(artefacts_store, KeepsOnlyTheNewestCycles) {
+TEST_F(ArtefactsStore, KeepsOnlyTheNewestCycles) {
   ArtefactParams params = paramsIn("cycles");
   params.max_cycles = 3;
   ArtefactStore store(params);
@@ -109,7 +109,7 @@ TEST_F(artefacts_store, KeepsOnlyTheNewestCycles) {
   EXPECT_EQ(entriesOf(pathOf("cycles")).size(), 3u);
 }
 
-TEST_F(artefacts_store, KeepsTheNewestCyclesThatFitTheSizeBound) {
+TEST_F(ArtefactsStore, KeepsTheNewestCyclesThatFitTheSizeBound) {
   ArtefactParams params = paramsIn("cycles");
   params.max_bytes = 2500;  // two cycles of 1000 bytes fit, three do not
   ArtefactStore store(params);
@@ -117,7 +117,7 @@ TEST_F(artefacts_store, KeepsTheNewestCyclesThatFitTheSizeBound) {
   EXPECT_EQ(cycleNumbers(store), (std::vector<std::string>{"000003", "000004"}));
 }
 
-TEST_F(artefacts_store, KeepsTheNewestCycleEvenWhenItAloneIsTooLarge) {
+TEST_F(ArtefactsStore, KeepsTheNewestCycleEvenWhenItAloneIsTooLarge) {
   ArtefactParams params = paramsIn("cycles");
   params.max_bytes = 100;
   ArtefactStore store(params);
@@ -126,7 +126,7 @@ TEST_F(artefacts_store, KeepsTheNewestCycleEvenWhenItAloneIsTooLarge) {
   EXPECT_EQ(store.cycles(), std::vector<std::string>{newest});
 }
 
-TEST_F(artefacts_store, RepeatedCycleNumbersGetDistinctDirectories) {
+TEST_F(ArtefactsStore, RepeatedCycleNumbersGetDistinctDirectories) {
   ArtefactStore store(paramsIn("cycles"));
   const std::string first = store.save(textCycle(1));
   const std::string second = store.save(textCycle(1));  // e.g. after a restart, same second
@@ -135,7 +135,7 @@ TEST_F(artefacts_store, RepeatedCycleNumbersGetDistinctDirectories) {
   EXPECT_EQ(store.cycles(), (std::vector<std::string>{first, second}));
 }
 
-TEST_F(artefacts_store, RotationLeavesForeignFilesAndDirectoriesAlone) {
+TEST_F(ArtefactsStore, RotationLeavesForeignFilesAndDirectoriesAlone) {
   const fs::path directory = pathOf("cycles");
   fs::create_directories(directory / "my notes");
   fs::create_directories(directory / "cycle-000001");               // no timestamp
@@ -161,7 +161,7 @@ TEST_F(artefacts_store, RotationLeavesForeignFilesAndDirectoriesAlone) {
   EXPECT_EQ(store.cycles(), std::vector<std::string>{newest});
 }
 
-TEST_F(artefacts_store, RemovesLeftoversOfAnInterruptedSave) {
+TEST_F(ArtefactsStore, RemovesLeftoversOfAnInterruptedSave) {
   const fs::path directory = pathOf("cycles");
   const fs::path leftover = directory / ".partial-cycle-000009-20260101T000000Z";
   fs::create_directories(leftover / "capture");
@@ -174,12 +174,12 @@ TEST_F(artefacts_store, RemovesLeftoversOfAnInterruptedSave) {
   EXPECT_TRUE(store.cycles().empty());
 }
 
-TEST_F(artefacts_store, CreatesItsDirectory) {
+TEST_F(ArtefactsStore, CreatesItsDirectory) {
   const ArtefactStore store(paramsIn("a/b/c"));
   EXPECT_TRUE(fs::is_directory(pathOf("a/b/c")));
 }
 
-TEST_F(artefacts_store, ParamsNameTheBadField) {
+TEST_F(ArtefactsStore, ParamsNameTheBadField) {
   ArtefactParams params = paramsIn("cycles");
   params.max_cycles = 0;
   EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "artefacts.max_cycles"));

@@ -6,7 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-#include "binpick/cell/overlay.hpp"
+#include "overlay.hpp"
 #include "thrown_message.hpp"
 
 namespace binpick::test {
@@ -39,7 +39,7 @@ cv::Vec3b at(const cv::Mat& image, int x, int y) { return image.at<cv::Vec3b>(y,
 const cv::Mat kGrey(480, 640, CV_8UC1, cv::Scalar(90));
 const std::vector<Eigen::Vector3f> kModel = {{0.f, 0.f, 0.f}, {0.04f, 0.f, 0.f}};
 
-TEST(artefacts_overlay, DrawsTheModelOriginWhereTheCameraSeesItInItsRankColour) {
+TEST(ArtefactsOverlay, DrawsTheModelOriginWhereTheCameraSeesItInItsRankColour) {
   // Origin at (0.02, 0.01, 0.5) m: pixel (320 + 500 * 0.04, 240 + 500 * 0.02) = (340, 250); the
   // second model point 4 cm further along x: (380, 250).
   const cv::Mat overlay = renderOverlay(kGrey, pinhole(), kModel, {partAt({0.02, 0.01, 0.5}, 0)});
@@ -50,7 +50,7 @@ TEST(artefacts_overlay, DrawsTheModelOriginWhereTheCameraSeesItInItsRankColour) 
   EXPECT_EQ(at(overlay, 10, 10), cv::Vec3b(90, 90, 90));
 }
 
-TEST(artefacts_overlay, ColoursPicksGreenToYellowAndTheRestRed) {
+TEST(ArtefactsOverlay, ColoursPicksGreenToYellowAndTheRestRed) {
   const cv::Mat overlay =
       renderOverlay(kGrey, pinhole(), kModel,
                     {partAt({0.0, 0.0, 0.5}, 2), partAt({-0.2, 0.0, 0.5}, 0), partAt({0.0, -0.2, 0.5}, -1)});
@@ -59,7 +59,7 @@ TEST(artefacts_overlay, ColoursPicksGreenToYellowAndTheRestRed) {
   EXPECT_EQ(at(overlay, 320, 40), kRed);      // not picked
 }
 
-TEST(artefacts_overlay, IncludesTheLensDistortion) {
+TEST(ArtefactsOverlay, IncludesTheLensDistortion) {
   io::LensIntrinsics lens = pinhole();
   lens.distortion = {-0.2, 0.05, 0.001, -0.001, 0.0};
   const Eigen::Vector3d origin(0.2, 0.15, 0.5);
@@ -69,7 +69,7 @@ TEST(artefacts_overlay, IncludesTheLensDistortion) {
   EXPECT_EQ(at(overlay, cvRound(expected.x()), cvRound(expected.y())), kGreen);
 }
 
-TEST(artefacts_overlay, SkipsPointsBehindTheCameraOrOutsideTheImage) {
+TEST(ArtefactsOverlay, SkipsPointsBehindTheCameraOrOutsideTheImage) {
   const std::vector<OverlayPart> parts = {partAt({0.0, 0.0, -0.5}, 0), partAt({2.0, 0.0, 0.5}, 1)};
   const cv::Mat overlay = renderOverlay(kGrey, pinhole(), kModel, parts);
   cv::Mat expected;
@@ -77,7 +77,7 @@ TEST(artefacts_overlay, SkipsPointsBehindTheCameraOrOutsideTheImage) {
   EXPECT_EQ(cv::norm(overlay, expected, cv::NORM_INF), 0.0);
 }
 
-TEST(artefacts_overlay, DrawsTheGraspTripodXRedYGreen) {
+TEST(ArtefactsOverlay, DrawsTheGraspTripodXRedYGreen) {
   OverlayPart part = partAt({0.5, 0.3, 2.0}, -1);  // its origin marker well away from the grasp
   part.T_camera_grasp = Eigen::Translation3d(0.0, 0.0, 0.5) * Eigen::Isometry3d::Identity();
   // The tripod's axes are kOverlayTripodLength (2 cm) long: x ends at pixel (340, 240), y at
@@ -87,14 +87,14 @@ TEST(artefacts_overlay, DrawsTheGraspTripodXRedYGreen) {
   EXPECT_EQ(at(overlay, 320, 252), kGreen);
 }
 
-TEST(artefacts_overlay, ScalesSixteenBitImagesToEightBit) {
+TEST(ArtefactsOverlay, ScalesSixteenBitImagesToEightBit) {
   const cv::Mat grey16(480, 640, CV_16UC1, cv::Scalar(257 * 100));
   const cv::Mat overlay = renderOverlay(grey16, pinhole(), kModel, {});
   ASSERT_EQ(overlay.type(), CV_8UC3);
   EXPECT_EQ(at(overlay, 5, 5), cv::Vec3b(100, 100, 100));
 }
 
-TEST(artefacts_overlay, RefusesImagesItCannotDrawOn) {
+TEST(ArtefactsOverlay, RefusesImagesItCannotDrawOn) {
   const io::LensIntrinsics lens = pinhole();
   EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(), lens, kModel, {}); }, "empty"));
   EXPECT_TRUE(throwsNaming([&] { renderOverlay(cv::Mat(480, 640, CV_8UC3), lens, kModel, {}); }, "grey"));

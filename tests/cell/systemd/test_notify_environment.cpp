@@ -44,9 +44,9 @@ struct ServiceEnvironment {
 
 std::string ourPid() { return std::to_string(::getpid()); }
 
-using systemd_environment = NotifySocketTest;
+using SystemdEnvironment = NotifySocketTest;
 
-TEST_F(systemd_environment, WithoutNotifySocketEverythingIsDisabled) {
+TEST_F(SystemdEnvironment, WithoutNotifySocketEverythingIsDisabled) {
   for (const std::optional<std::string>& socket : {std::optional<std::string>(), std::optional<std::string>("")}) {
     const ServiceEnvironment environment(socket, "10000000", ourPid());
     const SystemdNotifier notifier = SystemdNotifier::fromEnvironment();
@@ -55,7 +55,7 @@ TEST_F(systemd_environment, WithoutNotifySocketEverythingIsDisabled) {
   }
 }
 
-TEST_F(systemd_environment, ReadsTheSocketAndTheWatchdogMeantForThisProcess) {
+TEST_F(SystemdEnvironment, ReadsTheSocketAndTheWatchdogMeantForThisProcess) {
   NotifyReceiver receiver(socketPath());
   const ServiceEnvironment environment(socketPath(), "10000000", ourPid());
   SystemdNotifier notifier = SystemdNotifier::fromEnvironment();
@@ -66,12 +66,12 @@ TEST_F(systemd_environment, ReadsTheSocketAndTheWatchdogMeantForThisProcess) {
   EXPECT_EQ(receiver.next(), "READY=1\nSTATUS=up");
 }
 
-TEST_F(systemd_environment, WatchdogWithoutPidAppliesToThisProcess) {
+TEST_F(SystemdEnvironment, WatchdogWithoutPidAppliesToThisProcess) {
   const ServiceEnvironment environment("@binpick-env-test", "2500000", std::nullopt);
   EXPECT_EQ(SystemdNotifier::fromEnvironment().watchdogInterval(), microseconds(2500000));
 }
 
-TEST_F(systemd_environment, WatchdogOfAnotherProcessIsNotOurs) {
+TEST_F(SystemdEnvironment, WatchdogOfAnotherProcessIsNotOurs) {
   const std::string other = std::to_string(::getpid() + 1);
   for (const std::string& pid : {other, std::string("1"), std::string("garbage"), std::string("")}) {
     const ServiceEnvironment environment(socketPath(), "10000000", pid);
@@ -81,7 +81,7 @@ TEST_F(systemd_environment, WatchdogOfAnotherProcessIsNotOurs) {
   }
 }
 
-TEST_F(systemd_environment, GarbageWatchdogUsecMeansNoWatchdog) {
+TEST_F(SystemdEnvironment, GarbageWatchdogUsecMeansNoWatchdog) {
   for (const char* usec : {"", "abc", "-5", "0", "12x", " 100", "1e6", "99999999999999999999999"}) {
     const ServiceEnvironment environment(socketPath(), std::string(usec), ourPid());
     SystemdNotifier notifier;
@@ -91,7 +91,7 @@ TEST_F(systemd_environment, GarbageWatchdogUsecMeansNoWatchdog) {
   }
 }
 
-TEST_F(systemd_environment, ARelativeNotifySocketIsAnErrorNamingIt) {
+TEST_F(SystemdEnvironment, ARelativeNotifySocketIsAnErrorNamingIt) {
   const ServiceEnvironment environment("run/systemd/notify", std::nullopt, std::nullopt);
   EXPECT_TRUE(throwsNaming([] { SystemdNotifier::fromEnvironment(); }, "NOTIFY_SOCKET \"run/systemd/notify\""));
 }

@@ -22,7 +22,7 @@ namespace {
 
 using cell::SystemdNotifier;
 using std::chrono::microseconds;
-using systemd_notify = NotifySocketTest;
+using SystemdNotify = NotifySocketTest;
 using namespace std::string_literals;
 
 long long monotonicMicroseconds() {
@@ -31,7 +31,7 @@ long long monotonicMicroseconds() {
   return static_cast<long long>(now.tv_sec) * 1000000LL + now.tv_nsec / 1000;
 }
 
-TEST_F(systemd_notify, EachCallSendsItsExactDatagram) {
+TEST_F(SystemdNotify, EachCallSendsItsExactDatagram) {
   NotifyReceiver receiver(socketPath());
   SystemdNotifier notifier(socketPath(), microseconds(0));
   ASSERT_TRUE(notifier.enabled());
@@ -46,7 +46,7 @@ TEST_F(systemd_notify, EachCallSendsItsExactDatagram) {
   EXPECT_FALSE(receiver.hasPending());
 }
 
-TEST_F(systemd_notify, ReloadingCarriesTheMonotonicClockOfTheCall) {
+TEST_F(SystemdNotify, ReloadingCarriesTheMonotonicClockOfTheCall) {
   NotifyReceiver receiver(socketPath());
   SystemdNotifier notifier(socketPath(), microseconds(0));
   const long long before = monotonicMicroseconds();
@@ -66,7 +66,7 @@ TEST_F(systemd_notify, ReloadingCarriesTheMonotonicClockOfTheCall) {
   EXPECT_TRUE(lines.eof() || lines.peek() == EOF);
 }
 
-TEST_F(systemd_notify, SpeaksToAnAbstractSocket) {
+TEST_F(SystemdNotify, SpeaksToAnAbstractSocket) {
   const std::string name = "@binpick-notify-test-" + std::to_string(::getpid());
   NotifyReceiver receiver(name);
   SystemdNotifier notifier(name, microseconds(0));
@@ -74,14 +74,14 @@ TEST_F(systemd_notify, SpeaksToAnAbstractSocket) {
   EXPECT_EQ(receiver.next(), "WATCHDOG=1");
 }
 
-TEST_F(systemd_notify, StatusBecomesOneLineWithoutControlCharacters) {
+TEST_F(SystemdNotify, StatusBecomesOneLineWithoutControlCharacters) {
   NotifyReceiver receiver(socketPath());
   SystemdNotifier notifier(socketPath(), microseconds(0));
   notifier.status("camera lost\nretrying\r\tin 2 s\0!"s);
   EXPECT_EQ(receiver.next(), "STATUS=camera lost retrying  in 2 s !");
 }
 
-TEST_F(systemd_notify, LongStatusIsCutWithoutSplittingACharacter) {
+TEST_F(SystemdNotify, LongStatusIsCutWithoutSplittingACharacter) {
   NotifyReceiver receiver(socketPath());
   SystemdNotifier notifier(socketPath(), microseconds(0));
   const std::size_t limit = SystemdNotifier::kMaxStatusBytes;
@@ -92,7 +92,7 @@ TEST_F(systemd_notify, LongStatusIsCutWithoutSplittingACharacter) {
   EXPECT_EQ(receiver.next(), "STATUS=" + std::string(limit, 'b'));
 }
 
-TEST_F(systemd_notify, DisabledNotifierSendsNothing) {
+TEST_F(SystemdNotify, DisabledNotifierSendsNothing) {
   NotifyReceiver receiver(socketPath());
   for (const SystemdNotifier& disabled : {SystemdNotifier(), SystemdNotifier("", microseconds(0))}) {
     SystemdNotifier notifier = disabled;
@@ -107,7 +107,7 @@ TEST_F(systemd_notify, DisabledNotifierSendsNothing) {
   EXPECT_FALSE(receiver.hasPending());
 }
 
-TEST_F(systemd_notify, RejectsAddressesThatAreNoSocketAddress) {
+TEST_F(SystemdNotify, RejectsAddressesThatAreNoSocketAddress) {
   const microseconds none(0);
   EXPECT_TRUE(throwsNaming([&] { SystemdNotifier("run/notify", none); }, "NOTIFY_SOCKET"));
   EXPECT_TRUE(throwsNaming([&] { SystemdNotifier("@", none); }, "NOTIFY_SOCKET"));
@@ -136,7 +136,7 @@ class CapturedSystemdLog {
   std::ostringstream text_;
 };
 
-TEST_F(systemd_notify, FailedSendsNeverThrowAndAreLoggedOncePerOutage) {
+TEST_F(SystemdNotify, FailedSendsNeverThrowAndAreLoggedOncePerOutage) {
   const CapturedSystemdLog log;
   SystemdNotifier notifier(socketPath(), microseconds(0));
   for (int ping = 0; ping < 3; ++ping) EXPECT_NO_THROW(notifier.watchdog());  // nobody listens
@@ -152,7 +152,7 @@ TEST_F(systemd_notify, FailedSendsNeverThrowAndAreLoggedOncePerOutage) {
   EXPECT_EQ(log.count("cannot notify"), 2);
 }
 
-TEST_F(systemd_notify, ThreadsSendingAtOnceDeliverEveryDatagramWhole) {
+TEST_F(SystemdNotify, ThreadsSendingAtOnceDeliverEveryDatagramWhole) {
   NotifyReceiver receiver(socketPath());
   SystemdNotifier notifier(socketPath(), microseconds(0));  // one object, shared by all threads
   constexpr int kThreads = 4, kMessages = 25;

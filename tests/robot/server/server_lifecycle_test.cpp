@@ -19,7 +19,7 @@ namespace {
 using robot::Command;
 using robot::Status;
 
-TEST(server_lifecycle, AllowListDecidesWhoIsServed) {
+TEST(ServerLifecycle, AllowListDecidesWhoIsServed) {
   robot::RobotServerParams params = loopbackParams();
   params.allowed_clients = {"10.0.0.0/8"};
   RunningServer running(params);
@@ -49,7 +49,7 @@ TEST(server_lifecycle, AllowListDecidesWhoIsServed) {
   EXPECT_EQ(running.handler().handledCount(), 6u);
 }
 
-TEST(server_lifecycle, ANewcomerBeyondMaxClientsReplacesTheLongestIdleClient) {
+TEST(ServerLifecycle, ANewcomerBeyondMaxClientsReplacesTheLongestIdleClient) {
   robot::RobotServerParams params = loopbackParams();
   params.max_clients = 2;
   RunningServer running(params);
@@ -67,7 +67,7 @@ TEST(server_lifecycle, ANewcomerBeyondMaxClientsReplacesTheLongestIdleClient) {
 
 // Eight connections that never say anything, or controllers that were switched off without
 // closing, must not lock the robot out.
-TEST(server_lifecycle, SilentConnectionsFillingMaxClientsDoNotLockRobotsOut) {
+TEST(ServerLifecycle, SilentConnectionsFillingMaxClientsDoNotLockRobotsOut) {
   RunningServer running(loopbackParams());  // max_clients 8, no allow-list
   std::vector<std::unique_ptr<TestClient>> silent;
   for (int i = 0; i < robot::RobotServerParams().max_clients; ++i) {
@@ -84,7 +84,7 @@ TEST(server_lifecycle, SilentConnectionsFillingMaxClientsDoNotLockRobotsOut) {
   EXPECT_EQ(running.server().clientCount(), 8u);
 }
 
-TEST(server_lifecycle, ClientsWaitingForAReplyKeepTheirSlots) {
+TEST(ServerLifecycle, ClientsWaitingForAReplyKeepTheirSlots) {
   robot::RobotServerParams params = loopbackParams();
   params.max_clients = 2;
   RunningServer running(params, Answer::ByTheTest);
@@ -110,7 +110,7 @@ TEST(server_lifecycle, ClientsWaitingForAReplyKeepTheirSlots) {
   EXPECT_EQ(newcomer.receiveReply().command, Command::Ping);
 }
 
-TEST(server_lifecycle, IdleClientsAreDisconnectedAfterIdleTimeout) {
+TEST(ServerLifecycle, IdleClientsAreDisconnectedAfterIdleTimeout) {
   robot::RobotServerParams params = loopbackParams();
   params.idle_timeout_ms = 300;
   RunningServer running(params, Answer::ByTheTest);
@@ -130,7 +130,7 @@ TEST(server_lifecycle, IdleClientsAreDisconnectedAfterIdleTimeout) {
   EXPECT_EQ(running.server().clientCount(), 0u);
 }
 
-TEST(server_lifecycle, ClientsTalkingWithinTheIdleTimeoutStay) {
+TEST(ServerLifecycle, ClientsTalkingWithinTheIdleTimeoutStay) {
   robot::RobotServerParams params = loopbackParams();
   params.idle_timeout_ms = 2000;
   RunningServer running(params);
@@ -144,7 +144,7 @@ TEST(server_lifecycle, ClientsTalkingWithinTheIdleTimeoutStay) {
 }
 
 // A dead peer is noticed by TCP keepalive: the options are set on the server's end.
-TEST(server_lifecycle, ClientSocketsUseTcpKeepalive) {
+TEST(ServerLifecycle, ClientSocketsUseTcpKeepalive) {
   const robot::RobotServerParams defaults;
   EXPECT_LE(defaults.keepalive_idle_s + defaults.keepalive_interval_s * defaults.keepalive_count, 60);
   robot::RobotServerParams params = loopbackParams();
@@ -179,7 +179,7 @@ TEST(server_lifecycle, ClientSocketsUseTcpKeepalive) {
   EXPECT_EQ(keepalive, 0);
 }
 
-TEST(server_lifecycle, ClientLeavingWithARequestOutstanding) {
+TEST(ServerLifecycle, ClientLeavingWithARequestOutstanding) {
   RunningServer running(loopbackParams(), Answer::ByTheTest);
   auto client = std::make_unique<TestClient>(running.port());
   client->send(request(Command::Trigger));
@@ -197,7 +197,7 @@ TEST(server_lifecycle, ClientLeavingWithARequestOutstanding) {
   EXPECT_EQ(next.receiveReply().command, Command::Ping);
 }
 
-TEST(server_lifecycle, StrayRepliesAreDropped) {
+TEST(ServerLifecycle, StrayRepliesAreDropped) {
   RunningServer running(loopbackParams(), Answer::ByTheTest);
   TestClient client(running.port());
   client.send(request(Command::SelectModel, "1"));
@@ -213,7 +213,7 @@ TEST(server_lifecycle, StrayRepliesAreDropped) {
   EXPECT_EQ(client.receiveReply().command, Command::Ping) << "the duplicate reply was sent";
 }
 
-TEST(server_lifecycle, StopClosesEveryClientEvenWithARequestOutstanding) {
+TEST(ServerLifecycle, StopClosesEveryClientEvenWithARequestOutstanding) {
   RunningServer running(loopbackParams(), Answer::ByTheTest);
   TestClient waiting(running.port());
   TestClient idle(running.port());
@@ -232,7 +232,7 @@ TEST(server_lifecycle, StopClosesEveryClientEvenWithARequestOutstanding) {
 
 // A service stopping answers its waiting robots (internal_error) and then stops the server at
 // once: those replies still reach the robots before their connections close.
-TEST(server_lifecycle, RepliesGivenJustBeforeStopAreSentBeforeTheClose) {
+TEST(ServerLifecycle, RepliesGivenJustBeforeStopAreSentBeforeTheClose) {
   RunningServer running(loopbackParams(), Answer::ByTheTest);
   TestClient waiting(running.port());
   waiting.send(request(Command::NextPick));
@@ -247,7 +247,7 @@ TEST(server_lifecycle, RepliesGivenJustBeforeStopAreSentBeforeTheClose) {
   EXPECT_TRUE(waiting.waitForClose());
 }
 
-TEST(server_lifecycle, StopBeforeRunMakesRunReturnAtOnce) {
+TEST(ServerLifecycle, StopBeforeRunMakesRunReturnAtOnce) {
   TestHandler handler(Answer::Immediately);
   robot::RobotServer server(loopbackParams(), handler);
   server.stop();
@@ -256,7 +256,7 @@ TEST(server_lifecycle, StopBeforeRunMakesRunReturnAtOnce) {
   SUCCEED();
 }
 
-TEST(server_lifecycle, NoDescriptorLeaksOverManyConnections) {
+TEST(ServerLifecycle, NoDescriptorLeaksOverManyConnections) {
   RunningServer running(loopbackParams());
   {
     // Warm up: the first connection creates the logger and whatever else lives for good.

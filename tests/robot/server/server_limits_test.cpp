@@ -16,7 +16,7 @@ namespace {
 using robot::Command;
 using robot::Status;
 
-TEST(server_limits, GarbageGetsErrorRepliesInOrderAndTheConnectionSurvives) {
+TEST(ServerLimits, GarbageGetsErrorRepliesInOrderAndTheConnectionSurvives) {
   RunningServer running(loopbackParams());
   TestClient client(running.port());
   client.sendBytes("HELLO\r\n");
@@ -37,7 +37,7 @@ TEST(server_limits, GarbageGetsErrorRepliesInOrderAndTheConnectionSurvives) {
 
 // A robot matching replies to its requests must never read a reply naming a command it did not
 // send: a line without a readable keyword is answered "ERROR,8".
-TEST(server_limits, UnreadableLinesAreAnsweredWithErrorNeverAnotherCommand) {
+TEST(ServerLimits, UnreadableLinesAreAnsweredWithErrorNeverAnotherCommand) {
   RunningServer running(loopbackParams());
   TestClient client(running.port());
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -59,7 +59,7 @@ TEST(server_limits, UnreadableLinesAreAnsweredWithErrorNeverAnotherCommand) {
 }
 
 // A program stuck sending garbage must not flood the journal: a few lines, then summaries.
-TEST(server_limits, BadRequestsOfAClientAreLoggedRateLimited) {
+TEST(ServerLimits, BadRequestsOfAClientAreLoggedRateLimited) {
   const RobotLogCapture log;
   RunningServer running(loopbackParams());
   TestClient client(running.port());
@@ -75,7 +75,7 @@ TEST(server_limits, BadRequestsOfAClientAreLoggedRateLimited) {
   EXPECT_EQ(log.countContaining("95 more bad requests suppressed"), 1u);
 }
 
-TEST(server_limits, BadRequestSummariesComeOncePerInterval) {
+TEST(ServerLimits, BadRequestSummariesComeOncePerInterval) {
   const RobotLogCapture log;
   robot::RobotServerParams params = loopbackParams();
   params.bad_request_log_interval_ms = 200;
@@ -93,7 +93,7 @@ TEST(server_limits, BadRequestSummariesComeOncePerInterval) {
   EXPECT_EQ(log.countContaining("suppressed"), 2u);
 }
 
-TEST(server_limits, ErrorRepliesWaitBehindTheRequestWithTheHandler) {
+TEST(ServerLimits, ErrorRepliesWaitBehindTheRequestWithTheHandler) {
   RunningServer running(loopbackParams(), Answer::ByTheTest);
   TestClient client(running.port());
   client.sendBytes("MODEL,4\r\nBOGUS\r\n");
@@ -105,7 +105,7 @@ TEST(server_limits, ErrorRepliesWaitBehindTheRequestWithTheHandler) {
   EXPECT_EQ(client.receiveReply().status, Status::UnknownCommand);
 }
 
-TEST(server_limits, SeededRandomAsciiGarbageNeverCostsTheConnection) {
+TEST(ServerLimits, SeededRandomAsciiGarbageNeverCostsTheConnection) {
   RunningServer running(loopbackParams());
   TestClient client(running.port());
   std::mt19937 random(20240611);
@@ -124,7 +124,7 @@ TEST(server_limits, SeededRandomAsciiGarbageNeverCostsTheConnection) {
   }
 }
 
-TEST(server_limits, SeededRandomBinaryGarbageGetsOneReplyPerMessage) {
+TEST(ServerLimits, SeededRandomBinaryGarbageGetsOneReplyPerMessage) {
   robot::RobotServerParams params = loopbackParams();
   params.codec = binaryCodec();
   RunningServer running(params);
@@ -144,7 +144,7 @@ TEST(server_limits, SeededRandomBinaryGarbageGetsOneReplyPerMessage) {
   EXPECT_GT(errors, 100);  // random ids are almost never a command
 }
 
-TEST(server_limits, ClientPipeliningBeyondTheQueueLimitIsDisconnected) {
+TEST(ServerLimits, ClientPipeliningBeyondTheQueueLimitIsDisconnected) {
   robot::RobotServerParams params = loopbackParams();
   params.max_queued_requests = 4;
   RunningServer running(params, Answer::ByTheTest);
@@ -171,7 +171,7 @@ TEST(server_limits, ClientPipeliningBeyondTheQueueLimitIsDisconnected) {
   EXPECT_EQ(within.receiveReply().command, Command::Ping);
 }
 
-TEST(server_limits, ClientThatDoesNotReadIsDisconnectedWhileAnotherIsServed) {
+TEST(ServerLimits, ClientThatDoesNotReadIsDisconnectedWhileAnotherIsServed) {
   robot::RobotServerParams params = loopbackParams();
   params.codec = binaryCodec();
   params.max_buffered_output = 4096;

@@ -19,11 +19,11 @@ using Edit = std::function<void(robot::RobotServerParams&)>;
   return throwsNaming([&] { params.validate(); }, text);
 }
 
-TEST(server_params, DefaultsAreValid) {
+TEST(ServerParams, DefaultsAreValid) {
   EXPECT_EQ(thrownMessage([] { robot::RobotServerParams().validate(); }), "");
 }
 
-TEST(server_params, ValidateNamesTheField) {
+TEST(ServerParams, ValidateNamesTheField) {
   using P = robot::RobotServerParams;
   EXPECT_TRUE(refusedNaming([](P& p) { p.bind_address = "localhost"; }, "robot_server.bind_address"));
   EXPECT_TRUE(refusedNaming([](P& p) { p.port = 70000; }, "robot_server.port"));
@@ -48,7 +48,7 @@ TEST(server_params, ValidateNamesTheField) {
 }
 
 // Read from a settings file, the fields are named as that file's section spells them.
-TEST(server_params, ValidateNamesTheOwnerItIsGiven) {
+TEST(ServerParams, ValidateNamesTheOwnerItIsGiven) {
   robot::RobotServerParams params = loopbackParams();
   params.max_clients = 0;
   EXPECT_TRUE(throwsNaming([&] { params.validate("robot"); }, "robot.max_clients must be >= 1"));
@@ -60,7 +60,7 @@ TEST(server_params, ValidateNamesTheOwnerItIsGiven) {
   EXPECT_TRUE(throwsNaming([&] { params.validate("robot"); }, "robot.max_line_length"));
 }
 
-TEST(server_params, MalformedAllowListEntriesAreNamed) {
+TEST(ServerParams, MalformedAllowListEntriesAreNamed) {
   for (const std::string entry :
        {"10.0.0.0/33", "10.0.0", "10.0.0.0/", "10.0.0.0/+8", "host.local", "10.0.0.256", ""}) {
     EXPECT_TRUE(refusedNaming([&](robot::RobotServerParams& p) { p.allowed_clients = {entry}; },
@@ -71,14 +71,14 @@ TEST(server_params, MalformedAllowListEntriesAreNamed) {
   EXPECT_EQ(thrownMessage([&] { valid.validate(); }), "");
 }
 
-TEST(server_params, ConstructorValidatesFirst) {
+TEST(ServerParams, ConstructorValidatesFirst) {
   robot::RobotServerParams params = loopbackParams();
   params.max_clients = 0;
   TestHandler handler(Answer::Never);
   EXPECT_TRUE(throwsNaming([&] { robot::RobotServer server(params, handler); }, "max_clients"));
 }
 
-TEST(server_params, RuntimeChangesAreCheckedAndRefusalsKeepTheOldSettings) {
+TEST(ServerParams, RuntimeChangesAreCheckedAndRefusalsKeepTheOldSettings) {
   RunningServer running(loopbackParams());
   EXPECT_TRUE(throwsNaming([&] { running.server().setAllowedClients({"10.0.0.0/8", "nope"}); }, "\"nope\""));
   robot::CodecParams long_lines;
@@ -88,7 +88,7 @@ TEST(server_params, RuntimeChangesAreCheckedAndRefusalsKeepTheOldSettings) {
   EXPECT_EQ(client.roundTrip(request(robot::Command::Ping)).status, robot::Status::Ok);
 }
 
-TEST(server_params, BindingAnAddressInUseNamesAddressAndPort) {
+TEST(ServerParams, BindingAnAddressInUseNamesAddressAndPort) {
   TestHandler handler(Answer::Never);
   robot::RobotServer first(loopbackParams(), handler);
   robot::RobotServerParams params = loopbackParams();

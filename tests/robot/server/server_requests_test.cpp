@@ -14,7 +14,7 @@ namespace {
 using robot::Command;
 using robot::Status;
 
-TEST(server_requests, AsciiRequestGetsItsReply) {
+TEST(ServerRequests, AsciiRequestGetsItsReply) {
   RunningServer running(loopbackParams());
   TestClient client(running.port());
   client.sendBytes("PING\r\n");
@@ -27,7 +27,7 @@ TEST(server_requests, AsciiRequestGetsItsReply) {
   EXPECT_EQ(model.integers, std::vector<int32_t>{3});
 }
 
-TEST(server_requests, BinaryRequestGetsItsReply) {
+TEST(ServerRequests, BinaryRequestGetsItsReply) {
   robot::RobotServerParams params = loopbackParams();
   params.codec = binaryCodec();
   RunningServer running(params);
@@ -40,7 +40,7 @@ TEST(server_requests, BinaryRequestGetsItsReply) {
   EXPECT_EQ(client.roundTrip(request(Command::Status)).command, Command::Status);
 }
 
-TEST(server_requests, PipelinedRequestsAreAnsweredInOrder) {
+TEST(ServerRequests, PipelinedRequestsAreAnsweredInOrder) {
   RunningServer running(loopbackParams());
   TestClient client(running.port());
   std::string burst;
@@ -54,7 +54,7 @@ TEST(server_requests, PipelinedRequestsAreAnsweredInOrder) {
   }
 }
 
-TEST(server_requests, DeferredRepliesFromTheTestKeepTheirOrder) {
+TEST(ServerRequests, DeferredRepliesFromTheTestKeepTheirOrder) {
   RunningServer running(loopbackParams(), Answer::ByTheTest);
   TestClient client(running.port());
   client.sendBytes("MODEL,1\r\nMODEL,2\r\n");
@@ -98,11 +98,11 @@ void runParallelClients(Answer answer) {
   EXPECT_FALSE(running.handler().overlapped());
 }
 
-TEST(server_requests, EightParallelClientsAnsweredAtOnce) { runParallelClients(Answer::Immediately); }
+TEST(ServerRequests, EightParallelClientsAnsweredAtOnce) { runParallelClients(Answer::Immediately); }
 
-TEST(server_requests, EightParallelClientsAnsweredFromAnotherThread) { runParallelClients(Answer::FromAnotherThread); }
+TEST(ServerRequests, EightParallelClientsAnsweredFromAnotherThread) { runParallelClients(Answer::FromAnotherThread); }
 
-TEST(server_requests, PipelinedRequestsReachTheHandlerOneAtATime) {
+TEST(ServerRequests, PipelinedRequestsReachTheHandlerOneAtATime) {
   RunningServer running(loopbackParams(), Answer::FromAnotherThread);
   TestClient client(running.port());
   std::string burst;
@@ -116,7 +116,7 @@ TEST(server_requests, PipelinedRequestsReachTheHandlerOneAtATime) {
 
 // One codec at any moment: a reloaded codec reaches the robots already connected, from their
 // next request on, so that every robot hears what the cell checked its picks against.
-TEST(server_requests, ANewCodecReachesTheConnectedRobotsAtTheirNextRequest) {
+TEST(ServerRequests, ANewCodecReachesTheConnectedRobotsAtTheirNextRequest) {
   RunningServer running(loopbackParams());
   TestClient ascii(running.port());
   EXPECT_EQ(ascii.roundTrip(request(Command::Ping)).status, Status::Ok);
@@ -129,7 +129,7 @@ TEST(server_requests, ANewCodecReachesTheConnectedRobotsAtTheirNextRequest) {
   EXPECT_EQ(later.roundTrip(request(Command::SelectModel, "6")).integers[0], 6);
 }
 
-TEST(server_requests, HandlerThatThrowsIsAnsweredWithInternalError) {
+TEST(ServerRequests, HandlerThatThrowsIsAnsweredWithInternalError) {
   RunningServer running(loopbackParams());
   running.handler().throwOn(Command::Trigger);
   TestClient client(running.port());

@@ -5,7 +5,7 @@
 
 #include "binpick/io/lens.hpp"
 #include "binpick/simulation/calibration_board.hpp"
-#include "binpick/simulation/pixel_lighting.hpp"
+#include "sensor/pixel_lighting.hpp"
 
 namespace binpick::simulation::detail {
 

@@ -3,9 +3,9 @@
 
 #include "binpick/reconstruction/pattern_set.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
-#include "binpick/simulation/pixel_lighting.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 #include "board_albedo.hpp"
+#include "sensor/pixel_lighting.hpp"
 
 namespace binpick::simulation {
 namespace {

@@ -1,5 +1,5 @@
 // computeObjectVisibility: measured pixels per object in the pile, and alone at the same pose.
-#include "binpick/simulation/object_visibility.hpp"
+#include "render/object_visibility.hpp"
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/thread_count.hpp"

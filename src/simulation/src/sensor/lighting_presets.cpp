@@ -1,5 +1,5 @@
 // The named photometry presets.
-#include "binpick/simulation/lighting_presets.hpp"
+#include "sensor/lighting_presets.hpp"
 
 #include "binpick/core/error.hpp"
 

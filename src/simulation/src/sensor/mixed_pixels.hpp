@@ -5,9 +5,9 @@
 // the one-ray geometry and traced again with several rays over what they gather. Pure: thread-safe.
 #include "binpick/io/rig_calibration.hpp"
 #include "binpick/simulation/pattern_renderer.hpp"
-#include "binpick/simulation/pixel_lighting.hpp"
 #include "binpick/simulation/ray_caster.hpp"
 #include "binpick/simulation/sensor_geometry.hpp"
+#include "sensor/pixel_lighting.hpp"
 
 namespace binpick::simulation::detail {
 

@@ -1,5 +1,5 @@
 // computePixelLighting: the light budget of each camera pixel, independent of the pattern.
-#include "binpick/simulation/pixel_lighting.hpp"
+#include "sensor/pixel_lighting.hpp"
 
 #include <algorithm>
 #include <cmath>

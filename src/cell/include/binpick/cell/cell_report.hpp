@@ -42,7 +42,7 @@ struct CycleSummary {
   robot::Status status = robot::Status::Ok;
   std::string detail;  // why, when not ok
   std::size_t parts_detected = 0;
-  std::size_t not_sure = 0;  // detections below limits.min_pick_coverage: never offered
+  std::size_t low_coverage = 0;  // detections below limits.min_pick_coverage: never offered
   int bin_points = 0;
   std::vector<PickSummary> picks;  // in pick order
   picking::PickRejections rejected;

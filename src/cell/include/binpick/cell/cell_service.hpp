@@ -71,8 +71,6 @@ class CellService : public robot::RequestHandler {
   std::unique_ptr<State> state_;
   void runCycles();
   void runDeadlines();
-  void finishCycle(uint64_t cycle, std::shared_ptr<const CellSetup> setup, int recipe_index, io::Capture capture,
-                   CycleOutcome outcome, bool processed);
 };
 
 }  // namespace binpick::cell

@@ -3,6 +3,7 @@
 // and unit). Every key is optional; an unknown key, a wrong type or an invalid value
 // throws core::Error naming the file and the key. Thread-safe (no shared state).
 #include <string>
+#include <vector>
 
 #include "binpick/estimation/detector.hpp"
 #include "binpick/estimation/model.hpp"
@@ -12,6 +13,7 @@ namespace binpick::estimation {
 struct EstimationConfig {
   ModelParams model;
   DetectorParams detector;
+  std::vector<std::string> warnings;  // "ORIGIN: key: ..." for a key read in an older form, naming the new one
 };
 
 EstimationConfig loadEstimationConfig(const std::string& path);

@@ -6,44 +6,17 @@
 // threads at once (each call uses its own working memory).
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "binpick/estimation/boundary.hpp"
-#include "binpick/estimation/clustering.hpp"
-#include "binpick/estimation/icp.hpp"
+#include "binpick/core/cancellation.hpp"
+#include "binpick/estimation/detector_params.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/estimation/scene.hpp"
-#include "binpick/estimation/selection.hpp"
-#include "binpick/estimation/verification.hpp"
-#include "binpick/estimation/voting.hpp"
+#include "binpick/io/point_cloud.hpp"
 
 namespace binpick::estimation {
-
-enum class Method {
-  LiHashimoto,  // sparse voting, voxel verification, Algorithm 1, ICP (the paper's "Proposed")
-  Drost,        // all referred points, pose clustering, ICP (the paper's PPF1 / PPF5)
-};
-Method methodFromName(const std::string& name);  // "li_hashimoto" | "drost"; throws otherwise
-std::string methodName(Method method);
-
-struct DetectorParams {
-  Method method = Method::LiHashimoto;
-  SceneParams scene;
-  VotingParams voting;
-  BoundaryParams boundary;  // surface-to-boundary pairs in the voting (boundary.hpp)
-  VerificationParams verification;
-  SelectionParams selection;
-  IcpParams icp;
-  ClusteringParams clustering;  // Drost only
-  int threads = 0;              // every stage: 0 = all hardware threads
-
-  // The paper's baselines (Table I): PPF1 = all references, PPF5 = 20% of references; both pair
-  // each reference with every scene point and cluster poses, from surface pairs only (no outline votes).
-  static DetectorParams drost(float reference_fraction);
-  void validate() const;  // throws core::Error naming the field
-};
 
 struct Detection {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
@@ -54,8 +27,11 @@ struct Detection {
   float seen_through = 0.0f;  // after ICP: share of the visible fine model points in front of the
                               // measured surface (free space the camera saw through)
   float twin_margin = 1.0f;   // after ICP: how much more of the range this pose explains than its
-                              // best turned twin, a share of its visible fine points (1: no twin
-                              // came close); near 0 the range cannot tell the part from it turned
+                              // best turned or slid twin, a share of its visible fine points (1: no
+                              // twin came close); near 0 the range cannot tell the part from it
+                              // turned; below 0 a twin explains more, but a turned one by less
+                              // than the margin it needs to replace the pose, or a slid one (which
+                              // never replaces it: near_symmetries.hpp); such a pose is not sure
   bool sure = true;           // twin_margin and coverage at least SelectionParams' sure_*: the
                               // sure detections come first
   uint32_t votes = 0;
@@ -92,13 +68,14 @@ class Detector {
   // stages, per reference point in voting, per candidate in verification and before every ICP.
   DetectionResult detect(const io::PointCloud& scene_cloud, const std::optional<CropBox>& crop,
                          const core::CancelFlag* cancel = nullptr) const;
-  const PreparedModel& model() const { return model_; }
-  const DetectorParams& params() const { return params_; }
+  const PreparedModel& model() const;
+  const DetectorParams& params() const;
 
  private:
-  PreparedModel model_;
-  DetectorParams params_;
-  std::shared_ptr<const BoundaryModel> boundary_model_;  // boundary.enabled: the model's, or one of its own
+  // The model, the params and what the detector prepares from them once (the outline's model
+  // side), in detector.cpp: immutable, so copies of a Detector share it.
+  struct Prepared;
+  std::shared_ptr<const Prepared> prepared_;
 };
 
 }  // namespace binpick::estimation

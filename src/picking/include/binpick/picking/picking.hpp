@@ -69,7 +69,9 @@ PickOrder pickOrderFromName(const std::string& name);
 //   upright    1 - tilt_deg / 90
 //   clearance  Pick::clearance / clearance_cap (1 without a measured scene)
 //   quality    Grasp::quality
-// A part's pick is its best-ranked grasp; PickOrder::BestRank orders the parts by it.
+// A part's pick is its best-ranked grasp; PickOrder::BestRank orders the parts by it, after the
+// sure parts first: a pose the detector is not sure of may be its turned twin, and no rank term
+// sees that.
 struct RankWeights {
   double free = 2.0;  // being on top matters most: a buried part drags its neighbours along
   double height = 1.0;
@@ -90,7 +92,8 @@ struct PickParams {
   double max_tilt_deg = 60.0;          // approach vs straight down (base -z); steeper: rejected
   int continuous_symmetry_steps = 36;  // grasps tried around a continuous axis, in [1, 3600]
   // HighestFirst: the grasp point's base z, descending; BestScore: detection score, descending;
-  // BestRank: Pick::rank, descending. Ties: height or score, then the object index.
+  // BestRank: the sure parts (DetectedPart::sure) first, each group by Pick::rank, descending.
+  // Ties: height or score, then the object index.
   PickOrder order = PickOrder::BestRank;
   double avoid_radius = 0.02;  // metres: a failed object's centre this close is avoided
   // The tool against the measured cloud (tool_collision.hpp), when planPicks is given one:
@@ -113,6 +116,9 @@ struct DetectedPart {
   Eigen::Isometry3d T_base_model = Eigen::Isometry3d::Identity();
   double score = 0.0;     // detection score, higher is better
   double coverage = 1.0;  // share of the model points the camera should see that the fit covers
+  // The detector is sure of the pose (estimation::Detection::sure): no turned twin explains the
+  // range nearly as well and the fit covers enough. PickOrder::BestRank picks these first.
+  bool sure = true;
 };
 
 struct Pick {

@@ -39,6 +39,10 @@ class MeasuredScene {
  public:
   // `cloud`: camera frame, metres, organized or not, NaN points skipped. Organized clouds are
   // first strided in pixels so that neighbours stay about thin_step / 2 apart (fast on 1.3 MP).
+  // Stray points far beyond the bulk of the cloud in base xy (further from its 1st-99th
+  // percentile box than the box is wide, and at least 1 m) are skipped too: no tool reaches
+  // them, and the grid stays as fine as the bulk needs. Memory is bounded whatever the points:
+  // at most about 2^20 columns (they grow beyond that), 2^14 along a side.
   // Throws core::Error for a non-rigid T_base_camera or invalid params.
   MeasuredScene(const io::PointCloud& cloud, const Eigen::Isometry3d& T_base_camera,
                 const MeasuredSceneParams& params = {});

@@ -2,7 +2,7 @@
 // Decoding a structured-light capture: for every camera pixel, the projector column (and row)
 // whose light it sees, to sub-pixel precision when the capture has phase-shift images.
 //
-// Per pixel (whole image rows at a time, vectorised by the compiler):
+// Per pixel (a tile of consecutive pixels at a time, vectorised by the compiler):
 // 1. Light: contrast = white - black; with direct and global light separated after Moreno &
 //    Taubin (3DIMPVT 2012) from the high-frequency Gray-code images:
 //      L_d = (L_max - L_min) / (1 - b),   L_g = 2 (L_min - b L_max) / (1 - b^2).

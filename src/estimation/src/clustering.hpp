@@ -5,15 +5,10 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "binpick/estimation/voting.hpp"
+#include "binpick/estimation/detector_params.hpp"
+#include "voting.hpp"
 
 namespace binpick::estimation {
-
-struct ClusteringParams {
-  float max_translation_ratio = 0.1f;  // in diam(M): translations closer than this may join
-  float max_rotation_deg = 12.0f;      // and rotations closer than this (both must hold)
-  void validate() const;               // throws core::Error naming the field
-};
 
 struct PoseCluster {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();

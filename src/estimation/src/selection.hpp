@@ -9,23 +9,10 @@
 #include <utility>
 #include <vector>
 
-#include "binpick/estimation/verification.hpp"
+#include "binpick/estimation/detector_params.hpp"
+#include "verification.hpp"
 
 namespace binpick::estimation {
-
-struct SelectionParams {
-  int max_objects = 20;                    // stop after this many detections
-  float min_score_fraction = 0.05f;        // stop when the best Score_New / N_m falls below this
-  float min_coverage = 0.2f;               // a refined pick fitting less of its visible model points is
-                                           // refused: ICP found nothing there (0: keep every pick)
-  float min_centre_distance_ratio = 0.1f;  // a pose whose model centre lies closer than this
-                                           // (times diam(M)) to an accepted one is a repeat
-  // A robot acts first on what the range is sure of: detections below either of these come after
-  // the others (Detection::sure false), each group in selection order (0 and 0: selection order).
-  float sure_twin_margin = 0.04f;  // Detection::twin_margin: the range tells the part from it turned
-  float sure_coverage = 0.6f;      // Detection::coverage: the fit explains most of what should be seen
-  void validate() const;                   // throws core::Error naming the field
-};
 
 class MultipleSelection {
  public:

@@ -8,22 +8,12 @@
 #include <vector>
 
 #include "binpick/core/cancellation.hpp"
-#include "binpick/estimation/boundary.hpp"
+#include "binpick/estimation/detector_params.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/estimation/scene.hpp"
+#include "boundary.hpp"
+#include "scene.hpp"
 
 namespace binpick::estimation {
-
-struct VotingParams {
-  float reference_fraction = 0.1f;  // share of scene points used as references (Table I: 10%)
-  float referred_fraction = 0.2f;   // share of scene points paired with them (Table I: 20%)
-  int poses_per_reference = 5;      // N_p: top local coordinates kept per reference
-  float min_relative_votes = 0.0f;  // keep a local coordinate only with >= this share of the
-                                    // reference's best vote count (Drost keeps near-peaks)
-  uint64_t seed = 1;                // which points are references and referred points
-  int threads = 0;                  // 0: all hardware threads
-  void validate() const;            // throws core::Error naming the field
-};
 
 struct PoseCandidate {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
@@ -42,9 +32,10 @@ struct BoundaryVotes {
 // Candidates ordered by reference point, then by votes (descending): the same for any thread count.
 // Throws core::Cancelled once `cancel` is set (checked per reference point).
 std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene& scene, const VotingParams& params,
-                                const core::CancelFlag* cancel = nullptr, const BoundaryVotes* boundary = nullptr);
+                                const core::CancelFlag* cancel = nullptr, const BoundaryVotes* boundary = nullptr,
+                                int threads = 0);
 
-// The indices a fraction selects: a seeded shuffle's prefix, sorted (exposed for tests).
+// The indices a fraction selects: a seeded shuffle's prefix, sorted.
 std::vector<uint32_t> sampleIndices(std::size_t count, float fraction, uint64_t seed);
 
 }  // namespace binpick::estimation

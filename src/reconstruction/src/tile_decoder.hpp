@@ -2,7 +2,7 @@
 // Decoding a tile: a run of consecutive pixels of the (continuous) images. Loops over the whole
 // tile for every image it needs (vectorised by the compiler), then a short per-pixel pass that
 // turns bits and phase into a projector coordinate. Internal to the decoder; each thread owns its
-// RowScratch.
+// TileScratch.
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -22,7 +22,8 @@ constexpr int kTilePixels = 4096;
 template <typename Pixel>
 using WorkType = std::conditional_t<std::is_same_v<Pixel, uint8_t>, int16_t, float>;
 
-struct AxisRow {
+// One coded axis (projector columns or projector rows) over a tile: one entry per pixel.
+struct TileAxis {
   // Gray codes have at most 16 bits: projectors are at most 65536 pixels wide (PatternSetSpec).
   std::vector<uint16_t> code;       // the Gray code read, most significant bit first
   std::vector<uint16_t> uncertain;  // 1 for every bit that could not be classified
@@ -35,7 +36,7 @@ struct AxisRow {
 };
 
 template <typename Work>
-struct RowScratch {
+struct TileScratch {
   std::vector<float> brightest;  // L_max, then the brightest phase image (clipping)
   std::vector<float> darkest;    // L_min
   // Raw counts a bit is compared with: black + L_d and black + L_g (Moreno & Taubin), and the
@@ -46,14 +47,14 @@ struct RowScratch {
   std::vector<uint8_t> lit;
   std::vector<uint8_t> white_clipped;
   bool direct_light_only = false;  // the tile's lit pixels need only the simple bit rule
-  AxisRow columns;
-  AxisRow rows;
-  RowScratch();  // sized for one tile
+  TileAxis columns;
+  TileAxis rows;
+  TileScratch();  // sized for one tile
 };
 
-struct RowOutput {  // pixel 0 of each output image
+struct TileOutput {  // pixel 0 of each output image
   float* column = nullptr;
-  float* row = nullptr;  // null when the capture has no row codes
+  float* row = nullptr;  // projector rows; null when the capture has no row codes
   uint8_t* status = nullptr;
   float* intensity = nullptr;
   float* column_noise = nullptr;  // null when not estimated
@@ -67,6 +68,6 @@ struct RowOutput {  // pixel 0 of each output image
 // pixel 0 of the output images.
 template <typename Pixel>
 void decodeTile(const io::Capture& capture, const DecodePlan& plan, std::size_t offset, int count,
-                RowScratch<WorkType<Pixel>>& scratch, const RowOutput& out);
+                TileScratch<WorkType<Pixel>>& scratch, const TileOutput& out);
 
 }  // namespace binpick::reconstruction::detail

@@ -8,26 +8,11 @@
 #include <memory>
 #include <vector>
 
+#include "binpick/estimation/detector_params.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/estimation/scene.hpp"
+#include "scene.hpp"
 
 namespace binpick::estimation {
-
-struct IcpParams {
-  int max_iterations = 30;
-  float initial_max_distance_ratio = 2.0f;      // correspondence gate in steps, first iterations
-  float final_max_distance_ratio = 0.75f;       // gate in steps once the pose has settled
-  float huber_ratio = 0.25f;                    // Huber threshold on the plane residual, in steps
-  float point_weight = 0.1f;                    // weight of the point-to-point distance beside the
-                                                // plane residual (0: point-to-plane only)
-  float convergence_translation_ratio = 1e-2f;  // stop when a step moves less (in steps: 0.04 mm
-                                                // for a 100 mm part) ...
-  float convergence_rotation_deg = 0.05f;       // ... and turns less than this
-  float fit_distance_ratio = 0.75f;             // final coverage: a visible model point fits when a
-                                                // scene point lies this close (in steps)
-  bool visible_points_only = true;              // false: use all model points (for comparison)
-  void validate() const;                        // throws core::Error naming the field
-};
 
 // How well a pose explains what the camera saw: its visible model points and those with a scene
 // point within the fit distance. (What it contradicts: range_agreement.hpp.)
@@ -42,10 +27,7 @@ struct IcpResult {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
   int iterations = 0;
   bool converged = false;
-  float rmse = 0.0f;      // of the plane residuals of the final correspondences
-  float coverage = 0.0f;  // fitted visible model points / visible model points, in [0, 1]
-  int visible_points = 0;
-  PoseFit fit;  // the final fit
+  PoseFit fit;  // of the final pose: coverage and residual
 };
 
 // Indices of model points seen by a camera at the origin when the model is at `pose`: facing the
@@ -57,6 +39,7 @@ std::vector<uint32_t> visibleSurfacePoints(const std::vector<Eigen::Vector3f>& p
                                            const std::vector<Eigen::Vector3f>& normals, float step,
                                            const Eigen::Vector3f& centre, const Eigen::Isometry3f& pose);
 
+// Holds a reference to `scene` (and an index of its points): the scene must outlive the refiner.
 class PoseRefiner {
  public:
   PoseRefiner(const PreparedScene& scene, float step, IcpParams params);
@@ -77,6 +60,7 @@ class PoseRefiner {
   const PreparedScene& scene_;
   float step_;
   IcpParams params_;
+  float min_normal_cos_;  // cos of params_.max_normal_angle_deg
   std::unique_ptr<Index> index_;
 };
 

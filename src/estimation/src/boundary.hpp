@@ -10,23 +10,13 @@
 #include <optional>
 #include <vector>
 
+#include "binpick/estimation/detector_params.hpp"
 #include "binpick/estimation/hash_table.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/estimation/scene.hpp"
 #include "binpick/io/point_cloud.hpp"
+#include "scene.hpp"
 
 namespace binpick::estimation {
-
-struct BoundaryParams {
-  bool enabled = true;             // surface-to-boundary pairs in the voting (organized clouds only)
-  float depth_jump_ratio = 1.0f;   // a pixel is a boundary when the next valid pixel beside it lies
-                                   // this much farther (in steps)
-  float crease_angle_deg = 60.0f;  // model: neighbouring normals turned more than this make a crease
-  float min_linearity = 3.0f;      // scene: a boundary point's neighbours spread this many times more along
-                                   // its line than across it (corners carry no direction)
-  int threads = 0;                 // 0: all hardware threads
-  void validate() const;           // throws core::Error naming the field
-};
 
 // Points on lines, each with a unit direction (no sign).
 struct BoundaryPoints {
@@ -52,6 +42,6 @@ BoundaryModel prepareBoundaryModel(const PreparedModel& model, const BoundaryPar
 // model's step, each with the direction of its line (principal axis of the boundary pixels within
 // a step). An unorganized cloud has no pixel neighbourhood: no boundary points.
 BoundaryPoints sceneBoundaryPoints(const io::PointCloud& cloud, const std::optional<CropBox>& crop,
-                                   const PreparedModel& model, const BoundaryParams& params);
+                                   const PreparedModel& model, const BoundaryParams& params, int threads = 0);
 
 }  // namespace binpick::estimation

@@ -11,29 +11,12 @@
 #include <optional>
 #include <vector>
 
-#include "binpick/estimation/line_of_sight.hpp"
+#include "binpick/estimation/detector_params.hpp"
 #include "binpick/estimation/model.hpp"
 #include "binpick/io/point_cloud.hpp"
+#include "line_of_sight.hpp"
 
 namespace binpick::estimation {
-
-// An oriented box in the camera frame; points outside it are ignored (e.g. the bin's inside
-// above its floor).
-struct CropBox {
-  Eigen::Isometry3f T_camera_box = Eigen::Isometry3f::Identity();  // box centre and axes
-  Eigen::Vector3f half_extents = Eigen::Vector3f::Zero();          // model units
-  bool contains(const Eigen::Vector3f& p_camera) const;
-};
-
-struct SceneParams {
-  std::optional<CropBox> crop;    // none: keep every finite point
-  int min_normal_neighbours = 5;  // fewer full-resolution neighbours: the point is dropped
-  int max_window_half_size = 12;  // organized clouds: largest pixel window radius for normals
-  float line_of_sight_cell_ratio = 0.5f;  // cell of the line-of-sight map, in steps at the scene's
-                                          // median depth (0: no map, no free-space checks)
-  int threads = 0;                // 0: all hardware threads
-  void validate() const;          // throws core::Error naming the field
-};
 
 struct PreparedScene {
   std::vector<Eigen::Vector3f> points;   // subsampled scene, camera frame
@@ -47,6 +30,8 @@ struct PreparedScene {
 
 // Throws core::Error when the cloud is malformed (non-finite points in an unorganized cloud,
 // normals of the wrong count); an empty or fully cropped cloud gives an empty scene.
-PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& model, const SceneParams& params);
+// `threads`: 0 = all hardware threads.
+PreparedScene prepareScene(const io::PointCloud& cloud, const PreparedModel& model, const SceneParams& params,
+                           int threads = 0);
 
 }  // namespace binpick::estimation

@@ -11,8 +11,8 @@
 // occluder: no evidence either way). Thread-safe (no shared state).
 #include <Eigen/Geometry>
 
-#include "binpick/estimation/line_of_sight.hpp"
 #include "binpick/estimation/model.hpp"
+#include "line_of_sight.hpp"
 
 namespace binpick::estimation {
 

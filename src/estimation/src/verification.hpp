@@ -15,33 +15,13 @@
 #include <cstdint>
 #include <vector>
 
-#include "binpick/estimation/line_of_sight.hpp"
+#include "binpick/estimation/detector_params.hpp"
 #include "binpick/estimation/model.hpp"
-#include "binpick/estimation/voting.hpp"
-#include "binpick/estimation/voxel_grid.hpp"
+#include "line_of_sight.hpp"
+#include "voting.hpp"
+#include "voxel_grid.hpp"
 
 namespace binpick::estimation {
-
-struct VerificationParams {
-  float voxel_size_ratio = 0.5f;        // L_voxel in subsampling steps (a model point fits when a scene
-                                        // point lies within 1-2 voxels)
-  float max_normal_angle_deg = 180.0f;  // a fit also needs the scene normal within this angle of
-                                        // the moved model normal (180: off, as in the paper)
-  float free_space_tolerance_ratio = 2.0f;  // a model point this far (in steps) in front of the
-                                            // measured surface is seen through (candidates: their
-                                            // poses are as coarse as an alpha bin)
-  float free_space_penalty = 1.0f;          // score points per seen-through model point (0: off,
-                                            // the paper's eq. 4)
-  float refined_tolerance_ratio = 1.0f;     // the same test after ICP, in steps, on the model's
-                                            // fine surface (range_agreement.hpp) ...
-  float max_refined_seen_through = 0.15f;   // ... rejects a refined pose when more than this share
-                                            // of its visible fine points is seen through (1: off)
-  bool compare_turned = true;               // each pick turned by the model's near-symmetries (a
-                                            // part turned over) is refined too; the pose that
-                                            // contradicts less of what the camera saw is kept
-  int threads = 0;                      // 0: all hardware threads
-  void validate() const;                // throws core::Error naming the field
-};
 
 struct VerifiedCandidate {
   Eigen::Isometry3f T_camera_model = Eigen::Isometry3f::Identity();
@@ -60,7 +40,8 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
 // Throws core::Cancelled once `cancel` is set (checked per candidate).
 std::vector<VerifiedCandidate> verify(const std::vector<PoseCandidate>& candidates, const PreparedModel& model,
                                       const PreparedScene& scene, const SceneVoxelGrid& grid,
-                                      const VerificationParams& params, const core::CancelFlag* cancel = nullptr);
+                                      const VerificationParams& params, const core::CancelFlag* cancel = nullptr,
+                                      int threads = 0);
 
 // How many of the model points at `pose` that the camera would measure (facing it, not grazing)
 // lie more than `tolerance` in front of the measured surface; only `indices` when given, else all.

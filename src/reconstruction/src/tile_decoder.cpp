@@ -1,6 +1,6 @@
 // The decoder's work on one tile: the vectorised passes (tile_kernels.hpp) over every image it
 // needs, then the per-pixel resolution. See decoder.hpp for the method.
-#include "row_decoder.hpp"
+#include "tile_decoder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,32 +12,32 @@
 namespace binpick::reconstruction::detail {
 namespace {
 
-// A run of consecutive pixels (in row-major order, across rows) of continuous images.
+// A run of consecutive pixels (in row-major order, across image rows) of continuous images.
 struct Tile {
   std::size_t offset = 0;  // first pixel
   int width = 0;           // pixels
 };
 
 template <typename Pixel>
-const Pixel* imageRow(const io::Capture& capture, int image, const Tile& tile) {
+const Pixel* imageTile(const io::Capture& capture, int image, const Tile& tile) {
   return capture.images[static_cast<std::size_t>(image)].ptr<Pixel>(0) + tile.offset;
 }
 
 // L_max and L_min over the high-frequency images, then direct and global light (above black):
 // L_d = (L_max - L_min) / (1 - b), L_g = 2 (L_min - b L_max) / (1 - b^2).
 template <typename Pixel, typename Work>
-void estimateLight(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s,
-                   const RowOutput& out) {
+void estimateLight(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, TileScratch<Work>& s,
+                   const TileOutput& out) {
   const int width = tile.width;
   float* high = s.brightest.data();  // L_max, then L_d
   float* low = s.darkest.data();     // L_min, then L_g
   std::fill(high, high + width, -std::numeric_limits<float>::infinity());
   std::fill(low, low + width, std::numeric_limits<float>::infinity());
   for (int image : plan.separation_images) {
-    widenRange<Pixel>(imageRow<Pixel>(capture, image, tile), high, low, width);
+    widenRange<Pixel>(imageTile<Pixel>(capture, image, tile), high, low, width);
   }
-  const Pixel* white = imageRow<Pixel>(capture, plan.layout.white, tile);
-  const Pixel* black = imageRow<Pixel>(capture, plan.layout.black, tile);
+  const Pixel* white = imageTile<Pixel>(capture, plan.layout.white, tile);
+  const Pixel* black = imageTile<Pixel>(capture, plan.layout.black, tile);
   Work* direct_level = s.direct_level.data();
   Work* global_level = s.global_level.data();
   Work* margin = s.margin.data();
@@ -56,18 +56,18 @@ void estimateLight(const io::Capture& capture, const DecodePlan& plan, const Til
 
 template <typename Pixel, typename Work>
 void classifyBits(const io::Capture& capture, const AxisLayout& axis, const Tile& tile, const Work clip,
-                  RowScratch<Work>& s, AxisRow& row) {
-  std::fill(row.code.begin(), row.code.begin() + tile.width, uint16_t{0});
-  std::fill(row.uncertain.begin(), row.uncertain.begin() + tile.width, uint16_t{0});
+                  TileScratch<Work>& s, TileAxis& buffers) {
+  std::fill(buffers.code.begin(), buffers.code.begin() + tile.width, uint16_t{0});
+  std::fill(buffers.uncertain.begin(), buffers.uncertain.begin() + tile.width, uint16_t{0});
   for (int bit = 0; bit < axis.bits(); ++bit) {
-    const Pixel* pattern = imageRow<Pixel>(capture, axis.bit_images[bit], tile);
-    const Pixel* inverse = imageRow<Pixel>(capture, axis.inverse_images[bit], tile);
+    const Pixel* pattern = imageTile<Pixel>(capture, axis.bit_images[bit], tile);
+    const Pixel* inverse = imageTile<Pixel>(capture, axis.inverse_images[bit], tile);
     if (s.direct_light_only) {
-      classifyDirectBit<Pixel, Work>(pattern, inverse, s.margin.data(), row.code.data(), row.uncertain.data(),
+      classifyDirectBit<Pixel, Work>(pattern, inverse, s.margin.data(), buffers.code.data(), buffers.uncertain.data(),
                                      tile.width);
     } else {
       classifyBit<Pixel, Work>(pattern, inverse, s.direct_level.data(), s.global_level.data(), s.margin.data(), clip,
-                               row.code.data(), row.uncertain.data(), tile.width);
+                               buffers.code.data(), buffers.uncertain.data(), tile.width);
     }
   }
 }
@@ -76,65 +76,67 @@ void classifyBits(const io::Capture& capture, const AxisLayout& axis, const Tile
 // phi = atan2(sum I_k sin(2 pi k/N), sum I_k cos(2 pi k/N)), B = 2/N |sum I_k e^(2 pi i k/N)|.
 template <typename Pixel, typename Work>
 void measurePhase(const io::Capture& capture, const DecodePlan& plan, const AxisLayout& axis, const Tile& tile,
-                  RowScratch<Work>& s, AxisRow& row) {
+                  TileScratch<Work>& s, TileAxis& buffers) {
   const int width = tile.width;
-  float* sine_sum = row.phase_offset.data();  // the sums first, then the offset and amplitude
-  float* cosine_sum = row.phase_amplitude.data();
+  float* sine_sum = buffers.phase_offset.data();  // the sums first, then the offset and amplitude
+  float* cosine_sum = buffers.phase_amplitude.data();
   float* brightest = s.brightest.data();
   std::fill(sine_sum, sine_sum + width, 0.0f);
   std::fill(cosine_sum, cosine_sum + width, 0.0f);
   std::fill(brightest, brightest + width, 0.0f);
   for (std::size_t k = 0; k < axis.phase_images.size(); ++k) {
-    accumulatePhase<Pixel>(imageRow<Pixel>(capture, axis.phase_images[k], tile), plan.phase.sine[k],
+    accumulatePhase<Pixel>(imageTile<Pixel>(capture, axis.phase_images[k], tile), plan.phase.sine[k],
                            plan.phase.cosine[k], sine_sum, cosine_sum, brightest, width);
   }
   const float to_amplitude = 2.0f / static_cast<float>(axis.phase_images.size());
   const float to_pixels = static_cast<float>(axis.phase_period / (2.0 * M_PI));
   phaseFromSums(brightest, plan.thresholds.saturation, to_amplitude, to_pixels, sine_sum, cosine_sum,
-                row.phase_clipped.data(), width);
+                buffers.phase_clipped.data(), width);
 }
 
 // DecodedCapture::column_noise of the tile's pixels, from the amplitudes measurePhase left.
 template <typename Pixel>
-void estimateColumnNoise(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, AxisRow& row) {
+void estimateColumnNoise(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, TileAxis& buffers) {
   const DecodeThresholds& t = plan.thresholds;
-  phaseNoise<Pixel>(imageRow<Pixel>(capture, plan.layout.white, tile),
-                    imageRow<Pixel>(capture, plan.layout.black, tile), row.phase_amplitude.data(), t.column_noise_read,
-                    t.column_noise_gain, row.position_noise.data(), tile.width);
+  phaseNoise<Pixel>(imageTile<Pixel>(capture, plan.layout.white, tile),
+                    imageTile<Pixel>(capture, plan.layout.black, tile), buffers.phase_amplitude.data(),
+                    t.column_noise_read, t.column_noise_gain, buffers.position_noise.data(), tile.width);
 }
 
 template <typename Pixel, typename Work>
 void readAxis(const io::Capture& capture, const DecodePlan& plan, const AxisLayout& axis, const Tile& tile,
-              RowScratch<Work>& s, AxisRow& row) {
-  classifyBits<Pixel, Work>(capture, axis, tile, ceilingLevel<Work>(plan.thresholds.saturation), s, row);
-  if (axis.hasPhase()) measurePhase<Pixel, Work>(capture, plan, axis, tile, s, row);
+              TileScratch<Work>& s, TileAxis& buffers) {
+  classifyBits<Pixel, Work>(capture, axis, tile, ceilingLevel<Work>(plan.thresholds.saturation), s, buffers);
+  if (axis.hasPhase()) measurePhase<Pixel, Work>(capture, plan, axis, tile, s, buffers);
 }
 
-AxisSample sampleAt(const AxisRow& row, int x, bool with_phase) {
+AxisSample sampleAt(const TileAxis& buffers, int x, bool with_phase) {
   AxisSample sample;
-  sample.code = row.code[x];
-  sample.uncertain = row.uncertain[x];
+  sample.code = buffers.code[x];
+  sample.uncertain = buffers.uncertain[x];
   if (with_phase) {
-    sample.phase_offset = row.phase_offset[x];
-    sample.phase_amplitude = row.phase_amplitude[x];
-    sample.phase_clipped = row.phase_clipped[x] != 0;
+    sample.phase_offset = buffers.phase_offset[x];
+    sample.phase_amplitude = buffers.phase_amplitude[x];
+    sample.phase_clipped = buffers.phase_clipped[x] != 0;
   }
   return sample;
 }
 
-void resolveSimple(const AxisLayout& axis, const DecodeThresholds& t, AxisRow& row, int width) {
-  resolveSimpleRuns(row.code.data(), row.uncertain.data(), axis, t, row.position.data(), row.verdict.data(), width);
+void resolveSimple(const AxisLayout& axis, const DecodeThresholds& t, TileAxis& buffers, int width) {
+  resolveSimpleRuns(buffers.code.data(), buffers.uncertain.data(), axis, t, buffers.position.data(),
+                    buffers.verdict.data(), width);
   if (!axis.hasPhase()) return;
-  unwrapSimpleRuns(row.code.data(), row.uncertain.data(), row.phase_offset.data(), row.phase_amplitude.data(),
-                   row.phase_clipped.data(), axis, t, row.position.data(), row.verdict.data(), width);
+  unwrapSimpleRuns(buffers.code.data(), buffers.uncertain.data(), buffers.phase_offset.data(),
+                   buffers.phase_amplitude.data(), buffers.phase_clipped.data(), axis, t, buffers.position.data(),
+                   buffers.verdict.data(), width);
 }
 
 // The vectorised verdict where it decided, resolveAxis for the rest.
-AxisVerdict verdictAt(const AxisRow& row, int x, const AxisLayout& axis, const DecodeThresholds& t) {
-  if (row.verdict[x] != kNeedsFullResolution) {
-    return {row.position[x], static_cast<PixelStatus>(row.verdict[x])};
+AxisVerdict verdictAt(const TileAxis& buffers, int x, const AxisLayout& axis, const DecodeThresholds& t) {
+  if (buffers.verdict[x] != kNeedsFullResolution) {
+    return {buffers.position[x], static_cast<PixelStatus>(buffers.verdict[x])};
   }
-  return resolveAxis(sampleAt(row, x, axis.hasPhase()), axis, t);
+  return resolveAxis(sampleAt(buffers, x, axis.hasPhase()), axis, t);
 }
 
 // The phase of a pixel some of whose steps the sensor clipped, from the others (at least three):
@@ -183,10 +185,10 @@ AxisVerdict grayCodeAlone(const AxisSample& sample, const AxisLayout& axis, cons
 // Gray code alone.
 template <typename Pixel>
 AxisVerdict verdictWithClipping(const io::Capture& capture, const DecodePlan& plan, const Tile& tile,
-                                const AxisRow& row, int x, const AxisLayout& axis) {
-  const AxisVerdict verdict = verdictAt(row, x, axis, plan.thresholds);
-  if (verdict.status != PixelStatus::Saturated || !axis.hasPhase() || row.phase_clipped[x] == 0) return verdict;
-  AxisSample sample = sampleAt(row, x, true);
+                                const TileAxis& buffers, int x, const AxisLayout& axis) {
+  const AxisVerdict verdict = verdictAt(buffers, x, axis, plan.thresholds);
+  if (verdict.status != PixelStatus::Saturated || !axis.hasPhase() || buffers.phase_clipped[x] == 0) return verdict;
+  AxisSample sample = sampleAt(buffers, x, true);
   if (!phaseFromUnclippedSteps<Pixel>(capture, plan, axis, tile.offset + static_cast<std::size_t>(x), sample)) {
     return grayCodeAlone(sample, axis, plan.thresholds);
   }
@@ -195,11 +197,11 @@ AxisVerdict verdictWithClipping(const io::Capture& capture, const DecodePlan& pl
 
 // A phase that can be unwrapped by other means than the Gray code: measured, strong enough and
 // unclipped.
-bool usablePhase(const AxisLayout& axis, const AxisRow& row, int x, const DecodeThresholds& t) {
-  return axis.hasPhase() && row.phase_clipped[x] == 0 && row.phase_amplitude[x] >= t.min_phase_amplitude;
+bool usablePhase(const AxisLayout& axis, const TileAxis& buffers, int x, const DecodeThresholds& t) {
+  return axis.hasPhase() && buffers.phase_clipped[x] == 0 && buffers.phase_amplitude[x] >= t.min_phase_amplitude;
 }
 
-UnwrapCandidate unwrapCandidate(const AxisRow& columns, int x, std::size_t tile_offset, const AxisVerdict& row,
+UnwrapCandidate unwrapCandidate(const TileAxis& columns, int x, std::size_t tile_offset, const AxisVerdict& row,
                                 bool rows_present) {
   UnwrapCandidate c;
   c.pixel = tile_offset + static_cast<std::size_t>(x);
@@ -218,8 +220,8 @@ PixelStatus blame(PixelStatus status, bool white_clipped) {
 }
 
 template <typename Pixel, typename Work>
-void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, RowScratch<Work>& s,
-                 const RowOutput& out) {
+void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile& tile, TileScratch<Work>& s,
+                 const TileOutput& out) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const AxisLayout& columns = plan.layout.columns;
   const AxisLayout& rows = plan.layout.rows;
@@ -253,21 +255,21 @@ void resolveTile(const io::Capture& capture, const DecodePlan& plan, const Tile&
   }
 }
 
-void resizeAxis(AxisRow& row, int width) {
-  row.code.resize(width);
-  row.uncertain.resize(width);
-  row.phase_offset.resize(width);
-  row.phase_amplitude.resize(width);
-  row.phase_clipped.resize(width);
-  row.position_noise.resize(width);
-  row.position.resize(width);
-  row.verdict.resize(width);
+void resizeAxis(TileAxis& buffers, int width) {
+  buffers.code.resize(width);
+  buffers.uncertain.resize(width);
+  buffers.phase_offset.resize(width);
+  buffers.phase_amplitude.resize(width);
+  buffers.phase_clipped.resize(width);
+  buffers.position_noise.resize(width);
+  buffers.position.resize(width);
+  buffers.verdict.resize(width);
 }
 
 }  // namespace
 
 template <typename Work>
-RowScratch<Work>::RowScratch() {
+TileScratch<Work>::TileScratch() {
   const int width = kTilePixels;
   brightest.resize(width);
   darkest.resize(width);
@@ -280,10 +282,10 @@ RowScratch<Work>::RowScratch() {
 
 template <typename Pixel>
 void decodeTile(const io::Capture& capture, const DecodePlan& plan, std::size_t offset, int count,
-                RowScratch<WorkType<Pixel>>& scratch, const RowOutput& out) {
+                TileScratch<WorkType<Pixel>>& scratch, const TileOutput& out) {
   using Work = WorkType<Pixel>;
   const Tile tile{offset, count};
-  RowOutput tile_out = out;
+  TileOutput tile_out = out;
   tile_out.column += offset;
   if (tile_out.row != nullptr) tile_out.row += offset;
   if (tile_out.column_noise != nullptr) tile_out.column_noise += offset;
@@ -296,11 +298,11 @@ void decodeTile(const io::Capture& capture, const DecodePlan& plan, std::size_t 
   resolveTile<Pixel, Work>(capture, plan, tile, scratch, tile_out);
 }
 
-template struct RowScratch<int16_t>;
-template struct RowScratch<float>;
-template void decodeTile<uint8_t>(const io::Capture&, const DecodePlan&, std::size_t, int, RowScratch<int16_t>&,
-                                  const RowOutput&);
-template void decodeTile<uint16_t>(const io::Capture&, const DecodePlan&, std::size_t, int, RowScratch<float>&,
-                                   const RowOutput&);
+template struct TileScratch<int16_t>;
+template struct TileScratch<float>;
+template void decodeTile<uint8_t>(const io::Capture&, const DecodePlan&, std::size_t, int, TileScratch<int16_t>&,
+                                  const TileOutput&);
+template void decodeTile<uint16_t>(const io::Capture&, const DecodePlan&, std::size_t, int, TileScratch<float>&,
+                                   const TileOutput&);
 
 }  // namespace binpick::reconstruction::detail

@@ -1,0 +1,3 @@
+#pragma once
+// Included by no other module: the check must name it.
+int unused();

@@ -1,0 +1,3 @@
+#pragma once
+// Included by module beta: public as it should be.
+int used();

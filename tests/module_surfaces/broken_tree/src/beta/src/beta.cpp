@@ -1,0 +1,4 @@
+// Module beta uses alpha's one public header.
+#include "binpick/alpha/used.hpp"
+
+int beta() { return used(); }
