@@ -48,14 +48,15 @@ void readCrop(Section s, SceneParams& p, std::vector<std::string>& warnings) {
   if (s.isNull()) return;
   CropBox box;
   box.half_extents = vector3(s, "half_extents");
-  if (s.has("pose") || !s.has("centre")) {
-    if (!s.has("pose")) s.fail("pose", "is required: {translation: [x, y, z], rotation: [...], convention: NAME}");
+  if (s.has("pose")) {
     box.T_camera_box = core::readPose(s.child("pose")).cast<float>();
-  } else {
+  } else if (s.has("centre")) {
     box.T_camera_box = oldCropPose(s).cast<float>();
     warnings.push_back(
         "detection.scene.crop: centre and rotation_rpy_deg are an older form, read for now; write "
         "pose: {translation: [x, y, z], rotation: [roll, pitch, yaw], convention: fixed_xyz} instead");
+  } else {
+    s.fail("pose", "is required: {translation: [x, y, z], rotation: [...], convention: NAME}");
   }
   s.finish();
   p.crop = box;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
@@ -251,9 +252,9 @@ DetectionResult Detector::detect(const io::PointCloud& scene_cloud, const std::o
   result.timing_ms.voting = clock.lapMs();
   if (!candidates.empty()) {
     const SceneWork work{model, scene, params, threads, cancel};
-    const Selected selected =
+    Selected selected =
         params.method == Method::LiHashimoto ? selectVerified(work, candidates) : selectClustered(work, candidates);
-    result.detections = selected.detections;
+    result.detections = std::move(selected.detections);
     result.refreshes = selected.refreshes;
     result.seen_through_rejected = selected.seen_through_rejected;
     result.timing_ms.verification = selected.verification_ms;
