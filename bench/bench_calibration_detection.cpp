@@ -14,7 +14,6 @@
 #include <iostream>
 #include <map>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "binpick/calibration/board_detection.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/core/stopwatch.hpp"
+#include "binpick/io/image_file.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
 
 namespace {
@@ -209,7 +209,7 @@ void run(const Options& o) {
   layout.type = calibration::boardTypeFromName(o.board);
   std::vector<View> views;
   for (const std::string& path : o.images) {
-    const cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    const cv::Mat image = io::readImageFile(path);
     if (image.empty()) throw core::Error("bench_calibration_detection: cannot read " + path);
     views.push_back({"file", path, image, {}});
   }

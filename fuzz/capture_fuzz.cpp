@@ -6,9 +6,8 @@
 // naming a file of it; an accepted one holds one image per pattern, each of the size and bit
 // depth capture.json states. Built with libFuzzer (fuzz/run-libfuzzer.sh capture) and with the
 // seeded driver (random_input_driver.cpp, test capture_fuzz_smoke).
-#include <opencv2/imgcodecs.hpp>
-
 #include "binpick/io/capture.hpp"
+#include "binpick/io/image_file.hpp"
 #include "fuzz_support.hpp"
 
 namespace {
@@ -16,16 +15,10 @@ namespace {
 namespace fs = std::filesystem;
 using namespace binpick;
 
-std::string pngOf(const cv::Mat& image) {
-  std::vector<uchar> bytes;
-  cv::imencode(".png", image, bytes);
-  return std::string(bytes.begin(), bytes.end());
-}
-
 // The two images every input may list, as PNG files: written once per process, and the first
 // again after an input replaced it.
 const std::string& whiteImage() {
-  static const std::string bytes = pngOf(cv::Mat(3, 4, CV_8UC1, cv::Scalar(250)));
+  static const std::string bytes = io::encodePng(cv::Mat(3, 4, CV_8UC1, cv::Scalar(250)));
   return bytes;
 }
 
@@ -33,7 +26,7 @@ fs::path captureDirectory() {
   static const fs::path directory = [] {
     const fs::path created = fuzz::scratchDirectory() / "capture";
     fs::create_directories(created / "images");
-    fuzz::writeBytes(created / "images" / "001_black.png", pngOf(cv::Mat(3, 4, CV_8UC1, cv::Scalar(3))));
+    fuzz::writeBytes(created / "images" / "001_black.png", io::encodePng(cv::Mat(3, 4, CV_8UC1, cv::Scalar(3))));
     return created;
   }();
   return directory;

@@ -6,11 +6,11 @@
 #include <cstdint>
 #include <fstream>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "binpick/core/error.hpp"
+#include "binpick/io/image_file.hpp"
 
 namespace binpick::bench {
 namespace {
@@ -617,14 +617,12 @@ cv::Mat renderLinePlot(const LinePlot& plot) {
   return image;
 }
 
-// Encoded in memory and written by us, so that the file is PNG whatever its name ends with and a
-// failure names the path (cv::imwrite only returns false).
+// Encoded in memory and written by us, so that the file is PNG whatever its name ends with.
 void writeLinePlot(const std::string& path, const LinePlot& plot) {
-  const cv::Mat image = renderLinePlot(plot);
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", image, png)) throw core::Error("cannot encode the plot for '" + path + "'");
+  const std::string png = io::encodePng(renderLinePlot(plot));
+  if (png.empty()) throw core::Error("cannot encode the plot for '" + path + "'");
   std::ofstream out(path, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  out.write(png.data(), static_cast<std::streamsize>(png.size()));
   out.close();
   if (!out) throw core::Error("cannot write the plot '" + path + "'");
 }

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "binpick/core/error.hpp"
+#include "binpick/io/image_file.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -207,7 +207,7 @@ void writeGraspImage(const std::string& path, const io::ModelGeometry& model, co
                              " grasps, numbered by rank (green best)";
   cv::putText(image, legend, cv::Point(10, 2 * kViewSize - 12), cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(40, 40, 40),
               1, cv::LINE_AA);
-  if (!cv::imwrite(path, image)) throw core::Error(path + ": cannot write the image");
+  io::writeImageFile(path, image);
 }
 
 }  // namespace binpick::cli

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "binpick/core/error.hpp"
+#include "binpick/io/image_file.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -39,7 +39,7 @@ class ReplayViewCamera : public ViewCamera {
       throw core::Error("replay: all " + std::to_string(images_.size()) + " images of " + directory_ + " were served");
     }
     const std::string& path = images_[next_++];
-    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    cv::Mat image = io::readImageFile(path);
     if (image.empty()) throw core::Error("replay: cannot read " + path);
     return image;
   }

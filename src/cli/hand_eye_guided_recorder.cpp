@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "binpick/calibration/robot_pose_file.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/io/image_file.hpp"
 
 namespace binpick::cli {
 namespace {
@@ -98,11 +98,11 @@ std::string GuidedViewRecorder::receive(const Eigen::Isometry3d& T_base_flange) 
 }
 
 std::string GuidedViewRecorder::stage(const cv::Mat& image) {
-  std::vector<uchar> png;
-  if (!cv::imencode(".png", image, png)) throw core::Error("cannot encode the image as PNG");
+  const std::string png = io::encodePng(image);
+  if (png.empty()) throw core::Error("cannot encode the image as PNG");
   const fs::path path = fs::path(directory_) / kStagedImage;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  out.write(png.data(), static_cast<std::streamsize>(png.size()));
   out.close();
   if (!out) throw core::Error(path.string() + ": cannot write the image");
   return path.string();

@@ -10,13 +10,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "arguments.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/io/capture.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/io/image_file.hpp"
 #include "binpick/io/rig_calibration.hpp"
 #include "binpick/reconstruction/reconstruction_config.hpp"
 #include "capture_reconstruction.hpp"
@@ -114,9 +114,7 @@ int run(const Arguments& args) {
     std::cout << "calibration check: none (the capture has no row codes to check the calibration against)\n";
   }
   io::writePointCloud(out, result.cloud);
-  if (status_path && !cv::imwrite(*status_path, result.status)) {
-    throw core::Error(*status_path + ": cannot write the status image");
-  }
+  if (status_path) io::writeImageFile(*status_path, result.status);
   return 0;
 }
 

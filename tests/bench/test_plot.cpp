@@ -5,10 +5,10 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
+#include "binpick/io/image_file.hpp"
 #include "plot.hpp"
 #include "temp_directory_test.hpp"
 #include "thrown_message.hpp"
@@ -57,7 +57,7 @@ TEST_F(PlotFile, WritesPngOfRequestedSize) {
   char signature[8] = {};
   std::ifstream(path, std::ios::binary).read(signature, 8);
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
-  const cv::Mat read = cv::imread(path, cv::IMREAD_UNCHANGED);
+  const cv::Mat read = io::readImageFile(path);
   ASSERT_FALSE(read.empty());
   EXPECT_EQ(read.cols, 640);
   EXPECT_EQ(read.rows, 400);

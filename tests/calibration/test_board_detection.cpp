@@ -11,10 +11,10 @@
 #include <filesystem>
 #include <functional>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "binpick/io/image_file.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
 #include "thrown_message.hpp"
 
@@ -37,12 +37,13 @@ struct RenderedView {
 cv::Mat cachedWhite(const std::string& name, const std::function<cv::Mat()>& render) {
   const std::filesystem::path path =
       std::filesystem::path(BINPICK_TEST_DATA_DIR) / ("board_detection_v1_" + name + ".png");
-  cv::Mat white = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  cv::Mat white = io::readImageFile(path.string());
   if (!white.empty()) return white;
   white = render();
   std::filesystem::create_directories(path.parent_path());
   const std::string partial = path.string() + "." + std::to_string(::getpid()) + ".png";
-  if (cv::imwrite(partial, white)) std::filesystem::rename(partial, path);
+  io::writeImageFile(partial, white);
+  std::filesystem::rename(partial, path);
   return white;
 }
 

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 
+#include "binpick/io/image_file.hpp"
 #include "fake_camera.hpp"
 #include "hand_eye_guided_camera.hpp"
 #include "temp_directory_test.hpp"
@@ -24,7 +24,7 @@ class ReplayCamera : public test::TempDirectoryTest {
  protected:
   void write(const std::string& name, int grey) {
     fs::create_directories(fs::path(pathOf(name)).parent_path());
-    ASSERT_TRUE(cv::imwrite(pathOf(name), cv::Mat(4, 6, CV_8UC1, cv::Scalar(grey))));
+    io::writeImageFile(pathOf(name), cv::Mat(4, 6, CV_8UC1, cv::Scalar(grey)));
   }
 };
 

@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <thread>
 
 #include "binpick/calibration/hand_eye_views.hpp"
 #include "binpick/calibration/robot_pose_file.hpp"
+#include "binpick/io/image_file.hpp"
 #include "hand_eye_guided_support.hpp"
 #include "temp_directory_test.hpp"
 
@@ -25,7 +25,7 @@ constexpr robot::ClientId kRobot = 1;
 constexpr robot::ClientId kMonitor = 2;
 
 bool sameImage(const cv::Mat& a, const std::string& path) {
-  const cv::Mat b = cv::imread(path, cv::IMREAD_UNCHANGED);
+  const cv::Mat b = io::readImageFile(path);
   return !b.empty() && a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
 }
 

@@ -7,11 +7,11 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "binpick/calibration/hand_eye_file.hpp"
 #include "binpick/calibration/hand_eye_views.hpp"
+#include "binpick/io/image_file.hpp"
 #include "binpick/io/rig_calibration.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 #include "temp_directory_test.hpp"
@@ -96,15 +96,15 @@ class HandEyeBadViews : public test::TempDirectoryTest {
   }
   // Moves the image's content `dx` pixels sideways (grey fills in): the board leaves the image.
   static void shift(const std::string& image_path, double dx) {
-    const cv::Mat image = cv::imread(image_path, cv::IMREAD_UNCHANGED);
+    const cv::Mat image = io::readImageFile(image_path);
     cv::Mat moved;
     const cv::Mat warp = (cv::Mat_<double>(2, 3) << 1, 0, dx, 0, 1, 0);
     cv::warpAffine(image, moved, warp, image.size(), cv::INTER_NEAREST, cv::BORDER_CONSTANT, cv::Scalar(40));
-    cv::imwrite(image_path, moved);
+    io::writeImageFile(image_path, moved);
   }
   // How far right the board reaches in the image: its rightmost corner's column.
   static double rightmostCorner(const std::string& image_path) {
-    const BoardDetection d = detectBoard(cv::imread(image_path, cv::IMREAD_UNCHANGED), BoardLayout{});
+    const BoardDetection d = detectBoard(io::readImageFile(image_path), BoardLayout{});
     double right = 0.0;
     for (const Eigen::Vector2d& p : d.pixels) right = std::max(right, p.x());
     return right;
@@ -113,8 +113,8 @@ class HandEyeBadViews : public test::TempDirectoryTest {
 
 TEST_F(HandEyeBadViews, AViewWithoutTheBoardIsLeftOutAndNamed) {
   const std::string dir = copy();
-  const cv::Mat original = cv::imread(dir + "/view_02.png", cv::IMREAD_UNCHANGED);
-  cv::imwrite(dir + "/view_02.png", cv::Mat(original.size(), CV_8UC1, cv::Scalar(60)));
+  const cv::Mat original = io::readImageFile(dir + "/view_02.png");
+  io::writeImageFile(dir + "/view_02.png", cv::Mat(original.size(), CV_8UC1, cv::Scalar(60)));
   const std::vector<MeasuredView> views = measureAll(dir);
   EXPECT_FALSE(views[2].usable());
   EXPECT_NE(views[2].problem.find("board not found"), std::string::npos) << views[2].problem;
@@ -131,7 +131,7 @@ TEST_F(HandEyeBadViews, ABoardMostlyOutOfTheImageIsLeftOutAPartlyOutOneNoted) {
   // view_01's board pushed out so that a fifth of its width stays in; view_04's by a fifth.
   for (const auto& [view, share_out] : {std::pair{"01", 0.8}, std::pair{"04", 0.2}}) {
     const std::string image = dir + "/view_" + view + ".png";
-    const cv::Mat original = cv::imread(image, cv::IMREAD_UNCHANGED);
+    const cv::Mat original = io::readImageFile(image);
     const BoardDetection d = detectBoard(original, BoardLayout{});
     double left = original.cols;
     for (const Eigen::Vector2d& p : d.pixels) left = std::min(left, p.x());
@@ -149,14 +149,14 @@ TEST_F(HandEyeBadViews, ABoardMostlyOutOfTheImageIsLeftOutAPartlyOutOneNoted) {
 TEST_F(HandEyeBadViews, AnImageOfAnotherSizeOrKindIsAnErrorNamingTheView) {
   const std::string dir = copy();
   const io::RigCalibration rig = io::readRigCalibration(dir + "/calib.yaml");
-  cv::imwrite(dir + "/view_03.png", cv::Mat(100, 200, CV_8UC1, cv::Scalar(60)));
+  io::writeImageFile(dir + "/view_03.png", cv::Mat(100, 200, CV_8UC1, cv::Scalar(60)));
   const std::vector<HandEyeViewFile> files = listHandEyeViews(dir);
   EXPECT_TRUE(throwsNaming([&] { measureView(files[3], BoardLayout{}, rig.camera); },
                            "view view_03 (" + dir +
                                "/view_03.png): the image is 200x100 but the "
                                "camera calibration is " +
                                std::to_string(rig.camera.width) + "x" + std::to_string(rig.camera.height)));
-  cv::imwrite(dir + "/view_03.png", cv::Mat(rig.camera.height, rig.camera.width, CV_8UC3));
+  io::writeImageFile(dir + "/view_03.png", cv::Mat(rig.camera.height, rig.camera.width, CV_8UC3));
   EXPECT_TRUE(throwsNaming([&] { measureView(files[3], BoardLayout{}, rig.camera); },
                            "view view_03 (" + dir + "/view_03.png): the image must be 8- or 16-bit grey"));
 }

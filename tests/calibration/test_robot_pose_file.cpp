@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 
 #include "binpick/calibration/hand_eye_views.hpp"
+#include "binpick/io/image_file.hpp"
 #include "temp_directory_test.hpp"
 #include "thrown_message.hpp"
 
@@ -90,7 +90,9 @@ TEST(RobotPoseFile, RotationsOfAnotherConventionAreRefused) {
 class HandEyeViewsDirectory : public test::TempDirectoryTest {
  protected:
   void write(const std::string& name, const std::string& text) { std::ofstream(pathOf(name)) << text; }
-  void image(const std::string& view) { cv::imwrite(pathOf(view + ".png"), cv::Mat(8, 8, CV_8UC1, cv::Scalar(128))); }
+  void image(const std::string& view) {
+    io::writeImageFile(pathOf(view + ".png"), cv::Mat(8, 8, CV_8UC1, cv::Scalar(128)));
+  }
 };
 
 TEST_F(HandEyeViewsDirectory, PairsEveryPoseWithItsImage) {

@@ -9,12 +9,12 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include "binpick/core/error.hpp"
+#include "binpick/io/image_file.hpp"
 #include "io_test_support.hpp"
 
 namespace binpick::test {
@@ -328,29 +328,29 @@ TEST_F(CaptureTest, DamagedPngIsNamedWithoutLibpngOutput) {
 TEST_F(CaptureTest, ImageOfTheWrongSizeIsNamed) {
   io::writeCapture(directory_, smallCapture(8));
   const std::string path = imagePath("000_white.png");
-  ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 32, CV_8UC1)));
+  io::writeImageFile(path, cv::Mat::zeros(48, 32, CV_8UC1));
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "image is 32x48, capture.json says 64x48"));
 }
 
 TEST_F(CaptureTest, ImageOfTheWrongBitDepthIsNamed) {
   io::writeCapture(directory_, smallCapture(8));
   const std::string path = imagePath("001_black.png");
-  ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 64, CV_16UC1)));
+  io::writeImageFile(path, cv::Mat::zeros(48, 64, CV_16UC1));
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not single-channel 8-bit"));
 
   fs::remove_all(directory_);
   io::writeCapture(directory_, smallCapture(16));
-  ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 64, CV_8UC1)));
+  io::writeImageFile(path, cv::Mat::zeros(48, 64, CV_8UC1));
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not single-channel 16-bit"));
 
-  ASSERT_TRUE(cv::imwrite(path, cv::Mat::zeros(48, 64, CV_16UC3)));
+  io::writeImageFile(path, cv::Mat::zeros(48, 64, CV_16UC3));
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, path, "not single-channel 16-bit"));
 }
 
 TEST_F(CaptureTest, UnlistedFileInImagesIsAnError) {
   io::writeCapture(directory_, smallCapture(8));
   const std::string stray = imagePath("003_extra.png");
-  ASSERT_TRUE(cv::imwrite(stray, cv::Mat::zeros(48, 64, CV_8UC1)));
+  io::writeImageFile(stray, cv::Mat::zeros(48, 64, CV_8UC1));
   EXPECT_TRUE(failsWith([&] { io::readCapture(directory_); }, stray, "not listed in capture.json"));
   fs::remove(stray);
   const std::string leftover = imagePath("000_white.png.tmp");
@@ -362,7 +362,7 @@ TEST_F(CaptureTest, UnlistedFileInImagesIsAnError) {
 
 TEST_F(CaptureTest, ImageNamesCannotLeaveTheDirectory) {
   const std::string outside = pathOf("x.png");
-  ASSERT_TRUE(cv::imwrite(outside, cv::Mat::zeros(48, 64, CV_8UC1)));
+  io::writeImageFile(outside, cv::Mat::zeros(48, 64, CV_8UC1));
   for (const std::string& name :
        {std::string("../x.png"), std::string("images/../../x.png"), std::string("images/../x.png"), outside,
         std::string("/images/000_white.png"), std::string("000_white.png"), std::string("images/sub/000_white.png"),

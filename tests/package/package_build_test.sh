@@ -17,14 +17,15 @@ deb="$out/dist/binpick_${version}_${arch}.deb"
 [ -f "$deb" ] || { echo "FAIL: no $deb; cpack wrote: $(ls "$out/dist")"; exit 1; }
 
 files=$(dpkg-deb -c "$deb" | awk '{ print $6 }' | sed 's#^\./#/#')
-for expected in /usr/bin/binpick /usr/bin/binpickd /usr/lib/systemd/system/binpickd.service \
+for expected in /usr/bin/binpick /usr/bin/binpickd /usr/lib/binpick/libbinpick_image_codecs.so \
+    /usr/lib/systemd/system/binpickd.service \
     /etc/binpick/binpickd.yaml /usr/share/binpick/models/l_bracket.ply /usr/share/doc/binpick/copyright \
     /usr/share/doc/binpick/install.md /usr/share/doc/binpick/binpickd.md /usr/share/doc/binpick/README.md \
     /usr/share/doc/binpick/examples/binpickd.yaml /usr/share/doc/binpick/examples/detection.yaml; do
   printf '%s\n' "$files" | grep -qxF "$expected" || fail "the package has no $expected"
 done
 # Nothing outside the Debian layout: no /usr/local, no state, no build paths.
-stray=$(printf '%s\n' "$files" | grep -v -E '^/(etc/binpick|usr/bin|usr/lib/systemd/system|usr/share/(binpick|doc/binpick))(/|$)' |
+stray=$(printf '%s\n' "$files" | grep -v -E '^/(etc/binpick|usr/bin|usr/lib/binpick|usr/lib/systemd/system|usr/share/(binpick|doc/binpick))(/|$)' |
   grep -v -E '^/(etc|usr|usr/lib|usr/lib/systemd|usr/share|usr/share/doc)?/$')
 [ -z "$stray" ] || fail "files outside the package's places: $stray"
 
@@ -41,7 +42,7 @@ grep -q 'gpiochip' "$control/postinst" || fail "postinst writes no udev rule for
 grep -v '^ *#' "$control/postinst" | grep -q 'systemctl enable' && fail "postinst enables the service before it is configured"
 
 depends=$(dpkg-deb -f "$deb" Depends)
-for library in libopencv-core libaravis-0.8 libgpiod libspdlog libyaml-cpp libc6 adduser udev; do
+for library in libopencv-core libopencv-imgcodecs libaravis-0.8 libgpiod libspdlog libyaml-cpp libc6 adduser udev; do
   printf '%s\n' "$depends" | grep -q "$library" || fail "Depends lacks $library: $depends"
 done
 for lab in libpcl libvtk; do

@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 
 #include "binpick/calibration/board_detection.hpp"
 #include "binpick/calibration/hand_eye_file.hpp"
 #include "binpick/calibration/robot_pose_file.hpp"
+#include "binpick/io/image_file.hpp"
 #include "temp_directory_test.hpp"
 #include "thrown_message.hpp"
 
@@ -96,7 +96,7 @@ TEST_F(HandEyeSessionFiles, WritesTheViewsDirectoryAndTheTruth) {
   for (const char* file : {"view_00.png", "view_01.png", "calib.yaml", "truth/hand_eye.yaml"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
   }
-  EXPECT_EQ(cv::imread(dir + "/view_01.png", cv::IMREAD_UNCHANGED).cols, camera.width);
+  EXPECT_EQ(io::readImageFile(dir + "/view_01.png").cols, camera.width);
   const calibration::RobotPoseFile poses = calibration::readRobotPoseFile(dir + "/poses.txt");
   EXPECT_EQ(poses.orientation, core::Orientation::Quaternion);
   ASSERT_EQ(poses.poses.size(), 2u);

@@ -3,13 +3,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <sstream>
 
 #include "binpick/calibration/hand_eye_views.hpp"
 #include "binpick/calibration/robot_pose_file.hpp"
 #include "binpick/core/error.hpp"
+#include "binpick/io/image_file.hpp"
 
 namespace binpick::calibration {
 namespace {
@@ -66,7 +66,7 @@ namespace binpick::calibration {
 namespace {
 
 cv::Mat readViewImage(const HandEyeViewFile& file, const io::LensIntrinsics& camera) {
-  const cv::Mat image = cv::imread(file.image_path, cv::IMREAD_UNCHANGED);
+  const cv::Mat image = io::readImageFile(file.image_path);
   const std::string prefix = "view " + file.name + " (" + file.image_path + "): ";
   if (image.empty()) throw core::Error(prefix + "cannot read the image");
   if (image.channels() != 1 || (image.depth() != CV_8U && image.depth() != CV_16U)) {

@@ -1,13 +1,13 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <utility>
 
 #include "binpick/cell/artefact_store.hpp"
 #include "binpick/core/component_logger.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/io/image_file.hpp"
 #include "cycle_names.hpp"
 #include "cycle_rotation.hpp"
 
@@ -60,17 +60,6 @@ void writeText(const fs::path& path, const std::string& text) {
   if (!out) fail(path, "cannot write the file");
 }
 
-void writeImage(const fs::path& path, const cv::Mat& image) {
-  bool written = false;
-  try {
-    written = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception& error) {
-    // OpenCV refuses some images (2 channels, 32-bit float) by assertion, naming no file.
-    fail(path, "cannot write the image: " + error.err);
-  }
-  if (!written) fail(path, "cannot write the image");
-}
-
 // "20261201T161500Z" (UTC), as cycle directory names have it.
 std::chrono::system_clock::time_point timeOfName(const std::string& timestamp) {
   std::tm utc{};
@@ -90,7 +79,8 @@ void writeCycle(const fs::path& directory, const CycleArtefacts& cycle, const Ar
     io::writePointCloud((directory / "cloud.ply").string(), *cycle.cloud, io::Encoding::Binary);
   if (params.detections && !cycle.detections_json.empty())
     writeText(directory / "detections.json", cycle.detections_json);
-  if (params.overlay && cycle.overlay && !cycle.overlay->empty()) writeImage(directory / "overlay.png", *cycle.overlay);
+  if (params.overlay && cycle.overlay && !cycle.overlay->empty())
+    io::writeImageFile((directory / "overlay.png").string(), *cycle.overlay);
 }
 
 // Called inside a catch block: the same failure, as a core::Error naming the cycle directory.

@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/file.hpp"
 #include "binpick/core/thread_count.hpp"
+#include "binpick/io/image_file.hpp"
 #include "byte_io.hpp"
 #include "capture_paths.hpp"
 #include "png_structure.hpp"
@@ -56,7 +56,7 @@ int expectedType(int bit_depth) { return bit_depth == 16 ? CV_16UC1 : CV_8UC1; }
 
 cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   if (!fs::exists(path)) fail(path, "the image listed in capture.json is missing");
-  // Decoded from memory: cv::imread logs its own warning for unreadable files, our error says it.
+  // Decoded from memory: OpenCV logs its own warning for unreadable files, our error says it.
   // The chunk structure is checked first: libpng prints its own message on a truncated or
   // corrupt file, and the error should be one line.
   const std::string bytes = core::readFile(path);
@@ -67,13 +67,7 @@ cv::Mat readImage(const std::string& path, const CaptureMetadata& m) {
   if (size.width != static_cast<uint32_t>(m.image_width) || size.height != static_cast<uint32_t>(m.image_height)) {
     failWrongSize(path, std::to_string(size.width) + "x" + std::to_string(size.height), m);
   }
-  cv::Mat image;
-  try {
-    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
-                         cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {
-    image.release();
-  }
+  const cv::Mat image = decodeImage(bytes);
   if (image.empty()) fail(path, "not a readable PNG image");
   if (image.cols != m.image_width || image.rows != m.image_height) {
     failWrongSize(path, std::to_string(image.cols) + "x" + std::to_string(image.rows), m);
@@ -97,12 +91,11 @@ void rejectUnlistedImages(const std::string& directory, const CaptureMetadata& m
   }
 }
 
-std::string encodePng(const cv::Mat& image, const std::string& path) {
-  std::vector<uchar> bytes;
+std::string pngBytes(const cv::Mat& image, const std::string& path) {
   // Level 1: nearly the size of the default level at a fraction of its time.
-  const std::vector<int> options{cv::IMWRITE_PNG_COMPRESSION, 1};
-  if (!cv::imencode(".png", image, bytes, options)) fail(path, "PNG encoding failed");
-  return std::string(bytes.begin(), bytes.end());
+  std::string bytes = encodePng(image, 1);
+  if (bytes.empty()) fail(path, "PNG encoding failed");
+  return bytes;
 }
 
 // Runs task(i) for i in [0, count) on `threads` threads; rethrows the error of the lowest i that
@@ -165,7 +158,7 @@ void writeCapture(const std::string& directory, Capture capture, int threads) {
   // PNG encoding dominates writing: one image per thread; capture.json only after all of them.
   forEachInParallel(capture.images.size(), threads, [&](std::size_t i) {
     const std::string path = (fs::path(directory) / m.images[i]).string();
-    core::writeFileAtomically(path, encodePng(capture.images[i], path));
+    core::writeFileAtomically(path, pngBytes(capture.images[i], path));
   });
   capture_detail::writeCaptureMetadata(directory, m);
 }

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "binpick/core/error.hpp"
+#include "binpick/io/image_file.hpp"
 
 namespace binpick::io {
 namespace {
@@ -41,7 +41,7 @@ bool isImageFile(const fs::path& path) {
 
 // A grey image; a colour file (a BMP saved as RGB) is turned grey.
 cv::Mat readGreyImage(const std::string& path) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR);
+  cv::Mat image = readImageFile(path, ImageChannels::without_alpha);
   if (image.empty()) throw core::Error(path + ": not a readable PNG, BMP or TIFF image");
   if (image.channels() == 3) cv::cvtColor(image, image, cv::COLOR_BGR2GRAY);
   if (image.channels() == 4) cv::cvtColor(image, image, cv::COLOR_BGRA2GRAY);

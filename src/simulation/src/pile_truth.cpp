@@ -4,11 +4,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "binpick/core/error.hpp"
 #include "binpick/core/json_fields.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/io/image_file.hpp"
 
 namespace binpick::simulation {
 namespace {
@@ -28,16 +28,6 @@ json objectsJson(const PileScene& scene, const std::string& part_name) {
   }
   return {
       {"part", part_name}, {"units", "m"}, {"T_camera_bin", core::poseRows(scene.T_camera_bin)}, {"objects", objects}};
-}
-
-void writeImage(const fs::path& path, const cv::Mat& image) {
-  bool written = false;
-  try {
-    written = cv::imwrite(path.string(), image);
-  } catch (const cv::Exception&) {
-    written = false;
-  }
-  if (!written) throw core::Error(path.string() + ": cannot write the image");
 }
 
 // 16-bit labels: 0 nothing, 1 the bin, 2 + i object i (instance ids: -1, -2, i).
@@ -65,8 +55,8 @@ void writePileTruth(const std::string& capture_directory, const PileScene& scene
   objects << objectsJson(scene, part_name).dump(2) << "\n";
   if (!objects) throw core::Error((truth / "objects.json").string() + ": cannot write");
   cv::Mat depth(scene.cloud.height, scene.cloud.width, CV_32FC1, const_cast<float*>(scene.depth.data()));
-  writeImage(truth / "depth.tiff", depth);
-  writeImage(truth / "mask.png", maskImage(scene));
+  io::writeImageFile((truth / "depth.tiff").string(), depth);
+  io::writeImageFile((truth / "mask.png").string(), maskImage(scene));
   io::writePointCloud((truth / "cloud.ply").string(), scene.exact_cloud);
   io::writeMesh((truth / "part.ply").string(), part);
 }

@@ -3,13 +3,13 @@
 
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
 #include "artefact_test_data.hpp"
 #include "binpick/cell/artefact_store.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/io/image_file.hpp"
 #include "temp_directory_test.hpp"
 #include "thrown_message.hpp"
 
@@ -67,7 +67,7 @@ TEST_F(ArtefactsStore, SavesEveryArtefactOfACycle) {
   EXPECT_EQ(io::readCapture(directory + "/capture").images.size(), 2u);
   EXPECT_EQ(io::readPointCloud(directory + "/cloud.ply").size(), 3u);
   EXPECT_EQ(fileText(directory + "/detections.json"), cycle.detections_json);
-  const cv::Mat overlay_read = cv::imread(directory + "/overlay.png", cv::IMREAD_UNCHANGED);
+  const cv::Mat overlay_read = io::readImageFile(directory + "/overlay.png");
   EXPECT_EQ(cv::norm(overlay_read, overlay, cv::NORM_INF), 0.0);
   EXPECT_EQ(store.cycles(), std::vector<std::string>{directory});
 }

@@ -1,11 +1,11 @@
 // writeHandEyeSession: the views directory of a simulated session, truth last.
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 
 #include "binpick/calibration/hand_eye_file.hpp"
 #include "binpick/calibration/robot_pose_file.hpp"
 #include "binpick/core/error.hpp"
 #include "binpick/io/capture.hpp"
+#include "binpick/io/image_file.hpp"
 #include "binpick/simulation/hand_eye_session.hpp"
 #include "random.hpp"
 
@@ -51,9 +51,7 @@ HandEyeSession writeHandEyeSession(const std::string& directory, const HandEyeSe
   poses.orientation = params.orientation;
   for (const HandEyeSessionView& view : session.views) {
     const std::string image = (fs::path(directory) / (view.name + ".png")).string();
-    if (!cv::imwrite(image, renderHandEyeImage(board, view.T_camera_board, params, noise_seeds()))) {
-      throw core::Error(image + ": cannot write the image");
-    }
+    io::writeImageFile(image, renderHandEyeImage(board, view.T_camera_board, params, noise_seeds()));
     poses.poses.push_back({view.name, view.T_base_flange, 0});
   }
   calibration::writeRobotPoseFile((fs::path(directory) / "poses.txt").string(), poses);
