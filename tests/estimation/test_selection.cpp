@@ -171,6 +171,39 @@ TEST(MultipleSelection, APenaltyTakenOffAtTheFirstRefreshGivesTheNaiveSequence) 
   EXPECT_LT(computed.load(), candidates.size() / 5);
 }
 
+// A minimum score ends the selection where the naive one first picks below it, without the
+// penalties of candidates that can no longer reach it.
+TEST(MultipleSelection, AMinimumScoreStopsWhereTheNaiveSequenceFallsBelowIt) {
+  constexpr uint32_t kMinScore = 20;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    SCOPED_TRACE(seed);
+    const auto candidates = randomCandidates(300, 200, 0, 60, seed);
+    std::vector<uint32_t> penalties(candidates.size());
+    for (std::size_t c = 0; c < penalties.size(); ++c) penalties[c] = static_cast<uint32_t>(c % 7);
+    std::size_t naive_evaluations = 0;
+    std::vector<Pick> naive = naiveSelection(candidates, 200, &naive_evaluations, penalties);
+    naive.erase(std::find_if(naive.begin(), naive.end(), [](const Pick& p) { return p.score < kMinScore; }),
+                naive.end());
+
+    std::vector<int> computed(candidates.size(), 0);
+    const auto penalty = [&](uint32_t c) {
+      ++computed[c];
+      return penalties[c];
+    };
+    MultipleSelection selection(candidates, 200, penalty, 1, kMinScore);
+    std::vector<Pick> lazy;
+    while (const auto pick = selection.next()) {
+      lazy.push_back(*pick);
+      selection.removeExplained(candidates[pick->candidate].support);
+    }
+    expectSameSequence(lazy, naive);
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      if (candidates[c].score < kMinScore) EXPECT_EQ(computed[c], 0) << "candidate " << c;
+    }
+    EXPECT_FALSE(selection.next().has_value());
+  }
+}
+
 TEST(MultipleSelection, ExistFlagsAndEmptyInput) {
   const std::vector<VerifiedCandidate> none;
   MultipleSelection empty(none, 10);

@@ -174,6 +174,26 @@ TEST_F(Ply, ReadsBigEndianDoublesSkippingOtherPropertiesAndElements) {
   EXPECT_EQ(geometry.cloud.intensities, (std::vector<float>{200, 201, 202, 203}));
 }
 
+// Float x, y, z records in either byte order and in any property order: the records of a
+// little-endian x, y, z file are copied whole, every other layout is decoded value by value.
+TEST_F(Ply, ReadsFloatCoordinatesInEveryByteOrderAndPropertyOrder) {
+  const Eigen::Vector3f points[3] = {{1.5f, -2.25f, 3.0f}, {NAN, NAN, NAN}, {-0.001f, 1e6f, 0.0f}};
+  for (const bool big_endian : {false, true}) {
+    for (const std::string order : {"xyz", "zxy"}) {
+      std::string bytes =
+          std::string("ply\nformat binary_") + (big_endian ? "big" : "little") + "_endian 1.0\nelement vertex 3\n";
+      for (const char axis : order) bytes += std::string("property float ") + axis + "\n";
+      bytes += "obj_info organized 3 1\nend_header\n";
+      for (const Eigen::Vector3f& point : points) {
+        for (const char axis : order) appendBytes(bytes, point[axis - 'x'], big_endian);
+      }
+      const io::PointCloud cloud = io::readPointCloud(writeFile("cloud.ply", bytes));
+      ASSERT_EQ(cloud.size(), 3u) << order << big_endian;
+      for (std::size_t i = 0; i < 3; ++i) EXPECT_TRUE(sameBits(cloud.points[i], points[i])) << order << big_endian << i;
+    }
+  }
+}
+
 TEST_F(Ply, ReadsAsciiWithCrLfCommentsQuadsAndNormalisesNormals) {
   const std::string path = writeFile("ascii.ply",
                                      "ply\r\n"

@@ -63,20 +63,20 @@ Selected refinedSelection(const SceneWork& work, const std::vector<VerifiedCandi
   const TwinJudging judging{work.scene.line_of_sight, p.verification.refined_tolerance_ratio * model.step,
                             p.icp.max_iterations, work.threads};
   const NearSymmetries& twins = p.verification.compare_turned ? model.near_symmetries : kNoTwins;
-  const PoseRefiner refiner(work.scene, model.step, p.icp);
+  const PoseRefiner refiner(work.scene, model.step, p.icp, work.threads);
   // Scene-consistent verification: a candidate's free-space penalty is computed when Algorithm 1
   // first refreshes it (most candidates never are).
+  const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   MultipleSelection selection(
       verified, work.scene.size(),
       [&](uint32_t c) { return freeSpacePenalty(model, work.scene, verified[c].T_camera_model, p.verification); },
-      work.threads);
+      work.threads, std::max(min_score, 1u));
   const float removal_radius = 1.5f * voxel_size;
-  const auto min_score = static_cast<uint32_t>(std::ceil(p.selection.min_score_fraction * model.size()));
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
   Selected selected;
   while (static_cast<int>(selected.detections.size()) < p.selection.max_objects) {
     const auto pick = selection.next();
-    if (!pick || pick->score < std::max(min_score, 1u)) break;
+    if (!pick) break;
     // A candidate already sitting on an accepted part is a repeat whatever ICP makes of it (no two
     // parts have centres that close): skip it before paying for ICP. Repeats do not remove scene
     // points, so a cloud that yields many of them (e.g. many candidates on one flat face) would
@@ -145,7 +145,7 @@ Selected selectClustered(const SceneWork& work, const std::vector<PoseCandidate>
   core::throwIfCancelled(work.cancel, "after clustering");
   Selected selected;
   selected.selection_ms = clock.lapMs();
-  const PoseRefiner refiner(work.scene, model.step, p.icp);
+  const PoseRefiner refiner(work.scene, model.step, p.icp, work.threads);
   const float min_distance = p.selection.min_centre_distance_ratio * model.diameter;
   for (const PoseCluster& cluster : clusters) {
     if (static_cast<int>(selected.detections.size()) >= p.selection.max_objects) break;

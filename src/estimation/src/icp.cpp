@@ -1,11 +1,14 @@
 #include "icp.hpp"
 
+#include <omp.h>
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "binpick/core/error.hpp"
+#include "binpick/core/thread_count.hpp"
 #include "kdtree.hpp"
 #include "point_ops.hpp"
 
@@ -116,17 +119,32 @@ std::vector<uint32_t> visibleSurfacePoints(const std::vector<Eigen::Vector3f>& p
   std::vector<uint32_t> visible;
   if (facing.empty()) return visible;
   // A part close to the camera plane could span many cells: the grid is bounded, the rest wraps.
-  const int64_t width = std::min<int64_t>(u_high - u_low + 1, 4096), height = std::min<int64_t>(v_high - v_low + 1, 4096);
-  const auto at = [&](const Facing& f) {
-    return static_cast<std::size_t>(((f.v - v_low) % height) * width + (f.u - u_low) % width);
-  };
+  // Each point's cell is found once, and the wrap's divisions (the most of this function's time
+  // when they ran for every lookup) only where the part spans more than the grid.
+  constexpr int64_t kMaxSide = 4096;
+  const bool wraps = u_high - u_low + 1 > kMaxSide || v_high - v_low + 1 > kMaxSide;
+  const int64_t width = std::min(u_high - u_low + 1, kMaxSide), height = std::min(v_high - v_low + 1, kMaxSide);
   std::vector<float> nearest(static_cast<std::size_t>(width * height), std::numeric_limits<float>::infinity());
-  for (const Facing& f : facing) nearest[at(f)] = std::min(nearest[at(f)], f.z);
+  std::vector<std::size_t> cell_of(facing.size());
+  for (std::size_t i = 0; i < facing.size(); ++i) {
+    const Facing& f = facing[i];
+    const int64_t u = wraps ? (f.u - u_low) % width : f.u - u_low;
+    const int64_t v = wraps ? (f.v - v_low) % height : f.v - v_low;
+    cell_of[i] = static_cast<std::size_t>(v * width + u);
+    nearest[cell_of[i]] = std::min(nearest[cell_of[i]], f.z);
+  }
   visible.reserve(facing.size());
-  for (const Facing& f : facing) {
-    if (f.z <= nearest[at(f)] + step) visible.push_back(f.index);
+  for (std::size_t i = 0; i < facing.size(); ++i) {
+    if (facing[i].z <= nearest[cell_of[i]] + step) visible.push_back(facing[i].index);
   }
   return visible;
+}
+
+// A few hundred searches are worth a second thread; inside a parallel region (a pick's twins
+// refined side by side) the threads are taken already.
+bool PoseRefiner::searchInParallel(std::size_t searches) const {
+  constexpr std::size_t kMinSearchesToShare = 256;
+  return threads_ > 1 && searches >= kMinSearchesToShare && !omp_in_parallel();
 }
 
 struct PoseRefiner::Index {
@@ -134,11 +152,12 @@ struct PoseRefiner::Index {
   KdTree tree;
 };
 
-PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams params)
+PoseRefiner::PoseRefiner(const PreparedScene& scene, float step, IcpParams params, int threads)
     : scene_(scene),
       step_(step),
       params_(params),
       min_normal_cos_(static_cast<float>(std::cos(static_cast<double>(params.max_normal_angle_deg) * M_PI / 180.0))),
+      threads_(core::resolveThreadCount(threads)),
       index_(std::make_unique<Index>(scene.points)) {
   params_.validate();
 }
@@ -169,6 +188,11 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
   result.T_camera_model = initial;
   if (scene_.points.empty()) return result;
   std::vector<uint32_t> sources;
+  struct Slot {
+    Eigen::Vector3f source;
+    int scene;  // -1: no correspondence
+  };
+  std::vector<Slot> slots;
   std::vector<Correspondence> pairs;
   const float huber = params_.huber_ratio * step_;
   for (int it = 0; it < max_iterations; ++it) {
@@ -182,14 +206,21 @@ IcpResult PoseRefiner::refine(const PreparedModel& model, const Eigen::Isometry3
     const float gate =
         (it < max_iterations / 3 ? params_.initial_max_distance_ratio : params_.final_max_distance_ratio) *
         step_;
-    pairs.clear();
-    for (uint32_t k : sources) {
+    // Each source's scene point in its own slot, then the pairs in source order: the sums below
+    // come out the same on any number of threads.
+    slots.resize(sources.size());
+#pragma omp parallel for num_threads(threads_) schedule(static) if (searchInParallel(sources.size()))
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      const uint32_t k = sources[i];
       const Eigen::Vector3f p = pose * model.points[k];
-      const auto [s, distance_sq] = index_->tree.nearest(p);
-      if (s < 0 || distance_sq > gate * gate) continue;
+      const int s = index_->tree.nearestWithin(p, gate * gate).first;
       // A scene normal facing away from the moved model normal belongs to another surface.
-      if (scene_.normals[s].dot(pose.linear() * model.normals[k]) < min_normal_cos_) continue;
-      pairs.push_back({p, scene_.points[s], scene_.normals[s]});
+      const bool paired = s >= 0 && scene_.normals[s].dot(pose.linear() * model.normals[k]) >= min_normal_cos_;
+      slots[i] = {p, paired ? s : -1};
+    }
+    pairs.clear();
+    for (const Slot& slot : slots) {
+      if (slot.scene >= 0) pairs.push_back({slot.source, scene_.points[slot.scene], scene_.normals[slot.scene]});
     }
     if (pairs.size() < 6) break;
     const Eigen::Isometry3f delta = solvePointToPlane(pairs, huber, params_.point_weight);
@@ -217,8 +248,8 @@ PoseFit PoseRefiner::assess(const PreparedModel& model, const Eigen::Isometry3f&
   double squared = 0.0;
   for (uint32_t k : visible) {
     const Eigen::Vector3f p = pose * model.points[k];
-    const auto [s, distance_sq] = index_->tree.nearest(p);
-    if (s < 0 || distance_sq > fit_distance * fit_distance) continue;
+    const auto s = index_->tree.nearestWithin(p, fit_distance * fit_distance).first;
+    if (s < 0) continue;
     const float r = (p - scene_.points[s]).dot(scene_.normals[s]);
     squared += static_cast<double>(r) * r;
     ++fit.fitted;

@@ -2,7 +2,8 @@
 // Pose refinement (section III-D, last paragraph): point-to-plane ICP that moves only the model
 // points the camera can see at the current pose (facing it and not hidden by the part itself)
 // onto the scene, with a robust (Huber) weight. refine() is const: one PoseRefiner may serve many
-// threads.
+// threads. Called outside a parallel region, refine() searches each iteration's correspondences on
+// `threads` threads (0: all), with the same result on any number.
 #include <Eigen/Geometry>
 #include <limits>
 #include <memory>
@@ -42,7 +43,7 @@ std::vector<uint32_t> visibleSurfacePoints(const std::vector<Eigen::Vector3f>& p
 // Holds a reference to `scene` (and an index of its points): the scene must outlive the refiner.
 class PoseRefiner {
  public:
-  PoseRefiner(const PreparedScene& scene, float step, IcpParams params);
+  PoseRefiner(const PreparedScene& scene, float step, IcpParams params, int threads = 0);
   ~PoseRefiner();
   PoseRefiner(const PoseRefiner&) = delete;
   PoseRefiner& operator=(const PoseRefiner&) = delete;
@@ -57,10 +58,12 @@ class PoseRefiner {
 
  private:
   struct Index;
+  bool searchInParallel(std::size_t searches) const;
   const PreparedScene& scene_;
   float step_;
   IcpParams params_;
   float min_normal_cos_;  // cos of params_.max_normal_angle_deg
+  int threads_;
   std::unique_ptr<Index> index_;
 };
 

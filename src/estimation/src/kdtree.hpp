@@ -4,6 +4,7 @@
 #include <nanoflann.hpp>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -24,6 +25,16 @@ class KdTree {
       return {-1, std::numeric_limits<float>::infinity()};
     }
     return {static_cast<int>(index), distance_sq};
+  }
+
+  // As nearest(), among the points within sqrt(max_distance_sq) of the query only: the bound prunes
+  // the search from the start, so a query with nothing near returns at once. ICP's correspondence
+  // gate is such a bound.
+  std::pair<int, float> nearestWithin(const Eigen::Vector3f& query, float max_distance_sq) const {
+    NearestWithin result(max_distance_sq);
+    if (!adaptor_.points.empty()) index_.findNeighbors(result, query.data(), nanoflann::SearchParams());
+    if (result.index < 0) return {-1, std::numeric_limits<float>::infinity()};
+    return {result.index, result.distance_sq};
   }
 
   // Squared distance from the point at `index` to its nearest other point; inf when it has none.
@@ -53,6 +64,20 @@ class KdTree {
     bool kdtree_get_bbox(Box&) const {
       return false;
     }
+  };
+  // nanoflann's result-set interface for one nearest point under a bound (inclusive, as
+  // `distance_sq <= bound` after nearest() was).
+  struct NearestWithin {
+    explicit NearestWithin(float max_distance_sq)
+        : distance_sq(std::nextafter(max_distance_sq, std::numeric_limits<float>::infinity())) {}
+    bool full() const { return true; }
+    bool addPoint(float candidate_sq, uint32_t candidate) {
+      if (candidate_sq < distance_sq) distance_sq = candidate_sq, index = static_cast<int>(candidate);
+      return true;
+    }
+    float worstDist() const { return distance_sq; }
+    float distance_sq;
+    int index = -1;
   };
   using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, 3, uint32_t>;
   static std::vector<std::pair<uint32_t, float>>& matches_buffer() {

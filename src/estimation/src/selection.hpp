@@ -27,12 +27,14 @@ class MultipleSelection {
   using Penalty = std::function<uint32_t(uint32_t candidate)>;
 
   // `candidates` must outlive the selection. Without a penalty: eq. 4 alone, as in the paper.
-  // `penalty` must be thread-safe: it runs on up to `threads` threads.
+  // `penalty` must be thread-safe: it runs on up to `threads` threads. No pick scores below
+  // `min_score`: candidates that cannot reach it are neither refreshed nor penalised.
   MultipleSelection(const std::vector<VerifiedCandidate>& candidates, std::size_t scene_points,
-                    Penalty penalty = nullptr, int threads = 1);
+                    Penalty penalty = nullptr, int threads = 1, uint32_t min_score = 0);
 
   // The remaining candidate with the highest Score_New under the current Exist flags (ties: the
-  // lower index), taken out of the running; nothing when no candidate is left.
+  // lower index), taken out of the running; nothing when no candidate is left with at least
+  // min_score.
   std::optional<Pick> next();
   // Algorithm 1 lines 2-6: these scene points stop existing.
   void removeExplained(const std::vector<uint32_t>& scene_points);
@@ -47,9 +49,11 @@ class MultipleSelection {
   const std::vector<VerifiedCandidate>& candidates_;
   Penalty penalty_;
   int threads_;
+  uint32_t min_score_;
   std::vector<int64_t> known_penalty_;  // -1 until computed
   std::vector<uint8_t> exist_;
   std::vector<std::pair<uint32_t, uint32_t>> ranked_;  // (known upper bound of the score, index)
+  std::size_t unsorted_ = 0;                           // ranked_'s head refreshed since it was sorted
   std::size_t refreshes_ = 0;
 };
 

@@ -3,11 +3,13 @@
 // fan-triangulated triangles, every other element is skipped by its declared types.
 #include <Eigen/Core>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "binpick/core/file.hpp"
 #include "byte_io.hpp"
 #include "formats.hpp"
 #include "ply_header.hpp"
@@ -50,6 +52,8 @@ class BinarySource {
   }
 
   std::int64_t readInteger(PlyType type) { return integerAt(take(byteSize(type)), type); }
+
+  bool swapsBytes() const { return swapBytes_; }
 
   // Binary records have no delimiters to check.
   void beginRecord() {}
@@ -257,14 +261,26 @@ class BodyReader {
     }
   }
 
+  struct Field {
+    std::size_t offset;
+    PlyType type;
+    int slot;
+  };
+
+  // Records of x, y, z as float in this order and nothing else: laid out as Eigen::Vector3f is.
+  static bool isPackedXyz(const std::vector<Field>& fields, std::size_t recordBytes) {
+    static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float));
+    if (fields.size() != 3 || recordBytes != sizeof(Eigen::Vector3f)) return false;
+    for (int slot = 0; slot < 3; ++slot) {
+      const Field& field = fields[static_cast<std::size_t>(slot)];
+      if (field.slot != slot || field.type != PlyType::Float32 || field.offset != slot * sizeof(float)) return false;
+    }
+    return true;
+  }
+
   // Binary records without lists all have one size: one bounds check for the whole element,
   // then values decoded at precomputed offsets. This is the path of every camera-sized cloud.
   void readFixedSizeVertices(const PlyElement& element, const VertexLayout& layout, PointCloud& cloud) {
-    struct Field {
-      std::size_t offset;
-      PlyType type;
-      int slot;
-    };
     std::vector<Field> fields;
     std::size_t recordBytes = 0;
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -275,6 +291,11 @@ class BodyReader {
       recordBytes += byteSize(type);
     }
     const char* record = source_.takeRecords(element.count, recordBytes);
+    if (isPackedXyz(fields, recordBytes) && !source_.swapsBytes()) {
+      // binpick's own clouds (x, y, z as float, nothing else): the records are the points' bytes.
+      std::memcpy(static_cast<void*>(cloud.points.data()), record, element.count * recordBytes);
+      return;
+    }
     VertexValues values = {};
     for (std::uint64_t i = 0; i < element.count; ++i, record += recordBytes) {
       for (const Field& field : fields) {
@@ -407,9 +428,13 @@ ModelGeometry readBody(const PlyHeader& header, Source& source, RecordLocation& 
 }  // namespace
 
 ModelGeometry loadPly(const std::string& path) {
-  const std::string bytes = readNonEmptyFileBytes(path);
+  // Mapped, not read into a string: a camera's cloud is 16 MB, and filling and copying a buffer of
+  // it took as long as decoding it.
+  const std::shared_ptr<const core::MappedFile> file = core::MappedFile::open(path);
+  if (file->size() == 0) fail(path, "the file is empty");
+  const std::string_view bytes(reinterpret_cast<const char*>(file->data()), file->size());
   const PlyHeader header = parsePlyHeader(bytes, path);
-  const std::string_view body = std::string_view(bytes).substr(header.bodyOffset);
+  const std::string_view body = bytes.substr(header.bodyOffset);
   RecordLocation location;
   if (header.encoding == PlyEncoding::Ascii) {
     AsciiSource source(body, header.headerLines + 1, path, location);
