@@ -1,8 +1,9 @@
 # The Debian package of the cell PC (`bash scripts/package.sh`, or `cpack` in the build tree):
-# binpick_<version>_<arch>.deb with /usr/bin/binpick and binpickd, the unit in
-# /usr/lib/systemd/system, /etc/binpick/binpickd.yaml as a conffile, the docs and example settings
-# in /usr/share/doc/binpick, the example recipe's model in /usr/share/binpick/models. Depends come
-# from dpkg-shlibdeps; the maintainer scripts are in packaging/debian/ (docs/install.md).
+# binpick_<version>_<arch>.deb with /usr/bin/binpick and binpickd, their image codecs in
+# /usr/lib/binpick, the unit in /usr/lib/systemd/system, /etc/binpick/binpickd.yaml as a conffile,
+# the docs and example settings in /usr/share/doc/binpick, the example recipe's model in
+# /usr/share/binpick/models. Depends come from dpkg-shlibdeps; the maintainer scripts are in
+# packaging/debian/ (docs/install.md).
 set(BINPICK_PACKAGE_MAINTAINER "binpick developers" CACHE STRING "The Debian package's Maintainer field")
 
 set(CPACK_GENERATOR DEB)

@@ -12,6 +12,7 @@
 #include "binpick/simulation/virtual_rig.hpp"
 #include "estimation_test_support.hpp"
 #include "icp.hpp"
+#include "kdtree.hpp"
 #include "scene.hpp"
 
 namespace binpick::estimation {
@@ -144,8 +145,48 @@ TEST_P(IcpOnSinglePart, VisibleModelPointsFaceTheCameraAndAreSeen) {
   EXPECT_TRUE(visibleModelPoints(model, behind).empty());
 }
 
+// The pick's correspondences are searched on every thread; the pose must not depend on how many.
+TEST_P(IcpOnSinglePart, OneThreadAndTwoRefineToTheSamePose) {
+  const SinglePart s = renderSinglePart(GetParam(), 3);
+  const PoseRefiner serial(s.scene, s.model->step, IcpParams{}, 1);
+  const PoseRefiner shared(s.scene, s.model->step, IcpParams{}, 2);
+  std::mt19937_64 rng(9);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Eigen::Isometry3f initial = perturbed(s.truth, rng, 0.004f, 4.0f);
+    const IcpResult a = serial.refine(*s.model, initial);
+    const IcpResult b = shared.refine(*s.model, initial);
+    EXPECT_EQ(a.iterations, b.iterations) << trial;
+    EXPECT_TRUE(a.T_camera_model.matrix() == b.T_camera_model.matrix()) << trial;
+    EXPECT_EQ(a.fit.fitted, b.fit.fitted) << trial;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Parts, IcpOnSinglePart, ::testing::Values("l_bracket", "clamp"),
                          [](const ::testing::TestParamInfo<std::string>& part) { return part.param; });
+
+// ICP's gated search: the nearest point when it lies within the bound (the bound included),
+// none otherwise; the same answer as searching the whole tree.
+TEST(KdTreeSearch, NearestWithinABoundIsTheNearestOrNone) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<float> coordinate(-1.0f, 1.0f);
+  std::vector<Eigen::Vector3f> points(500);
+  for (Eigen::Vector3f& p : points) p = Eigen::Vector3f(coordinate(rng), coordinate(rng), coordinate(rng));
+  const KdTree tree(points);
+  for (int q = 0; q < 200; ++q) {
+    const Eigen::Vector3f query(coordinate(rng), coordinate(rng), coordinate(rng));
+    const auto [nearest, distance_sq] = tree.nearest(query);
+    for (const float bound_sq : {0.5f * distance_sq, distance_sq, 2.0f * distance_sq}) {
+      const auto [within, within_sq] = tree.nearestWithin(query, bound_sq);
+      if (distance_sq <= bound_sq) {
+        EXPECT_EQ(within, nearest) << q;
+        EXPECT_EQ(within_sq, distance_sq) << q;
+      } else {
+        EXPECT_EQ(within, -1) << q;
+      }
+    }
+  }
+  EXPECT_EQ(KdTree(std::vector<Eigen::Vector3f>{}).nearestWithin(Eigen::Vector3f::Zero(), 1.0f).first, -1);
+}
 
 TEST(PoseRefiner, EmptySceneLeavesThePose) {
   const PreparedModel& model = testing::smallModel();

@@ -119,8 +119,8 @@ std::vector<uint32_t> visibleSurfacePoints(const std::vector<Eigen::Vector3f>& p
   std::vector<uint32_t> visible;
   if (facing.empty()) return visible;
   // A part close to the camera plane could span many cells: the grid is bounded, the rest wraps.
-  // Each point's cell is found once, and the wrap's divisions (the most of this function's time
-  // when they ran for every lookup) only where the part spans more than the grid.
+  // Each point's cell is found once, with the wrap's divisions only where the part spans more than
+  // the grid: run for every lookup, they took most of this function's time.
   constexpr int64_t kMaxSide = 4096;
   const bool wraps = u_high - u_low + 1 > kMaxSide || v_high - v_low + 1 > kMaxSide;
   const int64_t width = std::min(u_high - u_low + 1, kMaxSide), height = std::min(v_high - v_low + 1, kMaxSide);
