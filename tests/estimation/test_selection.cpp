@@ -198,7 +198,9 @@ TEST(MultipleSelection, AMinimumScoreStopsWhereTheNaiveSequenceFallsBelowIt) {
     }
     expectSameSequence(lazy, naive);
     for (std::size_t c = 0; c < candidates.size(); ++c) {
-      if (candidates[c].score < kMinScore) EXPECT_EQ(computed[c], 0) << "candidate " << c;
+      if (candidates[c].score < kMinScore) {
+        EXPECT_EQ(computed[c], 0) << "candidate " << c;
+      }
     }
     EXPECT_FALSE(selection.next().has_value());
   }

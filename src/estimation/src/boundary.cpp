@@ -178,11 +178,13 @@ BoundaryPoints sceneBoundaryPoints(const io::PointCloud& cloud, const std::optio
   const float jump = params.depth_jump_ratio * model.step;
 
   std::vector<uint8_t> is_boundary(cloud.size(), 0);
+  const bool cropped = crop.has_value();
+  const CropBox::Test inside = cropped ? crop->test() : CropBox::Test{};
 #pragma omp parallel for num_threads(core::resolveThreadCount(threads)) schedule(static)
   for (int v = 0; v < grid.height(); ++v) {
     for (int u = 0; u < grid.width(); ++u) {
       const Eigen::Vector3f& p = grid.at(u, v);
-      if (!p.allFinite() || (crop && !crop->contains(p))) continue;
+      if (!p.allFinite() || (cropped && !inside.contains(p))) continue;
       if (grid.isNearSideOfJump(u, v, jump, gap_window)) is_boundary[grid.index(u, v)] = 1;
     }
   }

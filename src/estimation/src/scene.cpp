@@ -107,10 +107,12 @@ float typicalSpacing(const KdTree& tree, const std::vector<uint32_t>& kept) {
 std::vector<uint32_t> validIndices(const io::PointCloud& cloud, const SceneParams& params) {
   std::vector<uint32_t> valid;
   valid.reserve(cloud.size());
+  const bool cropped = params.crop.has_value();
+  const CropBox::Test inside = cropped ? params.crop->test() : CropBox::Test{};
   for (uint32_t i = 0; i < cloud.size(); ++i) {
     const Eigen::Vector3f& p = cloud.points[i];
     if (!p.allFinite()) continue;
-    if (params.crop && !params.crop->contains(p)) continue;
+    if (cropped && !inside.contains(p)) continue;
     valid.push_back(i);
   }
   return valid;
@@ -129,10 +131,7 @@ Eigen::Vector3f towardsCamera(const Eigen::Vector3f& n, const Eigen::Vector3f& p
 
 }  // namespace
 
-bool CropBox::contains(const Eigen::Vector3f& p_camera) const {
-  const Eigen::Vector3f p_box = T_camera_box.inverse() * p_camera;
-  return (p_box.cwiseAbs().array() <= half_extents.array()).all();
-}
+bool CropBox::contains(const Eigen::Vector3f& p_camera) const { return test().contains(p_camera); }
 
 void SceneParams::validate() const {
   const char* owner = "detection.scene";

@@ -15,6 +15,16 @@ struct CropBox {
   Eigen::Isometry3f T_camera_box = Eigen::Isometry3f::Identity();  // box centre and axes
   Eigen::Vector3f half_extents = Eigen::Vector3f::Zero();          // model units
   bool contains(const Eigen::Vector3f& p_camera) const;
+
+  // The same test for a whole cloud: the box's inverse pose computed once, not per point.
+  struct Test {
+    Eigen::Isometry3f T_box_camera = Eigen::Isometry3f::Identity();
+    Eigen::Vector3f half_extents = Eigen::Vector3f::Zero();
+    bool contains(const Eigen::Vector3f& p_camera) const {
+      return ((T_box_camera * p_camera).cwiseAbs().array() <= half_extents.array()).all();
+    }
+  };
+  Test test() const { return {T_camera_box.inverse(), half_extents}; }
 };
 
 // Scene preparation (scene.hpp).
