@@ -67,7 +67,8 @@ std::optional<MultipleSelection::Pick> MultipleSelection::next() {
     // index, as a full re-verification would break them).
     if (ranksBefore(ranked_[best], ranked_[i + 1])) break;
   }
-  if (refreshed == 0 || ranked_[best].first < min_score_) {
+  // Nothing refreshed: the first bound (best's) was below min_score already.
+  if (ranked_[best].first < min_score_) {
     unsorted_ = refreshed;
     return std::nullopt;
   }
