@@ -43,7 +43,7 @@ TEST(PpfHashTable, EveryOrderedPairIsFoundUnderItsKey) {
     const Eigen::Isometry3f T_m = referenceFrame(c.points[i], c.normals[i]);
     for (std::size_t j = 0; j < n; ++j) {
       if (i == j) continue;
-      const int64_t key = q.key(computeFeature(c.points[i], c.normals[i], c.points[j], c.normals[j]));
+      const int64_t key = q.pairKey(c.points[i], c.normals[i], c.points[j], c.normals[j]);
       ASSERT_GE(key, 0);
       const PpfHashTable::Range range = table.lookup(key);
       const float alpha_m = planarAngle(T_m * c.points[j]);

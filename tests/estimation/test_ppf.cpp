@@ -264,6 +264,47 @@ TEST(PpfQuantizer, AlphaBinOfDifferenceAgreesWithAlphaBin) {
   }
 }
 
+// The table and the voting key a pair from cosines, not angles: the key of its feature, but where
+// float rounding puts an angle on the other side of a bin border; the normals' lengths do not count.
+TEST(PpfQuantizer, PairKeyIsTheFeaturesKeyButAtBinBorders) {
+  const auto nearBorder = [](float angle, float step) {
+    return std::abs(angle - std::round(angle / step) * step) < 1e-5f;
+  };
+  for (float step_deg : {12.0f, 5.0f, 30.0f, 7.0f}) {
+    SCOPED_TRACE(step_deg);
+    const PpfQuantizer q(0.004f, rad(step_deg), 0.1f);
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<float> coord(-0.035f, 0.035f);
+    int differing = 0, beyond = 0;
+    for (int i = 0; i < 50000; ++i) {
+      const Eigen::Vector3f pi(coord(rng), coord(rng), coord(rng)), pj(coord(rng), coord(rng), coord(rng));
+      const Eigen::Vector3f ni = randomUnit(rng), nj = randomUnit(rng);
+      const PointPairFeature f = computeFeature(pi, ni, pj, nj);
+      const int64_t key = q.pairKey(pi, ni, pj, nj);
+      // Scaling by powers of two is exact in float: the very same key.
+      ASSERT_EQ(q.pairKey(pi, 2.0f * ni, pj, 0.25f * nj), key);
+      beyond += key < 0;
+      if (key == q.key(f)) continue;
+      ++differing;
+      ASSERT_GE(key, 0) << "only the angles may differ";
+      EXPECT_TRUE(nearBorder(f.angle_ni_d, q.angleStep()) || nearBorder(f.angle_nj_d, q.angleStep()) ||
+                  nearBorder(f.angle_ni_nj, q.angleStep()))
+          << "pair " << i << ": keys " << key << " and " << q.key(f) << " away from any border";
+    }
+    EXPECT_GT(beyond, 0) << "some pairs are longer than the maximum distance";
+    EXPECT_LE(differing, 5);
+  }
+  // Degenerate pairs take the angle 0 where atan2(0, 0) does: a zero normal, coincident points.
+  const PpfQuantizer q(0.004f, rad(12.0f), 0.1f);
+  const Eigen::Vector3f p(0.01f, 0.02f, 0.03f), n = Eigen::Vector3f(1, 2, 2).normalized();
+  const Eigen::Vector3f far = p + Eigen::Vector3f(0.02f, -0.01f, 0.005f), zero = Eigen::Vector3f::Zero();
+  EXPECT_EQ(q.pairKey(p, zero, far, n), q.key(computeFeature(p, zero, far, n)));
+  EXPECT_EQ(q.pairKey(p, n, far, zero), q.key(computeFeature(p, n, far, zero)));
+  EXPECT_EQ(q.pairKey(p, n, p, Eigen::Vector3f::UnitX()), q.key(computeFeature(p, n, p, Eigen::Vector3f::UnitX())));
+  EXPECT_EQ(q.pairKey(p, n, p + Eigen::Vector3f(0.2f, 0, 0), n), -1);
+  EXPECT_EQ(q.pairKey(p, n, Eigen::Vector3f::Constant(std::nanf("")), n), -1);
+}
+
 TEST(PpfQuantizer, RejectsNonsenseSteps) {
   using testing::errorMessage;
   EXPECT_NE(errorMessage([] { PpfQuantizer(0.0f, 0.2f, 0.1f); }), "");

@@ -127,6 +127,42 @@ TEST(SceneVoxelGrid, RandomSurfaceSatisfiesTheNeighbourhoodContract) {
   }
 }
 
+// Verification looks up a pose's model points through one affine map into voxel coordinates: the
+// same scene point as at(pose * m), but where rounding moves m across a voxel's border.
+TEST(SceneVoxelGrid, APosesVoxelMapFindsWhatThePosedPointFinds) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<float> xy(-0.1f, 0.1f), local(-0.03f, 0.03f);
+  std::vector<Eigen::Vector3f> points;
+  for (int i = 0; i < 4000; ++i) {
+    const float x = xy(rng), y = xy(rng);
+    points.emplace_back(x, y, 0.8f + 0.02f * std::sin(25.0f * x) * std::cos(20.0f * y));
+  }
+  const SceneVoxelGrid grid(points, kL);
+  const float nudge = 1e-3f * kL;
+  int differing = 0, found = 0;
+  for (int trial = 0; trial < 50; ++trial) {
+    Eigen::Isometry3f pose = randomPose(rng, 0.0f);
+    pose.translation() = Eigen::Vector3f(xy(rng), xy(rng), 0.8f);
+    const Eigen::Affine3f to_voxels = grid.voxelMapOf(pose);
+    for (int k = 0; k < 400; ++k) {
+      const Eigen::Vector3f m(local(rng), local(rng), local(rng));
+      const int32_t mapped = grid.atVoxelCoordinates(to_voxels * m);
+      found += mapped != SceneVoxelGrid::kEmpty;
+      if (mapped == grid.at(pose * m)) continue;
+      ++differing;
+      bool beside = false;  // what a point a thousandth of a voxel away finds
+      for (int corner = 0; corner < 27 && !beside; ++corner) {
+        const Eigen::Vector3f step(static_cast<float>(corner % 3 - 1), static_cast<float>(corner / 3 % 3 - 1),
+                                   static_cast<float>(corner / 9 - 1));
+        beside = grid.at(pose * m + nudge * step) == mapped;
+      }
+      EXPECT_TRUE(beside) << "trial " << trial << ", point " << k << ": " << mapped << " is not at the border";
+    }
+  }
+  EXPECT_GT(found, 1000) << "the poses put their points on the surface";
+  EXPECT_LE(differing, 20);  // of 20000 lookups
+}
+
 TEST(SceneVoxelGrid, EmptySceneAndBadSize) {
   const SceneVoxelGrid empty({}, kL);
   EXPECT_EQ(empty.at({0, 0, 0}), SceneVoxelGrid::kEmpty);

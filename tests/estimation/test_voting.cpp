@@ -46,7 +46,7 @@ std::vector<std::vector<Cell>> bruteForceVote(const PreparedModel& model, const 
     const Eigen::Isometry3f T_m = referenceFrame(model.points[a], model.normals[a]);
     for (uint32_t b = 0; b < model.size(); ++b) {
       if (a == b) continue;
-      const int64_t key = q.key(computeFeature(model.points[a], model.normals[a], model.points[b], model.normals[b]));
+      const int64_t key = q.pairKey(model.points[a], model.normals[a], model.points[b], model.normals[b]);
       if (key >= 0) model_pairs[key].emplace_back(a, planarAngle(T_m * model.points[b]));
     }
   }
@@ -58,7 +58,7 @@ std::vector<std::vector<Cell>> bruteForceVote(const PreparedModel& model, const 
     const Eigen::Isometry3f T_s = referenceFrame(scene.points[r], scene.normals[r]);
     for (std::size_t j = 0; j < scene.size(); ++j) {
       if (j == r || (scene.points[j] - scene.points[r]).squaredNorm() > model.diameter * model.diameter) continue;
-      const int64_t key = q.key(computeFeature(scene.points[r], scene.normals[r], scene.points[j], scene.normals[j]));
+      const int64_t key = q.pairKey(scene.points[r], scene.normals[r], scene.points[j], scene.normals[j]);
       const auto it = model_pairs.find(key);
       if (key < 0 || it == model_pairs.end()) continue;
       const float alpha_s = planarAngle(T_s * scene.points[j]);

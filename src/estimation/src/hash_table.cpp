@@ -61,7 +61,7 @@ PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std
                            const PpfQuantizer& quantizer, uint32_t max_pairs_per_key, std::size_t reference_count) {
   build(points, normals, reference_count, points, quantizer, max_pairs_per_key,
         [&](std::size_t i, std::size_t j) -> int64_t {
-          return i == j ? -1 : quantizer.key(computeFeature(points[i], normals[i], points[j], normals[j]));
+          return i == j ? -1 : quantizer.pairKey(points[i], normals[i], points[j], normals[j]);
         });
 }
 

@@ -59,6 +59,7 @@ PpfQuantizer::PpfQuantizer(float distance_step, float angle_step, float max_dist
   alpha_bins_ = static_cast<int>(std::ceil(kTwoPi / angle_step));
   alpha_bins_per_radian_ = static_cast<float>(alpha_bins_) / kTwoPi;
   key_count_ = static_cast<int64_t>(distance_bins_) * angle_bins_ * angle_bins_ * angle_bins_;
+  for (int k = 1; k < angle_bins_; ++k) border_cosines_.push_back(std::cos(static_cast<float>(k) * angle_step));
   if (key_count_ > (int64_t{1} << 28)) {
     throw core::Error("PpfQuantizer: " + std::to_string(key_count_) +
                       " feature bins is too many; use a coarser distance or angle step");

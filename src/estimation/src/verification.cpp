@@ -30,8 +30,9 @@ std::vector<uint32_t> correspondingScenePoints(const PreparedModel& model, const
   std::vector<uint32_t> support;
   support.reserve(model.size() / 2);
   const bool check_normals = min_normal_cosine > -1.0f;
+  const Eigen::Affine3f to_voxels = grid.voxelMapOf(pose);
   for (std::size_t k = 0; k < model.size(); ++k) {
-    const int32_t s = grid.at(pose * model.points[k]);
+    const int32_t s = grid.atVoxelCoordinates(to_voxels * model.points[k]);
     if (s == SceneVoxelGrid::kEmpty) continue;
     if (check_normals && (pose.linear() * model.normals[k]).dot(scene_normals[s]) < min_normal_cosine) continue;
     support.push_back(static_cast<uint32_t>(s));

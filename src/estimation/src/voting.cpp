@@ -140,7 +140,7 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
       grid.forEachNear(p_r, [&](uint32_t s_j) {
         const Eigen::Vector3f& p_j = scene.points[s_j];
         if (s_j == s_r || (p_j - p_r).squaredNorm() > max_distance_sq) return;
-        castVotes(model.table, quantizer.key(computeFeature(p_r, n_r, p_j, scene.normals[s_j])), p_j);
+        castVotes(model.table, quantizer.pairKey(p_r, n_r, p_j, scene.normals[s_j]), p_j);
       });
       if (with_boundary) {
         // Surface-to-boundary pairs (Choi et al. 2012): the same reference frame and alpha, the

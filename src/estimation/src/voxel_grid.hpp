@@ -4,7 +4,7 @@
 // neighbours, so a lookup answers "which scene point is near here" in O(1). Voxels are stored in
 // 8x8x8 blocks allocated only where the scene has points: a bin scene is a 2.5-D surface, and a
 // dense grid over its box would cost hundreds of MB. Immutable after construction: thread-safe.
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <vector>
 
@@ -18,8 +18,21 @@ class SceneVoxelGrid {
   SceneVoxelGrid(const std::vector<Eigen::Vector3f>& scene_points, float voxel_size);
 
   // Voxel(p) of eq. 3: the index of a scene point near p, or kEmpty.
-  int32_t at(const Eigen::Vector3f& p) const {
-    const Eigen::Vector3f q = (p - origin_) / voxel_size_;
+  int32_t at(const Eigen::Vector3f& p) const { return atVoxelCoordinates((p - origin_) / voxel_size_); }
+
+  // The map of a pose's model frame into voxel coordinates: at(pose * m) is
+  // atVoxelCoordinates(map * m), but for rounding at a voxel's border. Verification looks up every
+  // model point of thousands of poses; with the origin and the scale folded into the pose, a
+  // lookup costs one affine map instead of a map, a subtraction and three divisions.
+  Eigen::Affine3f voxelMapOf(const Eigen::Isometry3f& pose) const {
+    Eigen::Affine3f map;
+    map.linear() = pose.linear() / voxel_size_;
+    map.translation() = (pose.translation() - origin_) / voxel_size_;
+    return map;
+  }
+
+  // The index of a scene point near the point at voxel coordinates q, or kEmpty.
+  int32_t atVoxelCoordinates(const Eigen::Vector3f& q) const {
     // Compared as floats before the cast: NaN, infinities and huge values never reach an index.
     if (!(q.x() >= 0.0f && q.y() >= 0.0f && q.z() >= 0.0f && q.x() < dims_f_.x() && q.y() < dims_f_.y() &&
           q.z() < dims_f_.z())) {

@@ -12,8 +12,9 @@
 namespace binpick::estimation {
 
 // 2: max_pairs_per_feature; 3: the fine surface; 4: mapped (8-aligned arrays, a word-wise
-// checksum), the symmetry's references, the near symmetries and the outline's model side
-constexpr uint32_t kModelCacheVersion = 4;
+// checksum), the symmetry's references, the near symmetries and the outline's model side;
+// 5: pair keys from the cosines of the angles (a few pairs at bin borders change key)
+constexpr uint32_t kModelCacheVersion = 5;
 
 // `source_fingerprint` identifies what the model was built from (see fingerprintFile): a cache is
 // only reused for the same source and parameters.
