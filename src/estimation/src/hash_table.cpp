@@ -72,11 +72,10 @@ PpfHashTable::PpfHashTable(const std::vector<Eigen::Vector3f>& points, const std
   if (boundary_points.size() != boundary_directions.size()) {
     throw core::Error("PPF table: boundary points and directions differ in count");
   }
-  build(
-      points, normals, reference_count, boundary_points, quantizer, max_pairs_per_key,
-      [&](std::size_t i, std::size_t j) {
-        return quantizer.key(computeBoundaryFeature(points[i], normals[i], boundary_points[j], boundary_directions[j]));
-      });
+  build(points, normals, reference_count, boundary_points, quantizer, max_pairs_per_key,
+        [&](std::size_t i, std::size_t j) {
+          return quantizer.boundaryPairKey(points[i], normals[i], boundary_points[j], boundary_directions[j]);
+        });
 }
 
 PpfHashTable::PpfHashTable(std::vector<uint32_t> offsets, std::vector<PairEntry> entries, uint32_t reference_count) {

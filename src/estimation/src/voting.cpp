@@ -148,8 +148,8 @@ std::vector<PoseCandidate> vote(const PreparedModel& model, const PreparedScene&
         boundary_grid.forEachNear(p_r, [&](uint32_t b) {
           const Eigen::Vector3f& p_b = boundary->scene.points[b];
           if ((p_b - p_r).squaredNorm() > max_distance_sq) return;
-          castVotes(boundary->model.table,
-                    quantizer.key(computeBoundaryFeature(p_r, n_r, p_b, boundary->scene.directions[b])), p_b);
+          castVotes(boundary->model.table, quantizer.boundaryPairKey(p_r, n_r, p_b, boundary->scene.directions[b]),
+                    p_b);
         });
       }
       const std::vector<LocalCoordinate> best = accumulator.top(np);

@@ -43,14 +43,18 @@ class PpfQuantizer {
   int64_t pairKey(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i, const Eigen::Vector3f& p_j,
                   const Eigen::Vector3f& n_j) const {
     const Eigen::Vector3f d = p_j - p_i;
-    const float distance = d.norm();
-    if (!(distance <= max_distance_)) return -1;
-    const float length_i = n_i.norm(), length_j = n_j.norm();
-    const int64_t bin_d = std::min(static_cast<int>(distance / distance_step_), distance_bins_ - 1);
-    const int64_t a1 = angleBinOfCosine(n_i.dot(d) / (length_i * distance));
-    const int64_t a2 = angleBinOfCosine(n_j.dot(d) / (length_j * distance));
-    const int64_t a3 = angleBinOfCosine(n_i.dot(n_j) / (length_i * length_j));
-    return ((bin_d * angle_bins_ + a1) * angle_bins_ + a2) * angle_bins_ + a3;
+    const float distance = d.norm(), length_i = n_i.norm(), length_j = n_j.norm();
+    return keyOfCosines(distance, n_i.dot(d) / (length_i * distance), n_j.dot(d) / (length_j * distance),
+                        n_i.dot(n_j) / (length_i * length_j));
+  }
+  // key(computeBoundaryFeature(p_i, n_i, b_j, l_j)) the same way: an angle folded into [0, pi/2]
+  // has the cosine's magnitude for its cosine.
+  int64_t boundaryPairKey(const Eigen::Vector3f& p_i, const Eigen::Vector3f& n_i, const Eigen::Vector3f& b_j,
+                          const Eigen::Vector3f& l_j) const {
+    const Eigen::Vector3f d = b_j - p_i;
+    const float distance = d.norm(), length_i = n_i.norm(), length_j = l_j.norm();
+    return keyOfCosines(distance, n_i.dot(d) / (length_i * distance), std::abs(l_j.dot(d)) / (length_j * distance),
+                        std::abs(n_i.dot(l_j)) / (length_i * length_j));
   }
   int64_t keyCount() const { return key_count_; }
 
@@ -74,6 +78,12 @@ class PpfQuantizer {
   float maxDistance() const { return max_distance_; }
 
  private:
+  int64_t keyOfCosines(float distance, float cos_ni_d, float cos_nj_d, float cos_ni_nj) const {
+    if (!(distance <= max_distance_)) return -1;
+    const int64_t bin_d = std::min(static_cast<int>(distance / distance_step_), distance_bins_ - 1);
+    const int64_t a1 = angleBinOfCosine(cos_ni_d), a2 = angleBinOfCosine(cos_nj_d);
+    return ((bin_d * angle_bins_ + a1) * angle_bins_ + a2) * angle_bins_ + angleBinOfCosine(cos_ni_nj);
+  }
   // floor(angle / step) from cos(angle): the angle reaches border k * step exactly when its
   // cosine is at most cos(k * step). NaN (0/0) reaches none: bin 0, as atan2(0, 0) = 0 gives.
   int angleBinOfCosine(float cosine) const {
