@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "binpick/io/point_cloud.hpp"
 #include "io_test_support.hpp"
@@ -27,6 +29,30 @@ TEST(Validate, OrganizedCloudMayNotHoldInf) {
   io::PointCloud cloud = organizedCloudWithHoles();
   cloud.points[7].x() = kInf;
   EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan", "point 7 is not finite"));
+}
+
+// The clouds are scanned as raw float bits first: every kind of non-finite value, in any
+// coordinate of any point, the first and the last included, is still found and named.
+TEST(Validate, EveryNonFiniteCoordinateIsFoundWhereverItIs) {
+  const float signalling = std::numeric_limits<float>::signaling_NaN();
+  const io::PointCloud organized = organizedCloudWithHoles(), unorganized = awkwardCloud();
+  for (const io::PointCloud* base : {&organized, &unorganized}) {
+    const bool is_organized = base == &organized;
+    std::vector<float> bad{kInf, -kInf};
+    if (!is_organized) bad.insert(bad.end(), {kNan, -kNan, signalling});
+    for (const std::size_t index : {std::size_t{0}, base->size() / 2, base->size() - 1}) {
+      for (int axis = 0; axis < 3; ++axis) {
+        for (const float value : bad) {
+          io::PointCloud cloud = *base;
+          if (is_organized) cloud.points[index] = Eigen::Vector3f(0.1f, 0.2f, 0.9f);  // not a hole
+          cloud.points[index][axis] = value;
+          EXPECT_TRUE(failsWith([&] { io::validateCloud(cloud, "scan"); }, "scan",
+                                "point " + std::to_string(index) + " is not finite"))
+              << (is_organized ? "organized" : "unorganized") << ", axis " << axis << ", value " << value;
+        }
+      }
+    }
+  }
 }
 
 TEST(Validate, GridMustMatchPointCount) {
