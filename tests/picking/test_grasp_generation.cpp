@@ -336,6 +336,20 @@ TEST(ParallelGrasps, AShaftAcrossItsBodyNearTheFingertips) {
   }
 }
 
+// A flange 6 mm thick is held across its 56 mm diameter from along its axis, its rim touching each
+// finger along a line over the flange's whole thickness (a flanged hub resting on its hub end, the
+// flange up, offers nothing else from above).
+TEST(ParallelGrasps, AThinFlangeAcrossItsDiameterOverItsWholeThickness) {
+  const io::TriangleMesh flange = makeCylinder(0.028, 0.006, 48);
+  PartSymmetry revolved;
+  revolved.continuous_axis = Eigen::Vector3d::UnitZ();
+  const auto grasps = acrossTheAxis(generateGrasps(flange, parallelJaws(0.080), revolved, defaults()), true);
+  const bool across_diameter = std::any_of(grasps.begin(), grasps.end(), [](const Grasp& grasp) {
+    return std::abs(grasp.width - 0.056) < 0.5 * kMm && grasp.name.find("on lines") != std::string::npos;
+  });
+  EXPECT_TRUE(across_diameter) << grasps.size() << " grasps across the axis from along it, none across the diameter";
+}
+
 TEST(GraspGenerationParams, BadValuesThrowNamingTheField) {
   const io::TriangleMesh box = makeBox(0.05, 0.05, 0.05);
   GraspGenerationParams params;

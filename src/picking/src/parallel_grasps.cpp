@@ -15,6 +15,11 @@ constexpr int kContactColumns = 3;  // area samples across the finger (y)
 constexpr int kContactRows = 5;     // area samples along the approach (z)
 constexpr int kLineSamples = 7;     // samples along each of the two contact lines
 constexpr double kMinContactShare = 0.5;
+// A contact line holds when at least this share of the finger's width (or depth, the shorter) long:
+// 4.8 mm on the default 12 mm finger, so that a 6 mm flange's rim, held across the flange's
+// diameter over its whole thickness, holds (its line measures 5.7 mm at the 7 samples a finger
+// takes along its 20 mm); half the finger, as for an area, refused every rim under 6.3 mm.
+constexpr double kMinLineShare = 0.4;
 constexpr double kMinWidth = 0.001;        // metres: thinner walls are not gripped across
 constexpr double kTipPastContact = 0.002;  // metres of finger beyond a contact taken near the tips
 // Metres the fingertips stay short of the part's far side along the approach: a part lying on that
@@ -144,7 +149,7 @@ std::optional<GraspProposal> jawsAt(const SurfaceModel& surface, RayScratch& ray
                                     const GraspGenerationParams& params, double antipodal_cos) {
   const Eigen::Vector3d closing = sample.normal;  // grasp x: from the far face to the sample's
   const Eigen::Vector3d contact_centre = sample.point - 0.5 * width * closing;
-  const double min_line = kMinContactShare * std::min(gripper.finger_width, gripper.finger_depth);
+  const double min_line = kMinLineShare * std::min(gripper.finger_width, gripper.finger_depth);
   std::optional<double> part_past_contact;  // along the approach; measured once a finger holds
   for (const double contact_along : {0.5 * gripper.finger_depth - kTipPastContact, 0.0}) {
     GraspProposal proposal;
