@@ -15,10 +15,11 @@ constexpr int kContactColumns = 3;  // area samples across the finger (y)
 constexpr int kContactRows = 5;     // area samples along the approach (z)
 constexpr int kLineSamples = 7;     // samples along each of the two contact lines
 constexpr double kMinContactShare = 0.5;
-// A contact line holds when at least this share of the finger's width (or depth, the shorter) long:
-// 4.8 mm on the default 12 mm finger, so that a 6 mm flange's rim, held across the flange's
-// diameter over its whole thickness, holds (its line measures 5.7 mm at the 7 samples a finger
-// takes along its 20 mm); half the finger, as for an area, refused every rim under 6.3 mm.
+// A contact line holds when at least this share of the finger's width (or depth, the shorter)
+// long: 4.8 mm on the default 12 mm finger. The 7 samples along a 20 mm finger lie 2.9 mm apart,
+// so a 6 mm flange's rim, held across the flange's diameter over its whole thickness, touches two
+// of them (5.7 mm); half the finger, as for an area, asked for three, which a rim thinner than
+// 8.6 mm gives only where it happens to span them.
 constexpr double kMinLineShare = 0.4;
 constexpr double kMinWidth = 0.001;        // metres: thinner walls are not gripped across
 constexpr double kTipPastContact = 0.002;  // metres of finger beyond a contact taken near the tips
