@@ -99,15 +99,22 @@ TEST_F(SceneVoxelGridDeathTest, NonFiniteScenePointsAreRejectedOrIgnored) {
   }
 }
 
-TEST(SceneVoxelGrid, RandomSurfaceSatisfiesTheNeighbourhoodContract) {
-  // A wavy 2.5-D surface, as a bin scene is; the grid answers "a scene point near here".
-  std::mt19937_64 rng(4);
-  std::uniform_real_distribution<float> xy(-0.15f, 0.15f), jitter(-0.02f, 0.02f);
+// A wavy 2.5-D surface of 3000 points over +-0.15 m, 0.8 m away, as a bin scene is.
+std::vector<Eigen::Vector3f> wavySurface(std::mt19937_64& rng) {
+  std::uniform_real_distribution<float> xy(-0.15f, 0.15f);
   std::vector<Eigen::Vector3f> points;
   for (int i = 0; i < 3000; ++i) {
     const float x = xy(rng), y = xy(rng);
     points.emplace_back(x, y, 0.8f + 0.03f * std::sin(20.0f * x) * std::cos(15.0f * y));
   }
+  return points;
+}
+
+TEST(SceneVoxelGrid, RandomSurfaceSatisfiesTheNeighbourhoodContract) {
+  // The grid answers "a scene point near here".
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<float> xy(-0.15f, 0.15f), jitter(-0.02f, 0.02f);
+  const std::vector<Eigen::Vector3f> points = wavySurface(rng);
   const SceneVoxelGrid grid(points, kL);
   // Every returned point lies in the query's 3x3x3 neighbourhood: closer than 2 voxels per axis.
   for (const auto& p : points) {
@@ -132,12 +139,7 @@ TEST(SceneVoxelGrid, RandomSurfaceSatisfiesTheNeighbourhoodContract) {
 TEST(SceneVoxelGrid, APosesVoxelMapFindsWhatThePosedPointFinds) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<float> xy(-0.1f, 0.1f), local(-0.03f, 0.03f);
-  std::vector<Eigen::Vector3f> points;
-  for (int i = 0; i < 4000; ++i) {
-    const float x = xy(rng), y = xy(rng);
-    points.emplace_back(x, y, 0.8f + 0.02f * std::sin(25.0f * x) * std::cos(20.0f * y));
-  }
-  const SceneVoxelGrid grid(points, kL);
+  const SceneVoxelGrid grid(wavySurface(rng), kL);
   const float nudge = 1e-3f * kL;
   int differing = 0, found = 0;
   for (int trial = 0; trial < 50; ++trial) {
