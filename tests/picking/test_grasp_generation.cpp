@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "binpick/picking/grasp_generation.hpp"
@@ -136,7 +137,8 @@ TEST(SuctionGrasps, AShaftSideOnlyWhereTheCupKeepsAReserveOfItsCompliance) {
 }
 
 // A block with a slot 7 mm wide and 5 mm deep along its top: a 6 mm cup fits the slot's floor
-// with 0.5 mm each side, and keeps out of it once it wants 1 mm of room from the walls.
+// with 0.5 mm each side, and keeps out of it once it wants 1 mm of room from the walls (the tool's
+// clearance, which would keep it out as well, left out).
 TEST(SuctionGrasps, NotInAGrooveBarelyWiderThanTheCup) {
   const io::TriangleMesh slotted = simulation::makePrism({{-0.015, 0.0},
                                                           {0.015, 0.0},
@@ -150,6 +152,7 @@ TEST(SuctionGrasps, NotInAGrooveBarelyWiderThanTheCup) {
   const auto inTheSlot = [&](double cup_clearance) {
     GraspGenerationParams params;
     params.cup_clearance = cup_clearance;
+    params.tool_clearance = 0.0;
     params.sample_spacing = 0.001;  // the cup fits only within 0.5 mm of the slot's middle
     const auto grasps = generateGrasps(slotted, GripperParams{}, PartSymmetry{}, params);
     return std::count_if(grasps.begin(), grasps.end(), [](const Grasp& grasp) {
@@ -158,6 +161,30 @@ TEST(SuctionGrasps, NotInAGrooveBarelyWiderThanTheCup) {
   };
   EXPECT_GT(inTheSlot(0.0), 0);
   EXPECT_EQ(inTheSlot(defaults().cup_clearance), 0);
+}
+
+// A flanged hub (flange 56 x 6 mm, hub 24 mm across standing 16 mm on it): a cup on the hub's
+// side keeps its rim tool_clearance from the flange, where the planner, growing the tool by its
+// collision margin against the measured flange, would refuse it at every pick.
+TEST(SuctionGrasps, OnAHubsSideClearOfItsFlangeByTheToolClearance) {
+  const io::TriangleMesh hub = simulation::makeLathe(
+      {{0, 0}, {28 * kMm, 0}, {28 * kMm, 6 * kMm}, {12 * kMm, 6 * kMm}, {12 * kMm, 22 * kMm}, {0, 22 * kMm}}, 48);
+  PartSymmetry revolved;
+  revolved.continuous_axis = Eigen::Vector3d::UnitZ();
+  const auto lowestOnTheSide = [&](double tool_clearance) {
+    GraspGenerationParams params = defaults();
+    params.tool_clearance = tool_clearance;
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Grasp& grasp : generateGrasps(hub, GripperParams{}, revolved, params)) {
+      if (std::abs(approachOf(grasp).z()) < 0.02) lowest = std::min(lowest, grasp.T_model_grasp.translation().z());
+    }
+    return lowest;
+  };
+  const double cup_radius = 0.5 * GripperParams{}.cup_diameter;
+  const double kept = lowestOnTheSide(defaults().tool_clearance);
+  ASSERT_TRUE(std::isfinite(kept)) << "no grasp on the hub's side";
+  EXPECT_GE(kept - cup_radius - 6 * kMm, defaults().tool_clearance - 0.1 * kMm);
+  EXPECT_LT(lowestOnTheSide(0.0) - cup_radius - 6 * kMm, defaults().tool_clearance - 1 * kMm);
 }
 
 TEST(SuctionGrasps, ASymmetricPartKeepsOneGraspPerClass) {
@@ -367,6 +394,9 @@ TEST(GraspGenerationParams, BadValuesThrowNamingTheField) {
   params = defaults();
   params.cup_clearance = -0.001;
   EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "cup_clearance"));
+  params = defaults();
+  params.tool_clearance = std::nan("");
+  EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "tool_clearance"));
   params = {};
   params.approach_directions = 0;
   EXPECT_TRUE(throwsNaming([&] { params.validate(); }, "approach_directions"));

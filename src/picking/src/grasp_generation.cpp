@@ -164,6 +164,8 @@ void GraspGenerationParams::validate() const {
                      "margin_weight", "in [0, 1]", margin_weight);
   core::requireField(std::isfinite(cup_clearance) && cup_clearance >= 0.0, kOwner, "cup_clearance", ">= 0",
                      cup_clearance);
+  core::requireField(std::isfinite(tool_clearance) && tool_clearance >= 0.0, kOwner, "tool_clearance", ">= 0",
+                     tool_clearance);
   core::requireField(std::isfinite(seal_reserve) && seal_reserve >= 0.0 && seal_reserve < 1.0, kOwner, "seal_reserve",
                      "in [0, 1)", seal_reserve);
 }

@@ -61,19 +61,21 @@ class SealTest {
   RayScratch scratch_;
 };
 
-// Part points inside the cup (above the sealing surface) or the tool body behind it.
-bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp,
-                     const GripperParams& gripper) {
+// Part points inside the cup (above the sealing surface) or the tool body behind it, both grown
+// by `clearance`.
+bool gripperHitsPart(const SurfaceModel& surface, const Eigen::Isometry3d& T_model_grasp, const GripperParams& gripper,
+                     double clearance) {
   const Eigen::Isometry3d T_grasp_model = T_model_grasp.inverse();
-  const double cup_radius = 0.5 * gripper.cup_diameter;
+  const double cup_radius = 0.5 * gripper.cup_diameter + clearance;
+  const double tool_radius = gripper.tool_radius + clearance;
   const double cup_top = -2.0 * gripper.seal_tolerance;  // the sealed surface itself is not in the way
-  const double tool_end = -gripper.toolBack();
+  const double tool_end = -gripper.toolBack() - clearance;
   for (const Eigen::Vector3d& point : surface.obstaclePoints()) {
     const Eigen::Vector3d local = T_grasp_model * point;
     if (local.z() > cup_top || local.z() < tool_end) continue;
     const double radial = local.head<2>().norm();
     const bool in_cup = local.z() >= -gripper.cup_length && radial < cup_radius;
-    const bool in_tool = local.z() < -gripper.cup_length && radial < gripper.tool_radius;
+    const bool in_tool = local.z() < -gripper.cup_length + clearance && radial < tool_radius;
     if (in_cup || in_tool) return true;
   }
   return false;
@@ -102,7 +104,7 @@ std::vector<GraspProposal> proposeSuctionGrasps(const SurfaceModel& surface, con
     GraspProposal proposal;
     proposal.T_model_grasp.linear() << disc.x, disc.y, approach;
     proposal.T_model_grasp.translation() = sample.point;
-    if (gripperHitsPart(surface, proposal.T_model_grasp, gripper)) continue;
+    if (gripperHitsPart(surface, proposal.T_model_grasp, gripper, params.tool_clearance)) continue;
     int sealing_rings = 0;
     while (sealing_rings < kMarginRings &&
            seal.ringSeals(disc, radius * (1.0 + (sealing_rings + 1.0) / kMarginRings), kRimRays)) {

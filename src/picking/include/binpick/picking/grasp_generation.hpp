@@ -13,7 +13,7 @@
 //   gently curved patch, no edge or gap inside it. On a cylinder or cone that is the sag of the
 //   cup's rim: a 6 mm cup holds a shaft 16 mm across or more, not one of 15. Nothing of the part
 //   may rise above the disc's plane within cup_clearance around it (a groove just wider than the
-//   cup), and the cup and the tool body behind it must not run into the part.
+//   cup), and the cup and the tool body behind it must keep tool_clearance from the part.
 // - Parallel jaw: a ray into the part from the sample leaves it through an opposite face (normals
 //   opposite within max_antipodal_angle_deg) no wider than gripper.stroke; the jaws close along n.
 //   The far face is where the ray first leaves the part (a wall held across its thickness) or
@@ -60,7 +60,13 @@ struct GraspGenerationParams {
   // reasons. A 6 mm cup fits the gear's 6.5 mm tooth gap with 0.25 mm each side: it sealed there
   // on the model and failed 4 of 9 picks so placed, across the gap's edge (5 bins).
   double cup_clearance = 0.001;  // >= 0
-  void validate() const;         // throws core::Error naming the field
+  // Suction: metres by which the cup and the tool body, behind the sealed face, keep clear of the
+  // rest of the part. The planner grows the tool by picking's collision_margin (2 mm) against the
+  // measured cloud, and the part's own surface is in that cloud: a grasp closer than that to a
+  // wall of its own part is refused wherever that wall is seen. The flanged hub's grasp on its
+  // hub sat with the cup 1 mm from the flange: refused against the flange's rim at every pick.
+  double tool_clearance = 0.003;  // >= 0; keep above collision_margin
+  void validate() const;          // throws core::Error naming the field
 };
 
 // Grasps on a closed mesh (metres, outward normals: counter-clockwise seen from outside). Empty
