@@ -18,6 +18,7 @@ deb="$out/dist/binpick_${version}_${arch}.deb"
 
 files=$(dpkg-deb -c "$deb" | awk '{ print $6 }' | sed 's#^\./#/#')
 for expected in /usr/bin/binpick /usr/bin/binpickd /usr/lib/binpick/libbinpick_image_codecs.so \
+    /usr/lib/binpick/libbinpick_http_transport.so \
     /usr/lib/systemd/system/binpickd.service \
     /etc/binpick/binpickd.yaml /usr/share/binpick/models/l_bracket.ply /usr/share/doc/binpick/copyright \
     /usr/share/doc/binpick/install.md /usr/share/doc/binpick/binpickd.md /usr/share/doc/binpick/README.md \
@@ -42,7 +43,7 @@ grep -q 'gpiochip' "$control/postinst" || fail "postinst writes no udev rule for
 grep -v '^ *#' "$control/postinst" | grep -q 'systemctl enable' && fail "postinst enables the service before it is configured"
 
 depends=$(dpkg-deb -f "$deb" Depends)
-for library in libopencv-core libopencv-imgcodecs libaravis-0.8 libgpiod libspdlog libyaml-cpp libc6 adduser udev; do
+for library in libopencv-core libopencv-imgcodecs libcpp-httplib libaravis-0.8 libgpiod libspdlog libyaml-cpp libc6 adduser udev; do
   printf '%s\n' "$depends" | grep -q "$library" || fail "Depends lacks $library: $depends"
 done
 for lab in libpcl libvtk; do

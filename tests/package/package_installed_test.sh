@@ -3,7 +3,8 @@
 # The package as installed, in a scratch root (dpkg-deb -x): the unit passes systemd-analyze verify
 # against the installed binpickd; `binpickd --check` accepts the installed example settings; and
 # binpickd starts from them in replay mode and serves a robot (calibration not yet done: TRIGGER
-# answers calibration_missing), and runs a cycle once a calibration and a capture are in place.
+# answers calibration_missing) and its web view, and runs a cycle once a calibration and a capture
+# are in place.
 set -uo pipefail
 deb_dir=$1 analyze=$2 verify_unit=$3
 failures=0
@@ -35,6 +36,8 @@ code=$?
 mkdir -p "$scratch/etc" "$scratch/state"
 sed -e "s#/usr/share/binpick/#$root/usr/share/binpick/#g" -e "s#/etc/binpick/#$scratch/etc/#g" \
     -e "s#/var/lib/binpick/#$scratch/state/#g" "$root/etc/binpick/binpickd.yaml" >"$scratch/etc/binpickd.yaml"
+# With the web view on, whose HTTP transport is a plugin the installed binpickd must find.
+printf 'web: {bind_address: 127.0.0.1, port: 0}\n' >>"$scratch/etc/binpickd.yaml"
 "$binpickd" --config "$scratch/etc/binpickd.yaml" --check >"$scratch/check.log" 2>&1 ||
   fail "--check on the example exited $?: $(cat "$scratch/check.log")"
 grep -q "1 recipe(s) ready" "$scratch/check.log" || fail "--check said: $(cat "$scratch/check.log")"
@@ -50,6 +53,16 @@ else
   for expected in "PING ok" "STATUS ok" "TRIGGER calibration_missing"; do
     grep -q "^$expected" "$scratch/client.log" || fail "no '$expected' from binpickd: $(cat "$scratch/client.log")"
   done
+  web_port=$(sed -n 's#.*web view on http://127.0.0.1:\([0-9]*\)/.*#\1#p' "$scratch/daemon.log" | head -n 1)
+  if [ -z "$web_port" ]; then
+    fail "no web view: $(cat "$scratch/daemon.log")"
+  elif exec 3<>"/dev/tcp/127.0.0.1/$web_port"; then
+    printf 'GET /api/status HTTP/1.0\r\n\r\n' >&3
+    head -n 1 <&3 | grep -q '^HTTP/1.[01] 200' || fail "the web view does not answer /api/status"
+    exec 3<&-
+  else
+    fail "cannot connect to the web view on port $web_port"
+  fi
   # Calibrated and recorded: a capture of the virtual cell (with its calib.yaml) in the replay
   # directory, the settings reloaded (SIGHUP), and the next TRIGGER runs a cycle.
   "$binpick" simulate --part l_bracket --objects 3 --seed 2 --out "$scratch/state/replay/capture_0001" 2>/dev/null ||

@@ -1,10 +1,10 @@
 #pragma once
-// Internal: cpp-httplib's task queue with a fixed number of threads and a bound on the
-// connections waiting for one. httplib accepts a connection, then enqueues it; when `max_waiting`
-// connections wait already, enqueue() blocks the accepting thread, so that further connections
-// wait in the kernel's listen backlog instead of holding descriptors and memory in the process
-// (a flood of connections must not starve the robot server of descriptors).
-#include "httplib.hpp"
+// Internal to the HTTP transport plugin: cpp-httplib's task queue with a fixed number of threads
+// and a bound on the connections waiting for one. httplib accepts a connection, then enqueues it;
+// when `max_waiting` connections wait already, enqueue() blocks the accepting thread, so that
+// further connections wait in the kernel's listen backlog instead of holding descriptors and
+// memory in the process (a flood of connections must not starve the robot server of descriptors).
+#include <httplib.h>
 
 #include <atomic>
 #include <condition_variable>
