@@ -18,7 +18,7 @@ deb="$out/dist/binpick_${version}_${arch}.deb"
 
 files=$(dpkg-deb -c "$deb" | awk '{ print $6 }' | sed 's#^\./#/#')
 for expected in /usr/bin/binpick /usr/bin/binpickd /usr/lib/binpick/libbinpick_image_codecs.so \
-    /usr/lib/binpick/libbinpick_http_transport.so \
+    /usr/lib/binpick/libbinpick_http_transport.so /usr/lib/binpick/libbinpick_aravis.so \
     /usr/lib/systemd/system/binpickd.service \
     /etc/binpick/binpickd.yaml /usr/share/binpick/models/l_bracket.ply /usr/share/doc/binpick/copyright \
     /usr/share/doc/binpick/install.md /usr/share/doc/binpick/binpickd.md /usr/share/doc/binpick/README.md \

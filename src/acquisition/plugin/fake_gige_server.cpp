@@ -1,4 +1,4 @@
-// FakeGigECamera: Aravis's GigE Vision fake camera (ArvGvFakeCamera) serving our images.
+// FakeGigEServer: Aravis's GigE Vision fake camera (ArvGvFakeCamera) serving our images.
 //
 // The fake runs its own thread: it answers GVCP control requests and, when triggered, asks its
 // fill-pattern callback for the frame, then streams it as GVSP packets. Our callback copies the
@@ -14,13 +14,11 @@
 #include <thread>
 
 #include "aravis_support.hpp"
-#include "binpick/acquisition/fake_gige_camera.hpp"
 #include "binpick/core/component_logger.hpp"
 #include "fake_gige_fill.hpp"
+#include "fake_gige_server.hpp"
 
-namespace binpick::acquisition {
-
-using detail::GObjectPtr;
+namespace binpick::acquisition::detail {
 
 namespace {
 
@@ -62,9 +60,9 @@ void requirePortFree(const std::string& address) {
 
 }  // namespace
 
-struct FakeGigECamera::State {
+struct FakeGigEServer::State {
   FakeCameraParams params;
-  detail::ServedImage served;          // read by Aravis's thread through the fill callback
+  ServedImage served;                  // read by Aravis's thread through the fill callback
   std::mutex control;                  // server lifetime and fault switches
   GObjectPtr<ArvGvFakeCamera> server;  // null while suspended
   double packet_loss = 0.0;
@@ -74,7 +72,7 @@ struct FakeGigECamera::State {
 
 // A sensor exactly the size of the images: an empty ROI on the client side ("the whole sensor")
 // then asks for what we serve.
-void FakeGigECamera::State::startServer() {
+void FakeGigEServer::State::startServer() {
   requirePortFree(params.address);
   GObjectPtr<ArvGvFakeCamera> fake(arv_gv_fake_camera_new(params.address.c_str(), params.serial.c_str()));
   if (fake == nullptr || !arv_gv_fake_camera_is_running(fake.get())) {
@@ -91,12 +89,12 @@ void FakeGigECamera::State::startServer() {
   arv_fake_camera_write_register(camera, ARV_FAKE_CAMERA_REGISTER_PIXEL_FORMAT,
                                  params.sixteen_bit ? ARV_PIXEL_FORMAT_MONO_16 : ARV_PIXEL_FORMAT_MONO_8);
   arv_fake_camera_set_trigger_frequency(camera, kTriggerPollHz);
-  arv_fake_camera_set_fill_pattern(camera, detail::fillFromServedImage, &served);
+  arv_fake_camera_set_fill_pattern(camera, fillFromServedImage, &served);
   g_object_set(fake.get(), "gvsp-lost-ratio", packet_loss, nullptr);
   server = std::move(fake);
 }
 
-FakeGigECamera::FakeGigECamera(const FakeCameraParams& params) : state_(std::make_unique<State>()) {
+FakeGigEServer::FakeGigEServer(const FakeCameraParams& params) : state_(std::make_unique<State>()) {
   requireFakeParams(params);
   state_->params = params;
   state_->served.configure(params.width, params.height, params.sixteen_bit);
@@ -104,16 +102,14 @@ FakeGigECamera::FakeGigECamera(const FakeCameraParams& params) : state_(std::mak
 }
 
 // Unreffing the server joins its thread: no fill callback runs after this.
-FakeGigECamera::~FakeGigECamera() = default;
+FakeGigEServer::~FakeGigEServer() = default;
 
-void FakeGigECamera::serve(const cv::Mat& image) { state_->served.set(image); }
-
-std::string FakeGigECamera::id() const { return state_->params.address; }
+void FakeGigEServer::serve(const cv::Mat& image) { state_->served.set(image); }
 
 // Aravis's fake drops each stream packet (leader, payload, trailer) with this probability, using
 // GLib's global random generator: seeding it makes the losses repeatable. The fake does not
 // answer resend requests, so a lost packet means a lost frame.
-void FakeGigECamera::setPacketLoss(double ratio, unsigned seed) {
+void FakeGigEServer::setPacketLoss(double ratio, unsigned seed) {
   core::requireField(ratio >= 0.0 && ratio <= 1.0, "fake camera", "packet loss", "in [0, 1]", ratio);
   const std::lock_guard<std::mutex> lock(state_->control);
   state_->packet_loss = ratio;
@@ -125,21 +121,23 @@ void FakeGigECamera::setPacketLoss(double ratio, unsigned seed) {
 // privilege (the fake stops streaming; the client's next heartbeat sees the privilege gone and
 // emits control-lost), waits for that heartbeat, then shuts the server down: until resume(),
 // requests go unanswered, as with an unplugged camera. Blocks for about 1.3 s.
-void FakeGigECamera::suspend() {
+void FakeGigEServer::suspend() {
   const std::lock_guard<std::mutex> lock(state_->control);
   if (state_->server == nullptr) return;
   arv_fake_camera_set_control_channel_privilege(arv_gv_fake_camera_get_fake_camera(state_->server.get()), 0);
   std::this_thread::sleep_for(kHeartbeatGrace);
   state_->server.reset();
-  core::componentLogger("fake camera")->info("fake camera {} at {}: suspended", state_->params.serial, id());
+  core::componentLogger("fake camera")
+      ->info("fake camera {} at {}: suspended", state_->params.serial, state_->params.address);
 }
 
 // A fresh server, as after a power cycle: the client must open() again.
-void FakeGigECamera::resume() {
+void FakeGigEServer::resume() {
   const std::lock_guard<std::mutex> lock(state_->control);
   if (state_->server != nullptr) return;
   state_->startServer();
-  core::componentLogger("fake camera")->info("fake camera {} at {}: resumed", state_->params.serial, id());
+  core::componentLogger("fake camera")
+      ->info("fake camera {} at {}: resumed", state_->params.serial, state_->params.address);
 }
 
-}  // namespace binpick::acquisition
+}  // namespace binpick::acquisition::detail

@@ -10,10 +10,10 @@
 #include <memory>
 #include <string>
 
+#include "aravis_camera.hpp"
 #include "aravis_configure.hpp"
 #include "aravis_frame.hpp"
 #include "aravis_support.hpp"
-#include "binpick/acquisition/aravis_camera.hpp"
 #include "binpick/core/component_logger.hpp"
 
 namespace binpick::acquisition {
@@ -257,9 +257,6 @@ StreamStatistics AravisCamera::statistics() const {
 
 }  // namespace
 
-std::unique_ptr<Camera> makeAravisCamera(const CameraParams& params) {
-  params.validate();
-  return std::make_unique<AravisCamera>(params);
-}
+Camera* detail::newAravisCamera(const CameraParams& params) { return new AravisCamera(params); }
 
 }  // namespace binpick::acquisition
