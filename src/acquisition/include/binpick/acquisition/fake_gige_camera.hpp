@@ -27,7 +27,7 @@ struct FakeCameraParams {
 class FakeGigECamera {
  public:
   // Starts serving. Throws core::Error when the address cannot be bound (another fake camera
-  // or GigE Vision tool on it).
+  // or GigE Vision tool on it), or naming the Aravis plugin when it cannot be loaded.
   explicit FakeGigECamera(const FakeCameraParams& params);
   ~FakeGigECamera();
   FakeGigECamera(const FakeGigECamera&) = delete;

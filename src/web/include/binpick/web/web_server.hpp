@@ -39,7 +39,8 @@ constexpr std::size_t kPageLogLines = 30;  // log lines /api/status carries
 class WebServer {
  public:
   // Validates `config`, binds and starts serving. Throws core::Error naming the address and port
-  // when it cannot listen ("web view: cannot listen on 127.0.0.1:8080: Address already in use").
+  // when it cannot listen ("web view: cannot listen on 127.0.0.1:8080: Address already in use"),
+  // or naming the HTTP transport plugin (loaded by the first web view) when it cannot be loaded.
   WebServer(const cell::WebViewConfig& config, WebSources sources);
   ~WebServer();
   WebServer(const WebServer&) = delete;
