@@ -8,21 +8,15 @@
 namespace binpick::acquisition {
 namespace {
 
-const detail::AravisPlugin& loadAravis() {
+// Loaded by the first camera of the process, never unloaded.
+const detail::AravisPlugin& aravis() {
   // The plugin has its own copy of the component-logger registry: loggers it finds already
   // registered (with spdlog, shared) carry the sinks the program added (binpickd's web view).
   core::componentLogger("camera");
   core::componentLogger("fake camera");
-  return core::loadPlugin<detail::AravisPlugin>(
-      core::pluginPath(BINPICK_ARAVIS_BESIDE_PROGRAM, BINPICK_ARAVIS_IN_BUILD), detail::kAravisPluginEntry,
-      detail::kAravisPluginVersion, "camera: binpick's Aravis plugin");
-}
-
-// Loaded by the first camera of the process, never unloaded.
-const detail::AravisPlugin& aravis() {
-  // A failed load throws out of the initialisation, so the next camera tries again.
-  static const detail::AravisPlugin& loaded = loadAravis();
-  return loaded;
+  return core::loadPlugin<detail::AravisPlugin>(BINPICK_ARAVIS_BESIDE_PROGRAM, BINPICK_ARAVIS_IN_BUILD,
+                                                detail::kAravisPluginEntry, detail::kAravisPluginVersion,
+                                                "camera: binpick's Aravis plugin");
 }
 
 }  // namespace

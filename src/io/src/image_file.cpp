@@ -15,17 +15,12 @@ int imreadFlags(ImageChannels channels) {
   return channels == ImageChannels::as_stored ? cv::IMREAD_UNCHANGED : cv::IMREAD_ANYDEPTH | cv::IMREAD_ANYCOLOR;
 }
 
-// Loaded once, never unloaded: the codecs' libraries stay for the process's life.
-const detail::ImageCodecs& loadCodecs() {
-  const std::string path = core::pluginPath(BINPICK_IMAGE_CODECS_BESIDE_PROGRAM, BINPICK_IMAGE_CODECS_IN_BUILD);
-  return core::loadPlugin<detail::ImageCodecs>(path, detail::kImageCodecsEntry, detail::kImageCodecsVersion,
-                                               "cannot read or write image files: binpick's image-codecs plugin");
-}
-
+// Loaded by the first image read or written, never unloaded: the codecs' libraries stay for the
+// process's life.
 const detail::ImageCodecs& codecs() {
-  // A failed load throws out of the initialisation, so the next call tries again.
-  static const detail::ImageCodecs& loaded = loadCodecs();
-  return loaded;
+  return core::loadPlugin<detail::ImageCodecs>(BINPICK_IMAGE_CODECS_BESIDE_PROGRAM, BINPICK_IMAGE_CODECS_IN_BUILD,
+                                               detail::kImageCodecsEntry, detail::kImageCodecsVersion,
+                                               "cannot read or write image files: binpick's image-codecs plugin");
 }
 
 }  // namespace

@@ -16,11 +16,9 @@ constexpr std::size_t kMaxRequestBody = 1024;   // a read-only API takes no bodi
 
 // Loaded by the first web view of the process, never unloaded.
 const detail::HttpTransport& transport() {
-  // A failed load throws out of the initialisation, so the next web view tries again.
-  static const detail::HttpTransport& loaded = core::loadPlugin<detail::HttpTransport>(
-      core::pluginPath(BINPICK_HTTP_TRANSPORT_BESIDE_PROGRAM, BINPICK_HTTP_TRANSPORT_IN_BUILD),
-      detail::kHttpTransportEntry, detail::kHttpTransportVersion, "web view: binpick's HTTP transport plugin");
-  return loaded;
+  return core::loadPlugin<detail::HttpTransport>(BINPICK_HTTP_TRANSPORT_BESIDE_PROGRAM, BINPICK_HTTP_TRANSPORT_IN_BUILD,
+                                                 detail::kHttpTransportEntry, detail::kHttpTransportVersion,
+                                                 "web view: binpick's HTTP transport plugin");
 }
 
 detail::HttpServerSettings settingsFor(const cell::WebViewConfig& config) {

@@ -1,11 +1,13 @@
 #pragma once
 // binpick's own plugins: a part of a program that links libraries most runs never need (OpenCV's
-// image codecs, cpp-httplib with OpenSSL), built as a module beside the programs and loaded on
-// first use, so that every start does not pay for loading and initialising those libraries. A
-// plugin hands over one table of functions from a C entry (no C++ name mangling for dlsym) whose
-// first member is `int version`; both sides compile the table from one header in the same build,
-// and the version refuses a plugin left from another build.
+// image codecs, cpp-httplib with OpenSSL, Aravis with GLib), built as a module beside the programs
+// and loaded on first use, so that every start does not pay for loading and initialising those
+// libraries. A plugin hands over one table of functions from a C entry (no C++ name mangling for
+// dlsym) whose first member is `int version`; both sides compile the table from one header in the
+// same build, and the version refuses a plugin left from another build.
 #include <string>
+
+#include "binpick/core/error.hpp"
 
 namespace binpick::core {
 
@@ -20,22 +22,21 @@ std::string pluginPath(const std::string& beside_program, const std::string& in_
 // brought stay for the process's life.
 const void* loadPluginTable(const std::string& path, const char* entry, const std::string& what);
 
+// The plugin's table, loaded and checked by the first call for this Table (pluginPath, then
+// loadPluginTable) and kept for the process's life. A failed load throws, and the next call tries
+// again. Thread-safe.
 template <typename Table>
-const Table& loadPlugin(const std::string& path, const char* entry, int version, const std::string& what);
-
-}  // namespace binpick::core
-
-#include "binpick/core/error.hpp"
-
-namespace binpick::core {
-
-template <typename Table>
-const Table& loadPlugin(const std::string& path, const char* entry, int version, const std::string& what) {
-  const auto* table = static_cast<const Table*>(loadPluginTable(path, entry, what));
-  if (table->version != version) {
-    throw Error(what + " (" + path + ") is from another build of binpick (reinstall it)");
-  }
-  return *table;
+const Table& loadPlugin(const std::string& beside_program, const std::string& in_build, const char* entry, int version,
+                        const std::string& what) {
+  static const Table& loaded = [&]() -> const Table& {
+    const std::string path = pluginPath(beside_program, in_build);
+    const auto* table = static_cast<const Table*>(loadPluginTable(path, entry, what));
+    if (table->version != version) {
+      throw Error(what + " (" + path + ") is from another build of binpick (reinstall it)");
+    }
+    return *table;
+  }();
+  return loaded;
 }
 
 }  // namespace binpick::core
