@@ -293,6 +293,8 @@ class BodyReader {
     const char* record = source_.takeRecords(element.count, recordBytes);
     if (isPackedXyz(fields, recordBytes) && !source_.swapsBytes()) {
       // binpick's own clouds (x, y, z as float, nothing else): the records are the points' bytes.
+      // An element of no vertices has no buffer to copy into (memcpy must not see a null pointer).
+      if (element.count == 0) return;
       std::memcpy(static_cast<void*>(cloud.points.data()), record, element.count * recordBytes);
       return;
     }
