@@ -3,14 +3,17 @@
 // cleared, failed picks, cycles, the cell's cycle time (reconstruct + detect + plan; the rendering
 // apart), and a plot of the parts left against the cycle.
 //   bench_emptying [--parts a,b,...] [--meshes FILE[:SCALE],...] [--grippers suction,parallel]
-//                  [--cups PART=M,...] [--bins 5] [--objects 20] [--first-seed 1] [--threads 0] --out DIR
+//                  [--cups PART=M,...] [--noses PART=DEG,...] [--bins 5] [--objects 20] [--first-seed 1]
+//                  [--threads 0] --out DIR
 // --cups sets the suction cup's diameter (metres) for a part, as an integrator chooses the cup for
-// the part's narrowest faces; the others get the default (cell/gripper.hpp).
+// the part's narrowest faces; --noses gives a part's suction tool a bent nose (degrees between the
+// cup's axis and the body's); the others get the default (picking/gripper.hpp).
 // Writes DIR/emptying.md (the table, and why the parts left in each bin stayed), DIR/emptying.csv
 // (one row per bin, flushed as it goes), DIR/emptying-parts-left.png; each bin's run
 // (emptying.json, overlays) under DIR/emptying-runs/.
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -34,25 +37,26 @@ struct Options {
   std::vector<std::string> parts = simulation::partNames();
   std::vector<std::string> meshes;  // FILE[:SCALE]: parts the cell has never seen, without grasps
   std::vector<std::string> grippers = {"suction"};
-  std::map<std::string, double> cups;  // part name -> cup diameter, metres
+  std::map<std::string, double> cups;   // part name -> cup diameter, metres
+  std::map<std::string, double> noses;  // part name -> nose angle, degrees
   int bins = 5, objects = 20, first_seed = 1, threads = 0;
   std::string out;
 };
 
 constexpr const char* kUsage =
     "usage: bench_emptying [--parts a,b,...] [--meshes FILE[:SCALE],...] [--grippers suction,parallel]\n"
-    "                      [--cups PART=M,...] [--bins 5] [--objects 20] [--first-seed 1] [--threads 0]\n"
-    "                      --out DIR\n";
+    "                      [--cups PART=M,...] [--noses PART=DEG,...] [--bins 5] [--objects 20]\n"
+    "                      [--first-seed 1] [--threads 0] --out DIR\n";
 
 // "l_bracket_long=0.004,gear=0.01" -> {l_bracket_long: 0.004, gear: 0.01}
-std::map<std::string, double> parseCups(const std::string& text) {
-  std::map<std::string, double> cups;
+std::map<std::string, double> parsePartValues(const std::string& option, const std::string& text) {
+  std::map<std::string, double> values;
   for (const std::string& item : splitCommas(text)) {
     const auto equals = item.find('=');
-    if (equals == std::string::npos) throw core::Error("--cups: \"" + item + "\" is not PART=METRES");
-    cups[item.substr(0, equals)] = std::stod(item.substr(equals + 1));
+    if (equals == std::string::npos) throw core::Error(option + ": \"" + item + "\" is not PART=VALUE");
+    values[item.substr(0, equals)] = std::stod(item.substr(equals + 1));
   }
-  return cups;
+  return values;
 }
 
 Options parseOptions(int argc, char** argv) {
@@ -72,7 +76,9 @@ Options parseOptions(int argc, char** argv) {
     else if (key == "--grippers")
       options.grippers = splitCommas(value);
     else if (key == "--cups")
-      options.cups = parseCups(value);
+      options.cups = parsePartValues(key, value);
+    else if (key == "--noses")
+      options.noses = parsePartValues(key, value);
     else if (key == "--bins")
       options.bins = std::stoi(value);
     else if (key == "--objects")
@@ -94,16 +100,17 @@ Options parseOptions(int argc, char** argv) {
 struct Row {
   std::string part, gripper;
   int seed = 0;
-  double cup_mm = 0.0;  // suction cup diameter; 0 for jaws
+  double cup_mm = 0.0;    // suction cup diameter; 0 for jaws
+  double nose_deg = 0.0;  // suction tool's bent nose; 0 for a straight tool
   emptying::EmptyingReport report;
 };
 
 std::string csvLine(const Row& row) {
   const emptying::EmptyingReport& r = row.report;
   char text[256];
-  std::snprintf(text, sizeof(text), "%s,%s,%.1f,%d,%d,%d,%d,%zu,%s,%.1f,%.1f,%d\n", row.part.c_str(),
-                row.gripper.c_str(), row.cup_mm, row.seed, r.objects, r.picked, r.failed_picks, r.cycles.size(),
-                emptyingEndName(r.end).c_str(), r.median_cycle_ms, r.max_cycle_ms, r.grasps);
+  std::snprintf(text, sizeof(text), "%s,%s,%.1f,%.0f,%d,%d,%d,%d,%zu,%s,%.1f,%.1f,%d\n", row.part.c_str(),
+                row.gripper.c_str(), row.cup_mm, row.nose_deg, row.seed, r.objects, r.picked, r.failed_picks,
+                r.cycles.size(), emptyingEndName(r.end).c_str(), r.median_cycle_ms, r.max_cycle_ms, r.grasps);
   return text;
 }
 
@@ -143,8 +150,11 @@ std::string summaryTable(const std::vector<Row>& rows) {
       }
       max_ms = std::max(max_ms, row->report.max_cycle_ms);
     }
-    char cup[16] = "-";
+    char cup[32] = "-";
     if (group.front()->cup_mm > 0) std::snprintf(cup, sizeof(cup), "%.0f mm", group.front()->cup_mm);
+    if (group.front()->nose_deg > 0) {
+      std::snprintf(cup + std::strlen(cup), sizeof(cup) - std::strlen(cup), ", %.0f deg nose", group.front()->nose_deg);
+    }
     char line[320];
     std::snprintf(line, sizeof(line),
                   "| %s | %s | %s | %zu | %.1f%% (%d/%d) | %d/%zu | %d | %.1f | %.2f s | %.2f s | %d |\n",
@@ -249,12 +259,13 @@ int run(int argc, char** argv) {
   for (const std::string& spec : options.meshes) parts.push_back(bench::meshPart(spec));
 
   std::ofstream csv(fs::path(options.out) / "emptying.csv");
-  csv << "part,gripper,cup_mm,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,grasps\n";
+  csv << "part,gripper,cup_mm,nose_deg,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,"
+         "grasps\n";
   std::vector<Row> rows;
   for (const simulation::Part& part : parts) {
     for (const std::string& gripper : options.grippers) {
       for (int b = 0; b < options.bins; ++b) {
-        Row row{part.name, gripper, options.first_seed + b, 0.0, {}};
+        Row row{part.name, gripper, options.first_seed + b, 0.0, 0.0, {}};
         emptying::EmptyingParams params;
         params.pile.objects = options.objects;
         params.pile.seed = static_cast<uint64_t>(row.seed);
@@ -263,7 +274,11 @@ int run(int argc, char** argv) {
         params.photometry.threads = options.threads;
         params.gripper.type = picking::gripperTypeFromName(gripper);
         if (options.cups.count(part.name)) params.gripper.cup_diameter = options.cups.at(part.name);
-        if (params.gripper.type == picking::GripperType::Suction) row.cup_mm = 1000.0 * params.gripper.cup_diameter;
+        if (options.noses.count(part.name)) params.gripper.nose_angle_deg = options.noses.at(part.name);
+        if (params.gripper.type == picking::GripperType::Suction) {
+          row.cup_mm = 1000.0 * params.gripper.cup_diameter;
+          row.nose_deg = params.gripper.nose_angle_deg;
+        }
         const fs::path run_dir =
             fs::path(options.out) / "emptying-runs" / (part.name + "-" + gripper + "-" + std::to_string(row.seed));
         fs::remove_all(run_dir);

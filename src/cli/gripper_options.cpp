@@ -4,7 +4,7 @@
 namespace binpick::cli {
 namespace {
 
-const std::vector<std::string> kSuctionOnly = {"--cup-diameter", "--seal-tolerance"};
+const std::vector<std::string> kSuctionOnly = {"--cup-diameter", "--seal-tolerance", "--nose-angle"};
 const std::vector<std::string> kParallelOnly = {"--stroke", "--finger-width", "--finger-depth"};
 
 }  // namespace
@@ -14,6 +14,7 @@ std::vector<CLI::Option*> addGripperOptions(CLI::App& command, const std::string
   CLI::Option_group& group = *command.add_option_group("Gripper options");
   addNumber(group, "--cup-diameter", "M", "Suction: cup diameter (default 0.006)");
   addNumber(group, "--seal-tolerance", "M", "Suction: surface deviation the cup seals on (default 0.0008)");
+  addNumber(group, "--nose-angle", "DEG", "Suction: degrees between the cup's axis and the tool body's (default 0)");
   addNumber(group, "--stroke", "M", "Parallel: widest opening (default 0.08)");
   addNumber(group, "--finger-width", "M", "Parallel: finger width (default 0.012)");
   addNumber(group, "--finger-depth", "M", "Parallel: finger depth along the approach (default 0.02)");
@@ -35,6 +36,7 @@ picking::GripperParams gripperFromArguments(const Arguments& args) {
   };
   set("--cup-diameter", gripper.cup_diameter);
   set("--seal-tolerance", gripper.seal_tolerance);
+  set("--nose-angle", gripper.nose_angle_deg);
   set("--stroke", gripper.stroke);
   set("--finger-width", gripper.finger_width);
   set("--finger-depth", gripper.finger_depth);

@@ -183,6 +183,22 @@ TEST(SuctionTruth, BinWallInTheToolsPathFails) {
   EXPECT_TRUE(away.ok) << away.reason;
 }
 
+// A bent nose's body leaves the approach axis at the back of the cup. Against the +x wall, 23 mm
+// from the grasp point: the straight 25 mm body reaches it; bent 30 degrees away from the wall the
+// body's lower rim reaches only 25 cos(30) = 21.7 mm that way; bent towards it, it hits.
+TEST(SuctionTruth, ABentNosesBodyLeansWhereTheWristTurnsIt) {
+  const TrueScene scene = boxes(kBlock, {{0.169, 0.0}});
+  const Eigen::Isometry3d leaning_to_the_wall = fromAbove(0.177, 0.0, 0.030);  // grasp x = bin x
+  Eigen::Isometry3d leaning_away = leaning_to_the_wall;
+  leaning_away.linear() = leaning_to_the_wall.linear() * Eigen::Vector3d(-1.0, -1.0, 1.0).asDiagonal();
+  EXPECT_EQ(judge(scene, leaning_to_the_wall, suction()).reason, "tool hits the bin");
+  picking::GripperParams bent = suction();
+  bent.nose_angle_deg = 30.0;
+  const PickJudgement away = judge(scene, leaning_away, bent);
+  EXPECT_TRUE(away.ok) << away.reason;
+  EXPECT_EQ(judge(scene, leaning_to_the_wall, bent).reason, "tool hits the bin");
+}
+
 TEST(SuctionTruth, BareFloorIsTheBin) {
   const TrueScene scene = boxes(kBlock, {});
   const PickJudgement j = judge(scene, fromAbove(0.0, 0.0, 0.0), suction());

@@ -161,6 +161,28 @@ TEST(PickingBin, ATiltedToolsBodySwingsOverTheWallBeyondThePreGraspPoint) {
   EXPECT_TRUE(reachable(params, tilted));
 }
 
+// The same face with a 45-degree bent nose: the wrist turns the body back from the face's normal
+// towards vertical, 5 degrees from it, leaning towards +x; the cup still meets the face square.
+TEST(PickingBin, ABentNoseTurnsItsBodyUprightOffAFaceTiltedTowardsAWall) {
+  PickParams params = wideToolParams();
+  params.gripper.nose_angle_deg = 45.0;
+  const Eigen::Matrix3d tilt = rotY(50);
+  const DetectedPart tilted = part(Eigen::Vector3d(0.05, 0, 0.03) - tilt * Eigen::Vector3d(0, 0, 0.02), tilt);
+  const PickPlan plan = planPicks({tilted}, {}, params);
+  ASSERT_TRUE(picksOne(plan));
+  const Pick& pick = plan.picks[0];
+  EXPECT_NEAR(pick.tilt_deg, 50.0, 1e-6);
+  EXPECT_NEAR(pick.lean_deg, 0.0, 1e-9);
+  const Eigen::Vector3d body = pick.T_base_grasp.linear() * params.gripper.bodyAxis();
+  EXPECT_NEAR(degrees(std::acos(body.z())), 5.0, 1e-6);
+  EXPECT_GT(body.x(), 0.0);
+  EXPECT_NEAR(body.y(), 0.0, 1e-9);
+  params.gripper.nose_angle_deg = 30.0;  // 20 degrees towards the wall: its end clears it too
+  EXPECT_TRUE(reachable(params, tilted));
+  params.gripper.nose_angle_deg = 10.0;  // 40 degrees: the body swings over the wall
+  EXPECT_FALSE(reachable(params, tilted));
+}
+
 // Jaws opened to a 50 mm part + 5 mm each side: each 8 x 12 mm finger's axis stands 34 mm off the
 // grasp point along the closing axis, its corridor 7.2 + 5 mm in radius, so its axis must stay
 // within 187.8 mm of the centre along the bin (137.8 across). 160 mm along the bin the body

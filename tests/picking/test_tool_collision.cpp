@@ -92,6 +92,41 @@ TEST(PickingToolCollision, ANeighbourColumnBesideATiltedApproachHitsTheBody) {
   EXPECT_FALSE(contact(scene, graspAt(0, 0, -30)).collision);  // leaning away
 }
 
+// A 30-degree bent nose on a vertical approach: the body leans towards base +x (the grasp frame's
+// +x here), its axis 0.5 m over per metre along it. A column 60 mm off the axis on that side,
+// free for the straight tool, meets the body 120 mm along it; a point on the approach axis 230 mm
+// up, in the straight body's sweep, lies 52 mm off the bent one's axis even at the pre-grasp point.
+TEST(PickingToolCollision, ABentNosesBodyLeavesTheApproachAxis) {
+  GripperParams bent = measuredGripper();
+  bent.nose_angle_deg = 30.0;
+  const MeasuredScene column = CloudBuilder().column(0.06, 0, kPlaneZ, kPlaneZ + 0.2).scene();
+  EXPECT_FALSE(contact(column, graspAt(0, 0)).collision);
+  EXPECT_TRUE(contact(column, graspAt(0, 0), bent).collision);
+  const MeasuredScene mirrored = CloudBuilder().column(-0.06, 0, kPlaneZ, kPlaneZ + 0.2).scene();
+  EXPECT_FALSE(contact(mirrored, graspAt(0, 0), bent).collision);
+  const MeasuredScene above = flatPlane().point(0, 0, kPlaneZ + 0.23).scene();
+  EXPECT_TRUE(contact(above, graspAt(0, 0)).collision);
+  EXPECT_FALSE(contact(above, graspAt(0, 0), bent).collision);
+}
+
+// The bent body's clearance is its true distance, over the whole sweep: a point 10 mm out along
+// -x from the lower rim on the side the body leans away from (r = 27 mm with the margin, the
+// body's start pulled a margin towards the cup) lies outside both the rim's side and its end, so
+// the rim itself is nearest; moving the body back along the approach only takes it further away.
+TEST(PickingToolCollision, ABentNosesClearanceIsTheDistanceToItsRim) {
+  GripperParams bent = measuredGripper();
+  bent.nose_angle_deg = 30.0;
+  const double r = 0.027, margin = 0.002;
+  const Eigen::Vector3d axis(0.5, 0.0, std::sqrt(3.0) / 2.0);  // base frame
+  const Eigen::Vector3d start = Eigen::Vector3d(0, 0, kPlaneZ + 0.025) - margin * axis;
+  const Eigen::Vector3d rim = start + r * Eigen::Vector3d(-axis.z(), 0.0, axis.x());
+  const Eigen::Vector3d point(rim.x() - 0.01, 0.0, rim.z());
+  const MeasuredScene scene = CloudBuilder().point(point.x(), point.y(), point.z()).scene();
+  const ToolContact free = contact(scene, graspAt(0, 0), bent);
+  ASSERT_FALSE(free.collision);
+  EXPECT_NEAR(free.clearance / kMm, 10.0, 0.01);
+}
+
 TEST(PickingToolCollision, ClearanceGrowsWithTheNeighboursDistance) {
   double previous = -1.0;
   for (const double distance_mm : {30.0, 35.0, 40.0, 45.0}) {

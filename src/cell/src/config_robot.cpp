@@ -24,6 +24,7 @@ picking::GripperParams readGripper(core::YamlSection s) {
   s.read("cup_length", gripper.cup_length);
   s.read("seal_tolerance", gripper.seal_tolerance);
   s.read("max_lean_deg", gripper.max_lean_deg);
+  s.read("nose_angle_deg", gripper.nose_angle_deg);
   s.read("stroke", gripper.stroke);
   s.read("finger_width", gripper.finger_width);
   s.read("finger_depth", gripper.finger_depth);

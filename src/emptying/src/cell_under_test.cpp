@@ -84,9 +84,10 @@ std::string gripperSettings(const picking::GripperParams& g) {
   text.precision(9);
   text << "  gripper: {type: " << picking::gripperTypeName(g.type) << ", cup_diameter: " << g.cup_diameter
        << ", cup_length: " << g.cup_length << ", seal_tolerance: " << g.seal_tolerance
-       << ", max_lean_deg: " << g.max_lean_deg << ", stroke: " << g.stroke << ", finger_width: " << g.finger_width
-       << ", finger_depth: " << g.finger_depth << ", finger_thickness: " << g.finger_thickness
-       << ", tool_radius: " << g.tool_radius << ", tool_length: " << g.tool_length << "}\n";
+       << ", max_lean_deg: " << g.max_lean_deg << ", nose_angle_deg: " << g.nose_angle_deg << ", stroke: " << g.stroke
+       << ", finger_width: " << g.finger_width << ", finger_depth: " << g.finger_depth
+       << ", finger_thickness: " << g.finger_thickness << ", tool_radius: " << g.tool_radius
+       << ", tool_length: " << g.tool_length << "}\n";
   return text.str();
 }
 

@@ -1,6 +1,8 @@
 // The suction cup's judge: on a part's surface, square to it, sealing on one face, and a clear way in.
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "pick_rays.hpp"
 
@@ -60,24 +62,65 @@ std::string sealProblem(const DiscSurvey& survey) {
   return {};
 }
 
+// Where the line through (x, y) along the approach crosses a bent nose's body at the grasp: the
+// z interval in which the line's distance to the body's axis is at most its radius (a quadratic
+// in z) and its point lies along the axis within the body's length (linear in z). Empty: none.
+std::optional<std::pair<double, double>> bentBodySpan(const picking::GripperParams& gripper,
+                                                      const Eigen::Vector2d& xy) {
+  const Eigen::Vector3d axis = gripper.bodyAxis();
+  const Eigen::Vector3d offset = Eigen::Vector3d(xy.x(), xy.y(), 0.0) - gripper.bodyStart();
+  const double along0 = offset.dot(axis);  // along the axis at z = 0, changing by axis.z() per z
+  // |offset + z e_z|^2 - (along0 + z axis.z)^2 <= r^2
+  const double a = 1.0 - axis.z() * axis.z();
+  const double b = 2.0 * (offset.z() - along0 * axis.z());
+  const double c = offset.squaredNorm() - along0 * along0 - gripper.tool_radius * gripper.tool_radius;
+  const double discriminant = b * b - 4.0 * a * c;
+  if (!(a > 0.0) || discriminant < 0.0) return std::nullopt;
+  double lo = (-b - std::sqrt(discriminant)) / (2.0 * a), hi = (-b + std::sqrt(discriminant)) / (2.0 * a);
+  // 0 <= along0 + z axis.z <= tool_length, axis.z < 0: z runs from the body's end to its start.
+  lo = std::max(lo, (gripper.tool_length - along0) / axis.z());
+  hi = std::min(hi, -along0 / axis.z());
+  if (lo > hi) return std::nullopt;
+  return std::make_pair(lo, hi);
+}
+
+// A bent nose's body as columns along the approach, each swept back by approach_distance.
+std::vector<Column> bentBodyColumns(const picking::GripperParams& gripper, double approach_distance,
+                                    const PickTruthParams& params) {
+  const double r = gripper.tool_radius;
+  const double reach = gripper.tool_length * gripper.bodyAxis().x();
+  std::vector<Column> columns;
+  for (const Eigen::Vector2d& xy : rectangleSamples(-r, reach + r, -r, r, params.collision_spacing)) {
+    if (const auto span = bentBodySpan(gripper, xy)) {
+      columns.push_back({xy, span->first - approach_distance, span->second});
+    }
+  }
+  return columns;
+}
+
 // The cup and the body as columns along the approach, swept back by approach_distance. Within the
 // cup's footprint a column reaches the sealed face's plane less the seal tolerance: the face itself
 // is where the cup belongs.
 std::vector<Column> toolColumns(const picking::GripperParams& gripper, double approach_distance,
                                 const PickTruthParams& params, const Contact& contact) {
   const double cup_radius = 0.5 * gripper.cup_diameter;
+  const double body_radius = gripper.bent() ? 0.0 : gripper.tool_radius;
   const double body_back = -(gripper.cup_length + gripper.tool_length + approach_distance);
   const double cup_back = -(gripper.cup_length + approach_distance);
   const Eigen::Vector3d& n = contact.normal;
   std::vector<Column> columns;
-  for (const Eigen::Vector2d& xy : discSamples(std::max(cup_radius, gripper.tool_radius), params.collision_spacing)) {
+  for (const Eigen::Vector2d& xy : discSamples(std::max(cup_radius, body_radius), params.collision_spacing)) {
     const double rho = xy.norm();
     const bool in_cup = rho <= cup_radius * (1.0 + 1e-9);
-    const bool in_body = rho <= gripper.tool_radius * (1.0 + 1e-9);
+    const bool in_body = rho <= body_radius * (1.0 + 1e-9);
     if (!in_cup && !in_body) continue;
     const double face_z = contact.point.z() - (n.x() * xy.x() + n.y() * xy.y()) / n.z();
     const double z_to = in_cup ? face_z - gripper.seal_tolerance : -gripper.cup_length;
     columns.push_back({xy, in_body ? body_back : cup_back, z_to});
+  }
+  if (gripper.bent()) {
+    const std::vector<Column> body = bentBodyColumns(gripper, approach_distance, params);
+    columns.insert(columns.end(), body.begin(), body.end());
   }
   return columns;
 }

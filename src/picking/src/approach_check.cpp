@@ -56,8 +56,28 @@ constexpr double kLeanStepDeg = 1.0;
 // Where the end of the tool body is at the pre-grasp point: on a tilted approach it swings out
 // over a wall first.
 Eigen::Vector3d toolEnd(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params) {
-  return T_bin_grasp.translation() -
-         (params.approach_distance + params.gripper.toolBack()) * T_bin_grasp.linear().col(2);
+  const GripperParams& gripper = params.gripper;
+  const Eigen::Vector3d end_at_grasp = T_bin_grasp * (gripper.bodyStart() + gripper.tool_length * gripper.bodyAxis());
+  return end_at_grasp - params.approach_distance * T_bin_grasp.linear().col(2);
+}
+
+// A bent nose's body, swept along the approach, fills a parallelogram grown by its radius: its
+// edges are the body at the pre-grasp point and at the grasp, and the paths of its two ends. The
+// bin's inside is convex, so the parallelogram clears it when every edge does. The slices that
+// reach lowest are square to the body's axis, not to the approach.
+bool bentBodyHitsBin(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params) {
+  const GripperParams& gripper = params.gripper;
+  const Eigen::Vector3d sweep = params.approach_distance * T_bin_grasp.linear().col(2);
+  const Eigen::Vector3d start = T_bin_grasp * gripper.bodyStart();
+  const Eigen::Vector3d end = T_bin_grasp * (gripper.bodyStart() + gripper.tool_length * gripper.bodyAxis());
+  const Eigen::Vector3d axis = T_bin_grasp.linear() * -gripper.bodyAxis();
+  const double radius = gripper.tool_radius + params.wall_clearance;
+  const std::array<Segment, 4> edges{Segment{start, end}, Segment{start - sweep, end - sweep},
+                                     Segment{start - sweep, start}, Segment{end - sweep, end}};
+  for (const Segment& edge : edges) {
+    if (corridorHitsFloor(edge) || corridorHitsWalls(edge, axis, radius, params.bin)) return true;
+  }
+  return false;
 }
 
 // Parallel jaws: each finger, `opening` apart from the other, is a corridor of its own from its tip
@@ -90,9 +110,15 @@ bool toolHitsBin(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params,
            fingersHitBin(T_bin_grasp, params, gripper.jawOpening(opening));
   }
   // A suction cup is narrower than the body behind it: a part lying by a wall is in the cup's
-  // reach while the body stays clear higher up. The body's sweep also covers where the cup passed.
+  // reach while the body stays clear higher up. A straight body's sweep also covers where the cup
+  // passed; a bent one's does not.
   const double cup_radius = 0.5 * gripper.cup_diameter + params.wall_clearance;
   const Eigen::Vector3d cup_back = grasp_point - gripper.cup_length * approach;
+  if (gripper.bent()) {
+    const Eigen::Vector3d cup_start = cup_back - params.approach_distance * approach;
+    return corridorHitsWalls({cup_start, grasp_point}, approach, cup_radius, params.bin) ||
+           bentBodyHitsBin(T_bin_grasp, params);
+  }
   return corridorHitsWalls({cup_back, grasp_point}, approach, cup_radius, params.bin) ||
          corridorHitsWalls({tool_end, cup_back}, approach, std::max(body_radius, cup_radius), params.bin);
 }
@@ -143,6 +169,35 @@ std::optional<Eigen::Isometry3d> leanClearOfWalls(const Eigen::Isometry3d& T_bas
     if (!toolHitsBin(T_bin_leaned, params, 0.0)) return params.bin.T_base_bin * T_bin_leaned;
   }
   return std::nullopt;
+}
+
+std::vector<Eigen::Isometry3d> noseTurns(const Eigen::Isometry3d& T_base_grasp, const PickParams& params) {
+  const GripperParams& gripper = params.gripper;
+  if (!gripper.bent()) return {T_base_grasp};
+  constexpr int kTurns = 12;
+  // Equally upright turns (a vertical approach turns the body on a cone about it) within this.
+  constexpr double kSameUpright = 1e-6;
+  struct Turn {
+    Eigen::Isometry3d T_base_grasp;
+    double upright, off_centre;
+  };
+  const Eigen::Isometry3d T_bin_base = params.bin.T_base_bin.inverse();
+  const Eigen::Vector3d body_end = gripper.bodyStart() + gripper.tool_length * gripper.bodyAxis();
+  std::vector<Turn> turns;
+  for (int step = 0; step < kTurns; ++step) {
+    Eigen::Isometry3d turned = T_base_grasp;
+    turned.linear() *= Eigen::AngleAxisd(2.0 * M_PI * step / kTurns, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Vector3d axis_in_bin = T_bin_base.linear() * turned.linear() * gripper.bodyAxis();
+    const Eigen::Vector3d end_in_bin = T_bin_base * (turned * body_end);
+    turns.push_back({turned, axis_in_bin.z(), end_in_bin.head<2>().norm()});
+  }
+  std::stable_sort(turns.begin(), turns.end(), [](const Turn& a, const Turn& b) {
+    if (std::abs(a.upright - b.upright) > kSameUpright) return a.upright > b.upright;
+    return a.off_centre < b.off_centre;
+  });
+  std::vector<Eigen::Isometry3d> poses;
+  for (const Turn& turn : turns) poses.push_back(turn.T_base_grasp);
+  return poses;
 }
 
 }  // namespace binpick::picking

@@ -2,6 +2,7 @@
 // Is a grasp reachable: its approach tilt, and whether its approach corridor hits the bin.
 #include <Eigen/Geometry>
 #include <optional>
+#include <vector>
 
 #include "binpick/picking/picking.hpp"
 
@@ -23,5 +24,11 @@ bool approachHitsBin(const Eigen::Isometry3d& T_base_grasp, const PickParams& pa
 // corridor clears the bin; none when no lean does (or the gripper may not lean). The cup still
 // sits on the same point of the face, its bellows taking up the lean.
 std::optional<Eigen::Isometry3d> leanClearOfWalls(const Eigen::Isometry3d& T_base_grasp, const PickParams& params);
+
+// Where a bent nose's body may lean (gripper.bent()): the grasp turned about its approach in
+// twelve 30-degree steps, the body's most upright first (it leans back from a tilted face's
+// normal towards vertical), then the one whose end keeps furthest in from the walls. A straight
+// tool: the grasp alone, since its turn moves nothing.
+std::vector<Eigen::Isometry3d> noseTurns(const Eigen::Isometry3d& T_base_grasp, const PickParams& params);
 
 }  // namespace binpick::picking

@@ -25,6 +25,8 @@ void GripperParams::validate() const {
   core::requireField(isNonNegative(cup_length), kOwner, "cup_length", ">= 0", cup_length);
   core::requireField(isPositive(seal_tolerance), kOwner, "seal_tolerance", "> 0", seal_tolerance);
   core::requireField(max_lean_deg >= 0.0 && max_lean_deg <= 30.0, kOwner, "max_lean_deg", "in [0, 30]", max_lean_deg);
+  core::requireField(nose_angle_deg >= 0.0 && nose_angle_deg <= 60.0, kOwner, "nose_angle_deg", "in [0, 60]",
+                     nose_angle_deg);
   core::requireField(isPositive(stroke), kOwner, "stroke", "> 0", stroke);
   core::requireField(isPositive(finger_width), kOwner, "finger_width", "> 0", finger_width);
   core::requireField(isPositive(finger_depth), kOwner, "finger_depth", "> 0", finger_depth);

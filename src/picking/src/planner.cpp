@@ -46,17 +46,27 @@ double wristAlignment(const Eigen::Isometry3d& T_base_grasp) {
   return T_base_grasp.linear().col(0).dot(reference.normalized());
 }
 
-// A tie in rank (within kRankTie): the lower grasp index, then the better wrist alignment; a full
-// tie keeps the incumbent.
-bool breaksTieBetter(const Pick& challenger, const Pick& incumbent) {
+// How upright a bent nose's body stands (the z of its axis, base frame): a turn of the wrist
+// moves it, and the more upright the body the further it keeps from the pile and the walls.
+double bodyUpright(const Pick& pick, const GripperParams& gripper) {
+  return (pick.T_base_grasp.linear() * gripper.bodyAxis()).z();
+}
+
+// A tie in rank (within kRankTie): the lower grasp index, then the more upright body of a bent
+// nose, then the better wrist alignment; a full tie keeps the incumbent.
+bool breaksTieBetter(const Pick& challenger, const Pick& incumbent, const GripperParams& gripper) {
   if (challenger.grasp != incumbent.grasp) return challenger.grasp < incumbent.grasp;
+  if (gripper.bent()) {
+    const double upright = bodyUpright(challenger, gripper) - bodyUpright(incumbent, gripper);
+    if (std::abs(upright) > kRankTie) return upright > 0.0;
+  }
   return wristAlignment(challenger.T_base_grasp) > wristAlignment(incumbent.T_base_grasp);
 }
 
-bool ranksBetter(const Pick& challenger, const Pick& incumbent) {
+bool ranksBetter(const Pick& challenger, const Pick& incumbent, const GripperParams& gripper) {
   if (challenger.rank > incumbent.rank + kRankTie) return true;
   if (challenger.rank < incumbent.rank - kRankTie) return false;
-  return breaksTieBetter(challenger, incumbent);
+  return breaksTieBetter(challenger, incumbent, gripper);
 }
 
 // The rank terms known without the measured cloud (RankWeights in picking.hpp).
@@ -95,24 +105,34 @@ bool clearsBin(Pick& pick, const PickParams& params) {
   return pick.tilt_deg <= params.max_tilt_deg;
 }
 
-// The cheap tests: tilt, then the approach corridor against the bin.
+// A bent nose: the turns of one grasp that clear the bin, kept for the cloud test, the most
+// upright first. More would multiply the cloud tests for turns that lean the body lower.
+constexpr std::size_t kNoseTurnsKept = 3;
+
+// The cheap tests: tilt, then the approach corridor against the bin (for a bent nose, turn by
+// turn).
 Screened screenCandidates(const DetectedPart& part, int object, const std::vector<GraspCandidate>& candidates,
                           const PickParams& params) {
   Screened screened;
   for (const GraspCandidate& candidate : candidates) {
-    Candidate tested;
-    Pick& pick = tested.pick;
-    pick.object = object;
-    pick.grasp = candidate.grasp;
-    pick.T_base_grasp = part.T_base_model * candidate.T_model_grasp;
-    tested.T_base_face = pick.T_base_grasp;
-    pick.tilt_deg = approachTiltDeg(pick.T_base_grasp);
-    if (pick.tilt_deg > params.max_tilt_deg) continue;
+    const Eigen::Isometry3d T_base_face = part.T_base_model * candidate.T_model_grasp;
+    const double tilt_deg = approachTiltDeg(T_base_face);
+    if (tilt_deg > params.max_tilt_deg) continue;
     screened.furthest = std::max(screened.furthest, Reached::Bin);
-    if (!clearsBin(pick, params)) continue;
-    screened.furthest = Reached::Cloud;
-    pick.rank = rankWithoutCloud(part, params.grasps[static_cast<std::size_t>(pick.grasp)], pick, params);
-    screened.survivors.push_back(tested);
+    std::size_t kept = 0;
+    for (const Eigen::Isometry3d& T_base_turned : noseTurns(T_base_face, params)) {
+      Candidate tested;
+      Pick& pick = tested.pick;
+      pick.object = object;
+      pick.grasp = candidate.grasp;
+      pick.T_base_grasp = tested.T_base_face = T_base_turned;
+      pick.tilt_deg = tilt_deg;
+      if (!clearsBin(pick, params)) continue;
+      screened.furthest = Reached::Cloud;
+      pick.rank = rankWithoutCloud(part, params.grasps[static_cast<std::size_t>(pick.grasp)], pick, params);
+      screened.survivors.push_back(tested);
+      if (++kept == kNoseTurnsKept) break;
+    }
   }
   return screened;
 }
@@ -124,7 +144,7 @@ std::optional<Pick> bestWithoutCloud(std::vector<Candidate> survivors, const Pic
     Pick& pick = candidate.pick;
     pick.clearance = params.clearance_cap;
     pick.rank += params.ranking.free + params.ranking.clearance;
-    if (!best || ranksBetter(pick, *best)) best = pick;
+    if (!best || ranksBetter(pick, *best, params.gripper)) best = pick;
   }
   return best;
 }
@@ -152,7 +172,8 @@ class PartCloudTests {
     const auto query = [&] {
       return toolCollision(scene_, pick.T_base_grasp, params_.gripper, sweepFor(grasp, params_));
     };
-    if (params_.gripper.type != GripperType::Suction) return query();
+    // Jaws and a bent nose are not round about the approach: their turn matters.
+    if (params_.gripper.type != GripperType::Suction || params_.gripper.bent()) return query();
     Entry& entry = entryFor(pick);
     if (!entry.contact) entry.contact = query();
     return *entry.contact;
@@ -219,7 +240,7 @@ std::optional<Pick> bestAgainstCloud(std::vector<Candidate> survivors, const Pic
     if (!sealsOnSurface(candidate, params, surface)) continue;
     pick.clearance = contact.clearance;
     pick.rank = without_clearance + w.clearance * contact.clearance / params.clearance_cap;
-    if (!best || ranksBetter(pick, *best)) best = pick;
+    if (!best || ranksBetter(pick, *best, params.gripper)) best = pick;
   }
   return best;
 }

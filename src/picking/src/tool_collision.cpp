@@ -9,6 +9,7 @@
 
 #include "binpick/core/error.hpp"
 #include "rigid.hpp"
+#include "tool_volume.hpp"
 
 namespace binpick::picking {
 namespace {
@@ -113,98 +114,6 @@ void forEachBasePoint(const io::PointCloud& cloud, const Eigen::Isometry3f& T_ba
     for (int column = 0; column < cloud.width; column += stride) {
       visitValid(cloud.points[row_start + static_cast<std::size_t>(column)]);
     }
-  }
-}
-
-// ---- The tool's volume in the grasp frame --------------------------------------------------
-
-struct Cylinder {  // about the grasp z axis
-  double radius = 0, z_lo = 0, z_hi = 0;
-  bool front_is_contact = false;  // points in front of z_hi are the grasped face (clearance)
-};
-
-struct Box {
-  Eigen::Vector3d lo = Eigen::Vector3d::Zero(), hi = Eigen::Vector3d::Zero();
-  double between_jaws = 0;  // points with |x| below this are the grasped part (clearance)
-};
-
-struct ToolVolume {
-  std::array<Cylinder, 2> cylinders;
-  std::array<Box, 2> boxes;
-  int cylinder_count = 0, box_count = 0;
-};
-
-ToolVolume suctionVolume(const GripperParams& g, const ToolSweep& s) {
-  ToolVolume tool;
-  const double m = s.margin;
-  tool.cylinders[0] = {0.5 * g.cup_diameter + m, -(g.cup_length + s.approach_distance) - m, -m, true};
-  tool.cylinders[1] = {g.tool_radius + m, -(g.toolBack() + s.approach_distance) - m, std::min(-g.cup_length + m, -m),
-                       false};
-  tool.cylinder_count = 2;
-  return tool;
-}
-
-ToolVolume parallelVolume(const GripperParams& g, const ToolSweep& s) {
-  ToolVolume tool;
-  const double m = s.margin;
-  const double opening = g.jawOpening(s.opening);
-  const double root = -0.5 * g.finger_depth;
-  const double inner = 0.5 * opening;
-  for (int side = 0; side < 2; ++side) {
-    const double sign = side == 0 ? 1.0 : -1.0;
-    const double x_a = sign * (inner - m), x_b = sign * (inner + g.finger_thickness + m);
-    Box& finger = tool.boxes[static_cast<std::size_t>(side)];
-    finger.lo = {std::min(x_a, x_b), -0.5 * g.finger_width - m, root - s.approach_distance - m};
-    finger.hi = {std::max(x_a, x_b), 0.5 * g.finger_width + m, -root + m};
-    finger.between_jaws = inner;
-  }
-  tool.box_count = 2;
-  tool.cylinders[0] = {g.tool_radius + m, -(g.toolBack() + s.approach_distance) - m, root + m, false};
-  tool.cylinder_count = 1;
-  return tool;
-}
-
-// Distance from `p` (grasp frame) to the cylinder; negative when inside. `counts` tells whether
-// the distance matters for the clearance.
-double cylinderDistance(const Cylinder& c, const Eigen::Vector3d& p, bool& counts) {
-  const double radial = std::sqrt(p.x() * p.x() + p.y() * p.y()) - c.radius;
-  const double axial = std::max(c.z_lo - p.z(), p.z() - c.z_hi);
-  if (radial <= 0.0 && axial <= 0.0) return -1.0;
-  counts = !(c.front_is_contact && p.z() > c.z_hi);
-  const double r = std::max(radial, 0.0), a = std::max(axial, 0.0);
-  return std::sqrt(r * r + a * a);  // not std::hypot: its overflow care costs 5x here
-}
-
-double boxDistance(const Box& b, const Eigen::Vector3d& p, bool& counts) {
-  const Eigen::Vector3d outside = (b.lo - p).cwiseMax(p - b.hi);
-  if ((outside.array() <= 0.0).all()) return -1.0;
-  counts = std::abs(p.x()) >= b.between_jaws;
-  return outside.cwiseMax(0.0).norm();
-}
-
-// The tool's bounding box in the base frame, grown by `grow`.
-void baseBounds(const ToolVolume& tool, const Eigen::Isometry3d& T_base_grasp, double grow, Eigen::Vector3d& lo,
-                Eigen::Vector3d& hi) {
-  lo.setConstant(std::numeric_limits<double>::infinity());
-  hi = -lo;
-  const auto add = [&](const Eigen::Vector3d& local_lo, const Eigen::Vector3d& local_hi) {
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d local((corner & 1) ? local_hi.x() : local_lo.x(),
-                                  (corner & 2) ? local_hi.y() : local_lo.y(),
-                                  (corner & 4) ? local_hi.z() : local_lo.z());
-      const Eigen::Vector3d base = T_base_grasp * local;
-      lo = lo.cwiseMin(base);
-      hi = hi.cwiseMax(base);
-    }
-  };
-  for (int i = 0; i < tool.cylinder_count; ++i) {
-    const Cylinder& c = tool.cylinders[static_cast<std::size_t>(i)];
-    const double r = c.radius + grow;
-    add({-r, -r, c.z_lo - grow}, {r, r, c.z_hi + grow});
-  }
-  for (int i = 0; i < tool.box_count; ++i) {
-    const Box& b = tool.boxes[static_cast<std::size_t>(i)];
-    add(b.lo.array() - grow, b.hi.array() + grow);
   }
 }
 
@@ -337,8 +246,7 @@ double MeasuredScene::shareCoveredAbove(const Eigen::Vector3d& point, double rad
 
 ToolContact toolCollision(const MeasuredScene& scene, const Eigen::Isometry3d& T_base_grasp,
                           const GripperParams& gripper, const ToolSweep& sweep) {
-  const ToolVolume tool =
-      gripper.type == GripperType::Suction ? suctionVolume(gripper, sweep) : parallelVolume(gripper, sweep);
+  const ToolVolume tool = toolVolume(gripper, sweep);
   Eigen::Vector3d lo, hi;
   const double cap = std::max(0.0, sweep.clearance_cap);
   baseBounds(tool, T_base_grasp, cap, lo, hi);
@@ -358,6 +266,14 @@ ToolContact toolCollision(const MeasuredScene& scene, const Eigen::Isometry3d& T
         return false;
       }
       if (counts) nearest = std::min(nearest, distance);
+    }
+    if (tool.bent_body) {
+      const double distance = bentBodyDistance(*tool.bent_body, p, nearest);
+      if (distance < 0.0) {
+        collision = true;
+        return false;
+      }
+      nearest = std::min(nearest, distance);
     }
     return true;
   });

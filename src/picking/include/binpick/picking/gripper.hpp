@@ -13,8 +13,14 @@
 //   its tip; the fingers open to at most `stroke` between their contact faces.
 // - The tool body: a cylinder of radius tool_radius on the approach axis, from where the cup (or
 //   the fingers' root at z = -finger_depth / 2) ends, tool_length further back along -z.
+// - A suction tool may have a bent nose (nose_angle_deg > 0): the cup's axis then meets the body's
+//   at the back of the cup, the body running back along bodyAxis(), tilted from -z towards the
+//   grasp frame's +x. The wrist turns the tool about the cup's axis, so the planner chooses where
+//   the body leans: away from a wall the straight tool would meet.
 // Plain data: thread-safe.
+#include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace binpick::picking {
@@ -32,6 +38,9 @@ struct GripperParams {
   // Degrees the approach may lean off the face's normal, the bellows taking it up, where the
   // straight approach would bring the tool against a bin wall (0: never lean).
   double max_lean_deg = 6.0;
+  // Degrees between the cup's axis and the tool body's (0: a straight tool). Industrial angled
+  // nozzles come at 15-45 degrees.
+  double nose_angle_deg = 0.0;
   // Parallel jaw
   double stroke = 0.080;            // metres: widest opening between the contact faces
   double finger_width = 0.012;      // metres, across the closing direction
@@ -46,6 +55,18 @@ struct GripperParams {
   double jawOpening(double requested) const { return requested > 0.0 ? std::min(requested, stroke) : stroke; }
   // Metres from the grasp point back along the approach to the end of the tool body.
   double toolBack() const { return (type == GripperType::Suction ? cup_length : 0.5 * finger_depth) + tool_length; }
+  // Whether the body leaves the cup's axis (a suction tool with a bent nose).
+  bool bent() const { return type == GripperType::Suction && nose_angle_deg > 0.0; }
+  // Grasp frame: the unit direction from the back of the cup (or the fingers' root) along the
+  // body to its end; -z for a straight tool.
+  Eigen::Vector3d bodyAxis() const {
+    const double nose = bent() ? nose_angle_deg * M_PI / 180.0 : 0.0;
+    return {std::sin(nose), 0.0, -std::cos(nose)};
+  }
+  // Grasp frame: where the body starts, on the approach axis behind the cup or the fingers.
+  Eigen::Vector3d bodyStart() const {
+    return {0.0, 0.0, -(type == GripperType::Suction ? cup_length : 0.5 * finger_depth)};
+  }
 };
 
 }  // namespace binpick::picking
