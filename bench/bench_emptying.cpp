@@ -26,6 +26,7 @@
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/emptying/emptying.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/picking/cup_choice.hpp"
 #include "plot.hpp"
 
 namespace binpick::bench {
@@ -231,7 +232,8 @@ std::string cpuName() {
   return "unknown CPU";
 }
 
-void writeReport(const Options& options, const std::vector<Row>& rows, const std::string& command, double minutes) {
+void writeReport(const Options& options, const std::vector<Row>& rows, const std::vector<std::string>& cup_notes,
+                 const std::string& command, double minutes) {
   std::ofstream md(fs::path(options.out) / "emptying.md");
   const std::time_t now = std::time(nullptr);
   char date[32];
@@ -245,6 +247,30 @@ void writeReport(const Options& options, const std::vector<Row>& rows, const std
      << "plan as binpickd timed them. Per bin: emptying.csv; plot: emptying-parts-left.png.\n\n"
      << "## Why the parts left stayed\n\n"
      << partsLeftTable(rows);
+  if (cup_notes.empty()) return;
+  md << "\n## The cups chosen\n\n"
+     << "Parts without --cups got the cup chooseCup finds (picking/cup_choice.hpp): the default 6 mm cup unless a\n"
+     << "smaller one lets at least 10% more of the part's orientations show a grasp facing up.\n\n";
+  for (const std::string& note : cup_notes) md << "- " << note << "\n";
+}
+
+// The gripper a part's bins run with: --cups and --noses where given; else, for suction, the cup
+// chooseCup finds for the part (its choice noted for the report).
+picking::GripperParams gripperFor(const simulation::Part& part, const std::string& type, const Options& options,
+                                  std::vector<std::string>& cup_notes) {
+  picking::GripperParams gripper;
+  gripper.type = picking::gripperTypeFromName(type);
+  if (gripper.type != picking::GripperType::Suction) return gripper;
+  if (options.noses.count(part.name)) gripper.nose_angle_deg = options.noses.at(part.name);
+  if (options.cups.count(part.name)) {
+    gripper.cup_diameter = options.cups.at(part.name);
+    return gripper;
+  }
+  const picking::CupChoice choice = picking::chooseCup(part.mesh, gripper, part.symmetry, {});
+  gripper.cup_diameter = choice.diameter;
+  cup_notes.push_back(part.name + ": " + picking::describeCupChoice(choice));
+  std::cout << cup_notes.back() << std::endl;
+  return gripper;
 }
 
 int run(int argc, char** argv) {
@@ -262,8 +288,10 @@ int run(int argc, char** argv) {
   csv << "part,gripper,cup_mm,nose_deg,seed,objects,picked,failed_picks,cycles,end,median_cycle_ms,max_cycle_ms,"
          "grasps\n";
   std::vector<Row> rows;
+  std::vector<std::string> cup_notes;
   for (const simulation::Part& part : parts) {
     for (const std::string& gripper : options.grippers) {
+      const picking::GripperParams tool = gripperFor(part, gripper, options, cup_notes);
       for (int b = 0; b < options.bins; ++b) {
         Row row{part.name, gripper, options.first_seed + b, 0.0, 0.0, {}};
         emptying::EmptyingParams params;
@@ -272,9 +300,7 @@ int run(int argc, char** argv) {
         params.pile.threads = options.threads;
         params.photometry.seed = params.pile.seed;
         params.photometry.threads = options.threads;
-        params.gripper.type = picking::gripperTypeFromName(gripper);
-        if (options.cups.count(part.name)) params.gripper.cup_diameter = options.cups.at(part.name);
-        if (options.noses.count(part.name)) params.gripper.nose_angle_deg = options.noses.at(part.name);
+        params.gripper = tool;
         if (params.gripper.type == picking::GripperType::Suction) {
           row.cup_mm = 1000.0 * params.gripper.cup_diameter;
           row.nose_deg = params.gripper.nose_angle_deg;
@@ -299,7 +325,7 @@ int run(int argc, char** argv) {
   if (rows.empty()) throw core::Error("no bin could be run");
   writePartsLeftPlot((fs::path(options.out) / "emptying-parts-left.png").string(), rows);
   const double minutes = stopwatch.elapsedMs() / 60000.0;
-  writeReport(options, rows, command, minutes);
+  writeReport(options, rows, cup_notes, command, minutes);
   std::cout << summaryTable(rows);
   return 0;
 }

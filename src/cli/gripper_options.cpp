@@ -12,7 +12,8 @@ const std::vector<std::string> kParallelOnly = {"--stroke", "--finger-width", "-
 std::vector<CLI::Option*> addGripperOptions(CLI::App& command, const std::string& gripper_help) {
   std::vector<CLI::Option*> options = {addText(command, "--gripper", "TYPE", gripper_help)};
   CLI::Option_group& group = *command.add_option_group("Gripper options");
-  addNumber(group, "--cup-diameter", "M", "Suction: cup diameter (default 0.006)");
+  addNumber(group, "--cup-diameter", "M",
+            "Suction: cup diameter (default 0.006; simulate --empty-bin: the cup chosen for the part)");
   addNumber(group, "--seal-tolerance", "M", "Suction: surface deviation the cup seals on (default 0.0008)");
   addNumber(group, "--nose-angle", "DEG", "Suction: degrees between the cup's axis and the tool body's (default 0)");
   addNumber(group, "--stroke", "M", "Parallel: widest opening (default 0.08)");

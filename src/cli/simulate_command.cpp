@@ -14,6 +14,7 @@
 #include "binpick/core/stopwatch.hpp"
 #include "binpick/emptying/emptying.hpp"
 #include "binpick/io/geometry_io.hpp"
+#include "binpick/picking/cup_choice.hpp"
 #include "binpick/simulation/calibration_sequence.hpp"
 #include "binpick/simulation/parts.hpp"
 #include "binpick/simulation/pile.hpp"
@@ -77,6 +78,12 @@ int emptyBin(const Arguments& args) {
   params.photometry.seed = params.pile.seed;
   params.photometry.threads = params.pile.threads;
   params.gripper = gripperFromArguments(args);
+  if (params.gripper.type == picking::GripperType::Suction && !args.value("--cup-diameter")) {
+    // No cup given: the one an integrator would choose for the part, said before the run.
+    const picking::CupChoice choice = picking::chooseCup(part.mesh, params.gripper, part.symmetry, {});
+    params.gripper.cup_diameter = choice.diameter;
+    std::cout << "cup: " << picking::describeCupChoice(choice) << "; --cup-diameter sets one" << std::endl;
+  }
   params.max_cycles = args.integer("--max-cycles").value_or(0);
   params.web_port = args.integer("--web-port").value_or(-1);
   params.out_directory = args.required("--out");
