@@ -6,8 +6,9 @@
 //                  [--cups PART=M,...] [--noses PART=DEG,...] [--bins 5] [--objects 20] [--first-seed 1]
 //                  [--threads 0] --out DIR
 // --cups sets the suction cup's diameter (metres) for a part, as an integrator chooses the cup for
-// the part's narrowest faces; --noses gives a part's suction tool a bent nose (degrees between the
-// cup's axis and the body's); the others get the default (picking/gripper.hpp).
+// the part's narrowest faces (the others get the cup picking/cup_choice.hpp chooses for them);
+// --noses gives a part's suction tool a bent nose (degrees between the cup's axis and the body's).
+// A value without PART= is every other part's.
 // Writes DIR/emptying.md (the table, and why the parts left in each bin stayed), DIR/emptying.csv
 // (one row per bin, flushed as it goes), DIR/emptying-parts-left.png; each bin's run
 // (emptying.json, overlays) under DIR/emptying-runs/.
@@ -19,6 +20,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include "bench_support.hpp"
@@ -49,15 +51,24 @@ constexpr const char* kUsage =
     "                      [--cups PART=M,...] [--noses PART=DEG,...] [--bins 5] [--objects 20]\n"
     "                      [--first-seed 1] [--threads 0] --out DIR\n";
 
-// "l_bracket_long=0.004,gear=0.01" -> {l_bracket_long: 0.004, gear: 0.01}
-std::map<std::string, double> parsePartValues(const std::string& option, const std::string& text) {
+// "l_bracket_long=0.004,gear=0.01" -> {l_bracket_long: 0.004, gear: 0.01}; "30" -> {"": 30}, every
+// part's.
+std::map<std::string, double> parsePartValues(const std::string& text) {
   std::map<std::string, double> values;
   for (const std::string& item : splitCommas(text)) {
     const auto equals = item.find('=');
-    if (equals == std::string::npos) throw core::Error(option + ": \"" + item + "\" is not PART=VALUE");
-    values[item.substr(0, equals)] = std::stod(item.substr(equals + 1));
+    const std::string part = equals == std::string::npos ? "" : item.substr(0, equals);
+    values[part] = std::stod(equals == std::string::npos ? item : item.substr(equals + 1));
   }
   return values;
+}
+
+// The part's own value, else every part's, if any.
+std::optional<double> valueFor(const std::map<std::string, double>& values, const std::string& part) {
+  for (const std::string& key : {part, std::string()}) {
+    if (values.count(key)) return values.at(key);
+  }
+  return std::nullopt;
 }
 
 Options parseOptions(int argc, char** argv) {
@@ -77,9 +88,9 @@ Options parseOptions(int argc, char** argv) {
     else if (key == "--grippers")
       options.grippers = splitCommas(value);
     else if (key == "--cups")
-      options.cups = parsePartValues(key, value);
+      options.cups = parsePartValues(value);
     else if (key == "--noses")
-      options.noses = parsePartValues(key, value);
+      options.noses = parsePartValues(value);
     else if (key == "--bins")
       options.bins = std::stoi(value);
     else if (key == "--objects")
@@ -261,9 +272,9 @@ picking::GripperParams gripperFor(const simulation::Part& part, const std::strin
   picking::GripperParams gripper;
   gripper.type = picking::gripperTypeFromName(type);
   if (gripper.type != picking::GripperType::Suction) return gripper;
-  if (options.noses.count(part.name)) gripper.nose_angle_deg = options.noses.at(part.name);
-  if (options.cups.count(part.name)) {
-    gripper.cup_diameter = options.cups.at(part.name);
+  gripper.nose_angle_deg = valueFor(options.noses, part.name).value_or(0.0);
+  if (const std::optional<double> cup = valueFor(options.cups, part.name)) {
+    gripper.cup_diameter = *cup;
     return gripper;
   }
   const picking::CupChoice choice = picking::chooseCup(part.mesh, gripper, part.symmetry, {});

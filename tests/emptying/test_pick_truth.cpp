@@ -199,6 +199,33 @@ TEST(SuctionTruth, ABentNosesBodyLeansWhereTheWristTurnsIt) {
   EXPECT_EQ(judge(scene, leaning_to_the_wall, bent).reason, "tool hits the bin");
 }
 
+// A block tilted 50 degrees, its top face towards the +x wall: the straight tool's body, along the
+// approach, meets the wall at the pose itself; a 45-degree bent nose turned upright stands 5
+// degrees from vertical and clears it (a short approach: a longer one from over the wall would
+// bring the cup's own path into it). Only the bent body's own columns are judged, none along the
+// approach axis behind the cup.
+TEST(SuctionTruth, ABentNosesBodyIsJudgedOffTheApproachAxis) {
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(50.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  Eigen::Isometry3d block = Eigen::Isometry3d::Identity();
+  block.linear() = tilt;
+  block.translation() = Eigen::Vector3d(0.08, 0.0, 0.04);
+  const TrueScene scene(boxMesh(kBlock), {block}, kBin);
+  const Eigen::Vector3d normal = tilt.col(2);
+  const Eigen::Vector3d approach = -normal;
+  // The grasp frame's x towards vertical, seen along the approach: the bent body leans that way.
+  const Eigen::Vector3d towards_up = (Eigen::Vector3d::UnitZ() + normal.z() * approach).normalized();
+  Eigen::Isometry3d grasp = Eigen::Isometry3d::Identity();
+  grasp.linear() << towards_up, approach.cross(towards_up), approach;
+  grasp.translation() = block * Eigen::Vector3d(0.0, 0.0, 0.5 * kBlock.z());
+  const double approach_distance = 0.03;
+  const PickJudgement straight = judgePick(scene, grasp, suction(), approach_distance, PickTruthParams{});
+  EXPECT_EQ(straight.reason, "tool hits the bin");
+  picking::GripperParams bent = suction();
+  bent.nose_angle_deg = 45.0;
+  const PickJudgement upright = judgePick(scene, grasp, bent, approach_distance, PickTruthParams{});
+  EXPECT_TRUE(upright.ok) << upright.reason;
+}
+
 TEST(SuctionTruth, BareFloorIsTheBin) {
   const TrueScene scene = boxes(kBlock, {});
   const PickJudgement j = judge(scene, fromAbove(0.0, 0.0, 0.0), suction());

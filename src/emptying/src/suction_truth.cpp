@@ -104,7 +104,9 @@ std::vector<Column> bentBodyColumns(const picking::GripperParams& gripper, doubl
 std::vector<Column> toolColumns(const picking::GripperParams& gripper, double approach_distance,
                                 const PickTruthParams& params, const Contact& contact) {
   const double cup_radius = 0.5 * gripper.cup_diameter;
-  const double body_radius = gripper.bent() ? 0.0 : gripper.tool_radius;
+  // A bent body has columns of its own; a straight one shares the cup's axis.
+  const bool straight_body = !gripper.bent();
+  const double body_radius = straight_body ? gripper.tool_radius : 0.0;
   const double body_back = -(gripper.cup_length + gripper.tool_length + approach_distance);
   const double cup_back = -(gripper.cup_length + approach_distance);
   const Eigen::Vector3d& n = contact.normal;
@@ -112,7 +114,7 @@ std::vector<Column> toolColumns(const picking::GripperParams& gripper, double ap
   for (const Eigen::Vector2d& xy : discSamples(std::max(cup_radius, body_radius), params.collision_spacing)) {
     const double rho = xy.norm();
     const bool in_cup = rho <= cup_radius * (1.0 + 1e-9);
-    const bool in_body = rho <= body_radius * (1.0 + 1e-9);
+    const bool in_body = straight_body && rho <= body_radius * (1.0 + 1e-9);
     if (!in_cup && !in_body) continue;
     const double face_z = contact.point.z() - (n.x() * xy.x() + n.y() * xy.y()) / n.z();
     const double z_to = in_cup ? face_z - gripper.seal_tolerance : -gripper.cup_length;

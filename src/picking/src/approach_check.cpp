@@ -56,9 +56,7 @@ constexpr double kLeanStepDeg = 1.0;
 // Where the end of the tool body is at the pre-grasp point: on a tilted approach it swings out
 // over a wall first.
 Eigen::Vector3d toolEnd(const Eigen::Isometry3d& T_bin_grasp, const PickParams& params) {
-  const GripperParams& gripper = params.gripper;
-  const Eigen::Vector3d end_at_grasp = T_bin_grasp * (gripper.bodyStart() + gripper.tool_length * gripper.bodyAxis());
-  return end_at_grasp - params.approach_distance * T_bin_grasp.linear().col(2);
+  return T_bin_grasp * params.gripper.bodyEnd() - params.approach_distance * T_bin_grasp.linear().col(2);
 }
 
 // A bent nose's body, swept along the approach, fills a parallelogram grown by its radius: its
@@ -69,7 +67,7 @@ bool bentBodyHitsBin(const Eigen::Isometry3d& T_bin_grasp, const PickParams& par
   const GripperParams& gripper = params.gripper;
   const Eigen::Vector3d sweep = params.approach_distance * T_bin_grasp.linear().col(2);
   const Eigen::Vector3d start = T_bin_grasp * gripper.bodyStart();
-  const Eigen::Vector3d end = T_bin_grasp * (gripper.bodyStart() + gripper.tool_length * gripper.bodyAxis());
+  const Eigen::Vector3d end = T_bin_grasp * gripper.bodyEnd();
   const Eigen::Vector3d axis = T_bin_grasp.linear() * -gripper.bodyAxis();
   const double radius = gripper.tool_radius + params.wall_clearance;
   const std::array<Segment, 4> edges{Segment{start, end}, Segment{start - sweep, end - sweep},
@@ -182,13 +180,12 @@ std::vector<Eigen::Isometry3d> noseTurns(const Eigen::Isometry3d& T_base_grasp, 
     double upright, off_centre;
   };
   const Eigen::Isometry3d T_bin_base = params.bin.T_base_bin.inverse();
-  const Eigen::Vector3d body_end = gripper.bodyStart() + gripper.tool_length * gripper.bodyAxis();
   std::vector<Turn> turns;
   for (int step = 0; step < kTurns; ++step) {
     Eigen::Isometry3d turned = T_base_grasp;
     turned.linear() *= Eigen::AngleAxisd(2.0 * M_PI * step / kTurns, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     const Eigen::Vector3d axis_in_bin = T_bin_base.linear() * turned.linear() * gripper.bodyAxis();
-    const Eigen::Vector3d end_in_bin = T_bin_base * (turned * body_end);
+    const Eigen::Vector3d end_in_bin = T_bin_base * (turned * gripper.bodyEnd());
     turns.push_back({turned, axis_in_bin.z(), end_in_bin.head<2>().norm()});
   }
   std::stable_sort(turns.begin(), turns.end(), [](const Turn& a, const Turn& b) {

@@ -63,10 +63,12 @@ struct GripperParams {
     const double nose = bent() ? nose_angle_deg * M_PI / 180.0 : 0.0;
     return {std::sin(nose), 0.0, -std::cos(nose)};
   }
-  // Grasp frame: where the body starts, on the approach axis behind the cup or the fingers.
+  // Grasp frame: where the body starts, on the approach axis behind the cup or the fingers, and
+  // where it ends.
   Eigen::Vector3d bodyStart() const {
     return {0.0, 0.0, -(type == GripperType::Suction ? cup_length : 0.5 * finger_depth)};
   }
+  Eigen::Vector3d bodyEnd() const { return bodyStart() + tool_length * bodyAxis(); }
 };
 
 }  // namespace binpick::picking

@@ -17,7 +17,9 @@
 // goes below the floor: the grasp point itself may lie just above it (a flat part lying on the
 // floor), so neither the radius nor the clearance applies there. A suction grasp whose corridor
 // meets a wall is leaned away from it about the grasp point, by up to gripper.max_lean_deg
-// (Pick::lean_deg); the seal is still judged on the face.
+// (Pick::lean_deg); the seal is still judged on the face. A bent nose (gripper.bent()) is tried
+// turned about the approach, its body most upright first; its body's corridor is the
+// parallelogram its axis sweeps from the pre-grasp point, grown by the same radius.
 #include <Eigen/Geometry>
 #include <optional>
 #include <string>
