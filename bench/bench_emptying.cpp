@@ -259,9 +259,11 @@ void writeReport(const Options& options, const std::vector<Row>& rows, const std
      << "## Why the parts left stayed\n\n"
      << partsLeftTable(rows);
   if (cup_notes.empty()) return;
+  const picking::CupChoiceParams choice;
   md << "\n## The cups chosen\n\n"
-     << "Parts without --cups got the cup chooseCup finds (picking/cup_choice.hpp): the default 6 mm cup unless a\n"
-     << "smaller one lets at least 10% more of the part's orientations show a grasp facing up.\n\n";
+     << "Parts without --cups got the cup chooseCup finds (picking/cup_choice.hpp): the default "
+     << 1000.0 * picking::GripperParams().cup_diameter << " mm cup unless a\nsmaller one lets at least "
+     << 100.0 * choice.min_gain << "% more of the part's orientations show a grasp facing up.\n\n";
   for (const std::string& note : cup_notes) md << "- " << note << "\n";
 }
 

@@ -171,7 +171,6 @@ std::optional<Eigen::Isometry3d> leanClearOfWalls(const Eigen::Isometry3d& T_bas
 
 std::vector<Eigen::Isometry3d> noseTurns(const Eigen::Isometry3d& T_base_grasp, const PickParams& params) {
   const GripperParams& gripper = params.gripper;
-  if (!gripper.bent()) return {T_base_grasp};
   constexpr int kTurns = 12;
   // Equally upright turns (a vertical approach turns the body on a cone about it) within this.
   constexpr double kSameUpright = 1e-6;

@@ -27,8 +27,8 @@ std::optional<Eigen::Isometry3d> leanClearOfWalls(const Eigen::Isometry3d& T_bas
 
 // Where a bent nose's body may lean (gripper.bent()): the grasp turned about its approach in
 // twelve 30-degree steps, the body's most upright first (it leans back from a tilted face's
-// normal towards vertical), then the one whose end keeps furthest in from the walls. A straight
-// tool: the grasp alone, since its turn moves nothing.
+// normal towards vertical), then the one whose end keeps furthest in from the walls. (A straight
+// tool's turn moves nothing: the planner tries its grasp as it is.)
 std::vector<Eigen::Isometry3d> noseTurns(const Eigen::Isometry3d& T_base_grasp, const PickParams& params);
 
 }  // namespace binpick::picking

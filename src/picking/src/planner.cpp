@@ -119,19 +119,27 @@ Screened screenCandidates(const DetectedPart& part, int object, const std::vecto
     const double tilt_deg = approachTiltDeg(T_base_face);
     if (tilt_deg > params.max_tilt_deg) continue;
     screened.furthest = std::max(screened.furthest, Reached::Bin);
-    std::size_t kept = 0;
-    for (const Eigen::Isometry3d& T_base_turned : noseTurns(T_base_face, params)) {
+    // Whether the grasp, so turned, clears the bin: then it goes on to the cloud test.
+    const auto screenTurn = [&](const Eigen::Isometry3d& T_base_turned) {
       Candidate tested;
       Pick& pick = tested.pick;
       pick.object = object;
       pick.grasp = candidate.grasp;
       pick.T_base_grasp = tested.T_base_face = T_base_turned;
       pick.tilt_deg = tilt_deg;
-      if (!clearsBin(pick, params)) continue;
+      if (!clearsBin(pick, params)) return false;
       screened.furthest = Reached::Cloud;
       pick.rank = rankWithoutCloud(part, params.grasps[static_cast<std::size_t>(pick.grasp)], pick, params);
       screened.survivors.push_back(tested);
-      if (++kept == kNoseTurnsKept) break;
+      return true;
+    };
+    if (!params.gripper.bent()) {  // a straight tool's turn moves nothing
+      screenTurn(T_base_face);
+      continue;
+    }
+    std::size_t kept = 0;
+    for (const Eigen::Isometry3d& T_base_turned : noseTurns(T_base_face, params)) {
+      if (screenTurn(T_base_turned) && ++kept == kNoseTurnsKept) break;
     }
   }
   return screened;
